@@ -1,0 +1,114 @@
+/* tiptap: tip-sample contact mechanics (seed section 2.2, ../shared/PHYSICS.md).
+ *
+ * A tt_contact holds one material's force law: the Maugis-Dugdale curve (eq. 7) or one
+ * of its limits (Hertz eq. 4, DMT eq. 5, JKR eq. 6), precomputed once into a table on
+ * the stable branch with a Hertz tail, joined to the van der Waals branch (eq. 10 with
+ * the sign fixed in PHYSICS.md) at (P0, Delta0), and the jump-in / pull-off points of
+ * the hysteresis loop. With w = 0 it is Hertz in physical units exactly: no table, no
+ * van der Waals branch, no hysteresis.
+ *
+ * Conventions: delta is the penetration d - s in metres (positive into the sample,
+ * negative for a gap); the load P is in newtons, positive when repulsive. The contact
+ * state (in_contact) is part of the caller's state: it changes only at the events
+ * delta >= tt_contact_jumpin() (approaching, out of contact) and
+ * delta <= tt_contact_jumpout() (receding, in contact).
+ *
+ * Ownership: tt_contact_alloc returns an object the caller frees with tt_contact_free;
+ * it is read-only after allocation and may be shared between threads.
+ */
+#ifndef TIPTAP_CONTACT_H
+#define TIPTAP_CONTACT_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum {
+    TT_CONTACT_MAUGIS = 0, /* Maugis-Dugdale, eq. 7, any lambda */
+    TT_CONTACT_HERTZ,      /* eq. 4: no adhesion at all (w ignored) */
+    TT_CONTACT_DMT,        /* eq. 5, with the van der Waals branch joined at (-2, 0) */
+    TT_CONTACT_JKR         /* eq. 6: no force out of contact */
+} tt_contact_model;
+
+/* Parse "maugis", "hertz", "dmt", "jkr"; returns -1 if unknown. */
+int tt_contact_model_parse(const char *name, tt_contact_model *out);
+const char *tt_contact_model_name(tt_contact_model m);
+
+typedef struct {
+    tt_contact_model model;
+    double K;      /* reduced modulus, Pa (> 0) */
+    double R;      /* reduced radius, m (> 0) */
+    double w;      /* Dupre work of adhesion, J/m^2 (>= 0; 0 is exactly Hertz) */
+    double xi0;    /* equilibrium interatomic distance, m (> 0 when w > 0 unless lambda given) */
+    double lambda; /* Maugis parameter; NAN: derived from xi0 (Lennard-Jones, eq. 3) */
+} tt_contact_params;
+
+typedef struct {
+    int adhesive;          /* 0 when w = 0 or model = hertz: Hertz in physical units */
+    double lambda;         /* Maugis parameter used (0 for DMT, INFINITY for JKR) */
+    double force_scale;    /* F* = pi w R, N (0 when not adhesive) */
+    double depth_scale;    /* d* = (pi^2 w^2 R / K^2)^(1/3), m */
+    double radius_scale;   /* a* = (pi w R^2 / K)^(1/3), m */
+    double xi0;            /* m, as used (derived from lambda when lambda was given) */
+    /* normalised (eq. 3 units) */
+    double P0, Delta0;     /* the A -> 0 end of the contact curve (eq. 8, exact) */
+    double pulloff_load;   /* least load on the contact curve (load-controlled pull-off) */
+    double pulloff_delta;  /* Delta where that least load occurs */
+    double jumpout_delta;  /* least Delta on the stable branch: displacement-controlled pull-off */
+    double jumpout_load;   /* load there */
+    double jumpin_delta;   /* Delta where an approaching tip contacts (= Delta0) */
+    double jumpin_load;    /* load on the stable branch just after jump-in */
+    int hysteresis;        /* 1 when jumpout_delta < jumpin_delta (lambda above about 0.938) */
+    /* physical */
+    double hamaker;        /* J, by continuity at (P0, Delta0); 0 when no van der Waals branch */
+    double loop_energy;    /* J: energy lost per approach-retract loop of a stiff tip */
+} tt_contact_summary;
+
+typedef struct tt_contact tt_contact;
+
+/* Build the force law (and its table). Fails with TT_EINVAL and a message naming the
+ * parameter on bad input (K <= 0, NaN, ...). */
+int tt_contact_alloc(tt_contact **out, const tt_contact_params *p);
+
+/* The normalised curve of a model at a given lambda: the same object with
+ * F* = d* = a* = 1 (R = 1, w = 1/pi, K = 1) and xi0 (normalised) = xi0n. */
+int tt_contact_alloc_normalised(tt_contact **out, tt_contact_model model, double lambda,
+                                double xi0n);
+
+void tt_contact_free(tt_contact *c);
+
+const tt_contact_summary *tt_contact_summary_of(const tt_contact *c);
+
+/* O(1): the load (N) at penetration delta (m) on the branch in_contact selects, its
+ * derivative dP/ddelta (N/m) if dPdd is not NULL, and the contact radius (m) if a is
+ * not NULL (0 out of contact). Each branch is continued smoothly and finitely a little
+ * past its switch point, since the stages of a step may overshoot it. */
+double tt_contact_load(const tt_contact *c, double delta, int in_contact, double *dPdd,
+                       double *a);
+
+/* Potential energy (J) with dU/ddelta = P on the branch in_contact selects: U = 0 far
+ * from the sample on the out-of-contact branch, and the contact branch continuous with
+ * it at jump-in, so that U_contact(jumpout) - U_out(jumpout) is the loop energy. */
+double tt_contact_energy(const tt_contact *c, double delta, int in_contact);
+
+/* The event thresholds, m: an out-of-contact tip contacts when delta rises to
+ * jumpin; an in-contact tip leaves when delta falls to jumpout (<= jumpin). */
+double tt_contact_jumpin(const tt_contact *c);
+double tt_contact_jumpout(const tt_contact *c);
+
+/* Direct evaluation of eq. 7 at parameter m > 1 (normalised): A, Delta, P. For tests
+ * and for the full curve in plots; never called in a time loop. */
+void tt_contact_maugis_point(double lambda, double m, double *A, double *Delta, double *P);
+
+/* Sample the whole normalised contact curve (stable and unstable parts) of c at n
+ * points ordered by A from near 0 to A_max: A, Delta, P, and stable (1 where
+ * dDelta/dA > 0, the displacement-controlled stable branch). */
+int tt_contact_curve(const tt_contact *c, size_t n, double A_max, double *A, double *Delta,
+                     double *P, int *stable);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

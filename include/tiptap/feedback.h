@@ -1,0 +1,40 @@
+/* tiptap: PI amplitude feedback with a clamped z piezo.
+ *
+ * The controller holds the lock-in amplitude at the setpoint by moving the sample.
+ * Its output is the height signal z (m): the sample is lowered by z, so over a bump of
+ * height H a converged loop reads z = H. When the amplitude is below the setpoint the
+ * tip is too close and z grows. Error e = amplitude - setpoint;
+ *   z = -(kp * e + ki * integral(e dt)) + z0, clamped to [z_min, z_max],
+ * with the integrator held while clamped (anti-windup), as an instrument does.
+ * Gains are in physical units: kp in m/m (dimensionless), ki in 1/s.
+ *
+ * Ownership: plain struct, no allocation.
+ */
+#ifndef TIPTAP_FEEDBACK_H
+#define TIPTAP_FEEDBACK_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+    double setpoint;   /* m */
+    double kp;         /* dimensionless */
+    double ki;         /* 1/s */
+    double z_min, z_max;
+    /* state */
+    double integral;   /* integral of e dt, m s */
+    double z0;         /* output offset, m */
+    double z;          /* last output, m */
+    int clamped;       /* last output was clamped */
+} tt_feedback;
+
+void tt_feedback_init(tt_feedback *f, double setpoint, double kp, double ki, double z_min,
+                      double z_max, double z0);
+/* One update after dt seconds with the measured amplitude; returns the new z. */
+double tt_feedback_update(tt_feedback *f, double amplitude, double dt);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

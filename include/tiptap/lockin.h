@@ -1,0 +1,54 @@
+/* tiptap: lock-in demodulator.
+ *
+ * The deflection is sampled N times per drive period (N a power of two is fastest),
+ * at t = k T / N from a period boundary. Each block of whole periods is transformed
+ * with FFTW (one plan made at alloc), giving the in-phase and quadrature parts of the
+ * fundamental and of the harmonics up to nharm; these then pass a low-pass filter of
+ * the given order (cascaded first-order sections, each with the time constant tau),
+ * as in an instrument's lock-in. Amplitude is the peak amplitude; phase is the lag of
+ * the harmonic behind cos(h w t), in radians.
+ *
+ * Ownership: tt_lockin_alloc returns a handle the caller frees with tt_lockin_free.
+ * A handle is not shared between threads (each scan line has its own).
+ */
+#ifndef TIPTAP_LOCKIN_H
+#define TIPTAP_LOCKIN_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+    double drive_frequency;  /* Hz */
+    int samples_per_period;  /* N >= 8 */
+    int periods_per_block;   /* periods per transform (>= 1) */
+    int harmonics;           /* harmonics kept, >= 1 (1: the fundamental only) */
+    double time_constant;    /* s; 0: no filter (each block's raw result) */
+    int filter_order;        /* 1 to 8 */
+} tt_lockin_params;
+
+typedef struct tt_lockin tt_lockin;
+
+int tt_lockin_alloc(tt_lockin **out, const tt_lockin_params *p);
+void tt_lockin_free(tt_lockin *l);
+
+/* Start the filter from these values (for example the free oscillation), so that a
+ * scan does not begin with a filter transient from zero. */
+void tt_lockin_reset(tt_lockin *l, double amplitude, double phase);
+
+/* Feed one block: samples_per_period * periods_per_block samples. */
+int tt_lockin_push(tt_lockin *l, const double *samples);
+
+/* Filtered outputs for harmonic h (1 = fundamental, up to harmonics). */
+double tt_lockin_amplitude(const tt_lockin *l, int h);
+double tt_lockin_phase(const tt_lockin *l, int h);
+/* Unfiltered result of the last block. */
+double tt_lockin_raw_amplitude(const tt_lockin *l, int h);
+double tt_lockin_raw_phase(const tt_lockin *l, int h);
+/* Mean (DC) of the last block, unfiltered. */
+double tt_lockin_mean(const tt_lockin *l);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

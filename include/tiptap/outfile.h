@@ -1,0 +1,36 @@
+/* tiptap: output files that never exist half-written.
+ *
+ * tt_outfile_open writes to a temporary name beside the target; tt_outfile_close with
+ * keep = 1 flushes, closes and renames it into place, with keep = 0 removes it. A run
+ * that fails or is killed between the two leaves at most the temporary file, never a
+ * truncated target.
+ *
+ * Ownership: the tt_outfile and its FILE belong to the library until
+ * tt_outfile_close, which frees both whatever it returns.
+ */
+#ifndef TIPTAP_OUTFILE_H
+#define TIPTAP_OUTFILE_H
+
+#include <stdio.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct tt_outfile tt_outfile;
+
+/* Fails with TT_EIO and "path: cannot write: reason" (for example a missing or
+ * unwritable folder). */
+int tt_outfile_open(tt_outfile **out, const char *path);
+FILE *tt_outfile_stream(tt_outfile *o);
+const char *tt_outfile_tmpname(const tt_outfile *o);
+int tt_outfile_close(tt_outfile *o, int keep);
+
+/* Make a folder (and its parents) if missing; TT_EIO with "dir: reason" if it cannot
+ * be made or written. */
+int tt_mkdirs(const char *dir);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,51 @@
+/* tiptap: line plots with axes, ticks, labels and a legend, written as PNG (cairo).
+ *
+ * A figure has one or more panels stacked vertically sharing nothing but the width;
+ * each panel has its own axes and series. NaN in a series breaks the line (a gap).
+ *
+ * Ownership: the figure copies the data and strings it is given; the caller frees the
+ * figure with tt_figure_free.
+ */
+#ifndef TIPTAP_PLOT_H
+#define TIPTAP_PLOT_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum {
+    TT_PLOT_COLOR_MASK = 0xff, /* low bits: colour index (0 = next in the palette) */
+    TT_PLOT_DASHED = 1 << 8,
+    TT_PLOT_POINTS = 1 << 9,   /* markers instead of a line */
+    TT_PLOT_RIGHT = 1 << 10,   /* against the panel's right-hand axis */
+    TT_PLOT_THICK = 1 << 11
+};
+
+typedef struct tt_figure tt_figure;
+
+tt_figure *tt_figure_alloc(int panels, const char *title);
+void tt_figure_free(tt_figure *f);
+
+int tt_figure_axes(tt_figure *f, int panel, const char *xlabel, const char *ylabel);
+/* A right-hand axis for series drawn with TT_PLOT_RIGHT. */
+int tt_figure_axis_right(tt_figure *f, int panel, const char *ylabel);
+/* Axis limits; NaN for automatic. */
+int tt_figure_xlim(tt_figure *f, int panel, double lo, double hi);
+int tt_figure_ylim(tt_figure *f, int panel, double lo, double hi);
+int tt_figure_log(tt_figure *f, int panel, int logx, int logy);
+/* Add a series; label NULL for none (no legend entry). style: TT_PLOT_* flags. */
+int tt_figure_line(tt_figure *f, int panel, const double *x, const double *y, size_t n,
+                   const char *label, unsigned style);
+/* A vertical or horizontal reference line across the panel. */
+int tt_figure_vline(tt_figure *f, int panel, double x, const char *label);
+int tt_figure_hline(tt_figure *f, int panel, double y, const char *label);
+
+/* Render to PNG through a temporary file (see outfile.h). */
+int tt_figure_write_png(const tt_figure *f, const char *path, int width, int height);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

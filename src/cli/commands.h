@@ -1,0 +1,31 @@
+/* The tiptap subcommands and helpers they share. */
+#ifndef TIPTAP_CLI_COMMANDS_H
+#define TIPTAP_CLI_COMMANDS_H
+
+#include <stdio.h>
+
+#include "tiptap/scene.h"
+
+int cmd_contact(int argc, char **argv);
+int cmd_keys(int argc, char **argv);
+
+/* Exit codes: 0 success, 1 bad input or failure, 2 usage, 130 interrupted. */
+enum { CLI_OK = 0, CLI_FAIL = 1, CLI_USAGE = 2, CLI_INTERRUPTED = 130 };
+
+/* Print "tiptap: message" (the library's last error if msg is NULL) and return the
+ * exit code matching status. */
+int cli_fail(int status, const char *msg);
+
+/* Load scene files in order and apply --set assignments; NULL on error (reported). */
+tt_scene *cli_load_scene(char **files, int nfiles, char **sets, int nsets);
+
+/* 1 when stderr is a terminal: progress lines go there only then. */
+int cli_progress_enabled(void);
+
+/* Install the SIGINT handler that requests cooperative cancellation. */
+void cli_catch_interrupt(void);
+
+/* Wall-clock seconds from a monotonic clock. */
+double cli_now(void);
+
+#endif

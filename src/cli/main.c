@@ -1,0 +1,59 @@
+/* tiptap: the command-line program, a thin layer over libtiptap. */
+#include <getopt.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "commands.h"
+
+/* The subcommands, in the order --help lists them. */
+static const struct {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *summary;
+} commands[] = {
+    {"contact", cmd_contact, "contact mechanics: a Maugis-Dugdale curve and its summary"},
+    {"keys", cmd_keys, "list every scene section and key with unit and default"},
+};
+
+#define NCOMMANDS (sizeof commands / sizeof commands[0])
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "Usage: tiptap COMMAND [OPTIONS] [SCENE...]\n"
+            "Tapping-mode AFM simulator (Burnham et al., \"How does a tip tap?\").\n\n"
+            "Commands:\n");
+    for (size_t i = 0; i < NCOMMANDS; i++)
+        fprintf(out, "  %-10s %s\n", commands[i].name, commands[i].summary);
+    fprintf(out,
+            "\nOptions:\n"
+            "  -h, --help     this help; 'tiptap COMMAND --help' for a command's\n"
+            "  -V, --version  the version\n\n"
+            "Scenes are INI files (docs/scene-format.md); values carry SI units.\n"
+            "Exit status: 0 success, 1 bad input or failure, 2 usage, 130 interrupted.\n");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return CLI_USAGE;
+    }
+    for (size_t i = 0; i < NCOMMANDS; i++)
+        if (strcmp(argv[1], commands[i].name) == 0)
+            return commands[i].run(argc - 1, argv + 1);
+
+    static const struct option opts[] = {
+        {"help", no_argument, NULL, 'h'}, {"version", no_argument, NULL, 'V'}, {NULL, 0, NULL, 0}};
+    int c = getopt_long(argc, argv, "hV", opts, NULL);
+    if (c == 'h') {
+        usage(stdout);
+        return CLI_OK;
+    }
+    if (c == 'V') {
+        printf("tiptap %s\n", TT_VERSION);
+        return CLI_OK;
+    }
+    fprintf(stderr, "tiptap: unknown command '%s'; see 'tiptap --help'\n", argv[1]);
+    return CLI_USAGE;
+}
