@@ -85,8 +85,8 @@ static const tt_scene_key trace_keys[] = {
 };
 
 static const tt_scene_key solver_keys[] = {
-    {"method", TT_KEY_ENUM, 0, "dopri5", 0, 0, 0, "dopri5|rk4|implicit",
-     "dopri5: adaptive explicit 5(4); rk4: fixed steps; implicit: stiffly stable"},
+    {"method", TT_KEY_ENUM, 0, "dopri5", 0, 0, 0, "dopri5|rk4",
+     "dopri5: adaptive explicit 5(4) with dense output; rk4: classic, fixed steps"},
     {"tolerance", Q(TT_DIM_NONE), "1e-8", 1e-14, 1e-1, 0, NULL,
      "adaptive methods: local error tolerance relative to the free amplitude"},
     {"steps_per_cycle", TT_KEY_INT, 0, "512", 8, 1e7, 0, NULL,

@@ -7,17 +7,45 @@
 
 int cmd_keys(int argc, char **argv)
 {
-    static const struct option opts[] = {{"help", no_argument, NULL, 'h'}, {NULL, 0, NULL, 0}};
-    int c;
-    while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+    static const struct option opts[] = {{"help", no_argument, NULL, 'h'},
+                                         {"markdown", no_argument, NULL, 'm'},
+                                         {NULL, 0, NULL, 0}};
+    int c, markdown = 0;
+    while ((c = getopt_long(argc, argv, "hm", opts, NULL)) != -1) {
         if (c == 'h') {
-            printf("Usage: tiptap keys\nLists every scene section and key: kind, default, meaning.\n");
+            printf("Usage: tiptap keys [--markdown]\n"
+                   "Lists every scene section and key: kind, default, meaning.\n"
+                   "  --markdown  as the tables of docs/scene-format.md\n");
             return CLI_OK;
+        }
+        if (c == 'm') {
+            markdown = 1;
+            continue;
         }
         return CLI_USAGE;
     }
     size_t n;
     const tt_scene_section *sec = tt_scene_schema(&n);
+    if (markdown) {
+        for (size_t i = 0; i < n; i++) {
+            printf("### [%s%s]\n\n%s.\n\n| key | value | default | meaning |\n|---|---|---|---|\n",
+                   sec[i].name, sec[i].named ? " NAME" : "", sec[i].doc);
+            for (size_t k = 0; k < sec[i].nkeys; k++) {
+                const tt_scene_key *key = &sec[i].keys[k];
+                const char *kind = key->kind == TT_KEY_ENUM     ? key->choices
+                                   : key->kind == TT_KEY_INT    ? "integer"
+                                   : key->kind == TT_KEY_BOOL   ? "yes/no"
+                                   : key->kind == TT_KEY_STRING ? "text"
+                                                                : tt_units_describe(key->dims);
+                printf("| `%s` | ", key->key);
+                for (const char *p = kind; *p; p++)
+                    fputs(*p == '|' ? "\\|" : (char[]){*p, 0}, stdout);
+                printf(" | %s | %s |\n", key->def ? key->def : "(none)", key->doc);
+            }
+            printf("\n");
+        }
+        return CLI_OK;
+    }
     for (size_t i = 0; i < n; i++) {
         printf("[%s%s]  %s\n", sec[i].name, sec[i].named ? " NAME" : "", sec[i].doc);
         for (size_t k = 0; k < sec[i].nkeys; k++) {

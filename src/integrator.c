@@ -1,0 +1,837 @@
+/* Time integration of the tapping cantilever with located contact events
+ * (see include/tiptap/integrator.h; seed eq. 2 with PHYSICS.md's conventions).
+ *
+ * The state vector carries the motion (d, v) and, as extra components integrated by
+ * the same steps, the per-cycle integrals that give the observables: the Fourier
+ * sums of the deflection, the energies, the contact time. Events are found on the
+ * step's continuous extension (dense output), then the step is redone up to the event
+ * so that the state at the switch is a true integration result. */
+#include "tiptap/integrator.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tiptap/error.h"
+
+enum {
+    Y_D,      /* tip position */
+    Y_V,      /* tip velocity */
+    Y_WDRIVE, /* drive work */
+    Y_WDAMP,  /* cantilever damping loss */
+    Y_WCI,    /* interaction damping loss */
+    Y_WS,     /* work on a moving sample */
+    Y_IC,     /* integral of y cos(w t) */
+    Y_IS,     /* integral of y sin(w t) */
+    Y_IY,     /* integral of y */
+    Y_TC,     /* time in contact */
+    NY
+};
+
+struct tt_sim {
+    tt_cantilever c;
+    tt_solver solver;
+    const tt_contact *contact;
+    double ci;           /* interaction damping coefficient, kg/s */
+    double inv_m;        /* 1 / m*: the right-hand side multiplies rather than divides */
+    double jumpin, jumpout, margin;
+    /* sample: s(tau) = s0 + sdot tau within the current cycle */
+    double s0, sdot;
+    /* state */
+    long cycle;          /* completed cycles */
+    double tau;          /* time within the cycle, s */
+    double y[NY];
+    int contact_state;
+    double h;            /* dopri5: next step size */
+    int rk4_j;           /* rk4: index of the next grid point in the cycle */
+    /* first-same-as-last derivative at (tau, y), valid while fsal_ok */
+    double fsal[NY];
+    int fsal_ok;
+    /* the current step, for dense output */
+    double step_tau, step_h;
+    double y0[NY], y1[NY], k[7][NY];
+    double rcont[5][2];  /* dopri5 dense output of d and v */
+    double acc1;         /* rk4: acceleration at the step end */
+    /* sampling */
+    int nsamp;
+    tt_sample *samples;
+    int next_sample;
+    int track_extremes;
+    /* per-cycle accumulators outside the state vector */
+    double peak_force, max_indent, y_min, y_max, e_jumps, t_contact, t_release;
+    long steps, rejected, events;
+    int failed;
+};
+
+/* ---- dopri5 coefficients (Dormand & Prince 1980; dense output of Hairer's dopri5) ---- */
+static const double C2 = 0.2, C3 = 0.3, C4 = 0.8, C5 = 8.0 / 9.0;
+static const double A21 = 0.2;
+static const double A31 = 3.0 / 40.0, A32 = 9.0 / 40.0;
+static const double A41 = 44.0 / 45.0, A42 = -56.0 / 15.0, A43 = 32.0 / 9.0;
+static const double A51 = 19372.0 / 6561.0, A52 = -25360.0 / 2187.0, A53 = 64448.0 / 6561.0,
+                    A54 = -212.0 / 729.0;
+static const double A61 = 9017.0 / 3168.0, A62 = -355.0 / 33.0, A63 = 46732.0 / 5247.0,
+                    A64 = 49.0 / 176.0, A65 = -5103.0 / 18656.0;
+static const double A71 = 35.0 / 384.0, A73 = 500.0 / 1113.0, A74 = 125.0 / 192.0,
+                    A75 = -2187.0 / 6784.0, A76 = 11.0 / 84.0;
+static const double E1 = 71.0 / 57600.0, E3 = -71.0 / 16695.0, E4 = 71.0 / 1920.0,
+                    E5 = -17253.0 / 339200.0, E6 = 22.0 / 525.0, E7 = -1.0 / 40.0;
+static const double D1 = -12715105075.0 / 11282082432.0, D3 = 87487479700.0 / 32700410799.0,
+                    D4 = -10690763975.0 / 1880347072.0, D5 = 701980252875.0 / 199316789632.0,
+                    D6 = -1453857185.0 / 822651844.0, D7 = 69997945.0 / 29380423.0;
+
+void tt_solver_default(tt_solver *s)
+{
+    s->method = TT_METHOD_DOPRI5;
+    s->tolerance = 1e-8;
+    s->steps_per_cycle = 512;
+}
+
+const char *tt_method_name(tt_method m) { return m == TT_METHOD_RK4 ? "rk4" : "dopri5"; }
+
+int tt_solver_from_scene(tt_solver *s, const tt_scene *scene)
+{
+    tt_solver_default(s);
+    const char *m = tt_scene_get_string(scene, "solver", NULL, "method");
+    s->method = (m && strcmp(m, "rk4") == 0) ? TT_METHOD_RK4 : TT_METHOD_DOPRI5;
+    long n;
+    int rc;
+    if ((rc = tt_scene_get_double(scene, "solver", NULL, "tolerance", &s->tolerance)) ||
+        (rc = tt_scene_get_int(scene, "solver", NULL, "steps_per_cycle", &n)))
+        return rc;
+    s->steps_per_cycle = (int)n;
+    return TT_OK;
+}
+
+int tt_sim_alloc(tt_sim **out, const tt_cantilever *c, const tt_solver *solver)
+{
+    *out = NULL;
+    if (solver->method == TT_METHOD_RK4 && solver->steps_per_cycle < 8)
+        return tt_error(TT_EINVAL, "rk4 needs at least 8 steps per cycle");
+    if (solver->method == TT_METHOD_DOPRI5 && !(solver->tolerance > 0 && solver->tolerance < 1))
+        return tt_error(TT_EINVAL, "solver tolerance must lie between 0 and 1");
+    tt_sim *S = calloc(1, sizeof *S);
+    if (!S)
+        return tt_error(TT_ENOMEM, "out of memory");
+    S->c = *c;
+    S->inv_m = 1.0 / c->m;
+    S->solver = *solver;
+    S->h = c->T / 64;
+    tt_sim_set_contact(S, NULL, NAN);
+    tt_sim_reset_free(S);
+    *out = S;
+    return TT_OK;
+}
+
+void tt_sim_free(tt_sim *sim) { free(sim); }
+
+void tt_sim_set_contact(tt_sim *S, const tt_contact *contact, double Qi)
+{
+    S->contact = contact;
+    S->ci = (isfinite(Qi) && Qi > 0) ? S->c.m * S->c.w0 / Qi : 0.0;
+    if (contact) {
+        S->jumpin = tt_contact_jumpin(contact);
+        S->jumpout = tt_contact_jumpout(contact);
+    } else {
+        S->jumpin = INFINITY;
+        S->jumpout = -INFINITY;
+        S->contact_state = 0;
+    }
+    /* A re-stepped event lands a hair (the local error) on either side of its
+     * threshold, and a grazing tip may end a step just past one without a sign change;
+     * only past this margin is a switch forced (tiny next to any force-law length). */
+    S->margin = 1e-6 * S->c.A0;
+    S->fsal_ok = 0;
+}
+
+void tt_sim_set_sample(tt_sim *S, double s, double sdot)
+{
+    S->s0 = s;
+    S->sdot = sdot;
+    S->fsal_ok = 0;
+}
+
+void tt_sim_set_sampling(tt_sim *S, int n, tt_sample *buf)
+{
+    S->nsamp = buf ? n : 0;
+    S->samples = buf;
+}
+
+void tt_sim_track_extremes(tt_sim *S, int on) { S->track_extremes = on; }
+
+void tt_sim_set_cantilever(tt_sim *S, const tt_cantilever *c)
+{
+    /* Same drive period required: the cycle bookkeeping assumes it. */
+    S->c = *c;
+    S->inv_m = 1.0 / c->m;
+    tt_sim_set_contact(S, S->contact, S->ci > 0 ? S->c.m * S->c.w0 / S->ci : NAN);
+}
+
+const tt_cantilever *tt_sim_cantilever(const tt_sim *S) { return &S->c; }
+
+double tt_sim_time(const tt_sim *S) { return (double)S->cycle * S->c.T; }
+long tt_sim_cycles(const tt_sim *S) { return S->cycle; }
+
+void tt_sim_get_state(const tt_sim *S, double *d, double *v, int *contact)
+{
+    *d = S->y[Y_D];
+    *v = S->y[Y_V];
+    *contact = S->contact_state;
+}
+
+void tt_sim_set_state(tt_sim *S, double d, double v, int contact)
+{
+    S->y[Y_D] = d;
+    S->y[Y_V] = v;
+    S->contact_state = S->contact ? contact : 0;
+    S->fsal_ok = 0;
+}
+
+void tt_sim_reset_free(tt_sim *S)
+{
+    /* y = A0 cos(w t - phi0) at t = 0, and d = z + y. */
+    const tt_cantilever *c = &S->c;
+    double z = c->drive == TT_DRIVE_BASE ? c->a_d : 0.0;
+    double y = c->A0 * cos(-c->phi0);
+    double ydot = -c->A0 * c->wd * sin(-c->phi0);
+    memset(S->y, 0, sizeof S->y);
+    S->y[Y_D] = z + y;
+    S->y[Y_V] = ydot; /* z' = 0 at t = 0 */
+    S->contact_state = 0;
+    S->tau = 0;
+    S->fsal_ok = 0;
+}
+
+/* sin and cos of a drive phase in [0, 2 pi] and a little beyond, to within 2 ulp:
+ * quadrant reduction with a two-part pi/2 and Taylor polynomials on [-pi/4, pi/4].
+ * The library's sincos is a third of the run time otherwise, and the phase here is
+ * always small, so its general argument reduction is not needed. */
+static inline void phase_sincos(double x, double *sn, double *cs)
+{
+    static const double pio2_hi = 1.57079632679489655800e+00, pio2_lo = 6.12323399573676603587e-17;
+    double q = nearbyint(x * (2.0 / M_PI));
+    double r = (x - q * pio2_hi) - q * pio2_lo;
+    double r2 = r * r;
+    double s = r * (1 + r2 * (-1.0 / 6 + r2 * (1.0 / 120 + r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 +
+               r2 * (-1.0 / 39916800 + r2 * (1.0 / 6227020800 + r2 * (-1.0 / 1307674368000))))))));
+    double c = 1 + r2 * (-0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 + r2 * (1.0 / 40320 +
+               r2 * (-1.0 / 3628800 + r2 * (1.0 / 479001600 + r2 * (-1.0 / 87178291200 +
+               r2 * (1.0 / 20922789888000))))))));
+    switch ((long)q & 3) {
+    case 0: *sn = s; *cs = c; break;
+    case 1: *sn = c; *cs = -s; break;
+    case 2: *sn = -s; *cs = -c; break;
+    default: *sn = -c; *cs = s; break;
+    }
+}
+
+/* Base position and velocity, drive force. */
+static inline void drive_at(const tt_sim *S, double tau, double *z, double *zd, double *F,
+                            double *cw, double *sw)
+{
+    const tt_cantilever *c = &S->c;
+    double sn, cs;
+    phase_sincos(c->wd * tau, &sn, &cs);
+    *cw = cs;
+    *sw = sn;
+    if (c->drive == TT_DRIVE_BASE) {
+        *z = c->a_d * cs;
+        *zd = -c->a_d * c->wd * sn;
+        *F = 0;
+    } else {
+        *z = 0;
+        *zd = 0;
+        *F = c->F0 * cs;
+    }
+}
+
+/* The right-hand side: seed eq. 2 plus the per-cycle integrals. The contact state is
+ * fixed for the whole step (PHYSICS.md: never flip it inside the right-hand side). */
+static void rhs(const tt_sim *S, double tau, const double *Y, int contact, double *Fo)
+{
+    const tt_cantilever *c = &S->c;
+    double z, zd, Fd, cw, sw;
+    drive_at(S, tau, &z, &zd, &Fd, &cw, &sw);
+    double d = Y[Y_D], v = Y[Y_V];
+    double s = S->s0 + S->sdot * tau;
+    double delta = d - s, deltad = v - S->sdot;
+    double P = S->contact ? tt_contact_load(S->contact, delta, contact, NULL, NULL) : 0.0;
+    double Fi = contact ? S->ci * deltad : 0.0;
+    double spring = c->k * (d - z), damp = c->c * (v - zd);
+    double y = d - z;
+    Fo[Y_D] = v;
+    Fo[Y_V] = (-damp - spring - P - Fi + Fd) * S->inv_m;
+    Fo[Y_WDRIVE] = Fd * v - (spring + damp) * zd;
+    Fo[Y_WDAMP] = damp * (v - zd);
+    Fo[Y_WCI] = Fi * deltad;
+    Fo[Y_WS] = (P + Fi) * S->sdot;
+    Fo[Y_IC] = y * cw;
+    Fo[Y_IS] = y * sw;
+    Fo[Y_IY] = y;
+    Fo[Y_TC] = contact ? 1.0 : 0.0;
+}
+
+/* Mechanical energy of the tip system on the current branch: kinetic + spring +
+ * tip-sample potential. */
+static double energy(const tt_sim *S, double tau, const double *Y, int contact)
+{
+    double z, zd, Fd, cw, sw;
+    drive_at(S, tau, &z, &zd, &Fd, &cw, &sw);
+    double d = Y[Y_D], v = Y[Y_V];
+    double U = S->contact ? tt_contact_energy(S->contact, d - (S->s0 + S->sdot * tau), contact) : 0;
+    return 0.5 * S->c.m * v * v + 0.5 * S->c.k * (d - z) * (d - z) + U;
+}
+
+/* ---- one step of each method from (tau, y) with size h into S->y1, filling dense data ---- */
+
+static void ensure_fsal(tt_sim *S)
+{
+    if (!S->fsal_ok) {
+        rhs(S, S->tau, S->y, S->contact_state, S->fsal);
+        S->fsal_ok = 1;
+    }
+}
+
+/* Dormand-Prince 5(4). Returns the scaled error norm (<= 1 accepts). */
+static double dopri5_step(tt_sim *S, double h)
+{
+    double (*k)[NY] = S->k, yt[NY];
+    const double *y0 = S->y;
+    double t = S->tau;
+    int cs = S->contact_state;
+    ensure_fsal(S);
+    memcpy(k[0], S->fsal, sizeof k[0]);
+    for (int i = 0; i < NY; i++)
+        yt[i] = y0[i] + h * A21 * k[0][i];
+    rhs(S, t + C2 * h, yt, cs, k[1]);
+    for (int i = 0; i < NY; i++)
+        yt[i] = y0[i] + h * (A31 * k[0][i] + A32 * k[1][i]);
+    rhs(S, t + C3 * h, yt, cs, k[2]);
+    for (int i = 0; i < NY; i++)
+        yt[i] = y0[i] + h * (A41 * k[0][i] + A42 * k[1][i] + A43 * k[2][i]);
+    rhs(S, t + C4 * h, yt, cs, k[3]);
+    for (int i = 0; i < NY; i++)
+        yt[i] = y0[i] + h * (A51 * k[0][i] + A52 * k[1][i] + A53 * k[2][i] + A54 * k[3][i]);
+    rhs(S, t + C5 * h, yt, cs, k[4]);
+    for (int i = 0; i < NY; i++)
+        yt[i] = y0[i] + h * (A61 * k[0][i] + A62 * k[1][i] + A63 * k[2][i] + A64 * k[3][i] +
+                             A65 * k[4][i]);
+    rhs(S, t + h, yt, cs, k[5]);
+    for (int i = 0; i < NY; i++)
+        S->y1[i] = y0[i] + h * (A71 * k[0][i] + A73 * k[2][i] + A74 * k[3][i] + A75 * k[4][i] +
+                                A76 * k[5][i]);
+    rhs(S, t + h, S->y1, cs, k[6]);
+    /* Error on the motion only, relative to the free amplitude (and its velocity). */
+    double sc[2] = {S->solver.tolerance * S->c.A0, S->solver.tolerance * S->c.A0 * S->c.wd};
+    double err = 0;
+    for (int i = 0; i < 2; i++) {
+        double e = h * (E1 * k[0][i] + E3 * k[2][i] + E4 * k[3][i] + E5 * k[4][i] + E6 * k[5][i] +
+                        E7 * k[6][i]);
+        double r = fabs(e) / sc[i];
+        if (r > err)
+            err = r;
+    }
+    if (!isfinite(err))
+        err = INFINITY;
+    for (int i = 0; i < 2; i++) {
+        double ydiff = S->y1[i] - y0[i];
+        double bspl = h * k[0][i] - ydiff;
+        S->rcont[0][i] = y0[i];
+        S->rcont[1][i] = ydiff;
+        S->rcont[2][i] = bspl;
+        S->rcont[3][i] = ydiff - h * k[6][i] - bspl;
+        S->rcont[4][i] = h * (D1 * k[0][i] + D3 * k[2][i] + D4 * k[3][i] + D5 * k[4][i] +
+                              D6 * k[5][i] + D7 * k[6][i]);
+    }
+    memcpy(S->y0, y0, sizeof S->y0);
+    S->step_tau = t;
+    S->step_h = h;
+    return err;
+}
+
+/* Classic RK4 (fixed steps). */
+static void rk4_step(tt_sim *S, double h)
+{
+    double (*k)[NY] = S->k, yt[NY];
+    const double *y0 = S->y;
+    double t = S->tau;
+    int cs = S->contact_state;
+    ensure_fsal(S);
+    memcpy(k[0], S->fsal, sizeof k[0]);
+    for (int i = 0; i < NY; i++)
+        yt[i] = y0[i] + 0.5 * h * k[0][i];
+    rhs(S, t + 0.5 * h, yt, cs, k[1]);
+    for (int i = 0; i < NY; i++)
+        yt[i] = y0[i] + 0.5 * h * k[1][i];
+    rhs(S, t + 0.5 * h, yt, cs, k[2]);
+    for (int i = 0; i < NY; i++)
+        yt[i] = y0[i] + h * k[2][i];
+    rhs(S, t + h, yt, cs, k[3]);
+    for (int i = 0; i < NY; i++)
+        S->y1[i] = y0[i] + h / 6.0 * (k[0][i] + 2 * k[1][i] + 2 * k[2][i] + k[3][i]);
+    /* The derivative at the end serves the cubic Hermite dense output and, unless the
+     * state changes there, the next step's first stage. */
+    rhs(S, t + h, S->y1, cs, k[6]);
+    memcpy(S->y0, y0, sizeof S->y0);
+    S->step_tau = t;
+    S->step_h = h;
+}
+
+/* Dense output of d and v at fraction th of the current step. */
+static void dense(const tt_sim *S, double th, double *d, double *v)
+{
+    double h = S->step_h;
+    if (S->solver.method == TT_METHOD_DOPRI5) {
+        double th1 = 1 - th;
+        double out[2];
+        for (int i = 0; i < 2; i++)
+            out[i] = S->rcont[0][i] +
+                     th * (S->rcont[1][i] +
+                           th1 * (S->rcont[2][i] + th * (S->rcont[3][i] + th1 * S->rcont[4][i])));
+        *d = out[0];
+        *v = out[1];
+        return;
+    }
+    /* Cubic Hermite: d from (d, v) at both ends, v from (v, a) at both ends. */
+    double t2 = th * th, t3 = t2 * th;
+    double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + th, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
+    *d = h00 * S->y0[Y_D] + h10 * h * S->y0[Y_V] + h01 * S->y1[Y_D] + h11 * h * S->y1[Y_V];
+    *v = h00 * S->y0[Y_V] + h10 * h * S->k[0][Y_V] + h01 * S->y1[Y_V] + h11 * h * S->k[6][Y_V];
+}
+
+/* Event functions on the dense output: penetration past a threshold, and the relative
+ * velocity (for turning points). */
+static double g_delta(const tt_sim *S, double th, double thr)
+{
+    double d, v;
+    dense(S, th, &d, &v);
+    return d - (S->s0 + S->sdot * (S->step_tau + th * S->step_h)) - thr;
+}
+
+static double g_vel(const tt_sim *S, double th)
+{
+    double d, v;
+    dense(S, th, &d, &v);
+    return v - S->sdot;
+}
+
+/* Illinois root finder on [a, b] with fa, fb of opposite signs; which = 0 for
+ * penetration minus thr, 1 for the relative velocity. Returns the end of the final
+ * bracket on b's side, so that the switch happens just past the root. */
+static double bracket_root(const tt_sim *S, int which, double thr, double a, double b, double fa,
+                           double fb)
+{
+    int side = 0;
+    for (int it = 0; it < 100 && b - a > 1e-14; it++) {
+        double m = (a * fb - b * fa) / (fb - fa);
+        if (!(m > a && m < b))
+            m = 0.5 * (a + b);
+        double fm = which ? g_vel(S, m) : g_delta(S, m, thr);
+        if (fm == 0)
+            return m;
+        if ((fm > 0) == (fb > 0)) {
+            b = m;
+            fb = fm;
+            if (side == 1)
+                fa *= 0.5;
+            side = 1;
+        } else {
+            a = m;
+            fa = fm;
+            if (side == -1)
+                fb *= 0.5;
+            side = -1;
+        }
+    }
+    return b;
+}
+
+/* Where in the current step (fraction, 1 = none) the contact state must flip:
+ * out of contact when the penetration rises to jumpin, in contact when it falls to
+ * jumpout. A turning point inside the step is checked too, so that a brief touch
+ * between step ends is not missed. */
+static double find_event(const tt_sim *S)
+{
+    if (!S->contact)
+        return 2;
+    int in = S->contact_state;
+    double thr = in ? S->jumpout : S->jumpin;
+    if (!isfinite(thr))
+        return 2;
+    /* sign convention: event when sgn * g crosses from > 0 to <= 0 */
+    double sgn = in ? 1.0 : -1.0;
+    double g0 = sgn * g_delta(S, 0, thr);
+    if (g0 <= -S->margin)
+        return 0; /* already past by more than the margin: switch now */
+    double g1 = sgn * g_delta(S, 1, thr);
+    if (g0 > 0 && g1 <= 0)
+        return bracket_root(S, 0, thr, 0, 1, g_delta(S, 0, thr), g_delta(S, 1, thr));
+    /* A turning point of the penetration inside the step: out of contact a maximum,
+     * in contact a minimum. */
+    double v0 = g_vel(S, 0), v1 = g_vel(S, 1);
+    if (g0 > 0 && ((!in && v0 > 0 && v1 < 0) || (in && v0 < 0 && v1 > 0))) {
+        double tm = bracket_root(S, 1, 0, 0, 1, v0, v1);
+        double gm = sgn * g_delta(S, tm, thr);
+        if (gm <= 0)
+            return bracket_root(S, 0, thr, 0, tm, g_delta(S, 0, thr), g_delta(S, tm, thr));
+    }
+    if (g1 <= -S->margin)
+        return 1; /* ended past the threshold by more than the margin: switch at the end */
+    return 2;
+}
+
+/* Tip-sample force on the current branch at a state. */
+static double ts_force(const tt_sim *S, double tau, double d, double v, int contact, double *delta)
+{
+    double dl = d - (S->s0 + S->sdot * tau);
+    *delta = dl;
+    if (!S->contact)
+        return 0;
+    double P = tt_contact_load(S->contact, dl, contact, NULL, NULL);
+    return P + (contact ? S->ci * (v - S->sdot) : 0.0);
+}
+
+/* Bookkeeping for the part [0, th] of the current step: samples, extremes, peak force. */
+static void observe(tt_sim *S, double th)
+{
+    double h = S->step_h, t0 = S->step_tau;
+    const tt_cantilever *c = &S->c;
+    /* samples at k T / n inside (t0, t0 + th h]; k = 0 is taken at the cycle start */
+    while (S->next_sample < S->nsamp) {
+        double ts = c->T * S->next_sample / S->nsamp;
+        if (ts > t0 + th * h * (1 + 1e-12))
+            break;
+        double f = h > 0 ? (ts - t0) / h : 0;
+        if (f < 0)
+            f = 0;
+        tt_sample *smp = &S->samples[S->next_sample++];
+        double z, zd, Fd, cw, sw;
+        drive_at(S, ts, &z, &zd, &Fd, &cw, &sw);
+        dense(S, f, &smp->d, &smp->v);
+        smp->t = tt_sim_time(S) + ts;
+        smp->z = z;
+        smp->s = S->s0 + S->sdot * ts;
+        smp->contact = S->contact_state;
+    }
+    /* deflection extremes (on request: they cost a drive evaluation) and force at the
+     * (sub)step end */
+    double d, v, delta;
+    dense(S, th, &d, &v);
+    if (S->track_extremes) {
+        double z, zd, Fd, cw, sw;
+        drive_at(S, t0 + th * h, &z, &zd, &Fd, &cw, &sw);
+        double y = d - z;
+        if (y < S->y_min)
+            S->y_min = y;
+        if (y > S->y_max)
+            S->y_max = y;
+    }
+    double F = ts_force(S, t0 + th * h, d, v, S->contact_state, &delta);
+    if (F > S->peak_force)
+        S->peak_force = F;
+    if (delta > S->max_indent)
+        S->max_indent = delta;
+    /* a maximum of the penetration inside: locate it for the indentation */
+    double v0 = g_vel(S, 0), v1 = g_vel(S, th);
+    if (v0 > 0 && v1 < 0) {
+        double tm = bracket_root(S, 1, 0, 0, th, v0, v1);
+        dense(S, tm, &d, &v);
+        F = ts_force(S, t0 + tm * h, d, v, S->contact_state, &delta);
+        if (F > S->peak_force)
+            S->peak_force = F;
+        if (delta > S->max_indent)
+            S->max_indent = delta;
+    }
+    /* In contact the force (load plus interaction damping) may peak anywhere in the
+     * step: sample it at quarter steps and refine an interior maximum by a parabola. */
+    if (S->contact_state && th > 0) {
+        double f[5], tq[5];
+        int best = 0;
+        for (int q = 0; q < 5; q++) {
+            tq[q] = th * q / 4.0;
+            dense(S, tq[q], &d, &v);
+            f[q] = ts_force(S, t0 + tq[q] * h, d, v, 1, &delta);
+            if (f[q] > f[best])
+                best = q;
+        }
+        double fmax = f[best];
+        if (best > 0 && best < 4) {
+            double den = f[best - 1] - 2 * f[best] + f[best + 1];
+            if (den < 0) {
+                double off = 0.5 * (f[best - 1] - f[best + 1]) / den; /* in quarter steps */
+                if (fabs(off) <= 1) {
+                    dense(S, tq[best] + off * th / 4.0, &d, &v);
+                    double fr = ts_force(S, t0 + (tq[best] + off * th / 4.0) * h, d, v, 1, &delta);
+                    if (fr > fmax)
+                        fmax = fr;
+                }
+            }
+        }
+        if (fmax > S->peak_force)
+            S->peak_force = fmax;
+    }
+}
+
+/* Take the current step (already computed into y1) in full. */
+static void accept_full(tt_sim *S)
+{
+    observe(S, 1);
+    memcpy(S->y, S->y1, sizeof S->y);
+    memcpy(S->fsal, S->k[6], sizeof S->fsal);
+    S->fsal_ok = 1;
+    S->tau = S->step_tau + S->step_h;
+    S->steps++;
+}
+
+/* Redo the current step up to fraction th, take it, and flip the contact state. */
+static void accept_to_event(tt_sim *S, double th)
+{
+    double h = S->step_h;
+    observe(S, th);
+    if (th > 0) {
+        if (S->solver.method == TT_METHOD_DOPRI5)
+            (void)dopri5_step(S, th * h);
+        else
+            rk4_step(S, th * h);
+        memcpy(S->y, S->y1, sizeof S->y);
+        S->tau = S->step_tau + S->step_h;
+        S->steps++;
+    }
+    /* Energy jumps by U_old - U_new at the switch: the hysteresis loss (PHYSICS.md). */
+    double U_old = energy(S, S->tau, S->y, S->contact_state);
+    S->contact_state = !S->contact_state;
+    double U_new = energy(S, S->tau, S->y, S->contact_state);
+    S->e_jumps += U_old - U_new;
+    if (S->contact_state && !isfinite(S->t_contact))
+        S->t_contact = S->tau;
+    if (!S->contact_state)
+        S->t_release = S->tau;
+    S->fsal_ok = 0;
+    S->events++;
+    S->step_h = h; /* keep the step length the controller chose */
+}
+
+static int check_finite(tt_sim *S)
+{
+    if (!isfinite(S->y[Y_D]) || !isfinite(S->y[Y_V]))
+        return tt_error(TT_ENUM,
+                        "the solution became NaN or infinite at t = %.9g s (cycle %ld); "
+                        "tighten [solver] tolerance or raise steps_per_cycle",
+                        tt_sim_time(S) + S->tau, S->cycle);
+    return TT_OK;
+}
+
+/* rk4 is stable for oscillation only while h * sqrt(k_contact / m) < 2.8; past that it
+ * returns wrong numbers, so refuse with the cause. */
+static int rk4_check_stiffness(tt_sim *S, double h)
+{
+    if (!S->contact_state || !S->contact)
+        return TT_OK;
+    double dPdd = 0;
+    double delta = S->y[Y_D] - (S->s0 + S->sdot * S->tau);
+    (void)tt_contact_load(S->contact, delta, 1, &dPdd, NULL);
+    double keff = S->c.k + (dPdd > 0 ? dPdd : 0);
+    double wc = sqrt(keff / S->c.m), zeta = S->ci / (2 * sqrt(keff * S->c.m));
+    if (h * wc > 2.5 || h * S->ci / S->c.m > 2.5)
+        return tt_error(TT_ENUM,
+                        "rk4 step too large for the contact: contact stiffness %.3g N/m (%.0f times "
+                        "the cantilever's)%s needs at least %.0f steps per cycle; raise [solver] "
+                        "steps_per_cycle or use method = dopri5",
+                        keff, keff / S->c.k, zeta > 1 ? " and its damping" : "",
+                        ceil(S->c.T * fmax(wc, S->ci / S->c.m) / 2.5));
+    return TT_OK;
+}
+
+int tt_sim_cycle(tt_sim *S, tt_cycle *out)
+{
+    const tt_cantilever *c = &S->c;
+    const double T = c->T;
+    memset(out, 0, sizeof *out);
+    for (int i = Y_WDRIVE; i < NY; i++)
+        S->y[i] = 0;
+    S->tau = 0;
+    S->peak_force = -INFINITY;
+    S->max_indent = -INFINITY;
+    S->y_min = INFINITY;
+    S->y_max = -INFINITY;
+    S->e_jumps = 0;
+    S->t_contact = S->t_release = NAN;
+    S->steps = S->rejected = S->events = 0;
+    S->next_sample = 0;
+    S->rk4_j = 1;
+    double E_start = energy(S, 0, S->y, S->contact_state);
+
+    /* the sample at k = 0 is the cycle-start state */
+    if (S->nsamp > 0) {
+        S->step_tau = 0;
+        S->step_h = 0;
+        memcpy(S->y0, S->y, sizeof S->y0);
+        memcpy(S->y1, S->y, sizeof S->y1);
+        ensure_fsal(S);
+        memcpy(S->k[0], S->fsal, sizeof S->k[0]);
+        memcpy(S->k[6], S->fsal, sizeof S->k[6]);
+        for (int i = 0; i < 2; i++) {
+            S->rcont[0][i] = S->y[i];
+            S->rcont[1][i] = S->rcont[2][i] = S->rcont[3][i] = S->rcont[4][i] = 0;
+        }
+        observe(S, 0);
+    }
+
+    const double hgrid = T / S->solver.steps_per_cycle;
+    const double hmin = T * 1e-13;
+    long guard = 0;
+    while (S->tau < T) {
+        if (++guard > 50000000L)
+            return tt_error(TT_ENUM, "no progress within cycle %ld", S->cycle);
+        double h;
+        if (S->solver.method == TT_METHOD_RK4) {
+            /* grid times j T / N, computed from the index, never accumulated */
+            double tnext = S->rk4_j >= S->solver.steps_per_cycle ? T : S->rk4_j * hgrid;
+            h = tnext - S->tau;
+            if (h <= hmin) {
+                S->rk4_j++;
+                if (tnext >= T) {
+                    S->tau = T;
+                    break;
+                }
+                continue;
+            }
+            int rc = rk4_check_stiffness(S, h);
+            if (rc)
+                return rc;
+            rk4_step(S, h);
+        } else {
+            h = S->h;
+            if (h > T / 8)
+                h = T / 8; /* keeps turning points of a cycle within reach of the checks */
+            int last = 0;
+            if (S->tau + h >= T - hmin) {
+                h = T - S->tau;
+                last = 1;
+            }
+            double err = dopri5_step(S, h);
+            double fac = err > 0 ? 0.9 * pow(err, -0.2) : 5.0;
+            if (fac > 5)
+                fac = 5;
+            if (fac < 0.2)
+                fac = 0.2;
+            if (err > 1) {
+                S->rejected++;
+                S->h = h * fac;
+                if (S->h < hmin)
+                    return tt_error(TT_ENUM,
+                                    "step size underflow at t = %.9g s (cycle %ld): the force law is "
+                                    "too abrupt for tolerance %g",
+                                    tt_sim_time(S) + S->tau, S->cycle, S->solver.tolerance);
+                continue;
+            }
+            if (!last || fac < 1)
+                S->h = h * fac;
+        }
+        double th = find_event(S);
+        if (th <= 1) {
+            accept_to_event(S, th);
+        } else {
+            accept_full(S);
+            if (S->solver.method == TT_METHOD_RK4)
+                S->rk4_j++;
+        }
+        int rc = check_finite(S);
+        if (rc)
+            return rc;
+        if (S->tau > T)
+            S->tau = T;
+    }
+
+    double E_end = energy(S, T, S->y, S->contact_state);
+    double X = 2.0 / T * S->y[Y_IC], Yq = 2.0 / T * S->y[Y_IS];
+    out->amplitude = hypot(X, Yq);
+    double ph = atan2(Yq, X);
+    if (ph < -M_PI / 2)
+        ph += 2 * M_PI; /* lags run from about 0 to past 180 degrees */
+    out->phase = ph;
+    out->mean = S->y[Y_IY] / T;
+    out->y_min = S->y_min;
+    out->y_max = S->y_max;
+    out->peak_force = S->peak_force;
+    out->max_indentation = S->max_indent;
+    out->contact_fraction = S->y[Y_TC] / T;
+    out->e_drive = S->y[Y_WDRIVE];
+    out->e_damp = S->y[Y_WDAMP];
+    out->e_ts = S->y[Y_WCI] + S->e_jumps;
+    out->e_sample = S->y[Y_WS];
+    out->residual = out->e_drive - out->e_damp - out->e_ts - out->e_sample - (E_end - E_start);
+    out->t_contact = S->t_contact;
+    out->t_release = S->t_release;
+    out->steps = S->steps;
+    out->rejected = S->rejected;
+    out->events = S->events;
+
+    /* the next cycle starts at tau = 0 with the sample carried on */
+    S->cycle++;
+    S->s0 += S->sdot * T;
+    S->tau = 0;
+    return TT_OK;
+}
+
+double tt_sim_force(const tt_sim *S, const tt_sample *smp, double *a)
+{
+    if (!S->contact) {
+        if (a)
+            *a = 0;
+        return 0;
+    }
+    double delta = smp->d - smp->s;
+    double P = tt_contact_load(S->contact, delta, smp->contact, NULL, a);
+    return P + (smp->contact ? S->ci * (smp->v - S->sdot) : 0.0);
+}
+
+int tt_sim_settle(tt_sim *S, long max_cycles, double tol, tt_cycle *out, int *settled,
+                  long *cycles)
+{
+    /* Amplitude and phase approach their steady values geometrically (rate about
+     * exp(-pi/Q) per cycle near resonance); the change still to come is estimated
+     * from the ratio of successive changes, so a slow approach is not taken for
+     * convergence. */
+    double prevA = NAN, prevP = NAN, prevdA = NAN, prevdP = NAN;
+    int ok_in_row = 0;
+    *settled = 0;
+    long n;
+    for (n = 0; n < max_cycles; n++) {
+        int rc = tt_sim_cycle(S, out);
+        if (rc) {
+            if (cycles)
+                *cycles = n + 1;
+            return rc;
+        }
+        double A = out->amplitude / S->c.A0, P = out->phase;
+        if (isfinite(prevA)) {
+            double dA = fabs(A - prevA), dP = fabs(P - prevP);
+            double remA = dA, remP = dP;
+            if (isfinite(prevdA) && prevdA > 0 && dA < prevdA)
+                remA = dA / (1 - dA / prevdA);
+            else if (isfinite(prevdA))
+                remA = dA * S->c.Q;
+            if (isfinite(prevdP) && prevdP > 0 && dP < prevdP)
+                remP = dP / (1 - dP / prevdP);
+            else if (isfinite(prevdP))
+                remP = dP * S->c.Q;
+            if (remA < tol && remP < tol)
+                ok_in_row++;
+            else
+                ok_in_row = 0;
+            prevdA = dA;
+            prevdP = dP;
+            if (ok_in_row >= 3) {
+                *settled = 1;
+                n++;
+                break;
+            }
+        }
+        prevA = A;
+        prevP = P;
+    }
+    if (cycles)
+        *cycles = n;
+    return TT_OK;
+}
