@@ -1,4 +1,4 @@
-/* Scene keys of the imaging sections: [surface], [scan], [lockin], [feedback]. */
+/* Scene keys of the imaging sections [surface], [lockin], [feedback] ([scan]: schema_scan.c). */
 #include "scene_schema_internal.h"
 
 #define Q(dims) TT_KEY_QUANTITY, (dims)
@@ -10,11 +10,6 @@ const tt_scene_key tt_schema_surface[] = {
      "topography"},
 };
 const size_t tt_schema_surface_count = TT_COUNT(tt_schema_surface);
-
-const tt_scene_key tt_schema_scan[] = {
-    {"size", Q(TT_DIM_LENGTH), "1 um", 0, INF, POS, NULL, "scan size (square)"},
-};
-const size_t tt_schema_scan_count = TT_COUNT(tt_schema_scan);
 
 const tt_scene_key tt_schema_lockin[] = {
     {"time_constant", Q(TT_DIM_TIME), "100 us", 0, INF, POS, NULL, "low-pass time constant"},

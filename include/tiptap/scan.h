@@ -61,6 +61,7 @@ int tt_scan_run(tt_scan *s, int threads, void (*progress)(void *user, long done,
  * retrace images are stored in the same orientation as the trace. */
 long tt_scan_xres(const tt_scan *s);
 long tt_scan_yres(const tt_scan *s);
+int tt_scan_fast_y(const tt_scan *s);
 long tt_scan_lines(const tt_scan *s);
 double tt_scan_size_x(const tt_scan *s);
 double tt_scan_size_y(const tt_scan *s);
