@@ -77,6 +77,14 @@ int tt_contact_alloc(tt_contact **out, const tt_contact_params *p);
 int tt_contact_alloc_normalised(tt_contact **out, tt_contact_model model, double lambda,
                                 double xi0n);
 
+/* A force law given by the caller (teaching, tests): load(delta, in_contact, &dPdd, user)
+ * in N and N/m, energy(delta, in_contact, user) in J with dU/ddelta = load, and the
+ * event thresholds in m (jumpout <= jumpin). The caller keeps user alive. */
+int tt_contact_alloc_custom(tt_contact **out,
+                            double (*load)(double delta, int in_contact, double *dPdd, void *user),
+                            double (*energy)(double delta, int in_contact, void *user), void *user,
+                            double jumpin, double jumpout);
+
 void tt_contact_free(tt_contact *c);
 
 const tt_contact_summary *tt_contact_summary_of(const tt_contact *c);

@@ -1,9 +1,248 @@
-/* tiptap contact: placeholder until the contact module lands. */
+/* tiptap contact: a contact-mechanics curve (seed figure 3) and its summary. */
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
 #include "commands.h"
+#include "tiptap/contact.h"
+#include "tiptap/error.h"
+#include "tiptap/material.h"
+#include "tiptap/outfile.h"
+#include "tiptap/plot.h"
+
+static void help(void)
+{
+    printf("Usage: tiptap contact --lambda L [--model maugis|hertz|dmt|jkr] [-o curve.csv]\n"
+           "                      [--plot curve.png]\n"
+           "       tiptap contact SCENE... [--set section.key=value]... [--material NAME]\n"
+           "                      [-o curve.csv] [--plot curve.png]\n"
+           "The normalised load-penetration curve of the Maugis-Dugdale contact (seed eq. 7)\n"
+           "or one of its limits, in the seed's units (eq. 3: load / pi w R, penetration /\n"
+           "(pi^2 w^2 R / K^2)^(1/3), contact radius / (pi w R^2 / K)^(1/3)).\n\n"
+           "  -l, --lambda L     Maugis parameter (1e-4 to 1e4)\n"
+           "  -m, --model M      maugis (default), hertz, dmt or jkr\n"
+           "      --xi0 X        normalised interatomic distance for the van der Waals\n"
+           "                     branch (default 0.3)\n"
+           "      --material NAME  the scene's material (default: the first)\n"
+           "  -o, --output FILE  CSV with columns A,Delta,P,stable (stable = 1 on the\n"
+           "                     displacement-controlled stable branch)\n"
+           "      --plot FILE    PNG of P against Delta, with the van der Waals branch and\n"
+           "                     the Hertz, DMT and JKR curves for reference\n\n"
+           "stdout: key = value lines: lambda, P0 and Delta0 (the A -> 0 end, eq. 8),\n"
+           "pulloff_load (least load: pull-off under load control), jumpout_delta (least\n"
+           "penetration on the stable branch: pull-off under displacement control),\n"
+           "jumpin_load, hysteresis, loop_area; for a scene also physical values and the\n"
+           "Hamaker constant implied by continuity at (P0, Delta0).\n");
+}
+
+static int write_csv(const char *path, const tt_contact *c, double Amax)
+{
+    enum { N = 600 };
+    double A[N], D[N], P[N];
+    int st[N];
+    int rc = tt_contact_curve(c, N, Amax, A, D, P, st);
+    if (rc)
+        return rc;
+    tt_outfile *o;
+    if ((rc = tt_outfile_open(&o, path)))
+        return rc;
+    FILE *f = tt_outfile_stream(o);
+    fprintf(f, "A,Delta,P,stable\n");
+    const tt_contact_summary *s = tt_contact_summary_of(c);
+    if (s->adhesive)
+        fprintf(f, "0,%.10g,%.10g,%d\n", s->Delta0, s->P0, !s->hysteresis);
+    for (int i = 0; i < N; i++)
+        fprintf(f, "%.10g,%.10g,%.10g,%d\n", A[i], D[i], P[i], st[i]);
+    return tt_outfile_close(o, 1);
+}
+
+static int plot(const char *path, const tt_contact *c, double xi0n, int references)
+{
+    enum { N = 600 };
+    static double A[N], D[N], P[N], Ds[N], Ps[N], Du[N], Pu[N];
+    int st[N];
+    const tt_contact_summary *s = tt_contact_summary_of(c);
+    char title[160];
+    snprintf(title, sizeof title, "Contact mechanics (seed figure 3): %s",
+             s->adhesive ? "Maugis-Dugdale" : "Hertz");
+    if (s->adhesive)
+        snprintf(title, sizeof title, "Contact mechanics (seed figure 3), lambda = %.4g", s->lambda);
+    tt_figure *f = tt_figure_alloc(1, title);
+    if (!f)
+        return tt_error(TT_ENOMEM, "out of memory");
+    tt_figure_axes(f, 0, "normalised penetration Delta", "normalised load P");
+    int rc = tt_contact_curve(c, N, 2.2, A, D, P, st);
+    for (int i = 0; i < N && rc == TT_OK; i++) {
+        Ds[i] = st[i] ? D[i] : NAN;
+        Ps[i] = st[i] ? P[i] : NAN;
+        Du[i] = st[i] ? NAN : D[i];
+        Pu[i] = st[i] ? NAN : P[i];
+    }
+    tt_figure_line(f, 0, Ds, Ps, N, "contact, stable branch", 1 | TT_PLOT_THICK);
+    tt_figure_line(f, 0, Du, Pu, N, "contact, unstable branch", 1 | TT_PLOT_DASHED);
+    if (s->adhesive && s->P0 != 0) {
+        /* the van der Waals branch up to the junction (eq. 10) */
+        double x[200], y[200];
+        for (int i = 0; i < 200; i++) {
+            x[i] = s->Delta0 - 2.5 + 2.5 * i / 199.0;
+            y[i] = tt_contact_load(c, x[i] * s->depth_scale, 0, NULL, NULL) / s->force_scale;
+        }
+        tt_figure_line(f, 0, x, y, 200, "van der Waals (out of contact)", 2);
+    }
+    if (references) {
+        static const tt_contact_model m[3] = {TT_CONTACT_HERTZ, TT_CONTACT_DMT, TT_CONTACT_JKR};
+        static const char *lab[3] = {"Hertz", "DMT", "JKR"};
+        for (int k = 0; k < 3; k++) {
+            tt_contact *r;
+            if (tt_contact_alloc_normalised(&r, m[k], 1, xi0n))
+                continue;
+            tt_contact_curve(r, N, 2.2, A, D, P, st);
+            tt_figure_line(f, 0, D, P, N, lab[k], (unsigned)(3 + k) | TT_PLOT_DASHED);
+            tt_contact_free(r);
+        }
+        tt_figure_vline(f, 0, -3 * pow(6, -2.0 / 3.0), "JKR pull-off, displacement control");
+    }
+    tt_figure_hline(f, 0, 0, NULL);
+    tt_figure_xlim(f, 0, -2.5, 3.5);
+    tt_figure_ylim(f, 0, -2.5, 3.5);
+    if (rc == TT_OK)
+        rc = tt_figure_write_png(f, path, 900, 700);
+    tt_figure_free(f);
+    return rc;
+}
+
+static void print_summary(const tt_contact *c, const tt_contact_params *phys, double Qi)
+{
+    const tt_contact_summary *s = tt_contact_summary_of(c);
+    if (!s->adhesive) {
+        printf("model = hertz\nadhesive = 0\nlambda = 0\n");
+        if (phys)
+            printf("reduced_modulus_Pa = %.10g\nradius_m = %.10g\n", phys->K, phys->R);
+        return;
+    }
+    printf("lambda = %.10g\nP0 = %.10g\nDelta0 = %.10g\npulloff_load = %.10g\npulloff_delta = %.10g\n"
+           "jumpout_delta = %.10g\njumpout_load = %.10g\njumpin_delta = %.10g\njumpin_load = %.10g\n"
+           "hysteresis = %d\n",
+           s->lambda, s->P0, s->Delta0, s->pulloff_load, s->pulloff_delta, s->jumpout_delta,
+           s->jumpout_load, s->jumpin_delta, s->jumpin_load, s->hysteresis);
+    if (!phys) {
+        printf("loop_area = %.10g\n", s->loop_energy);
+        return;
+    }
+    double F = s->force_scale, d = s->depth_scale;
+    printf("loop_area = %.10g\n", s->loop_energy / (F * d));
+    printf("reduced_modulus_Pa = %.10g\nradius_m = %.10g\nadhesion_energy_J_per_m2 = %.10g\n"
+           "xi0_m = %.10g\nforce_scale_N = %.10g\ndepth_scale_m = %.10g\nradius_scale_m = %.10g\n"
+           "P0_N = %.10g\ndelta0_m = %.10g\npulloff_load_N = %.10g\njumpout_delta_m = %.10g\n"
+           "jumpin_load_N = %.10g\nhamaker_J = %.10g\nloop_energy_J = %.10g\n",
+           phys->K, phys->R, phys->w, s->xi0, F, d, s->radius_scale, s->P0 * F, s->Delta0 * d,
+           s->pulloff_load * F, s->jumpout_delta * d, s->jumpin_load * F, s->hamaker, s->loop_energy);
+    if (isfinite(Qi))
+        printf("interaction_quality_factor = %.10g\n", Qi);
+}
 
 int cmd_contact(int argc, char **argv)
 {
-    (void)argc;
-    (void)argv;
-    return cli_fail(1, "contact: not yet built");
+    static const struct option opts[] = {{"lambda", required_argument, NULL, 'l'},
+                                         {"model", required_argument, NULL, 'm'},
+                                         {"xi0", required_argument, NULL, 'x'},
+                                         {"material", required_argument, NULL, 'M'},
+                                         {"output", required_argument, NULL, 'o'},
+                                         {"plot", required_argument, NULL, 'p'},
+                                         {"set", required_argument, NULL, 's'},
+                                         {"help", no_argument, NULL, 'h'},
+                                         {NULL, 0, NULL, 0}};
+    double lambda = NAN, xi0n = 0.3;
+    const char *model = NULL, *material = NULL, *out = NULL, *plotpath = NULL;
+    char **sets = calloc((size_t)argc, sizeof *sets);
+    int nsets = 0, c;
+    if (!sets)
+        return cli_fail(TT_ENOMEM, "out of memory");
+    while ((c = getopt_long(argc, argv, "l:m:o:h", opts, NULL)) != -1) {
+        char *end;
+        switch (c) {
+        case 'l':
+            lambda = strtod(optarg, &end);
+            if (*end || !isfinite(lambda) || lambda <= 0) {
+                free(sets);
+                fprintf(stderr, "tiptap contact: --lambda: '%s' is not a positive number\n", optarg);
+                return CLI_USAGE;
+            }
+            break;
+        case 'x':
+            xi0n = strtod(optarg, &end);
+            if (*end || !(xi0n > 0)) {
+                free(sets);
+                fprintf(stderr, "tiptap contact: --xi0: '%s' is not a positive number\n", optarg);
+                return CLI_USAGE;
+            }
+            break;
+        case 'm': model = optarg; break;
+        case 'M': material = optarg; break;
+        case 'o': out = optarg; break;
+        case 'p': plotpath = optarg; break;
+        case 's': sets[nsets++] = optarg; break;
+        case 'h': help(); free(sets); return CLI_OK;
+        default: free(sets); return CLI_USAGE;
+        }
+    }
+    tt_contact_model m = TT_CONTACT_MAUGIS;
+    if (model && tt_contact_model_parse(model, &m) != 0) {
+        free(sets);
+        fprintf(stderr, "tiptap contact: --model: '%s' is not one of maugis, hertz, dmt, jkr\n", model);
+        return CLI_USAGE;
+    }
+    int have_scene = optind < argc;
+    if (have_scene == isfinite(lambda) && !(model && !have_scene && m != TT_CONTACT_MAUGIS)) {
+        free(sets);
+        fprintf(stderr, "tiptap contact: give either --lambda or a scene; see 'tiptap contact --help'\n");
+        return CLI_USAGE;
+    }
+    tt_contact *ct = NULL;
+    tt_scene *scene = NULL;
+    tt_contact_params p;
+    double Qi = NAN;
+    int rc;
+    if (have_scene) {
+        scene = cli_load_scene(argv + optind, argc - optind, sets, nsets);
+        free(sets);
+        if (!scene)
+            return CLI_FAIL;
+        const char *name = material ? material : tt_material_name(scene, 0);
+        int found = 0;
+        for (size_t i = 0; i < tt_material_count(scene); i++)
+            if (strcmp(tt_material_name(scene, i), name) == 0)
+                found = 1;
+        if (!found) {
+            rc = tt_error(TT_EINVAL, "%s: no [material %s] section", tt_scene_origin(scene), name);
+            goto done;
+        }
+        if ((rc = tt_material_params(scene, name, &p, &Qi)))
+            goto done;
+        if (model)
+            p.model = m;
+        if ((rc = tt_contact_alloc(&ct, &p))) {
+            rc = tt_scene_fail(scene, "material", name, NULL, "%s", tt_error_message());
+            goto done;
+        }
+        xi0n = tt_contact_summary_of(ct)->adhesive
+                   ? tt_contact_summary_of(ct)->xi0 / tt_contact_summary_of(ct)->depth_scale
+                   : 0.3;
+    } else {
+        free(sets);
+        if ((rc = tt_contact_alloc_normalised(&ct, m, isfinite(lambda) ? lambda : 1, xi0n)))
+            goto done;
+    }
+    print_summary(ct, have_scene ? &p : NULL, Qi);
+    if (out && (rc = write_csv(out, ct, 3.0)))
+        goto done;
+    if (plotpath)
+        rc = plot(plotpath, ct, xi0n, !have_scene);
+done:
+    if (rc)
+        cli_fail(rc, NULL);
+    tt_contact_free(ct);
+    tt_scene_free(scene);
+    return rc ? CLI_FAIL : CLI_OK;
 }

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# The command line refuses bad input with one line naming file, section and key, and a
+# non-zero exit; it leaves no half-written output behind.
+# usage: cli_errors.sh path/to/tiptap source_dir
+set -u
+tiptap=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+
+expect_error() { # name, expected fragment, command...
+  local name=$1 frag=$2; shift 2
+  local out rc
+  out=$("$@" 2>&1 >/dev/null); rc=$?
+  if [ $rc -eq 0 ]; then echo "FAIL $name: exit 0"; fail=1; return; fi
+  if ! grep -qF -- "$frag" <<<"$out"; then echo "FAIL $name: '$out' lacks '$frag'"; fail=1; return; fi
+  if [ "$(wc -l <<<"$out")" -ne 1 ]; then echo "FAIL $name: not one line: $out"; fail=1; return; fi
+  echo "ok   $name"
+}
+
+cat >"$tmp/typo.ini" <<'INI'
+[cantilever]
+spring_constnat = 2 N/m
+INI
+cat >"$tmp/nounit.ini" <<'INI'
+[cantilever]
+resonance_frequency = 52
+INI
+cat >"$tmp/neg.ini" <<'INI'
+[cantilever]
+spring_constant = -0.5 N/m
+INI
+cat >"$tmp/nan.ini" <<'INI'
+[material glass]
+adhesion_energy = nan J/m^2
+INI
+cat >"$tmp/good.ini" <<'INI'
+[tip]
+radius = 100 nm
+[material glass]
+reduced_modulus = 100 GPa
+adhesion_energy = 100 mJ/m^2
+INI
+
+expect_error "typo in a key" "typo.ini: [cantilever] spring_constnat: unknown key" "$tiptap" approach "$tmp/typo.ini"
+expect_error "missing unit" "nounit.ini: [cantilever] resonance_frequency: missing unit" "$tiptap" trace "$tmp/nounit.ini"
+expect_error "negative stiffness" "neg.ini: [cantilever] spring_constant:" "$tiptap" approach "$tmp/neg.ini"
+expect_error "NaN" "nan.ini: [material glass] adhesion_energy:" "$tiptap" contact "$tmp/nan.ini"
+expect_error "bad --set" "--set: [material glass] adhesion_energy:" "$tiptap" contact "$tmp/good.ini" --set "material.glass.adhesion_energy=5 kHz"
+expect_error "missing scene" "$tmp/none.ini" "$tiptap" contact "$tmp/none.ini"
+expect_error "unwritable output" "$tmp/no/such/dir/c.csv" "$tiptap" contact --lambda 1 -o "$tmp/no/such/dir/c.csv"
+expect_error "unknown material" "no [material quartz]" "$tiptap" contact "$tmp/good.ini" --material quartz
+expect_error "both moduli" "[material glass] reduced_modulus: given together with youngs_modulus" "$tiptap" contact "$tmp/good.ini" --set "material.glass.youngs_modulus=70 GPa"
+
+# no temporary or partial files left behind
+if ls "$tmp"/*.tmp.* >/dev/null 2>&1; then echo "FAIL temporary files left"; fail=1; fi
+
+# the contact summary: DMT and JKR limits, exactly
+"$tiptap" contact --model dmt >"$tmp/dmt.txt" || fail=1
+grep -q "^pulloff_load = -2$" "$tmp/dmt.txt" && echo "ok   DMT pull-off -2" || { echo "FAIL DMT: $(cat "$tmp/dmt.txt")"; fail=1; }
+"$tiptap" contact --model jkr >"$tmp/jkr.txt" || fail=1
+grep -q "^pulloff_load = -1.5$" "$tmp/jkr.txt" && echo "ok   JKR pull-off -1.5" || { echo "FAIL JKR: $(cat "$tmp/jkr.txt")"; fail=1; }
+grep -q "^jumpout_load = -0.833333333" "$tmp/jkr.txt" && echo "ok   JKR displacement-controlled pull-off -5/6" || { echo "FAIL JKR -5/6"; fail=1; }
+"$tiptap" contact --lambda 1 -o "$tmp/c.csv" --plot "$tmp/c.png" >/dev/null || fail=1
+head -1 "$tmp/c.csv" | grep -qx "A,Delta,P,stable" && echo "ok   CSV header" || { echo "FAIL CSV header"; fail=1; }
+[ -s "$tmp/c.png" ] && echo "ok   plot written" || { echo "FAIL plot"; fail=1; }
+"$tiptap" --version | grep -q "^tiptap " && echo "ok   --version" || { echo "FAIL --version"; fail=1; }
+"$tiptap" frobnicate 2>/dev/null; [ $? -eq 2 ] && echo "ok   unknown command exit 2" || { echo "FAIL unknown command"; fail=1; }
+exit $fail
