@@ -14,6 +14,7 @@ static const struct {
     {"contact", cmd_contact, "contact mechanics: a Maugis-Dugdale curve and its summary"},
     {"approach", cmd_approach, "approach curve: amplitude, phase, force against separation"},
     {"trace", cmd_trace, "time series of the tapping cantilever, with optional ramps"},
+    {"scan", cmd_scan, "closed-loop tapping image: height, phase, force, dissipation"},
     {"bench", cmd_bench, "benchmark: cycles per second and accuracy on the standard scene"},
     {"keys", cmd_keys, "list every scene section and key with unit and default"},
 };

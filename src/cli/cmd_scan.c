@@ -1,0 +1,214 @@
+/* tiptap scan: closed-loop imaging into Gwyddion files, PNG previews, a line profile
+ * and the effective scene. */
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "commands.h"
+#include "tiptap/cancel.h"
+#include "tiptap/cantilever.h"
+#include "tiptap/error.h"
+#include "tiptap/gsf.h"
+#include "tiptap/image.h"
+#include "tiptap/outfile.h"
+#include "tiptap/scan.h"
+
+static void help(void)
+{
+    printf("Usage: tiptap scan SCENE... -o DIR [--set section.key=value]... [--threads N] [-q]\n"
+           "Closed-loop tapping image of the scene's [surface] under [scan], [lockin] and\n"
+           "[feedback].\n\n"
+           "  -o, --output DIR   folder for the results (made if missing):\n"
+           "                     CHANNEL_trace.gsf, CHANNEL_retrace.gsf (Gwyddion Simple Field,\n"
+           "                     SI units), CHANNEL_trace.png, ... (previews with colour bar and\n"
+           "                     scale bar), profile.csv (the [scan] profile_line), scene.ini\n"
+           "                     (the effective scene, every key)\n"
+           "  -j, --threads N    lines computed in parallel (default: all cores); the images\n"
+           "                     do not depend on it\n"
+           "      --set S.K=V    override a scene key (material.NAME.key for named sections)\n"
+           "  -q, --quiet        no progress and summary on stderr\n\n"
+           "Channels ([scan] channels): height (m), amplitude (error: amplitude - setpoint, m),\n"
+           "phase (lag, deg), peak_force (N), indentation (m), dissipation (J per cycle),\n"
+           "topography (the true surface, m). Ctrl-C stops after the lines under way and\n"
+           "writes the finished lines (the others are NaN, shown grey).\n"
+           "stderr ends with the run time, the real-time factor (instrument time / run time)\n"
+           "and the error estimate: the largest energy-balance residual of a cycle relative\n"
+           "to its drive work.\n");
+}
+
+static void show_progress(void *user, long done, long total)
+{
+    double t0 = *(double *)user;
+    double el = cli_now() - t0;
+    fprintf(stderr, "\rscan: %ld/%ld lines, %.0f s elapsed, about %.0f s left   ", done, total, el,
+            el / (double)done * (double)(total - done));
+}
+
+static double display_scale(int ch, const char **unit, tt_colormap *cmap)
+{
+    switch (ch) {
+    case 2: *unit = "deg"; *cmap = TT_CMAP_VIRIDIS; return 1;
+    case 3: *unit = "nN"; *cmap = TT_CMAP_VIRIDIS; return 1e9;
+    case 5: *unit = "aJ"; *cmap = TT_CMAP_VIRIDIS; return 1e18;
+    case 1: *unit = "nm"; *cmap = TT_CMAP_DIVERGING; return 1e9;
+    default: *unit = "nm"; *cmap = TT_CMAP_GOLD; return 1e9;
+    }
+}
+
+static int write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir)
+{
+    char path[4096], title[128];
+    long xres = tt_scan_xres(scan), yres = tt_scan_yres(scan);
+    tt_cantilever c;
+    tt_cantilever_from_scene(&c, scene);
+    char v[8][64];
+    snprintf(v[0], sizeof v[0], "%s", TT_VERSION);
+    snprintf(v[1], sizeof v[1], "%.6g", c.k);
+    snprintf(v[2], sizeof v[2], "%.6g", c.f0);
+    snprintf(v[3], sizeof v[3], "%.6g", c.Q);
+    snprintf(v[4], sizeof v[4], "%.6g", c.A0);
+    snprintf(v[5], sizeof v[5], "%ld", tt_scan_lines_done(scan));
+    const char *keys[] = {"tiptap_version", "cantilever_spring_constant_N_per_m",
+                          "cantilever_resonance_frequency_Hz", "cantilever_quality_factor",
+                          "cantilever_free_amplitude_m", "lines_finished"};
+    const char *vals[] = {v[0], v[1], v[2], v[3], v[4], v[5]};
+    int rc = TT_OK;
+    for (int ch = 0; ch < TT_CH_COUNT && rc == TT_OK; ch++) {
+        for (int r = 0; r < 2 && rc == TT_OK; r++) {
+            const double *img = tt_scan_image(scan, ch, r);
+            if (!img)
+                continue;
+            const char *dirn = r ? "retrace" : "trace";
+            snprintf(title, sizeof title, "%s (%s)", tt_scan_channel_name(ch), dirn);
+            tt_gsf_field g = {(size_t)xres, (size_t)yres, tt_scan_size_x(scan), tt_scan_size_y(scan),
+                              0, 0, "m", tt_scan_channel_unit(ch), title, img, keys, vals,
+                              sizeof keys / sizeof keys[0]};
+            snprintf(path, sizeof path, "%s/%s_%s.gsf", dir, tt_scan_channel_name(ch), dirn);
+            if ((rc = tt_gsf_write(path, &g)))
+                break;
+            tt_image im = {(size_t)xres, (size_t)yres, tt_scan_size_x(scan), tt_scan_size_y(scan),
+                           img, title, NULL, 1, TT_CMAP_GOLD};
+            im.unit_scale = display_scale(ch, &im.unit, &im.cmap);
+            snprintf(path, sizeof path, "%s/%s_%s.png", dir, tt_scan_channel_name(ch), dirn);
+            rc = tt_image_write_png(path, &im);
+        }
+    }
+    if (rc)
+        return rc;
+    /* the line profile along the fast axis */
+    snprintf(path, sizeof path, "%s/profile.csv", dir);
+    tt_outfile *of;
+    if ((rc = tt_outfile_open(&of, path)))
+        return rc;
+    FILE *f = tt_outfile_stream(of);
+    long line = tt_scan_profile_line(scan);
+    /* the profile runs along the fast axis: a row, or a column when it is y */
+    int fy = tt_scan_fast_y(scan);
+    long n = fy ? yres : xres;
+    double size = fy ? tt_scan_size_y(scan) : tt_scan_size_x(scan);
+    fprintf(f, "position_nm");
+    for (int ch = 0; ch < TT_CH_COUNT; ch++)
+        for (int r = 0; r < 2; r++)
+            if (tt_scan_image(scan, ch, r))
+                fprintf(f, ",%s_%s_%s", tt_scan_channel_name(ch), r ? "retrace" : "trace",
+                        tt_scan_channel_unit(ch));
+    fputc('\n', f);
+    for (long px = 0; px < n; px++) {
+        fprintf(f, "%.9g", (px + 0.5) * size / (double)n * 1e9);
+        for (int ch = 0; ch < TT_CH_COUNT; ch++)
+            for (int r = 0; r < 2; r++) {
+                const double *img = tt_scan_image(scan, ch, r);
+                if (img)
+                    fprintf(f, ",%.9g", img[fy ? px * xres + line : line * xres + px]);
+            }
+        fputc('\n', f);
+    }
+    return tt_outfile_close(of, 1);
+}
+
+int cmd_scan(int argc, char **argv)
+{
+    static const struct option opts[] = {{"output", required_argument, NULL, 'o'},
+                                         {"threads", required_argument, NULL, 'j'},
+                                         {"set", required_argument, NULL, 's'},
+                                         {"quiet", no_argument, NULL, 'q'},
+                                         {"help", no_argument, NULL, 'h'},
+                                         {NULL, 0, NULL, 0}};
+    const char *dir = NULL;
+    char **sets = calloc((size_t)argc, sizeof *sets);
+    int nsets = 0, quiet = 0, threads = 0, c;
+    if (!sets)
+        return cli_fail(TT_ENOMEM, "out of memory");
+    while ((c = getopt_long(argc, argv, "o:j:qh", opts, NULL)) != -1) {
+        switch (c) {
+        case 'o': dir = optarg; break;
+        case 'j': threads = atoi(optarg); break;
+        case 's': sets[nsets++] = optarg; break;
+        case 'q': quiet = 1; break;
+        case 'h': help(); free(sets); return CLI_OK;
+        default: free(sets); return CLI_USAGE;
+        }
+    }
+    if (optind >= argc || !dir) {
+        free(sets);
+        fprintf(stderr, "tiptap scan: needs a scene file and -o DIR; see 'tiptap scan --help'\n");
+        return CLI_USAGE;
+    }
+    tt_scene *scene = cli_load_scene(argv + optind, argc - optind, sets, nsets);
+    free(sets);
+    if (!scene)
+        return CLI_FAIL;
+    double t0 = cli_now();
+    tt_scan *scan = NULL;
+    char path[4096];
+    tt_outfile *of = NULL;
+    int rc;
+    /* The folder and the effective scene first: a bad output folder fails at once,
+     * not after an hour of scanning. */
+    if ((rc = tt_mkdirs(dir)))
+        goto done;
+    snprintf(path, sizeof path, "%s/scene.ini", dir);
+    if ((rc = tt_outfile_open(&of, path)))
+        goto done;
+    if ((rc = tt_scene_write(scene, tt_outfile_stream(of), NULL))) {
+        tt_outfile_close(of, 0);
+        goto done;
+    }
+    if ((rc = tt_outfile_close(of, 1)))
+        goto done;
+    if ((rc = tt_scan_alloc(&scan, scene)))
+        goto done;
+    cli_catch_interrupt();
+    rc = tt_scan_run(scan, threads, (!quiet && cli_progress_enabled()) ? show_progress : NULL, &t0);
+    if (!quiet && cli_progress_enabled())
+        fprintf(stderr, "\n");
+    if (tt_scan_lines_done(scan) > 0) {
+        char saved[1024];
+        snprintf(saved, sizeof saved, "%s", tt_error_message());
+        int wrc = write_outputs(scan, scene, dir);
+        if (wrc && !rc)
+            rc = wrc;
+        else if (rc)
+            tt_error(rc, "%s", saved);
+    }
+    if (!quiet) {
+        double wall = cli_now() - t0;
+        fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f\ninstrument_time_s = %.3f\n"
+                        "real_time_factor = %.3f\nerror_estimate = %.3g (largest energy-balance "
+                        "residual / drive work per cycle)\n",
+                tt_scan_lines_done(scan), tt_scan_lines(scan), tt_scan_cycles(scan), wall,
+                tt_scan_instrument_time(scan),
+                tt_scan_instrument_time(scan) * (double)tt_scan_lines_done(scan) /
+                    (double)tt_scan_lines(scan) / wall,
+                tt_scan_error_estimate(scan));
+        if (tt_scan_clamped(scan))
+            fprintf(stderr, "warning: the z piezo reached the end of its range ([feedback] z_range)\n");
+    }
+done:
+    if (rc)
+        cli_fail(rc, NULL);
+    tt_scan_free(scan);
+    tt_scene_free(scene);
+    return rc == TT_OK ? CLI_OK : rc == TT_EINTR ? CLI_INTERRUPTED : CLI_FAIL;
+}
