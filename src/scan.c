@@ -219,7 +219,8 @@ static int worker_alloc(tt_scan *S, worker *W)
 /* Per-pixel sums of one scan direction. */
 typedef struct {
     double sum[TT_CH_COUNT];
-    long n;
+    long n;    /* cycles, for the per-cycle channels */
+    long nblk; /* cycles of the lock-in blocks that ended in this pixel */
 } pixel_acc;
 
 /* Scan one line: engage at its first pixel, then trace and retrace. */
@@ -334,6 +335,7 @@ static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *wor
                 pixel_acc *a = &pix[(size_t)dir * (size_t)R->pixels + (size_t)px];
                 a->sum[1] += (A - S->setpoint) * P;
                 a->sum[2] += ph * 180 / M_PI * P;
+                a->nblk += P;
             }
         }
     }
@@ -341,10 +343,13 @@ static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *wor
         for (int dir = 0; dir < (R->retrace ? 2 : 1); dir++)
             for (long px = 0; px < R->pixels; px++) {
                 pixel_acc *a = &pix[(size_t)dir * (size_t)R->pixels + (size_t)px];
-                for (int ch = 0; ch < TT_CH_COUNT; ch++)
+                for (int ch = 0; ch < TT_CH_COUNT; ch++) {
+                    /* amplitude and phase come once per lock-in block, the rest per cycle */
+                    long cnt = (ch == 1 || ch == 2) ? a->nblk : a->n;
                     if (S->img[dir][ch])
                         S->img[dir][ch][tt_raster_index(R, line, px)] =
-                            a->n ? a->sum[ch] / (double)a->n : NAN;
+                            cnt ? a->sum[ch] / (double)cnt : NAN;
+                }
             }
     }
     free(pix);
