@@ -22,13 +22,10 @@ double tt_feedback_update(tt_feedback *f, double amplitude, double dt)
     double z = f->z0 - (f->kp * e + f->ki * integral);
     f->clamped = 0;
     if (z > f->z_max || z < f->z_min) {
-        /* anti-windup: hold the integral rather than push it further into the stop */
+        /* at a stop: output the stop and hold the integral rather than wind it up
+         * further into it (anti-windup), so that the loop recovers at once */
         f->clamped = 1;
-        z = f->z0 - (f->kp * e + f->ki * f->integral);
-        if (z > f->z_max)
-            z = f->z_max;
-        if (z < f->z_min)
-            z = f->z_min;
+        z = z > f->z_max ? f->z_max : f->z_min;
     } else {
         f->integral = integral;
     }

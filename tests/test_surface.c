@@ -1,0 +1,189 @@
+/* Surfaces: shapes, rough statistics, material maps, PNG maps, and their errors. */
+#include <png.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include "tt_test.h"
+#include "tiptap/error.h"
+#include "tiptap/surface.h"
+
+static const char *mats = "[material a]\nyoungs_modulus = 1 GPa\nmap_value = 0\n"
+                          "[material b]\nyoungs_modulus = 50 GPa\nmap_value = #ff0000\n";
+
+static tt_surface *make(const char *text, int expect_ok)
+{
+    tt_scene *s = tt_scene_alloc();
+    assert_int_equal(tt_scene_load_string(s, mats, "m.ini"), TT_OK);
+    int rc = tt_scene_load_string(s, text, "s.ini");
+    tt_surface *S = NULL;
+    if (rc == TT_OK)
+        rc = tt_surface_alloc(&S, s, 1e-6, 1e-6);
+    tt_scene_free(s);
+    if (expect_ok && rc)
+        fail_msg("%s", tt_error_message());
+    if (!expect_ok && !rc)
+        fail_msg("accepted: %s", text);
+    return S;
+}
+
+static void shapes(void **st)
+{
+    (void)st;
+    tt_surface *S = make("[surface]\ntype = steps\nstep_height = 2 nm\nstep_width = 300 nm\n", 1);
+    assert_close(tt_surface_height(S, 100e-9, 0), 0, 0);
+    assert_close(tt_surface_height(S, 350e-9, 0), 2e-9, 1e-20);
+    assert_close(tt_surface_height(S, 650e-9, 0), 4e-9, 1e-20);
+    assert_false(tt_surface_flat(S));
+    tt_surface_free(S);
+    S = make("[surface]\ntype = grating\nperiod = 400 nm\nduty = 25 %\nheight = 20 nm\nedge_width = 10 nm\n", 1);
+    assert_close(tt_surface_height(S, 5e-9, 0), 10e-9, 1e-18);  /* half-way up the edge */
+    assert_close(tt_surface_height(S, 50e-9, 0), 20e-9, 0);     /* on the line */
+    assert_close(tt_surface_height(S, 300e-9, 0), 0, 0);        /* in the gap */
+    assert_close(tt_surface_height(S, 450e-9, 0), 20e-9, 0);    /* next period */
+    tt_surface_free(S);
+    S = make("[surface]\ntype = particles\nparticle_radius = 30 nm\nparticle_count = 5\nseed = 3\n", 1);
+    /* the highest point of the image is a sphere's apex, 2 r above the flat */
+    double best = 0;
+    for (int j = 0; j < 400; j++)
+        for (int i = 0; i < 400; i++)
+            best = fmax(best, tt_surface_height(S, i * 2.5e-9, j * 2.5e-9));
+    assert_close(best, 60e-9, 0.1e-9);
+    tt_surface_free(S);
+}
+
+static void rough_statistics(void **st)
+{
+    (void)st;
+    tt_surface *S = make("[surface]\ntype = rough\nrms = 2 nm\ncorrelation_length = 40 nm\nseed = 7\n", 1);
+    int n = 256;
+    double s2 = 0, m = 0, c = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            double h = tt_surface_height(S, (i + 0.5) * 1e-6 / n, (j + 0.5) * 1e-6 / n);
+            m += h;
+            s2 += h * h;
+            /* correlation at a lag of one correlation length along x */
+            c += h * tt_surface_height(S, (i + 0.5) * 1e-6 / n + 40e-9, (j + 0.5) * 1e-6 / n);
+        }
+    m /= n * n;
+    double var = s2 / (n * n) - m * m;
+    assert_close(sqrt(var), 2e-9, 0.02e-9);
+    /* Gaussian autocorrelation: exp(-1) at one correlation length, within sampling noise */
+    assert_close(c / (n * n) / var, exp(-1), 0.1);
+    tt_surface *T = make("[surface]\ntype = rough\nrms = 2 nm\ncorrelation_length = 40 nm\nseed = 7\n", 1);
+    assert_close(tt_surface_height(T, 1e-7, 2e-7), tt_surface_height(S, 1e-7, 2e-7), 0); /* seeded */
+    tt_surface_free(S);
+    tt_surface_free(T);
+}
+
+static void material_maps(void **st)
+{
+    (void)st;
+    tt_surface *S = make("[surface]\nmap = stripes\nmap_period = 200 nm\nmap_duty = 25 %\n", 1);
+    assert_false(tt_surface_uniform(S));
+    assert_int_equal(tt_surface_material(S, 10e-9, 0), 1);
+    assert_int_equal(tt_surface_material(S, 100e-9, 0), 0);
+    tt_surface_free(S);
+    S = make("[surface]\nmap = disks\nmap_materials = b, a\nmap_period = 200 nm\nmap_radius = 50 nm\n", 1);
+    assert_int_equal(tt_surface_material(S, 100e-9, 100e-9), 0); /* disk centre: a */
+    assert_int_equal(tt_surface_material(S, 10e-9, 10e-9), 1);   /* background: b */
+    tt_surface_free(S);
+    S = make("[surface]\nmap = checkerboard\nmap_period = 200 nm\n", 1);
+    assert_int_equal(tt_surface_material(S, 50e-9, 50e-9), 0);
+    assert_int_equal(tt_surface_material(S, 150e-9, 50e-9), 1);
+    assert_int_equal(tt_surface_material(S, 150e-9, 150e-9), 0);
+    tt_surface_free(S);
+    S = make("[surface]\n", 1);
+    assert_true(tt_surface_uniform(S));
+    assert_true(tt_surface_flat(S));
+    tt_surface_free(S);
+}
+
+/* Write a small PNG: 16-bit grey if deep, else 8-bit RGB or grey. */
+static void write_png(const char *path, int w, int h, int fmt, const void *data)
+{
+    png_image im;
+    memset(&im, 0, sizeof im);
+    im.version = PNG_IMAGE_VERSION;
+    im.width = (png_uint_32)w;
+    im.height = (png_uint_32)h;
+    im.format = (png_uint_32)fmt;
+    assert_true(png_image_write_to_file(&im, path, 0, data, 0, NULL));
+}
+
+static void png_maps(void **st)
+{
+    (void)st;
+    char dir[] = "/tmp/tt_png_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char p8[256], p16[256], prgb[256], bad[256], text[1024];
+    snprintf(p8, sizeof p8, "%s/h8.png", dir);
+    snprintf(p16, sizeof p16, "%s/h16.png", dir);
+    snprintf(prgb, sizeof prgb, "%s/m.png", dir);
+    snprintf(bad, sizeof bad, "%s/bad.png", dir);
+    unsigned char g8[4] = {0, 255, 51, 102};       /* 2 x 2 */
+    unsigned short g16[4] = {0, 65535, 13107, 26214};
+    unsigned char rgb[12] = {0, 0, 0, 255, 0, 0, 255, 0, 0, 0, 0, 0};
+    write_png(p8, 2, 2, PNG_FORMAT_GRAY, g8);
+    write_png(p16, 2, 2, PNG_FORMAT_LINEAR_Y, g16);
+    write_png(prgb, 2, 2, PNG_FORMAT_RGB, rgb);
+    FILE *f = fopen(bad, "wb");
+    fputs("this is not a png file at all", f);
+    fclose(f);
+    for (int k = 0; k < 2; k++) {
+        snprintf(text, sizeof text, "[surface]\ntype = png\npng = %s\npng_height_range = 10 nm\n", k ? p16 : p8);
+        tt_surface *S = make(text, 1);
+        /* pixel centres: (x, y) = ((i + 1/2), (j + 1/2)) * 500 nm */
+        assert_close(tt_surface_height(S, 250e-9, 250e-9), 0, 1e-15);
+        assert_close(tt_surface_height(S, 750e-9, 250e-9), 10e-9, 1e-15);
+        assert_close(tt_surface_height(S, 250e-9, 750e-9), 2e-9, 1e-15);
+        assert_close(tt_surface_height(S, 750e-9, 750e-9), 4e-9, 1e-15);
+        tt_surface_free(S);
+    }
+    snprintf(text, sizeof text, "[surface]\nmap = png\nmap_png = %s\n", prgb);
+    tt_surface *S = make(text, 1);
+    assert_int_equal(tt_surface_material(S, 100e-9, 100e-9), 0);
+    assert_int_equal(tt_surface_material(S, 900e-9, 100e-9), 1);
+    assert_int_equal(tt_surface_material(S, 100e-9, 900e-9), 1);
+    tt_surface_free(S);
+    /* errors name the file, the section and the key */
+    snprintf(text, sizeof text, "[surface]\ntype = png\npng = %s/missing.png\n", dir);
+    make(text, 0);
+    assert_non_null(strstr(tt_error_message(), "s.ini: [surface] png:"));
+    snprintf(text, sizeof text, "[surface]\ntype = png\npng = %s\n", bad);
+    make(text, 0);
+    assert_non_null(strstr(tt_error_message(), "[surface] png:"));
+    assert_non_null(strstr(tt_error_message(), bad));
+    unsigned char rgb2[12] = {0, 0, 0, 0, 255, 0, 0, 0, 0, 0, 0, 0};
+    write_png(prgb, 2, 2, PNG_FORMAT_RGB, rgb2);
+    snprintf(text, sizeof text, "[surface]\nmap = png\nmap_png = %s\n", prgb);
+    make(text, 0);
+    assert_non_null(strstr(tt_error_message(), "#00ff00"));
+    unlink(p8);
+    unlink(p16);
+    unlink(prgb);
+    unlink(bad);
+    rmdir(dir);
+}
+
+static void bad_input(void **st)
+{
+    (void)st;
+    make("[surface]\nmap = stripes\nmap_materials = a, c\n", 0);
+    assert_non_null(strstr(tt_error_message(), "s.ini: [surface] map_materials: no [material c]"));
+    make("[surface]\nduty = 0 %\n", 0);
+    assert_non_null(strstr(tt_error_message(), "[surface] duty:"));
+    make("[surface]\ntype = particles\nparticle_radius = 300 nm\nparticle_count = 50\n", 0);
+    assert_non_null(strstr(tt_error_message(), "[surface] particle_count:"));
+    make("[surface]\nmap = islands\n", 0);
+    assert_non_null(strstr(tt_error_message(), "[surface] map: islands need type = particles"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(shapes),     cmocka_unit_test(rough_statistics), cmocka_unit_test(material_maps),
+        cmocka_unit_test(png_maps),   cmocka_unit_test(bad_input),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
