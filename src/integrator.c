@@ -761,6 +761,7 @@ int tt_sim_cycle(tt_sim *S, tt_cycle *out)
     out->e_ts = S->y[Y_WCI] + S->e_jumps;
     out->e_sample = S->y[Y_WS];
     out->residual = out->e_drive - out->e_damp - out->e_ts - out->e_sample - (E_end - E_start);
+    out->residual_rel = fabs(out->residual) / (M_PI * c->c * c->wd * c->A0 * c->A0);
     out->t_contact = S->t_contact;
     out->t_release = S->t_release;
     out->steps = S->steps;

@@ -302,8 +302,8 @@ static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *wor
                 if ((rc = tt_sim_cycle(sim, &cy)))
                     break;
                 (*cycles)++;
-                if (cy.e_drive > 0 && fabs(cy.residual) / cy.e_drive > *worst)
-                    *worst = fabs(cy.residual) / cy.e_drive;
+                if (cy.residual_rel > *worst)
+                    *worst = cy.residual_rel;
                 for (int q = 0; q < N; q++)
                     W->y[j * N + q] = W->samples[q].d - W->samples[q].z;
                 if (phase > 0) {

@@ -57,6 +57,9 @@ typedef struct {
     double e_ts;             /* lost in the tip-sample interaction: damping + hysteresis */
     double e_sample;         /* work done on a moving sample (ramps, scans) */
     double residual;         /* e_drive - e_damp - e_ts - e_sample - (E_end - E_start) */
+    double residual_rel;     /* |residual| relative to the free oscillation's loss per cycle,
+                              * pi c w A0^2: the run's error estimate, also where the drive
+                              * work itself is small (capture, transients) */
     double t_contact;        /* time of the cycle's first jump-in from its start, s (NAN: none) */
     double t_release;        /* time of the cycle's last pull-off from its start, s (NAN: none) */
     long steps;              /* accepted steps */

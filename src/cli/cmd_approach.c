@@ -29,14 +29,14 @@ static void help(void)
            "and the sample (negative: the rest position is below the surface).\n"
            "stderr ends with the run time and the error estimate: the largest energy-balance\n"
            "residual of a cycle (drive work - cantilever damping - tip-sample loss - change\n"
-           "of stored energy) relative to the drive work of that cycle. It is zero for the\n"
+           "of stored energy) relative to the free oscillation's drive work per cycle. It is zero for the\n"
            "exact solution, so it measures the integration error of this run.\n");
 }
 
 static void write_row(FILE *f, const tt_approach_point *p)
 {
     const tt_cycle *c = &p->cycle;
-    double rel = c->e_drive != 0 ? c->residual / fabs(c->e_drive) : 0;
+    double rel = c->residual_rel;
     fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%s,%d,%ld,%.9g,%.3g,%.9g,%.9g\n", p->z * 1e9,
             c->amplitude * 1e9, c->phase * 180 / M_PI, c->mean * 1e9, c->peak_force * 1e9,
             c->max_indentation * 1e9, c->contact_fraction, c->e_ts * 1e18,
@@ -180,7 +180,7 @@ int cmd_approach(int argc, char **argv)
         double worst = 0;
         long unsettled = 0, cycles = 0;
         for (size_t i = 0; i < n; i++) {
-            double r = pts[i].cycle.e_drive != 0 ? fabs(pts[i].cycle.residual / pts[i].cycle.e_drive) : 0;
+            double r = pts[i].cycle.residual_rel;
             if (r > worst)
                 worst = r;
             if (p.mode == TT_APPROACH_STEADY && !pts[i].settled)
@@ -188,7 +188,7 @@ int cmd_approach(int argc, char **argv)
             cycles += pts[i].cycles;
         }
         fprintf(stderr, "points = %zu\ncycles = %ld\nrun_time_s = %.3f\n", n, cycles, cli_now() - t0);
-        fprintf(stderr, "error_estimate = %.3g (largest energy-balance residual / drive work per cycle)\n",
+        fprintf(stderr, "error_estimate = %.3g (largest energy-balance residual of a cycle / free drive work per cycle)\n",
                 worst);
         if (unsettled)
             fprintf(stderr, "warning: %ld points did not settle within max_cycles = %ld "

@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "tiptap/error.h"
+#include "tiptap/scan.h"
 #include "tiptap/setup.h"
 #include "tiptap/standard.h"
 
@@ -19,6 +20,7 @@ static void help(void)
            "against a reference run at tolerance 1e-12. Figures are measured in this one\n"
            "run; compare them as ratios, since a shared machine is noisy.\n\n"
            "  --cycles N      cycles timed per setting (default 20000)\n"
+           "  --imaging-lines N  lines of the imaging figure (default 4; 0: none)\n"
            "  --print-scene   print the standard scene and exit\n");
 }
 
@@ -70,17 +72,55 @@ done:
     return rc;
 }
 
+/* The imaging figure: the standard scene scanned closed-loop, 256 pixels per line at
+ * 1 Hz with an 80 % setpoint; wall time per line and the real-time factor. */
+static int bench_imaging(long lines)
+{
+    tt_scene *scene = tt_scene_alloc();
+    char buf[64];
+    int rc = scene ? tt_scene_load_string(scene, tt_standard_scene(), "standard scene") : TT_ENOMEM;
+    snprintf(buf, sizeof buf, "scan.lines=%ld", lines);
+    if (!rc)
+        rc = tt_scene_load_string(scene,
+                                  "[scan]\nsize = 1 um\npixels = 256\nline_rate = 1 Hz\nretrace = yes\n"
+                                  "[feedback]\nsetpoint = 80 %\n",
+                                  "bench scan");
+    if (!rc)
+        rc = tt_scene_set(scene, buf);
+    tt_scan *scan = NULL;
+    if (!rc)
+        rc = tt_scan_alloc(&scan, scene);
+    double t0 = cli_now();
+    if (!rc)
+        rc = tt_scan_run(scan, 0, NULL, NULL);
+    double wall = cli_now() - t0;
+    if (!rc) {
+        double inst = tt_scan_instrument_time(scan);
+        printf("\n# imaging: standard scene, 1 um, 256 pixels per line, 1 Hz (trace + retrace), "
+               "80 %% setpoint, %ld lines on all cores\n",
+               lines);
+        printf("wall_time_per_line_s = %.3f\ninstrument_time_per_line_s = %.3f\nreal_time_factor = %.3f\n"
+               "cycles_per_second = %.0f\n",
+               wall / (double)lines, inst / (double)lines, inst / wall, (double)tt_scan_cycles(scan) / wall);
+    }
+    tt_scan_free(scan);
+    tt_scene_free(scene);
+    return rc;
+}
+
 int cmd_bench(int argc, char **argv)
 {
     static const struct option opts[] = {{"cycles", required_argument, NULL, 'n'},
                                          {"print-scene", no_argument, NULL, 'p'},
+                                         {"imaging-lines", required_argument, NULL, 'i'},
                                          {"help", no_argument, NULL, 'h'},
                                          {NULL, 0, NULL, 0}};
-    long n = 20000;
+    long n = 20000, ilines = 4;
     int c;
     while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
         switch (c) {
         case 'n': n = atol(optarg); break;
+        case 'i': ilines = atol(optarg); break;
         case 'p': fputs(tt_standard_scene(), stdout); return CLI_OK;
         case 'h': help(); return CLI_OK;
         default: return CLI_USAGE;
@@ -128,5 +168,7 @@ int cmd_bench(int argc, char **argv)
     printf("# real_time_x: simulated time / wall time for one cantilever on one core "
            "(1 = as fast as the instrument)\n");
     tt_scene_free(scene);
+    if (!rc && ilines > 0)
+        rc = bench_imaging(ilines);
     return rc ? cli_fail(rc, NULL) : CLI_OK;
 }

@@ -34,7 +34,7 @@ static void help(void)
            "writes the finished lines (the others are NaN, shown grey).\n"
            "stderr ends with the run time, the real-time factor (instrument time / run time)\n"
            "and the error estimate: the largest energy-balance residual of a cycle relative\n"
-           "to its drive work.\n");
+           "to the free oscillation's drive work per cycle.\n");
 }
 
 static void show_progress(void *user, long done, long total)
@@ -196,7 +196,7 @@ int cmd_scan(int argc, char **argv)
         double wall = cli_now() - t0;
         fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f\ninstrument_time_s = %.3f\n"
                         "real_time_factor = %.3f\nerror_estimate = %.3g (largest energy-balance "
-                        "residual / drive work per cycle)\n",
+                        "residual of a cycle / free drive work per cycle)\n",
                 tt_scan_lines_done(scan), tt_scan_lines(scan), tt_scan_cycles(scan), wall,
                 tt_scan_instrument_time(scan),
                 tt_scan_instrument_time(scan) * (double)tt_scan_lines_done(scan) /

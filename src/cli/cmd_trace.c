@@ -28,8 +28,8 @@ static void help(void)
            "Positions are along the axis into the sample, the base at rest at 0; the\n"
            "deflection is tip - base, what a beam-deflection detector measures.\n"
            "stderr ends with the run time and the error estimate: the largest energy-balance\n"
-           "residual of a cycle relative to the drive work of that cycle (zero for the exact\n"
-           "solution).\n");
+           "residual of a cycle relative to the free drive work per cycle, pi c w A0^2 (zero\n"
+           "for the exact solution).\n");
 }
 
 typedef struct {
@@ -203,7 +203,7 @@ int cmd_trace(int argc, char **argv)
         tt_sim_set_sample(sim, sep + sdot * (double)i * cant->T, sdot);
         if ((rc = tt_sim_cycle(sim, &cy)))
             break;
-        double rel = cy.e_drive != 0 ? fabs(cy.residual / cy.e_drive) : 0;
+        double rel = cy.residual_rel;
         if (rel > worst)
             worst = rel;
         /* pressure: the seed's instantaneous Hertzian pressure K a / (pi R) */
@@ -243,7 +243,7 @@ int cmd_trace(int argc, char **argv)
     }
     if (!quiet)
         fprintf(stderr, "cycles = %ld\nrun_time_s = %.3f\nerror_estimate = %.3g (largest energy-balance "
-                        "residual / drive work per cycle)\n",
+                        "residual of a cycle / free drive work per cycle)\n",
                 done_cycles, cli_now() - t0, worst);
 done:
     if (of)
