@@ -676,6 +676,25 @@ static int wanted(const char *sections, const char *name)
     return enum_has(sections, name);
 }
 
+/* Defaults that do not apply when another key of the same section is given: writing
+ * them out would make the effective scene contradict itself. */
+static const struct {
+    const char *section, *key, *given;
+} yields[] = {
+    {"material", "youngs_modulus", "reduced_modulus"},
+    {"material", "poisson_ratio", "reduced_modulus"},
+};
+
+static int default_yields(const tt_scene *s, const char *section, const char *name,
+                          const char *key)
+{
+    for (size_t i = 0; i < sizeof yields / sizeof yields[0]; i++)
+        if (strcmp(yields[i].section, section) == 0 && strcmp(yields[i].key, key) == 0 &&
+            tt_scene_has(s, section, name, yields[i].given))
+            return 1;
+    return 0;
+}
+
 int tt_scene_write(const tt_scene *s, FILE *out, const char *sections)
 {
     size_t n;
@@ -694,6 +713,15 @@ int tt_scene_write(const tt_scene *s, FILE *out, const char *sections)
             for (size_t k = 0; k < sec[i].nkeys; k++) {
                 const entry *e = find_entry(s, sec[i].name, name, sec[i].keys[k].key);
                 const char *v = e ? e->value : sec[i].keys[k].def;
+                if (!e && default_yields(s, sec[i].name, name, sec[i].keys[k].key))
+                    continue;
+                char path[4096], abs[4096];
+                if (e && (sec[i].keys[k].flags & TT_KEY_PATH) &&
+                    tt_scene_get_path(s, sec[i].name, name, sec[i].keys[k].key, path, sizeof path) ==
+                        TT_OK) {
+                    /* the written scene lives elsewhere: name files absolutely */
+                    v = realpath(path, abs) ? abs : path;
+                }
                 if (v)
                     fprintf(out, "%s = %s\n", sec[i].keys[k].key, v);
             }

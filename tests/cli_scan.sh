@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# tiptap scan and trace from the command line: the files written, a re-runnable
+# effective scene, Ctrl-C keeping finished lines, bad output folders, trace ramps.
+# usage: cli_scan.sh path/to/tiptap source_dir
+set -u
+tiptap=$(realpath "$1")
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+ok() { echo "ok   $1"; }
+bad() { echo "FAIL $1"; fail=1; }
+
+cat >"$tmp/s.ini" <<'INI'
+[cantilever]
+quality_factor = 100
+[scan]
+size = 500 nm
+pixels = 8
+lines = 2
+line_rate = 40 Hz
+settle_cycles = 1000
+INI
+"$tiptap" scan "$src/surfaces/png-map.ini" "$tmp/s.ini" -o "$tmp/out" -q || bad "scan ran"
+for ch in height amplitude phase peak_force indentation dissipation; do
+  for d in trace retrace; do
+    [ -s "$tmp/out/${ch}_$d.gsf" ] && [ -s "$tmp/out/${ch}_$d.png" ] || bad "missing ${ch}_$d"
+  done
+done
+head -c 26 "$tmp/out/height_trace.gsf" | grep -q "Gwyddion Simple Field 1.0" && ok "GSF written" || bad "GSF magic"
+head -1 "$tmp/out/profile.csv" | grep -q "^position_nm,height_trace_m" && ok "profile" || bad "profile header"
+ls "$tmp/out" | grep -q "\.tmp\." && bad "temporary files left" || ok "no temporary files"
+# the effective scene runs again from anywhere and gives the same height image
+(cd / && "$tiptap" scan "$tmp/out/scene.ini" -o "$tmp/again" -q) || bad "effective scene re-runs"
+cmp -s "$tmp/out/height_trace.gsf" "$tmp/again/height_trace.gsf" && ok "effective scene reproduces the image" || bad "re-run differs"
+# results do not depend on the number of threads
+"$tiptap" scan "$src/surfaces/png-map.ini" "$tmp/s.ini" -o "$tmp/one" -q -j 1 || bad "one thread"
+cmp -s "$tmp/out/height_trace.gsf" "$tmp/one/height_trace.gsf" && ok "independent of threads" || bad "threads change the image"
+
+# Ctrl-C keeps the finished lines in valid files
+cat >"$tmp/long.ini" <<'INI'
+[scan]
+size = 500 nm
+pixels = 8
+lines = 64
+line_rate = 20 Hz
+settle_cycles = 500
+INI
+"$tiptap" scan "$tmp/long.ini" -o "$tmp/int" -q -j 1 &
+pid=$!
+sleep 4
+kill -INT $pid
+wait $pid; rc=$?
+[ $rc -eq 130 ] && ok "interrupted exit 130" || bad "interrupt exit $rc"
+done_lines=$(grep -a "^lines_finished = " "$tmp/int/height_trace.gsf" | sed 's/.*= //')
+if [ -n "$done_lines" ] && [ "$done_lines" -gt 0 ] && [ "$done_lines" -lt 64 ]; then ok "kept $done_lines finished lines"; else bad "lines kept: '$done_lines'"; fi
+
+# an output folder that cannot be made fails at once with its name
+out=$("$tiptap" scan "$tmp/s.ini" -o /proc/tiptap-out 2>&1 >/dev/null); rc=$?
+[ $rc -ne 0 ] && grep -q "/proc/tiptap-out" <<<"$out" && ok "unwritable output folder" || bad "unwritable folder: $rc $out"
+
+# a trace with a ramp of the adhesion energy writes the ramped value per row
+cat >"$tmp/t.ini" <<'INI'
+[material glass]
+reduced_modulus = 100 GPa
+[trace]
+separation = 15 nm
+cycles = 5
+samples_per_cycle = 10
+ramp = material.glass.adhesion_energy
+ramp_from = 10 mJ/m^2
+ramp_to = 50 mJ/m^2
+INI
+"$tiptap" trace "$tmp/t.ini" -o "$tmp/t.csv" -q || bad "trace ramp ran"
+[ "$(wc -l <"$tmp/t.csv")" -eq 51 ] && ok "trace rows" || bad "trace rows $(wc -l <"$tmp/t.csv")"
+head -1 "$tmp/t.csv" | grep -q "t_us,base_nm,tip_nm,sample_nm,deflection_nm,force_nN,contact_radius_nm,pressure_GPa" && ok "trace header" || bad "trace header"
+first=$(sed -n 2p "$tmp/t.csv" | awk -F, '{print $NF}'); last=$(tail -1 "$tmp/t.csv" | awk -F, '{print $NF}')
+[ "$first" = "0.01" ] && [ "$last" = "0.05" ] && ok "ramp 0.01 to 0.05 J/m^2" || bad "ramp $first $last"
+out=$("$tiptap" trace "$tmp/t.ini" --set trace.ramp=material.glass.colour -o "$tmp/t2.csv" 2>&1 >/dev/null)
+[ $? -ne 0 ] && grep -q "\[trace\] ramp" <<<"$out" && ok "bad ramp key named" || bad "bad ramp: $out"
+exit $fail
