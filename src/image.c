@@ -95,6 +95,11 @@ int tt_image_write_png(const char *path, const tt_image *im)
     cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
     cairo_paint(cr);
     cairo_restore(cr);
+    /* a frame, so that an image whose edge colour is white still shows where it ends */
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_set_line_width(cr, 1);
+    cairo_rectangle(cr, ml - 0.5, mt - 0.5, W + 1, H + 1);
+    cairo_stroke(cr);
     /* title */
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_set_font_size(cr, 18);
