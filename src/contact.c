@@ -248,10 +248,15 @@ static double solve_p(curve_kind k, double lam, double target, double pl, double
             ph = p;
         else
             pl = p;
-        if (fabs(f) <= 1e-15 * fmax(1.0, fabs(target)) || ph - pl < 1e-15 * (1 + fabs(p)))
+        /* done when the Newton step is below round-off too: far into the Hertz regime
+         * Delta's round-off exceeds 1e-15 Delta, and creeping by ulps would run out of
+         * iterations midway through a bisection */
+        double step = dD > 0 ? f / dD : INFINITY;
+        if (fabs(f) <= 1e-15 * fmax(1.0, fabs(target)) || ph - pl < 1e-15 * (1 + fabs(p)) ||
+            fabs(step) <= 1e-15 * (1 + fabs(p)))
             break;
-        double pn = p - f / dD;
-        p = (dD > 0 && pn > pl && pn < ph) ? pn : 0.5 * (pl + ph);
+        double pn = p - step;
+        p = (pn > pl && pn < ph) ? pn : 0.5 * (pl + ph);
     }
     return p;
 }
