@@ -3,11 +3,14 @@
  * Every adhesive model is a parametric curve (A, Delta, P)(p) in the seed's normalised
  * units (eq. 3), with Delta increasing in p along the displacement-controlled stable
  * branch. That branch is tabulated once against s = sqrt(Delta - Delta_min), in which
- * the fold's square root is smooth: uniformly in s up to S1 (most contacts, no
- * transcendental function per look-up) and uniformly in ln s beyond, up to S_MAX; a
- * Hertz tail continues it. Cubic Hermite interpolation with exact derivatives makes
- * each look-up O(1). A negative s continues the first interval's cubic, so the branch
- * stays smooth a little below its end for the stages of a step that overshoot it. */
+ * the fold's square root is smooth: uniformly in s on [S_A, S1] (most contacts, no
+ * transcendental function per look-up), uniformly in ln s on [S1, S_MAX] (a Hertz tail
+ * continues it) and on [S_LO, S_A], and by one quadratic-exact cubic on [0, S_LO]. The
+ * inner ln s grid is there because near the onset of the fold (lambda = 0.938) P goes
+ * as (Delta - Delta0)^(2/3) down to a scale in s that shrinks to 0 there, which no
+ * uniform s grid resolves. Cubic Hermite interpolation with exact derivatives makes
+ * each look-up O(1). A negative s continues the end's tangent in s, so the branch stays
+ * smooth a little below its end for the stages of a step that overshoot it. */
 #include "tiptap/contact.h"
 
 #include <math.h>
@@ -16,10 +19,14 @@
 
 #include "tiptap/error.h"
 
-#define N1 1601     /* nodes uniform in s on [0, S1] */
+#define S_LO 1e-6  /* one cubic on [0, S_LO] */
+#define N0 601      /* nodes uniform in ln s on [ln S_LO, ln S_A] */
+#define S_A 0.25
+#define N1 1601     /* nodes uniform in s on [S_A, S1] */
 #define S1 8.0
 #define N2 801      /* nodes uniform in ln s on [ln S1, ln S_MAX] */
 #define S_MAX 1e4   /* Delta up to 1e8 normalised units; a Hertz tail beyond */
+#define NSEG 4
 
 typedef struct {
     double x0, h;          /* grid start and spacing in the segment's variable */
@@ -27,7 +34,7 @@ typedef struct {
     int n;
     double P[N1], dP[N1];  /* values and derivatives in the segment's variable */
     double A[N1], dA[N1];
-    double U[N1], dU[N1];  /* integral of P dDelta from s = 0, and dU = 2 s P ds */
+    double U[N1], dU[N1];  /* integral of P dDelta from s = 0, and dU/ds = 2 s P */
 } segment;
 
 typedef enum { CURVE_MAUGIS, CURVE_DMT, CURVE_JKR } curve_kind;
@@ -50,7 +57,7 @@ struct tt_contact {
     double s_in;           /* s at the jump-in point Delta0 */
     double Uc_shift;       /* U_contact = I(s) + Uc_shift */
     double vdw_cap;
-    segment seg[2];
+    segment seg[NSEG];     /* [0, S_LO], [S_LO, S_A], [S_A, S1], [S1, S_MAX] */
     double Pend, Dend, Aend, Uend;
     /* physical scales F*, d*, a* */
     double F, d, a;
@@ -248,10 +255,15 @@ static double solve_p(curve_kind k, double lam, double target, double pl, double
             ph = p;
         else
             pl = p;
-        if (fabs(f) <= 1e-15 * fmax(1.0, fabs(target)) || ph - pl < 1e-15 * (1 + fabs(p)))
+        /* done when the Newton step is below round-off too: far into the Hertz regime
+         * Delta's round-off exceeds 1e-15 Delta, and creeping by ulps would run out of
+         * iterations midway through a bisection */
+        double step = dD > 0 ? f / dD : INFINITY;
+        if (fabs(f) <= 1e-15 * fmax(1.0, fabs(target)) || ph - pl < 1e-15 * (1 + fabs(p)) ||
+            fabs(step) <= 1e-15 * (1 + fabs(p)))
             break;
-        double pn = p - f / dD;
-        p = (dD > 0 && pn > pl && pn < ph) ? pn : 0.5 * (pl + ph);
+        double pn = p - step;
+        p = (pn > pl && pn < ph) ? pn : 0.5 * (pl + ph);
     }
     return p;
 }
@@ -293,24 +305,36 @@ static void branch(const struct tt_contact *c, double D, double *P, double *dPdD
     }
     double x = D - c->dmin;
     double s = x >= 0 ? sqrt(x) : -sqrt(-x);
-    double dPs;
-    if (s <= S1) {
-        const segment *g = &c->seg[0];
-        *P = herm(g, g->P, g->dP, s, &dPs);
-        *A = herm(g, g->A, g->dA, s, NULL);
-        double as = fabs(s) > 1e-9 ? fabs(s) : 1e-9;
-        *dPdD = dPs / (2 * as);
-        if (U)
-            *U = herm(g, g->U, g->dU, s, NULL);
+    const segment *g;
+    double r, dPr;
+    if (s >= S_A && s <= S1) {
+        g = &c->seg[2]; /* most contacts: uniform in s, no log */
+        r = s;
+    } else if (s > S_LO) {
+        g = s < S_A ? &c->seg[1] : &c->seg[3];
+        r = log(s);
+    } else if (s >= 0) {
+        g = &c->seg[0];
+        r = s;
     } else {
-        const segment *g = &c->seg[1];
-        double r = log(s);
-        *P = herm(g, g->P, g->dP, r, &dPs);
-        *A = herm(g, g->A, g->dA, r, NULL);
-        *dPdD = dPs / (2 * s * s);
+        /* below the end: the end's tangent in s, which stays bounded however far a
+         * stage overshoots (the first cubic spans only S_LO) */
+        g = &c->seg[0];
+        *P = g->P[0] + g->dP[0] * s;
+        *A = g->A[0] + g->dA[0] * s;
+        *dPdD = g->dP[0] / (2 * fmax(-s, 1e-9));
         if (U)
-            *U = herm(g, g->U, g->dU, r, NULL);
+            *U = g->U[0] + g->dU[0] * s;
+        if (*A < 0)
+            *A = 0;
+        return;
     }
+    *P = herm(g, g->P, g->dP, r, &dPr);
+    *A = herm(g, g->A, g->dA, r, NULL);
+    /* dP/dDelta = (dP/ds) / (2 s) = (dP/d ln s) / (2 s^2) */
+    *dPdD = g->log ? dPr / (2 * s * s) : dPr / (2 * fmax(s, 1e-9));
+    if (U)
+        *U = herm(g, g->U, g->dU, r, NULL);
     if (*A < 0)
         *A = 0;
 }
@@ -362,19 +386,19 @@ static void build_table(struct tt_contact *c, double pf)
         curve_at(k, lam, p_start, &A0n, &D0n, &P0n, &dA, &dD, &dP);
     }
     c->dmin = D0n;
-    for (int gi = 0; gi < 2; gi++) {
-        segment *g = &c->seg[gi];
-        g->log = gi;
-        g->n = gi == 0 ? N1 : N2;
-        g->x0 = gi == 0 ? 0.0 : log(S1);
-        g->h = gi == 0 ? S1 / (N1 - 1) : (log(S_MAX) - log(S1)) / (N2 - 1);
-    }
+    static const int nodes[NSEG] = {2, N0, N1, N2};
+    const double lo_s[NSEG] = {0, log(S_LO), S_A, log(S1)};
+    const double hi_s[NSEG] = {S_LO, log(S_A), S1, log(S_MAX)};
     double pl = p_start;
-    for (int gi = 0; gi < 2; gi++) {
+    for (int gi = 0; gi < NSEG; gi++) {
         segment *g = &c->seg[gi];
+        g->log = gi % 2;
+        g->n = nodes[gi];
+        g->x0 = lo_s[gi];
+        g->h = (hi_s[gi] - lo_s[gi]) / (g->n - 1);
         for (int i = 0; i < g->n; i++) {
             double x = g->x0 + g->h * i;
-            double s = gi ? exp(x) : x;
+            double s = g->log ? exp(x) : x;
             if (gi == 0 && i == 0) {
                 g->P[0] = P0n;
                 g->A[0] = A0n;
@@ -386,52 +410,45 @@ static void build_table(struct tt_contact *c, double pf)
             g->P[i] = P;
             g->A[i] = A;
             /* d/ds = (d/dp) 2 s / (dDelta/dp); d/d ln s = s d/ds */
-            double ds = 2 * s / dD * (gi ? s : 1.0);
+            double ds = 2 * s / dD * (g->log ? s : 1.0);
             g->dP[i] = dP * ds;
             g->dA[i] = dA * ds;
         }
     }
-    /* node 0 of the s grid: its derivative from a one-sided five-point difference
-     * (the chain rule is 0/0 there) */
+    /* the end node's slope in s (the chain rule is 0/0 there): the one that makes the
+     * first cubic exact for quadratics, which holds both at a fold (P linear in s) and
+     * at the A -> 0 end (P - P0 quadratic in s) */
     segment *g0 = &c->seg[0];
-    double h = g0->h;
-    g0->dP[0] = (-25 * g0->P[0] + 48 * g0->P[1] - 36 * g0->P[2] + 16 * g0->P[3] - 3 * g0->P[4]) / (12 * h);
-    g0->dA[0] = (-25 * g0->A[0] + 48 * g0->A[1] - 36 * g0->A[2] + 16 * g0->A[3] - 3 * g0->A[4]) / (12 * h);
+    g0->dP[0] = 2 * (g0->P[1] - g0->P[0]) / g0->h - g0->dP[1];
+    g0->dA[0] = 2 * (g0->A[1] - g0->A[0]) / g0->h - g0->dA[1];
     /* U = integral of P dDelta = integral of 2 s P ds, by 3-point Gauss per interval
      * on the Hermite interpolant of P */
     static const double gx[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
     static const double gw[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
     double Ucum = 0;
-    for (int gi = 0; gi < 2; gi++) {
+    for (int gi = 0; gi < NSEG; gi++) {
         segment *g = &c->seg[gi];
-        if (gi == 1) {
-            /* the join: carry the integral from the s grid at s = S1 */
-            g->P[0] = c->seg[0].P[N1 - 1];
-            g->A[0] = c->seg[0].A[N1 - 1];
-            g->dP[0] = c->seg[0].dP[N1 - 1] * S1;
-            g->dA[0] = c->seg[0].dA[N1 - 1] * S1;
-        }
         for (int i = 0; i < g->n; i++) {
             double x = g->x0 + g->h * i;
-            double s = gi ? exp(x) : x;
+            double s = g->log ? exp(x) : x;
             if (i > 0) {
                 double sum = 0;
                 for (int q = 0; q < 3; q++) {
                     double xm = g->x0 + g->h * (i - 0.5 + 0.5 * gx[q]);
-                    double sm = gi ? exp(xm) : xm;
+                    double sm = g->log ? exp(xm) : xm;
                     double Pm = herm(g, g->P, g->dP, xm, NULL);
-                    sum += gw[q] * 2 * sm * Pm * (gi ? sm : 1.0);
+                    sum += gw[q] * 2 * sm * Pm * (g->log ? sm : 1.0);
                 }
                 Ucum += 0.5 * g->h * sum;
             }
             g->U[i] = Ucum;
-            g->dU[i] = 2 * s * g->P[i] * (gi ? s : 1.0);
+            g->dU[i] = 2 * s * g->P[i] * (g->log ? s : 1.0);
         }
     }
-    segment *g1 = &c->seg[1];
-    c->Pend = g1->P[N2 - 1];
-    c->Aend = g1->A[N2 - 1];
-    c->Uend = g1->U[N2 - 1];
+    const segment *gl = &c->seg[NSEG - 1];
+    c->Pend = gl->P[N2 - 1];
+    c->Aend = gl->A[N2 - 1];
+    c->Uend = gl->U[N2 - 1];
     c->Dend = c->dmin + S_MAX * S_MAX;
 }
 

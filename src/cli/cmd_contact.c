@@ -117,8 +117,14 @@ static void print_summary(const tt_contact *c, const tt_contact_params *phys, do
     const tt_contact_summary *s = tt_contact_summary_of(c);
     if (!s->adhesive) {
         printf("model = hertz\nadhesive = 0\nlambda = 0\n");
-        if (phys)
-            printf("reduced_modulus_Pa = %.10g\nradius_m = %.10g\n", phys->K, phys->R);
+        if (phys) {
+            /* the same physical keys as an adhesive contact's, so a script need not ask which */
+            printf("reduced_modulus_Pa = %.10g\nradius_m = %.10g\nadhesion_energy_J_per_m2 = %.10g\n"
+                   "hamaker_J = 0\nloop_energy_J = 0\n",
+                   phys->K, phys->R, phys->w);
+            if (isfinite(Qi))
+                printf("interaction_quality_factor = %.10g\n", Qi);
+        }
         return;
     }
     printf("lambda = %.10g\nP0 = %.10g\nDelta0 = %.10g\npulloff_load = %.10g\npulloff_delta = %.10g\n"
