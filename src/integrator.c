@@ -8,6 +8,7 @@
  * so that the state at the switch is a true integration result. */
 #include "tiptap/integrator.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,8 +51,18 @@ struct tt_sim {
     /* the current step, for dense output */
     double step_tau, step_h;
     double y0[NY], y1[NY], k[7][NY];
-    double rcont[5][2];  /* dopri5 dense output of d and v */
+    double rcont[5][2];  /* dense output of d and v: dopri5's, or radau's collocation
+                          * polynomial in Newton form */
     double acc1;         /* rk4: acceleration at the step end */
+    /* radau: the last accepted step's collocation polynomial, extrapolated for the
+     * Newton starting values (valid while ext_ok), and the Newton iteration's memory */
+    double ext[4][2], ext_tau, ext_h;
+    int ext_ok;
+    double radau_tol;    /* the tolerance radau's O(h^4) estimate is held to */
+    double radau_hmax;   /* radau's longest step, for the quadratures (INFINITY otherwise) */
+    double newton_eta;   /* contraction estimate theta / (1 - theta) of the last step */
+    int newton_it;       /* Newton iterations of the last step (0: it failed) */
+    int last_rejected;
     /* sampling */
     int nsamp;
     tt_sample *samples;
@@ -80,6 +91,19 @@ static const double D1 = -12715105075.0 / 11282082432.0, D3 = 87487479700.0 / 32
                     D4 = -10690763975.0 / 1880347072.0, D5 = 701980252875.0 / 199316789632.0,
                     D6 = -1453857185.0 / 822651844.0, D7 = 69997945.0 / 29380423.0;
 
+/* ---- Radau IIA, 3 stages, order 5 (Hairer & Wanner, Solving ODEs II, IV.5 and IV.8) ---- */
+#define RS6 2.449489742783178098197284
+static const double RC[3] = {(4.0 - RS6) / 10.0, (4.0 + RS6) / 10.0, 1.0};
+static const double RA[3][3] = {
+    {(88.0 - 7.0 * RS6) / 360.0, (296.0 - 169.0 * RS6) / 1800.0, (-2.0 + 3.0 * RS6) / 225.0},
+    {(296.0 + 169.0 * RS6) / 1800.0, (88.0 + 7.0 * RS6) / 360.0, (-2.0 - 3.0 * RS6) / 225.0},
+    {(16.0 - RS6) / 36.0, (16.0 + RS6) / 36.0, 1.0 / 9.0}};
+/* error estimate of RADAU5: gamma0 = 1 / (the real eigenvalue of A^-1), and the weights
+ * of the stage increments */
+static const double RG0 = 0.2748888295956773677478286;
+static const double RE[3] = {-(13.0 + 7.0 * RS6) / 3.0, (-13.0 + 7.0 * RS6) / 3.0, -1.0 / 3.0};
+enum { NEWTON_MAX = 7 };
+
 void tt_solver_default(tt_solver *s)
 {
     s->method = TT_METHOD_DOPRI5;
@@ -87,13 +111,20 @@ void tt_solver_default(tt_solver *s)
     s->steps_per_cycle = 512;
 }
 
-const char *tt_method_name(tt_method m) { return m == TT_METHOD_RK4 ? "rk4" : "dopri5"; }
+const char *tt_method_name(tt_method m)
+{
+    return m == TT_METHOD_RK4 ? "rk4" : m == TT_METHOD_RADAU ? "radau" : "dopri5";
+}
 
 int tt_solver_from_scene(tt_solver *s, const tt_scene *scene)
 {
     tt_solver_default(s);
     const char *m = tt_scene_get_string(scene, "solver", NULL, "method");
-    s->method = (m && strcmp(m, "rk4") == 0) ? TT_METHOD_RK4 : TT_METHOD_DOPRI5;
+    s->method = TT_METHOD_DOPRI5;
+    if (m && strcmp(m, "rk4") == 0)
+        s->method = TT_METHOD_RK4;
+    else if (m && strcmp(m, "radau") == 0)
+        s->method = TT_METHOD_RADAU;
     long n;
     int rc;
     if ((rc = tt_scene_get_double(scene, "solver", NULL, "tolerance", &s->tolerance)) ||
@@ -108,7 +139,7 @@ int tt_sim_alloc(tt_sim **out, const tt_cantilever *c, const tt_solver *solver)
     *out = NULL;
     if (solver->method == TT_METHOD_RK4 && solver->steps_per_cycle < 8)
         return tt_error(TT_EINVAL, "rk4 needs at least 8 steps per cycle");
-    if (solver->method == TT_METHOD_DOPRI5 && !(solver->tolerance > 0 && solver->tolerance < 1))
+    if (solver->method != TT_METHOD_RK4 && !(solver->tolerance > 0 && solver->tolerance < 1))
         return tt_error(TT_EINVAL, "solver tolerance must lie between 0 and 1");
     tt_sim *S = calloc(1, sizeof *S);
     if (!S)
@@ -117,6 +148,13 @@ int tt_sim_alloc(tt_sim **out, const tt_cantilever *c, const tt_solver *solver)
     S->inv_m = 1.0 / c->m;
     S->solver = *solver;
     S->h = c->T / 64;
+    /* Radau's estimate is of an order-3 solution while the order-5 one is kept, so as in
+     * Hairer's RADAU5 it is held to 0.1 tol^(2/3): about dopri5's accuracy at equal tol. */
+    S->radau_tol = 0.1 * pow(solver->tolerance, 2.0 / 3.0);
+    /* The per-cycle integrals are quadratures over the steps, off by about 1e-5 (w h)^6
+     * of the amplitude (measured), which the motion's estimate does not see. */
+    S->radau_hmax = solver->method == TT_METHOD_RADAU ? pow(1e5 * solver->tolerance, 1.0 / 6.0) / c->wd
+                                                      : INFINITY;
     tt_sim_set_contact(S, NULL, NAN);
     tt_sim_reset_free(S);
     *out = S;
@@ -124,6 +162,17 @@ int tt_sim_alloc(tt_sim **out, const tt_cantilever *c, const tt_solver *solver)
 }
 
 void tt_sim_free(tt_sim *sim) { free(sim); }
+
+/* The state was changed from outside the steps: the derivative at it and the last
+ * step's polynomial no longer describe it. */
+static void invalidate(tt_sim *S)
+{
+    S->fsal_ok = 0;
+    S->ext_ok = 0;
+    /* nor does the last contraction rate: without it one Newton step could pass for
+     * converged on a new branch */
+    S->newton_eta = 1.0;
+}
 
 void tt_sim_set_contact(tt_sim *S, const tt_contact *contact, double Qi)
 {
@@ -141,14 +190,14 @@ void tt_sim_set_contact(tt_sim *S, const tt_contact *contact, double Qi)
      * threshold, and a grazing tip may end a step just past one without a sign change;
      * only past this margin is a switch forced (tiny next to any force-law length). */
     S->margin = 1e-6 * S->c.A0;
-    S->fsal_ok = 0;
+    invalidate(S);
 }
 
 void tt_sim_set_sample(tt_sim *S, double s, double sdot)
 {
     S->s0 = s;
     S->sdot = sdot;
-    S->fsal_ok = 0;
+    invalidate(S);
 }
 
 void tt_sim_set_sampling(tt_sim *S, int n, tt_sample *buf)
@@ -184,7 +233,7 @@ void tt_sim_set_state(tt_sim *S, double d, double v, int contact)
     S->y[Y_D] = d;
     S->y[Y_V] = v;
     S->contact_state = S->contact ? contact : 0;
-    S->fsal_ok = 0;
+    invalidate(S);
 }
 
 void tt_sim_reset_free(tt_sim *S)
@@ -199,7 +248,7 @@ void tt_sim_reset_free(tt_sim *S)
     S->y[Y_V] = ydot; /* z' = 0 at t = 0 */
     S->contact_state = 0;
     S->tau = 0;
-    S->fsal_ok = 0;
+    invalidate(S);
 }
 
 /* sin and cos of a drive phase in [0, 2 pi] and a little beyond, to within 2 ulp:
@@ -245,13 +294,18 @@ static inline void drive_at(const tt_sim *S, double tau, double *z, double *zd, 
     }
 }
 
+/* The drive at one time: radau's Newton iteration reuses it at its stage times. */
+typedef struct {
+    double z, zd, F, cw, sw;
+} drive_val;
+
 /* The right-hand side: seed eq. 2 plus the per-cycle integrals. The contact state is
  * fixed for the whole step (PHYSICS.md: never flip it inside the right-hand side). */
-static void rhs(const tt_sim *S, double tau, const double *Y, int contact, double *Fo)
+static void rhs_with(const tt_sim *S, double tau, const drive_val *dv, const double *Y, int contact,
+                     double *Fo)
 {
     const tt_cantilever *c = &S->c;
-    double z, zd, Fd, cw, sw;
-    drive_at(S, tau, &z, &zd, &Fd, &cw, &sw);
+    double z = dv->z, zd = dv->zd, Fd = dv->F, cw = dv->cw, sw = dv->sw;
     double d = Y[Y_D], v = Y[Y_V];
     double s = S->s0 + S->sdot * tau;
     double delta = d - s, deltad = v - S->sdot;
@@ -269,6 +323,24 @@ static void rhs(const tt_sim *S, double tau, const double *Y, int contact, doubl
     Fo[Y_IS] = y * sw;
     Fo[Y_IY] = y;
     Fo[Y_TC] = contact ? 1.0 : 0.0;
+}
+
+static void rhs(const tt_sim *S, double tau, const double *Y, int contact, double *Fo)
+{
+    drive_val dv;
+    drive_at(S, tau, &dv.z, &dv.zd, &dv.F, &dv.cw, &dv.sw);
+    rhs_with(S, tau, &dv, Y, contact, Fo);
+}
+
+/* The acceleration alone: all that radau's Newton iteration needs. */
+static double accel(const tt_sim *S, double tau, const drive_val *dv, double d, double v,
+                    int contact)
+{
+    const tt_cantilever *c = &S->c;
+    double s = S->s0 + S->sdot * tau;
+    double P = S->contact ? tt_contact_load(S->contact, d - s, contact, NULL, NULL) : 0.0;
+    double Fi = contact ? S->ci * (v - S->sdot) : 0.0;
+    return (-c->c * (v - dv->zd) - c->k * (d - dv->z) - P - Fi + dv->F) * S->inv_m;
 }
 
 /* Mechanical energy of the tip system on the current branch: kinetic + spring +
@@ -377,10 +449,215 @@ static void rk4_step(tt_sim *S, double h)
     S->step_h = h;
 }
 
+/* A radau collocation polynomial of d and v in Newton form on the nodes 0, c1, c2, 1. */
+static inline void radau_poly(const double (*p)[2], double th, double *d, double *v)
+{
+    double out[2];
+    for (int i = 0; i < 2; i++)
+        out[i] = p[0][i] + th * (p[1][i] + (th - RC[0]) * (p[2][i] + (th - RC[1]) * p[3][i]));
+    *d = out[0];
+    *v = out[1];
+}
+
+/* LU factorisation of a 3x3 matrix with partial pivoting, in place; 0 if singular. */
+static int lu3(double M[3][3], int piv[3])
+{
+    for (int c = 0; c < 3; c++) {
+        int p = c;
+        for (int r = c + 1; r < 3; r++)
+            if (fabs(M[r][c]) > fabs(M[p][c]))
+                p = r;
+        piv[c] = p;
+        if (!(fabs(M[p][c]) > 0) || !isfinite(M[p][c]))
+            return 0;
+        if (p != c)
+            for (int j = 0; j < 3; j++) {
+                double tmp = M[c][j];
+                M[c][j] = M[p][j];
+                M[p][j] = tmp;
+            }
+        for (int r = c + 1; r < 3; r++) {
+            M[r][c] /= M[c][c];
+            for (int j = c + 1; j < 3; j++)
+                M[r][j] -= M[r][c] * M[c][j];
+        }
+    }
+    return 1;
+}
+
+/* Solve with lu3's factors: all row swaps first (the multipliers were swapped with
+ * their rows), then the two triangular solves. */
+static void lu3_solve(double M[3][3], const int piv[3], double b[3])
+{
+    for (int c = 0; c < 3; c++)
+        if (piv[c] != c) {
+            double tmp = b[c];
+            b[c] = b[piv[c]];
+            b[piv[c]] = tmp;
+        }
+    for (int c = 0; c < 3; c++)
+        for (int r = c + 1; r < 3; r++)
+            b[r] -= M[r][c] * b[c];
+    for (int r = 2; r >= 0; r--) {
+        for (int j = r + 1; j < 3; j++)
+            b[r] -= M[r][j] * b[j];
+        b[r] /= M[r][r];
+    }
+}
+
+/* Radau IIA, 3 stages, order 5, is L-stable, so a stiff or heavily damped contact
+ * limits its step only through accuracy. Simplified Newton on the motion (d, v) with
+ * the step start's Jacobian; the quadrature components do not feed back, so they follow
+ * from the converged stages with the weights b (the last row of A). Returns the scaled
+ * error (RADAU5's embedded estimate; <= 1 accepts), or INFINITY with newton_it = 0. */
+static double radau_step(tt_sim *S, double h)
+{
+    double (*k)[NY] = S->k;
+    const double *y0 = S->y;
+    const double t = S->tau, d0 = y0[Y_D], v0 = y0[Y_V];
+    const int cs = S->contact_state;
+    const double tol = S->radau_tol;
+    const double scd = tol * S->c.A0, scv = scd * S->c.wd;
+    const int first = !S->ext_ok;
+    ensure_fsal(S);
+    memcpy(k[0], S->fsal, sizeof k[0]);
+    memcpy(S->y0, y0, sizeof S->y0);
+    S->step_tau = t;
+    S->step_h = h;
+
+    /* Jacobian of (d' = v, v' = f) at the step start: df/dd = -(k + dP/ddelta) / m,
+     * df/dv = -(c + c_i) / m. */
+    double dPdd = 0;
+    if (S->contact)
+        (void)tt_contact_load(S->contact, d0 - (S->s0 + S->sdot * t), cs, &dPdd, NULL);
+    const double Jd = -(S->c.k + dPdd) * S->inv_m;
+    const double Jv = -(S->c.c + (cs ? S->ci : 0.0)) * S->inv_m;
+    /* Position increments follow linearly from the velocity ones (d' = v), so Newton
+     * needs only M = I - h Jv A - h^2 Jd A^2 for the three velocity increments. */
+    double M[3][3];
+    int piv[3];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double a2 = RA[i][0] * RA[0][j] + RA[i][1] * RA[1][j] + RA[i][2] * RA[2][j];
+            M[i][j] = (i == j) - h * Jv * RA[i][j] - h * h * Jd * a2;
+        }
+    int ok = lu3(M, piv);
+
+    drive_val dv[3];
+    for (int i = 0; i < 3; i++)
+        drive_at(S, t + RC[i] * h, &dv[i].z, &dv[i].zd, &dv[i].F, &dv[i].cw, &dv[i].sw);
+
+    /* starting values: the last accepted step's polynomial, extrapolated */
+    double zv[3] = {0, 0, 0}, zd[3];
+    if (S->ext_ok)
+        for (int i = 0; i < 3; i++) {
+            double de, ve;
+            radau_poly((const double (*)[2])S->ext, (t + RC[i] * h - S->ext_tau) / S->ext_h, &de, &ve);
+            zv[i] = ve - v0;
+        }
+
+    /* Simplified Newton; stop when the estimated remaining error, eta |dz|, is a small
+     * fraction of the tolerance (Hairer's fnewt). */
+    const double fnewt = fmax(10 * DBL_EPSILON / tol, fmin(0.03, sqrt(tol)));
+    double eta = pow(fmax(S->newton_eta, DBL_EPSILON), 0.8), prev = 1;
+    int conv = 0, it;
+    for (it = 1; ok && it <= NEWTON_MAX; it++) {
+        double a[3], g[3];
+        for (int i = 0; i < 3; i++)
+            zd[i] = h * (RA[i][0] * (v0 + zv[0]) + RA[i][1] * (v0 + zv[1]) + RA[i][2] * (v0 + zv[2]));
+        for (int j = 0; j < 3; j++)
+            a[j] = accel(S, t + RC[j] * h, &dv[j], d0 + zd[j], v0 + zv[j], cs);
+        for (int i = 0; i < 3; i++)
+            g[i] = h * (RA[i][0] * a[0] + RA[i][1] * a[1] + RA[i][2] * a[2]) - zv[i];
+        lu3_solve(M, piv, g);
+        double nrm = 0;
+        for (int i = 0; i < 3; i++) {
+            double dd = h * (RA[i][0] * g[0] + RA[i][1] * g[1] + RA[i][2] * g[2]);
+            nrm = fmax(nrm, fmax(fabs(g[i]) / scv, fabs(dd) / scd));
+        }
+        if (!isfinite(nrm))
+            break;
+        if (it > 1) {
+            double theta = nrm / prev;
+            if (theta >= 0.99)
+                break; /* diverging */
+            eta = theta / (1 - theta);
+            if (eta * nrm * pow(theta, NEWTON_MAX - it) > fnewt)
+                break; /* would not converge in the iterations left */
+        }
+        prev = fmax(nrm, DBL_EPSILON);
+        for (int i = 0; i < 3; i++)
+            zv[i] += g[i];
+        if (eta * nrm <= fnewt) {
+            conv = 1;
+            break;
+        }
+    }
+    S->newton_it = conv ? it : 0;
+    if (conv)
+        S->newton_eta = eta;
+
+    /* the converged stages: full right-hand side (quadrature integrands included) */
+    double Yst[NY];
+    memcpy(Yst, y0, sizeof Yst);
+    for (int i = 0; i < 3; i++)
+        zd[i] = h * (RA[i][0] * (v0 + zv[0]) + RA[i][1] * (v0 + zv[1]) + RA[i][2] * (v0 + zv[2]));
+    for (int j = 0; j < 3; j++) {
+        Yst[Y_D] = d0 + zd[j];
+        Yst[Y_V] = v0 + zv[j];
+        rhs_with(S, t + RC[j] * h, &dv[j], Yst, cs, k[1 + j]);
+    }
+    /* stiffly accurate: the end is the last stage (not y0 + h b.f, which would amplify
+     * the Newton error of the stiff part by h |J|) */
+    S->y1[Y_D] = d0 + zd[2];
+    S->y1[Y_V] = v0 + zv[2];
+    for (int q = Y_WDRIVE; q < NY; q++)
+        S->y1[q] = y0[q] + h * (RA[2][0] * k[1][q] + RA[2][1] * k[2][q] + RA[2][2] * k[3][q]);
+    memcpy(k[6], k[3], sizeof k[6]);
+
+    /* dense output: the collocation polynomial through y0 and the three stages */
+    for (int i = 0; i < 2; i++) {
+        double z1 = i ? zv[0] : zd[0], z2 = i ? zv[1] : zd[1], z3 = i ? zv[2] : zd[2];
+        double f01 = z1 / RC[0], f12 = (z2 - z1) / (RC[1] - RC[0]), f23 = (z3 - z2) / (1 - RC[1]);
+        double f012 = (f12 - f01) / RC[1], f123 = (f23 - f12) / (1 - RC[0]);
+        S->rcont[0][i] = y0[i];
+        S->rcont[1][i] = f01;
+        S->rcont[2][i] = f012;
+        S->rcont[3][i] = f123 - f012;
+        S->rcont[4][i] = 0;
+    }
+    if (!conv)
+        return INFINITY;
+
+    /* error estimate: (I - h g0 J)^-1 (g0 h f0 + g0 sum e_i Z_i), on d and v */
+    const double hg = h * RG0, det = (1 - hg * Jv) - hg * hg * Jd;
+    double rd = hg * k[0][Y_D] + RG0 * (RE[0] * zd[0] + RE[1] * zd[1] + RE[2] * zd[2]);
+    double rv = hg * k[0][Y_V] + RG0 * (RE[0] * zv[0] + RE[1] * zv[1] + RE[2] * zv[2]);
+    double ed = ((1 - hg * Jv) * rd + hg * rv) / det, ev = (hg * Jd * rd + rv) / det;
+    double err = fmax(fabs(ed) / scd, fabs(ev) / scv);
+    if (err >= 1 && (first || S->last_rejected)) {
+        /* Hairer's second estimate, with f at y0 + err: keeps stiff components from
+         * inflating the first estimate after a discontinuity */
+        drive_val d0v;
+        drive_at(S, t, &d0v.z, &d0v.zd, &d0v.F, &d0v.cw, &d0v.sw);
+        double a1 = accel(S, t, &d0v, d0 + ed, v0 + ev, cs);
+        rd = hg * (v0 + ev) + RG0 * (RE[0] * zd[0] + RE[1] * zd[1] + RE[2] * zd[2]);
+        rv = hg * a1 + RG0 * (RE[0] * zv[0] + RE[1] * zv[1] + RE[2] * zv[2]);
+        ed = ((1 - hg * Jv) * rd + hg * rv) / det;
+        ev = (hg * Jd * rd + rv) / det;
+        err = fmax(fabs(ed) / scd, fabs(ev) / scv);
+    }
+    return isfinite(err) ? err : INFINITY;
+}
+
 /* Dense output of d and v at fraction th of the current step. */
 static void dense(const tt_sim *S, double th, double *d, double *v)
 {
     double h = S->step_h;
+    if (S->solver.method == TT_METHOD_RADAU) {
+        radau_poly(S->rcont, th, d, v);
+        return;
+    }
     if (S->solver.method == TT_METHOD_DOPRI5) {
         double th1 = 1 - th;
         double out[2];
@@ -579,20 +856,39 @@ static void accept_full(tt_sim *S)
     memcpy(S->y, S->y1, sizeof S->y);
     memcpy(S->fsal, S->k[6], sizeof S->fsal);
     S->fsal_ok = 1;
+    if (S->solver.method == TT_METHOD_RADAU) {
+        memcpy(S->ext, S->rcont, sizeof S->ext);
+        S->ext_tau = S->step_tau;
+        S->ext_h = S->step_h;
+        S->ext_ok = 1;
+    }
     S->tau = S->step_tau + S->step_h;
     S->steps++;
 }
 
 /* Redo the current step up to fraction th, take it, and flip the contact state. */
-static void accept_to_event(tt_sim *S, double th)
+static int accept_to_event(tt_sim *S, double th)
 {
     double h = S->step_h;
     observe(S, th);
     if (th > 0) {
-        if (S->solver.method == TT_METHOD_DOPRI5)
+        if (S->solver.method == TT_METHOD_DOPRI5) {
             (void)dopri5_step(S, th * h);
-        else
+        } else if (S->solver.method == TT_METHOD_RADAU) {
+            /* the step's own polynomial gives the redo's Newton iteration its start */
+            memcpy(S->ext, S->rcont, sizeof S->ext);
+            S->ext_tau = S->step_tau;
+            S->ext_h = S->step_h;
+            S->ext_ok = 1;
+            (void)radau_step(S, th * h);
+            if (!S->newton_it)
+                return tt_error(TT_ENUM,
+                                "radau: Newton iteration failed at a contact event at t = %.9g s "
+                                "(cycle %ld); tighten [solver] tolerance",
+                                tt_sim_time(S) + S->step_tau, S->cycle);
+        } else {
             rk4_step(S, th * h);
+        }
         memcpy(S->y, S->y1, sizeof S->y);
         S->tau = S->step_tau + S->step_h;
         S->steps++;
@@ -606,9 +902,10 @@ static void accept_to_event(tt_sim *S, double th)
         S->t_contact = S->tau;
     if (!S->contact_state)
         S->t_release = S->tau;
-    S->fsal_ok = 0;
+    invalidate(S);
     S->events++;
     S->step_h = h; /* keep the step length the controller chose */
+    return TT_OK;
 }
 
 static int check_finite(tt_sim *S)
@@ -636,7 +933,8 @@ static int rk4_check_stiffness(tt_sim *S, double h)
         return tt_error(TT_ENUM,
                         "rk4 step too large for the contact: contact stiffness %.3g N/m (%.0f times "
                         "the cantilever's)%s needs at least %.0f steps per cycle; raise [solver] "
-                        "steps_per_cycle or use method = dopri5",
+                        "steps_per_cycle or use method = dopri5 (or radau, implicit, for a contact "
+                        "this stiff)",
                         keff, keff / S->c.k, zeta > 1 ? " and its damping" : "",
                         ceil(S->c.T * fmax(wc, S->ci / S->c.m) / 2.5));
     return TT_OK;
@@ -704,17 +1002,34 @@ int tt_sim_cycle(tt_sim *S, tt_cycle *out)
             h = S->h;
             if (h > T / 8)
                 h = T / 8; /* keeps turning points of a cycle within reach of the checks */
+            if (h > S->radau_hmax)
+                h = S->radau_hmax;
             int last = 0;
             if (S->tau + h >= T - hmin) {
                 h = T - S->tau;
                 last = 1;
             }
-            double err = dopri5_step(S, h);
-            double fac = err > 0 ? 0.9 * pow(err, -0.2) : 5.0;
+            double err, fac;
+            if (S->solver.method == TT_METHOD_RADAU) {
+                err = radau_step(S, h);
+                if (!S->newton_it) {
+                    fac = 0.5; /* Newton failed: the step was too long for the Jacobian */
+                } else {
+                    /* Hairer's safety factor, smaller after a slow Newton iteration; the
+                     * estimate is O(h^4) */
+                    double safe = fmin(0.9, 0.9 * (1 + 2 * NEWTON_MAX) /
+                                                (S->newton_it + 2 * NEWTON_MAX));
+                    fac = err > 0 ? safe * pow(err, -0.25) : 5.0;
+                }
+            } else {
+                err = dopri5_step(S, h);
+                fac = err > 0 ? 0.9 * pow(err, -0.2) : 5.0;
+            }
             if (fac > 5)
                 fac = 5;
             if (fac < 0.2)
                 fac = 0.2;
+            S->last_rejected = err > 1;
             if (err > 1) {
                 S->rejected++;
                 S->h = h * fac;
@@ -730,7 +1045,9 @@ int tt_sim_cycle(tt_sim *S, tt_cycle *out)
         }
         double th = find_event(S);
         if (th <= 1) {
-            accept_to_event(S, th);
+            int rc = accept_to_event(S, th);
+            if (rc)
+                return rc;
         } else {
             accept_full(S);
             if (S->solver.method == TT_METHOD_RK4)
@@ -772,6 +1089,7 @@ int tt_sim_cycle(tt_sim *S, tt_cycle *out)
     S->cycle++;
     S->s0 += S->sdot * T;
     S->tau = 0;
+    S->ext_tau -= T; /* radau's last polynomial, in the new cycle's time */
     return TT_OK;
 }
 

@@ -85,10 +85,12 @@ static const tt_scene_key trace_keys[] = {
 };
 
 static const tt_scene_key solver_keys[] = {
-    {"method", TT_KEY_ENUM, 0, "dopri5", 0, 0, 0, "dopri5|rk4",
-     "dopri5: adaptive explicit 5(4) with dense output; rk4: classic, fixed steps"},
+    {"method", TT_KEY_ENUM, 0, "dopri5", 0, 0, 0, "dopri5|rk4|radau",
+     "dopri5: adaptive explicit 5(4) with dense output; rk4: classic, fixed steps; "
+     "radau: adaptive implicit Radau IIA (order 5, L-stable) for very stiff or heavily damped "
+     "contacts"},
     {"tolerance", Q(TT_DIM_NONE), "1e-8", 1e-14, 1e-1, 0, NULL,
-     "adaptive methods: local error tolerance relative to the free amplitude"},
+     "adaptive methods (dopri5, radau): local error tolerance relative to the free amplitude"},
     {"steps_per_cycle", TT_KEY_INT, 0, "512", 8, 1e7, 0, NULL,
      "rk4: fixed steps per drive cycle"},
 };

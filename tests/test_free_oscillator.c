@@ -54,6 +54,7 @@ static void base_drive_at_resonance(void **st)
     (void)st;
     check_free(TT_DRIVE_BASE, 400, 1.0, TT_METHOD_DOPRI5);
     check_free(TT_DRIVE_BASE, 400, 1.0, TT_METHOD_RK4);
+    check_free(TT_DRIVE_BASE, 400, 1.0, TT_METHOD_RADAU);
 }
 
 static void force_drive_at_resonance(void **st)
@@ -61,6 +62,7 @@ static void force_drive_at_resonance(void **st)
     (void)st;
     check_free(TT_DRIVE_FORCE, 400, 1.0, TT_METHOD_DOPRI5);
     check_free(TT_DRIVE_FORCE, 400, 1.0, TT_METHOD_RK4);
+    check_free(TT_DRIVE_FORCE, 400, 1.0, TT_METHOD_RADAU);
 }
 
 static void off_resonance_both_sides(void **st)
@@ -70,6 +72,8 @@ static void off_resonance_both_sides(void **st)
     check_free(TT_DRIVE_FORCE, 400, 1.0013, TT_METHOD_DOPRI5);
     check_free(TT_DRIVE_BASE, 400, 0.5, TT_METHOD_DOPRI5);
     check_free(TT_DRIVE_FORCE, 400, 3.0, TT_METHOD_DOPRI5);
+    check_free(TT_DRIVE_BASE, 400, 0.999, TT_METHOD_RADAU);
+    check_free(TT_DRIVE_FORCE, 400, 3.0, TT_METHOD_RADAU);
 }
 
 static void liquid_and_vacuum_quality_factors(void **st)
@@ -77,6 +81,8 @@ static void liquid_and_vacuum_quality_factors(void **st)
     (void)st;
     check_free(TT_DRIVE_BASE, 1, 1.0, TT_METHOD_DOPRI5);
     check_free(TT_DRIVE_FORCE, 3, 0.9, TT_METHOD_DOPRI5);
+    check_free(TT_DRIVE_BASE, 1, 1.0, TT_METHOD_RADAU);
+    check_free(TT_DRIVE_FORCE, 3, 0.9, TT_METHOD_RADAU);
     check_free(TT_DRIVE_FORCE, 1e4, 1.0, TT_METHOD_DOPRI5);
 }
 

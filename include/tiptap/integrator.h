@@ -29,11 +29,11 @@
 extern "C" {
 #endif
 
-typedef enum { TT_METHOD_DOPRI5 = 0, TT_METHOD_RK4 = 1 } tt_method;
+typedef enum { TT_METHOD_DOPRI5 = 0, TT_METHOD_RK4 = 1, TT_METHOD_RADAU = 2 } tt_method;
 
 typedef struct {
     tt_method method;
-    double tolerance;     /* dopri5: local error per step relative to the free amplitude */
+    double tolerance;     /* dopri5, radau: local error per step relative to the free amplitude */
     int steps_per_cycle;  /* rk4 */
 } tt_solver;
 
@@ -63,7 +63,7 @@ typedef struct {
     double t_contact;        /* time of the cycle's first jump-in from its start, s (NAN: none) */
     double t_release;        /* time of the cycle's last pull-off from its start, s (NAN: none) */
     long steps;              /* accepted steps */
-    long rejected;           /* rejected steps (dopri5) */
+    long rejected;           /* rejected steps (dopri5, radau; radau counts Newton failures) */
     long events;             /* contact changes */
 } tt_cycle;
 
@@ -105,7 +105,8 @@ void tt_sim_track_extremes(tt_sim *sim, int on);
 void tt_sim_reset_free(tt_sim *sim);
 
 /* Advance one drive cycle. TT_ENUM with a message if the solution fails (NaN, step
- * size underflow, rk4 steps too coarse for the contact stiffness). */
+ * size underflow, rk4 steps too coarse for the contact stiffness, radau's Newton
+ * iteration failing at an event). */
 int tt_sim_cycle(tt_sim *sim, tt_cycle *out);
 
 /* Run cycles until amplitude and phase settle: the remaining change, extrapolated

@@ -143,6 +143,8 @@ int cmd_bench(int argc, char **argv)
         {"dopri5 tol 1e-8 (default)", TT_METHOD_DOPRI5, 1e-8, 512},
         {"rk4 128 steps", TT_METHOD_RK4, 1e-8, 128},
         {"rk4 512 steps", TT_METHOD_RK4, 1e-8, 512},
+        {"radau tol 1e-6", TT_METHOD_RADAU, 1e-6, 512},
+        {"radau tol 1e-8", TT_METHOD_RADAU, 1e-8, 512},
     };
     tt_cycle ref = {0};
     double rate, spc;
