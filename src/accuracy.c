@@ -66,7 +66,7 @@ typedef struct {
     tt_cycle last;     /* point: the last cycle */
     double prev_amp;   /* point: the amplitude of the cycle before */
     double *profile;   /* line: heights, trace then retrace */
-    double seconds, steps_per_cycle, residual_rel;
+    double seconds, cpu_seconds, steps_per_cycle, residual_rel;
 } run_result;
 
 struct tt_accuracy {
@@ -82,6 +82,7 @@ struct tt_accuracy {
     size_t nprofile;   /* line: values per profile */
     tt_accuracy_row *rows;
     size_t nrows, next;
+    int pass;          /* 1: every row computed; 2..repeats: cheap rows timed again */
     run_result ref;
     int ref_done;
 };
@@ -90,6 +91,15 @@ static double now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* CPU time of the process: unlike the wall clock, barely changed by other programs
+ * sharing the cores (the runs are single-threaded). */
+static double cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
@@ -136,7 +146,7 @@ static int add_row(tt_accuracy *A, tt_accuracy_role role, tt_method m, const cha
     r->knob = knob;
     r->value = value;
     r->is_default = is_default;
-    r->run_time = r->steps_per_cycle = r->residual_rel = r->primary = NAN;
+    r->run_time = r->cpu_time = r->steps_per_cycle = r->residual_rel = r->primary = NAN;
     for (int i = 0; i < TT_ACCURACY_MAX_OBS; i++)
         r->err[i] = NAN;
     return TT_OK;
@@ -306,6 +316,7 @@ int tt_accuracy_alloc(tt_accuracy **out, const tt_scene *scene, const tt_accurac
     }
     if ((rc = plan(A)))
         goto fail;
+    A->pass = 1;
     *out = A;
     return TT_OK;
 fail:
@@ -342,7 +353,7 @@ static int run_point(tt_accuracy *A, run_result *res)
     double worst = 0, amp = NAN;
     tt_cycle cy;
     memset(&cy, 0, sizeof cy);
-    double t0 = now();
+    double t0 = now(), c0 = cpu_now();
     for (long n = 0; n < A->cycles; n++) {
         if ((n & 255) == 0 && tt_cancel_requested()) {
             rc = tt_error(TT_EINTR, "interrupted");
@@ -357,6 +368,7 @@ static int run_point(tt_accuracy *A, run_result *res)
             worst = cy.residual_rel;
     }
     res->seconds = now() - t0;
+    res->cpu_seconds = cpu_now() - c0;
     tt_sim_free(sim);
     if (rc)
         return rc;
@@ -373,9 +385,10 @@ static int run_line(tt_accuracy *A, run_result *res)
     int rc = tt_scan_alloc(&scan, A->scene);
     if (rc)
         return rc;
-    double t0 = now();
+    double t0 = now(), c0 = cpu_now();
     rc = tt_scan_run(scan, 1, NULL, NULL);
     res->seconds = now() - t0;
+    res->cpu_seconds = cpu_now() - c0;
     if (!rc) {
         free(res->profile);
         res->profile = malloc(A->nprofile * sizeof *res->profile);
@@ -440,26 +453,56 @@ static void compare(tt_accuracy *A, tt_accuracy_row *row, const run_result *res)
 
 int tt_accuracy_done(const tt_accuracy *A) { return A->next >= A->nrows; }
 
+int tt_accuracy_pass(const tt_accuracy *A) { return A->pass; }
+
+/* Move to the next unit of work: the next row in the first pass; in the later timing
+ * passes, the next finished row cheap enough to be timed again. */
+static void advance(tt_accuracy *A)
+{
+    A->next++;
+    for (;;) {
+        if (A->next >= A->nrows) {
+            if (A->pass >= A->p.repeats)
+                return;
+            A->pass++;
+            A->next = 0;
+            continue;
+        }
+        const tt_accuracy_row *r = &A->rows[A->next];
+        if (A->pass == 1 || (r->status == TT_OK && r->run_time < A->p.repeat_below))
+            return;
+        A->next++;
+    }
+}
+
+/* A later pass: the same run again, for its time only (its numbers do not change). */
+static int retime(tt_accuracy *A, tt_accuracy_row *row)
+{
+    run_result res = {0};
+    int rc = run_setting(A, row, &res);
+    free(res.profile);
+    if (rc == TT_EINTR)
+        return rc;
+    if (rc)
+        return tt_error(rc, "%s %s %g failed when timed again: %s", tt_method_name(row->method),
+                        row->knob, row->value, tt_error_message());
+    row->run_time = fmin(row->run_time, res.seconds);
+    row->cpu_time = fmin(row->cpu_time, res.cpu_seconds);
+    row->runs++;
+    advance(A);
+    return TT_OK;
+}
+
 int tt_accuracy_iterate(tt_accuracy *A, const tt_accuracy_row **out)
 {
     if (tt_accuracy_done(A))
         return tt_error(TT_EINVAL, "the accuracy study is complete");
     tt_accuracy_row *row = &A->rows[A->next];
     *out = row;
+    if (A->pass > 1)
+        return retime(A, row);
     run_result res = {0};
-    int rc = TT_OK;
-    double best = INFINITY;
-    int runs = 0;
-    /* Repeat a cheap run for a steadier time; the numbers are the same every time. */
-    for (int k = 0; k < A->p.repeats; k++) {
-        if ((rc = run_setting(A, row, &res)))
-            break;
-        runs++;
-        if (res.seconds < best)
-            best = res.seconds;
-        if (res.seconds >= A->p.repeat_below)
-            break;
-    }
+    int rc = run_setting(A, row, &res);
     if (rc == TT_EINTR || (rc && row->role == TT_ACCURACY_REFERENCE)) {
         free(res.profile);
         if (rc != TT_EINTR)
@@ -467,16 +510,17 @@ int tt_accuracy_iterate(tt_accuracy *A, const tt_accuracy_row **out)
                           tt_error_message());
         return rc;
     }
-    A->next++;
     if (rc) {
         row->status = rc;
         snprintf(row->message, sizeof row->message, "%s", tt_error_message());
         free(res.profile);
         tt_error_clear();
+        advance(A);
         return TT_OK;
     }
-    row->run_time = best;
-    row->runs = runs;
+    row->run_time = res.seconds;
+    row->cpu_time = res.cpu_seconds;
+    row->runs = 1;
     row->steps_per_cycle = res.steps_per_cycle;
     row->residual_rel = res.residual_rel;
     if (row->role == TT_ACCURACY_REFERENCE) {
@@ -486,6 +530,7 @@ int tt_accuracy_iterate(tt_accuracy *A, const tt_accuracy_row **out)
     compare(A, row, &res);
     if (row->role != TT_ACCURACY_REFERENCE)
         free(res.profile);
+    advance(A);
     return TT_OK;
 }
 
@@ -508,12 +553,15 @@ const tt_accuracy_row *tt_accuracy_row_at(const tt_accuracy *A, size_t i)
     return i < A->nrows ? &A->rows[i] : NULL;
 }
 
+/* Rows with their numbers: all of them after the first pass. */
+static size_t computed(const tt_accuracy *A) { return A->pass > 1 ? A->nrows : A->next; }
+
 /* The loosest setting of method m from which on every tighter one meets the target:
  * a lucky cancellation of errors at one loose setting is no setting to recommend. */
 static const tt_accuracy_row *reliable(const tt_accuracy *A, tt_method m, double target)
 {
     const tt_accuracy_row *pick = NULL;
-    for (size_t i = 0; i < A->next; i++) {
+    for (size_t i = 0; i < computed(A); i++) {
         const tt_accuracy_row *r = &A->rows[i];
         if (r->role != TT_ACCURACY_SETTING || r->method != m)
             continue;
@@ -527,15 +575,20 @@ static const tt_accuracy_row *reliable(const tt_accuracy *A, tt_method m, double
     return pick;
 }
 
+static double cost(const tt_accuracy *A, const tt_accuracy_row *r)
+{
+    return A->p.cpu_clock ? r->cpu_time : r->run_time;
+}
+
 const tt_accuracy_row *tt_accuracy_cheapest(const tt_accuracy *A, int method, double target)
 {
     const tt_accuracy_row *best = NULL;
-    for (size_t i = 0; i < A->next; i++) {
+    for (size_t i = 0; i < computed(A); i++) {
         const tt_accuracy_row *r = &A->rows[i];
         if (r->role != TT_ACCURACY_SETTING || (method >= 0 && (int)r->method != method))
             continue;
         const tt_accuracy_row *c = reliable(A, r->method, target);
-        if (c && (!best || c->run_time < best->run_time))
+        if (c && (!best || cost(A, c) < cost(A, best)))
             best = c;
     }
     return best;

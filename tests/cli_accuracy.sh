@@ -36,7 +36,7 @@ interaction_quality_factor = 2
 INI
 "$tiptap" accuracy "$tmp/tap.ini" --methods dopri5 --repeats 1 -o "$tmp/a.csv" --plot "$tmp/a.png" \
   >"$tmp/out.txt" 2>"$tmp/err.txt" || bad "accuracy ran: $(cat "$tmp/err.txt")"
-head -1 "$tmp/a.csv" | grep -qx "method,knob,value,run_time_s,steps_per_cycle,amplitude_err_rel,phase_err_deg,mean_err_m,peak_force_err_rel,dissipation_err_rel,residual_rel,role,is_default,status" \
+head -1 "$tmp/a.csv" | grep -qx "method,knob,value,run_time_s,cpu_time_s,steps_per_cycle,amplitude_err_rel,phase_err_deg,mean_err_m,peak_force_err_rel,dissipation_err_rel,residual_rel,role,is_default,status" \
   && ok "CSV header" || bad "CSV header: $(head -1 "$tmp/a.csv")"
 # reference, floor, 15 tolerances with the default among them
 [ "$(wc -l <"$tmp/a.csv")" -eq 18 ] && ok "CSV rows" || bad "CSV rows $(wc -l <"$tmp/a.csv")"
@@ -62,7 +62,7 @@ settle_cycles = 300
 INI
 "$tiptap" accuracy "$tmp/tap.ini" "$tmp/scan.ini" --methods rk4 --pixels 3 --repeats 1 -q -o "$tmp/l.csv" \
   || bad "line ran"
-head -1 "$tmp/l.csv" | grep -qx "method,knob,value,run_time_s,steps_per_cycle,height_err_max_m,height_err_rms_m,residual_rel,role,is_default,status" \
+head -1 "$tmp/l.csv" | grep -qx "method,knob,value,run_time_s,cpu_time_s,steps_per_cycle,height_err_max_m,height_err_rms_m,residual_rel,role,is_default,status" \
   && ok "line CSV header" || bad "line CSV header: $(head -1 "$tmp/l.csv")"
 
 cat >"$tmp/typo.ini" <<'INI'
@@ -74,6 +74,7 @@ expect_error "unknown option" "unrecognized option" "$tiptap" accuracy --frobnic
 expect_error "bad --point" "--point 16 kHz" "$tiptap" accuracy "$tmp/tap.ini" --point "16 kHz"
 expect_error "unknown method" "unknown method 'euler'" "$tiptap" accuracy "$tmp/tap.ini" --methods euler
 expect_error "bad --cycles" "--cycles" "$tiptap" accuracy "$tmp/tap.ini" --cycles 3
+expect_error "bad --clock" "--clock" "$tiptap" accuracy "$tmp/tap.ini" --clock sundial
 expect_error "missing scene" "$tmp/none.ini" "$tiptap" accuracy "$tmp/none.ini"
 expect_error "no scene" "needs a scene file" "$tiptap" accuracy
 expect_error "unknown material" "no [material quartz]" "$tiptap" accuracy "$tmp/tap.ini" --set approach.material=quartz

@@ -62,8 +62,12 @@ typedef struct {
     long cycles;            /* point: cycles from the free state; 0: Q ln(1e8) / pi, when
                              * the free transient has decayed to 1e-8 */
     long line_pixels;       /* line: pixels of the segment (default 8) */
-    int repeats;            /* timing: best of at most this many runs (default 3) ... */
-    double repeat_below;    /* ... repeated only while a run takes less than this, s (0.5) */
+    int repeats;            /* timing passes over the ladders (default 3): a setting's time
+                             * is the best of its runs, spread over the study so that a
+                             * burst of load from other programs spoils few of them ... */
+    double repeat_below;    /* ... and a run is repeated only if it took less than this, s (0.5) */
+    int cpu_clock;          /* 1: "cheapest" compares CPU times (steadier on a shared
+                             * machine), 0: wall-clock run times (default) */
     double ref_tolerance;   /* the reference: dopri5 at this tolerance (1e-13) */
     double check_tolerance; /* the second reference that bounds its error (1e-12) */
     const tt_accuracy_ladder *ladders; /* NULL: the built-in table */
@@ -89,7 +93,8 @@ typedef struct {
     int status;              /* TT_OK, or why this setting failed (then errors are NAN) */
     char message[256];
     double run_time;         /* s, wall clock of the integration, best of the repeats */
-    int runs;                /* how many runs the time is the best of */
+    double cpu_time;         /* s, CPU time of the same, best of the repeats */
+    int runs;                /* how many runs the times are the best of */
     double steps_per_cycle;  /* accepted steps per cycle (NAN for a line: not counted) */
     double residual_rel;     /* the run's own error estimate: largest energy-balance
                               * residual of a cycle / free drive work per cycle */
@@ -117,16 +122,20 @@ size_t tt_accuracy_observables(const tt_accuracy *a, const tt_accuracy_observabl
 /* Rows in order: reference, floor, then each ladder loosest first. */
 size_t tt_accuracy_rows(const tt_accuracy *a);
 int tt_accuracy_done(const tt_accuracy *a);
-/* Compute the next row (*row points into the study). A setting that fails (rk4 too
- * coarse for the contact, NaN) is a row with its status and message, and TT_OK is
- * returned; a failing reference or TT_EINTR (cancel.h) ends the study. */
+/* Do the next unit of work; *row points to the row it concerns. In the first pass
+ * that is a new row. A setting that fails (rk4 too coarse for the contact, NaN) is a
+ * row with its status and message, and TT_OK is returned; a failing reference or
+ * TT_EINTR (cancel.h) ends the study. The later passes time cheap rows again
+ * (row->runs counts the runs its times are the best of). */
 int tt_accuracy_iterate(tt_accuracy *a, const tt_accuracy_row **row);
+/* The pass under way: 1 while rows are computed, then 2 .. repeats. */
+int tt_accuracy_pass(const tt_accuracy *a);
 const tt_accuracy_row *tt_accuracy_row_at(const tt_accuracy *a, size_t i);
 
 /* The setting to recommend for a target accuracy of the primary observable: for one
  * method, its loosest setting from which on every tighter finished setting of its
  * ladder meets the target (one lucky setting does not count); for method -1, the
- * fastest of the methods' choices. NULL if none. */
+ * fastest of the methods' choices (by the clock of the parameters). NULL if none. */
 const tt_accuracy_row *tt_accuracy_cheapest(const tt_accuracy *a, int method, double target);
 /* The scene's own setting. */
 const tt_accuracy_row *tt_accuracy_default_row(const tt_accuracy *a);

@@ -15,7 +15,7 @@
 static void help(void)
 {
     printf("Usage: tiptap accuracy SCENE... [--set section.key=value]... [-o accuracy.csv]\n"
-           "                        [--plot accuracy.png] [--point Z] [-q]\n"
+           "                        [--plot accuracy.png] [--point Z] [--clock wall|cpu] [-q]\n"
            "Work-precision study: the error of each solver setting against its run time.\n\n"
            "What is judged:\n"
            "  a steady point (a scene without [scan], or with --point): the cantilever starts in\n"
@@ -29,11 +29,13 @@ static void help(void)
            "    (trace and retrace), its largest and RMS difference from the reference.\n"
            "Each setting of each method's ladder (dopri5: tolerance 1e-4 .. 1e-11; rk4: 32 ..\n"
            "2048 steps per cycle) runs from the same state for the same cycles, timed (wall\n"
-           "clock, best of up to 3 runs when one takes under 0.5 s), against a reference at\n"
+           "clock and CPU time; a run under 0.5 s is timed in each of --repeats passes over\n"
+           "the ladders and keeps its best time), against a reference at\n"
            "dopri5 tolerance 1e-13. The floor, the reference's own error, is its difference\n"
            "from a second reference at 1e-12: smaller errors cannot be measured.\n\n"
            "  -o, --output FILE   CSV, one row per run (default accuracy.csv): method, knob,\n"
-           "                      value, run_time_s, steps_per_cycle, the errors (point:\n"
+           "                      value, run_time_s (wall clock), cpu_time_s, steps_per_cycle\n"
+           "                      (accepted steps; NaN for a line), the errors (point:\n"
            "                      amplitude_err_rel, phase_err_deg, mean_err_m,\n"
            "                      peak_force_err_rel, dissipation_err_rel; line:\n"
            "                      height_err_max_m, height_err_rms_m), residual_rel (the run's\n"
@@ -46,16 +48,25 @@ static void help(void)
            "                      transient has decayed to 1e-8)\n"
            "      --pixels N      line: pixels of the segment (default 8)\n"
            "      --methods LIST  methods to study, comma-separated (default: all)\n"
-           "      --repeats N     timing: best of at most N runs (default 3)\n"
+           "      --repeats N     timing passes (default 3; 1: every setting runs once)\n"
+           "      --clock C       wall (default) or cpu: the run time the plot and the summary\n"
+           "                      use; CPU time is steadier on a machine shared with others\n"
            "      --target X      accuracy asked of the primary observable (default 1e-4:\n"
            "                      relative amplitude; line: height error / free amplitude)\n"
            "      --set S.K=V     override a scene key (material.NAME.key for named sections)\n"
            "  -q, --quiet         no table and summary\n\n"
            "The default setting is the scene's [solver] (dopri5, tolerance 1e-8 unless set).\n"
-           "stdout: the table. stderr: the cheapest setting of each method meeting the target,\n"
-           "the run time of the default and of the cheapest setting ten times more accurate,\n"
-           "and at the end the run time and the error estimate (the floor).\n");
+           "stdout: the table. stderr: for each method the cheapest setting meeting the target\n"
+           "(its loosest from which on every tighter setting meets it too, so that a lucky\n"
+           "cancellation of errors does not count), the run time of the default and of the\n"
+           "cheapest setting ten times more accurate than it, and at the end the run time and\n"
+           "the error estimate (the floor).\n");
 }
+
+/* The clock the plot and the summary go by (--clock). */
+static int use_cpu;
+
+static double cost(const tt_accuracy_row *r) { return use_cpu ? r->cpu_time : r->run_time; }
 
 static const char *role_name(tt_accuracy_role r)
 {
@@ -69,8 +80,8 @@ static void describe(char *buf, size_t n, const tt_accuracy_row *r)
 
 static void write_row(FILE *f, const tt_accuracy_row *r, size_t nobs)
 {
-    fprintf(f, "%s,%s,%.6g,%.6g,%.6g", tt_method_name(r->method), r->knob, r->value, r->run_time,
-            r->steps_per_cycle);
+    fprintf(f, "%s,%s,%.6g,%.6g,%.6g,%.6g", tt_method_name(r->method), r->knob, r->value, r->run_time,
+            r->cpu_time, r->steps_per_cycle);
     for (size_t i = 0; i < nobs; i++)
         fprintf(f, ",%.6g", r->err[i]);
     fprintf(f, ",%.3g,%s,%d,%s\n", r->residual_rel, role_name(r->role), r->is_default,
@@ -92,7 +103,7 @@ static void print_row(const tt_accuracy_row *r, size_t nobs)
         printf(" failed: %s\n", r->message);
         return;
     }
-    printf(" %10.4f %9.1f", r->run_time, r->steps_per_cycle);
+    printf(" %10.4f %10.4f %9.1f", r->run_time, r->cpu_time, r->steps_per_cycle);
     for (size_t i = 0; i < nobs; i++)
         printf(" %11.2e", r->err[i]);
     printf(" %11.2e\n", r->residual_rel);
@@ -102,7 +113,7 @@ static void print_row(const tt_accuracy_row *r, size_t nobs)
 /* Short column titles of the table, in the order of the observables. */
 static void print_header(const tt_accuracy_observable *obs, size_t nobs)
 {
-    printf("%-38s %10s %9s", "setting", "run_time_s", "steps/cyc");
+    printf("%-38s %10s %10s %9s", "setting", "run_time_s", "cpu_time_s", "steps/cyc");
     for (size_t i = 0; i < nobs; i++) {
         char t[16];
         snprintf(t, sizeof t, "%.11s", obs[i].column);
@@ -122,13 +133,14 @@ static int plot(const char *path, const tt_accuracy *a, const char *title)
     double tlo = INFINITY, thi = 0;
     for (size_t i = 0; i < n; i++) {
         const tt_accuracy_row *r = tt_accuracy_row_at(a, i);
-        if (r->status == TT_OK && r->role == TT_ACCURACY_SETTING && r->run_time > 0) {
-            tlo = fmin(tlo, r->run_time);
-            thi = fmax(thi, r->run_time);
+        if (r->status == TT_OK && r->role == TT_ACCURACY_SETTING && cost(r) > 0) {
+            tlo = fmin(tlo, cost(r));
+            thi = fmax(thi, cost(r));
         }
     }
     for (size_t o = 0; o < nobs && rc == TT_OK; o++) {
-        tt_figure_axes(f, (int)o, "run time (s)", obs[o].label);
+        tt_figure_axes(f, (int)o, use_cpu ? "run time (s, CPU)" : "run time (s, wall clock)",
+                       obs[o].label);
         tt_figure_log(f, (int)o, 1, 1);
         /* one curve per method, in the order the rows came */
         int colour = 0;
@@ -146,14 +158,14 @@ static int plot(const char *path, const tt_accuracy *a, const char *title)
                 const tt_accuracy_row *q = tt_accuracy_row_at(a, k);
                 if (q->method != r->method)
                     continue;
-                x[m] = q->run_time;
+                x[m] = cost(q);
                 y[m] = q->err[o];
                 m++;
                 /* the knob values next to the points of the first panel */
                 if (o == 0 && q->status == TT_OK) {
                     char t[32];
                     snprintf(t, sizeof t, "%g", q->value);
-                    tt_figure_text(f, 0, q->run_time, q->err[o], t);
+                    tt_figure_text(f, 0, cost(q), q->err[o], t);
                 }
             }
             char label[64];
@@ -172,7 +184,8 @@ static int plot(const char *path, const tt_accuracy *a, const char *title)
             char label[96], s[64];
             describe(s, sizeof s, def);
             snprintf(label, sizeof label, "default: %s", s);
-            rc = tt_figure_line(f, (int)o, &def->run_time, &def->err[o], 1, o == 0 ? label : NULL,
+            double dt = cost(def);
+            rc = tt_figure_line(f, (int)o, &dt, &def->err[o], 1, o == 0 ? label : NULL,
                                 6 | TT_PLOT_POINTS);
         }
     }
@@ -219,6 +232,7 @@ static void summary(const tt_accuracy *a, double target, double t0)
     size_t nobs = tt_accuracy_observables(a, &obs), n = tt_accuracy_rows(a);
     int line = tt_accuracy_kind_of(a) == TT_ACCURACY_LINE;
     const char *what = line ? "largest height error / free amplitude" : "relative amplitude error";
+    const char *clock = use_cpu ? "cpu_time_s" : "run_time_s";
     const tt_accuracy_row *ref = tt_accuracy_row_at(a, 0), *floor = tt_accuracy_row_at(a, 1);
     char s[96];
     if (line) {
@@ -259,8 +273,8 @@ static void summary(const tt_accuracy *a, double target, double t0)
         const tt_accuracy_row *c = tt_accuracy_cheapest(a, (int)r->method, target);
         if (c) {
             describe(s, sizeof s, c);
-            fprintf(stderr, "cheapest %s with %s <= %g: %s, run_time_s = %.4f (error %.2g)\n",
-                    tt_method_name(r->method), what, target, s, c->run_time, c->primary);
+            fprintf(stderr, "cheapest %s with %s <= %g: %s, %s = %.4f (error %.2g)\n",
+                    tt_method_name(r->method), what, target, s, clock, cost(c), c->primary);
         } else {
             fprintf(stderr, "cheapest %s with %s <= %g: none on its ladder\n", tt_method_name(r->method),
                     what, target);
@@ -269,7 +283,10 @@ static void summary(const tt_accuracy *a, double target, double t0)
     const tt_accuracy_row *def = tt_accuracy_default_row(a);
     if (def && def->status == TT_OK) {
         describe(s, sizeof s, def);
-        fprintf(stderr, "default %s: run_time_s = %.4f, %s %.2g\n", s, def->run_time, what, def->primary);
+        fprintf(stderr, "default %s: %s = %.4f, %s %.2g", s, clock, cost(def), what, def->primary);
+        if (isfinite(def->steps_per_cycle))
+            fprintf(stderr, ", steps_per_cycle = %.1f", def->steps_per_cycle);
+        fprintf(stderr, "\n");
         double want = def->primary / 10;
         const tt_accuracy_row *ten = tt_accuracy_cheapest(a, -1, want);
         if (floor && floor->status == TT_OK && want < 10 * floor->primary)
@@ -278,8 +295,11 @@ static void summary(const tt_accuracy *a, double target, double t0)
                     want, floor->primary);
         else if (ten) {
             describe(s, sizeof s, ten);
-            fprintf(stderr, "ten times more accurate (%s <= %.2g): %s, run_time_s = %.4f (%.2f times the default)\n",
-                    what, want, s, ten->run_time, ten->run_time / def->run_time);
+            fprintf(stderr, "ten times more accurate (%s <= %.2g): %s, %s = %.4f (%.2f times the default)",
+                    what, want, s, clock, cost(ten), cost(ten) / cost(def));
+            if (isfinite(ten->steps_per_cycle))
+                fprintf(stderr, ", steps_per_cycle = %.1f", ten->steps_per_cycle);
+            fprintf(stderr, "\n");
         } else {
             fprintf(stderr, "ten times more accurate (%.2g): no setting on the ladders\n", want);
         }
@@ -305,6 +325,7 @@ int cmd_accuracy(int argc, char **argv)
                                          {"methods", required_argument, NULL, 'm'},
                                          {"repeats", required_argument, NULL, 'r'},
                                          {"target", required_argument, NULL, 't'},
+                                         {"clock", required_argument, NULL, 'k'},
                                          {"quiet", no_argument, NULL, 'q'},
                                          {"help", no_argument, NULL, 'h'},
                                          {NULL, 0, NULL, 0}};
@@ -355,6 +376,12 @@ int cmd_accuracy(int argc, char **argv)
                 fprintf(stderr, "tiptap accuracy: --target %s: expected a number between 0 and 1\n", optarg);
             break;
         case 'm': methods = optarg; break;
+        case 'k':
+            bad = strcmp(optarg, "wall") != 0 && strcmp(optarg, "cpu") != 0;
+            if (bad)
+                fprintf(stderr, "tiptap accuracy: --clock %s: expected wall or cpu\n", optarg);
+            use_cpu = p.cpu_clock = strcmp(optarg, "cpu") == 0;
+            break;
         case 'q': quiet = 1; break;
         case 'h': help(); free(sets); return CLI_OK;
         default: free(sets); return CLI_USAGE;
@@ -391,29 +418,39 @@ int cmd_accuracy(int argc, char **argv)
     const tt_accuracy_observable *obs;
     size_t nobs = tt_accuracy_observables(a, &obs), n = 0;
     FILE *f = tt_outfile_stream(of);
-    fprintf(f, "method,knob,value,run_time_s,steps_per_cycle");
+    fprintf(f, "method,knob,value,run_time_s,cpu_time_s,steps_per_cycle");
     for (size_t i = 0; i < nobs; i++)
         fprintf(f, ",%s", obs[i].column);
     fprintf(f, ",residual_rel,role,is_default,status\n");
     cli_catch_interrupt();
     if (!quiet)
         print_header(obs, nobs);
+    int progress = !quiet && cli_progress_enabled();
     while (!tt_accuracy_done(a)) {
         if (tt_cancel_requested()) {
             rc = tt_error(TT_EINTR, "interrupted: %s keeps the %zu rows finished", out, n);
             break;
         }
         const tt_accuracy_row *r;
+        int pass = tt_accuracy_pass(a);
+        if (progress && pass > 1)
+            fprintf(stderr, "\rtiming pass %d of %d ", pass, p.repeats);
         if ((rc = tt_accuracy_iterate(a, &r))) {
             if (rc == TT_EINTR)
                 rc = tt_error(TT_EINTR, "interrupted: %s keeps the %zu rows finished", out, n);
             break;
         }
-        write_row(f, r, nobs);
-        n++;
-        if (!quiet)
-            print_row(r, nobs);
+        /* rows are shown as they are computed; the later passes only refine times */
+        if (pass == 1) {
+            n++;
+            if (!quiet)
+                print_row(r, nobs);
+        }
     }
+    if (progress && tt_accuracy_pass(a) > 1)
+        fprintf(stderr, "\n");
+    for (size_t i = 0; i < n; i++)
+        write_row(f, tt_accuracy_row_at(a, i), nobs);
     /* Keep what finished, also when interrupted. */
     {
         int crc = tt_outfile_close(of, n > 0);
