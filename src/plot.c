@@ -460,7 +460,13 @@ static void draw_panel(cairo_t *cr, const panel *p, double X, double Y, double W
         double yl = tf(&ay, ay.lo), yh = tf(&ay, ay.hi);
         double px = x0 + (tf(&ax, nt->x) - xl) / (xh - xl) * (x1 - x0);
         double py = y0 - (tf(&ay, nt->y) - yl) / (yh - yl) * (y0 - y1);
-        text(cr, px + 4, py - 4, nt->text, 0, 1, 0);
+        cairo_text_extents_t e;
+        cairo_text_extents(cr, nt->text, &e);
+        /* near the right-hand frame the note goes to the left of its point */
+        if (px + 4 + e.width > x1)
+            text(cr, px - 4, py - 4, nt->text, 1, 1, 0);
+        else
+            text(cr, px + 4, py - 4, nt->text, 0, 1, 0);
     }
     cairo_restore(cr);
     /* legend, top right inside the frame */
