@@ -116,12 +116,11 @@ static int apply_setting(tt_scene *s, tt_method m, const char *knob, double valu
     return tt_scene_set(s, buf);
 }
 
-static int set_key(tt_scene *s, const char *fmt, ...)
+/* A formatted "section.key=value" through the scene, so that it is validated as a
+ * user's --set would be. */
 #if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
+__attribute__((format(printf, 2, 3)))
 #endif
-    ;
-
 static int set_key(tt_scene *s, const char *fmt, ...)
 {
     char buf[256];

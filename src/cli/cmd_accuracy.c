@@ -60,7 +60,7 @@ static void help(void)
            "(its loosest from which on every tighter setting meets it too, so that a lucky\n"
            "cancellation of errors does not count), the run time of the default and of the\n"
            "cheapest setting ten times more accurate than it, and at the end the run time and\n"
-           "the error estimate (the floor).\n");
+           "the error estimate (the floor). Ctrl-C stops and keeps the finished rows.\n");
 }
 
 /* The clock the plot and the summary go by (--clock). */
@@ -314,6 +314,14 @@ static void summary(const tt_accuracy *a, double target, double t0)
                 floor->primary, what);
 }
 
+/* The message of a Ctrl-C: what was kept, or that nothing was. */
+static int interrupted(const char *out, size_t n)
+{
+    if (n == 0)
+        return tt_error(TT_EINTR, "interrupted before the first row finished: %s not written", out);
+    return tt_error(TT_EINTR, "interrupted: %s keeps the %zu rows finished", out, n);
+}
+
 int cmd_accuracy(int argc, char **argv)
 {
     static const struct option opts[] = {{"output", required_argument, NULL, 'o'},
@@ -428,7 +436,7 @@ int cmd_accuracy(int argc, char **argv)
     int progress = !quiet && cli_progress_enabled();
     while (!tt_accuracy_done(a)) {
         if (tt_cancel_requested()) {
-            rc = tt_error(TT_EINTR, "interrupted: %s keeps the %zu rows finished", out, n);
+            rc = interrupted(out, n);
             break;
         }
         const tt_accuracy_row *r;
@@ -437,7 +445,7 @@ int cmd_accuracy(int argc, char **argv)
             fprintf(stderr, "\rtiming pass %d of %d ", pass, p.repeats);
         if ((rc = tt_accuracy_iterate(a, &r))) {
             if (rc == TT_EINTR)
-                rc = tt_error(TT_EINTR, "interrupted: %s keeps the %zu rows finished", out, n);
+                rc = interrupted(out, n);
             break;
         }
         /* rows are shown as they are computed; the later passes only refine times */
