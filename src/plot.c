@@ -21,6 +21,11 @@ typedef struct {
 } series;
 
 typedef struct {
+    double x, y;
+    char *text;
+} note;
+
+typedef struct {
     char *xlabel, *ylabel, *y2label;
     double xlo, xhi, ylo, yhi;
     int logx, logy;
@@ -28,6 +33,8 @@ typedef struct {
     size_t ns;
     double *vl, *hl;
     size_t nv, nh;
+    note *notes;
+    size_t nnotes;
 } panel;
 
 struct tt_figure {
@@ -84,6 +91,9 @@ void tt_figure_free(tt_figure *f)
         free(p->y2label);
         free(p->vl);
         free(p->hl);
+        for (size_t k = 0; k < p->nnotes; k++)
+            free(p->notes[k].text);
+        free(p->notes);
     }
     free(f->title);
     free(f);
@@ -199,6 +209,24 @@ int tt_figure_hline(tt_figure *f, int i, double y, const char *label)
     return p ? add_ref(&p->hl, &p->nh, y) : tt_error(TT_EINVAL, "plot: no panel %d", i);
 }
 
+int tt_figure_text(tt_figure *f, int i, double x, double y, const char *text)
+{
+    panel *p = get(f, i);
+    if (!p)
+        return tt_error(TT_EINVAL, "plot: no panel %d", i);
+    note *n = realloc(p->notes, (p->nnotes + 1) * sizeof *n);
+    if (!n)
+        return tt_error(TT_ENOMEM, "out of memory");
+    p->notes = n;
+    n[p->nnotes].x = x;
+    n[p->nnotes].y = y;
+    n[p->nnotes].text = dup(text);
+    if (!n[p->nnotes].text)
+        return tt_error(TT_ENOMEM, "out of memory");
+    p->nnotes++;
+    return TT_OK;
+}
+
 /* ---- rendering ---- */
 
 typedef struct {
@@ -242,8 +270,9 @@ static void nice_axis(axis *a, double lo, double hi, double flo, double fhi, int
     if (isfinite(fhi))
         hi = fhi;
     if (logscale) {
-        lo = floor(log10(lo));
-        hi = ceil(log10(hi));
+        /* a little room, so that a value on a decade is not drawn on the frame */
+        lo = floor(log10(lo) - 0.02);
+        hi = ceil(log10(hi) + 0.02);
         if (hi <= lo)
             hi = lo + 1;
         a->lo = pow(10, lo);
@@ -421,6 +450,23 @@ static void draw_panel(cairo_t *cr, const panel *p, double X, double Y, double W
         if (!(s->style & TT_PLOT_POINTS))
             cairo_stroke(cr);
         cairo_set_dash(cr, NULL, 0, 0);
+    }
+    cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
+    cairo_set_font_size(cr, 10);
+    for (size_t k = 0; k < p->nnotes; k++) {
+        const note *nt = &p->notes[k];
+        if (!isfinite(nt->x) || !isfinite(nt->y) || (ax.log && nt->x <= 0) || (ay.log && nt->y <= 0))
+            continue;
+        double yl = tf(&ay, ay.lo), yh = tf(&ay, ay.hi);
+        double px = x0 + (tf(&ax, nt->x) - xl) / (xh - xl) * (x1 - x0);
+        double py = y0 - (tf(&ay, nt->y) - yl) / (yh - yl) * (y0 - y1);
+        cairo_text_extents_t e;
+        cairo_text_extents(cr, nt->text, &e);
+        /* near the right-hand frame the note goes to the left of its point */
+        if (px + 4 + e.width > x1)
+            text(cr, px - 4, py - 4, nt->text, 1, 1, 0);
+        else
+            text(cr, px + 4, py - 4, nt->text, 0, 1, 0);
     }
     cairo_restore(cr);
     /* legend, top right inside the frame */

@@ -76,6 +76,50 @@ void tt_scene_free(tt_scene *s)
     free(s);
 }
 
+tt_scene *tt_scene_copy(const tt_scene *s)
+{
+    tt_scene *c = tt_scene_alloc();
+    if (!c)
+        return NULL;
+    c->entries = calloc(s->n ? s->n : 1, sizeof *c->entries);
+    c->uses = calloc(s->nuses ? s->nuses : 1, sizeof *c->uses);
+    c->origin = dupstr(s->origin);
+    if (!c->entries || !c->uses || (s->origin && !c->origin)) {
+        tt_scene_free(c);
+        return NULL;
+    }
+    c->cap = s->n ? s->n : 1;
+    c->capuses = s->nuses ? s->nuses : 1;
+    /* Counts grow one at a time so that tt_scene_free releases exactly what was copied. */
+    for (size_t i = 0; i < s->n; i++, c->n++) {
+        const entry *e = &s->entries[i];
+        entry *d = &c->entries[i];
+        d->section = dupstr(e->section);
+        d->name = dupstr(e->name);
+        d->key = dupstr(e->key);
+        d->value = dupstr(e->value);
+        d->origin = dupstr(e->origin);
+        if (!d->section || (e->name && !d->name) || !d->key || !d->value || !d->origin) {
+            c->n++;
+            tt_scene_free(c);
+            return NULL;
+        }
+    }
+    for (size_t i = 0; i < s->nuses; i++, c->nuses++) {
+        const section_use *u = &s->uses[i];
+        section_use *d = &c->uses[i];
+        d->section = dupstr(u->section);
+        d->name = dupstr(u->name);
+        d->origin = dupstr(u->origin);
+        if (!d->section || (u->name && !d->name) || !d->origin) {
+            c->nuses++;
+            tt_scene_free(c);
+            return NULL;
+        }
+    }
+    return c;
+}
+
 const char *tt_scene_origin(const tt_scene *s) { return s->origin ? s->origin : "scene"; }
 
 static const tt_scene_section *find_section(const char *name)

@@ -154,6 +154,32 @@ static void effective_scene_reads_back_the_same(void **st)
     tt_scene_free(s);
 }
 
+/* A copy keeps values, origins and sections, and changing it leaves the original alone. */
+static void copy_is_independent(void **st)
+{
+    (void)st;
+    tt_scene *s = tt_scene_alloc();
+    assert_int_equal(tt_scene_load_string(s, "[cantilever]\nspring_constant = 0.58 N/m\n"
+                                             "[material glass]\nadhesion_energy = 100 mJ/m^2\n",
+                                          "a.ini"),
+                     TT_OK);
+    tt_scene *c = tt_scene_copy(s);
+    assert_non_null(c);
+    assert_string_equal(tt_scene_origin(c), "a.ini");
+    assert_true(tt_scene_has_section(c, "material", "glass"));
+    assert_false(tt_scene_has_section(c, "scan", NULL));
+    assert_int_equal(tt_scene_set(c, "cantilever.spring_constant=2 N/m"), TT_OK);
+    double a, b;
+    assert_int_equal(tt_scene_get_double(s, "cantilever", NULL, "spring_constant", &a), TT_OK);
+    assert_int_equal(tt_scene_get_double(c, "cantilever", NULL, "spring_constant", &b), TT_OK);
+    assert_close(a, 0.58, 1e-15);
+    assert_close(b, 2, 0);
+    assert_int_equal(tt_scene_fail(c, "material", "glass", "adhesion_energy", "x"), TT_EINVAL);
+    assert_string_equal(tt_error_message(), "a.ini: [material glass] adhesion_energy: x");
+    tt_scene_free(c);
+    tt_scene_free(s);
+}
+
 static void missing_file_is_named(void **st)
 {
     (void)st;
@@ -173,6 +199,7 @@ int main(void)
         cmocka_unit_test(structure_errors),
         cmocka_unit_test(defaults_overrides_and_named_sections),
         cmocka_unit_test(effective_scene_reads_back_the_same),
+        cmocka_unit_test(copy_is_independent),
         cmocka_unit_test(missing_file_is_named),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -42,6 +42,10 @@ int tt_figure_line(tt_figure *f, int panel, const double *x, const double *y, si
 int tt_figure_vline(tt_figure *f, int panel, double x, const char *label);
 int tt_figure_hline(tt_figure *f, int panel, double y, const char *label);
 
+/* A short note at data point (x, y), drawn just right of and above it (labels of
+ * points, such as the setting a work-precision point stands for). */
+int tt_figure_text(tt_figure *f, int panel, double x, double y, const char *text);
+
 /* Render to PNG through a temporary file (see outfile.h). */
 int tt_figure_write_png(const tt_figure *f, const char *path, int width, int height);
 

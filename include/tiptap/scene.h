@@ -65,6 +65,11 @@ typedef struct tt_scene tt_scene;
 tt_scene *tt_scene_alloc(void);
 void tt_scene_free(tt_scene *s);
 
+/* A deep copy (keys, their origins, sections in use), for a caller that varies some
+ * keys without changing the scene it was given; NULL when out of memory. The caller
+ * frees it with tt_scene_free. */
+tt_scene *tt_scene_copy(const tt_scene *s);
+
 /* Read an INI file into the scene; keys already present are overridden.
  * Fails (TT_EINVAL or TT_EIO) with "file: [section] key: ..." on the first problem. */
 int tt_scene_load(tt_scene *s, const char *path);
