@@ -787,13 +787,33 @@ double tt_sim_force(const tt_sim *S, const tt_sample *smp, double *a)
     return P + (smp->contact ? S->ci * (smp->v - S->sdot) : 0.0);
 }
 
+/* What is left of a settling sequence, from its last two signed changes d and prevd
+ * (NAN: none yet), r = d / prevd. Changes of one sign that shrink are a geometric tail
+ * summing to d / (1 - r), and ones that do not shrink a drift of Q cycles. Changes that
+ * alternate in sign are an oscillation about the limit, which every value lies within
+ * |d| of while it does not grow; its growth is extrapolated over Q cycles, so that a
+ * steady alternation (|r| = 1 up to rounding) passes and a growing one does not. */
+static double remaining(double d, double prevd, double Q)
+{
+    if (!isfinite(prevd))
+        return fabs(d);
+    double r = prevd != 0 ? d / prevd : (d == 0 ? 0 : INFINITY);
+    if (r < 0)
+        return fabs(d) * pow(fmax(1.0, -r), Q);
+    if (r < 1)
+        return fabs(d) / (1 - r);
+    return fabs(d) * Q;
+}
+
 int tt_sim_settle(tt_sim *S, long max_cycles, double tol, tt_cycle *out, int *settled,
                   long *cycles)
 {
     /* Amplitude and phase approach their steady values geometrically (rate about
      * exp(-pi/Q) per cycle near resonance); the change still to come is estimated
      * from the ratio of successive changes, so a slow approach is not taken for
-     * convergence. */
+     * convergence. Far off resonance the free mode's transient (and the adaptive
+     * step pattern) alternates from cycle to cycle instead, which is steady once the
+     * alternation itself is below tol. */
     double prevA = NAN, prevP = NAN, prevdA = NAN, prevdP = NAN;
     int ok_in_row = 0;
     *settled = 0;
@@ -807,16 +827,8 @@ int tt_sim_settle(tt_sim *S, long max_cycles, double tol, tt_cycle *out, int *se
         }
         double A = out->amplitude / S->c.A0, P = out->phase;
         if (isfinite(prevA)) {
-            double dA = fabs(A - prevA), dP = fabs(P - prevP);
-            double remA = dA, remP = dP;
-            if (isfinite(prevdA) && prevdA > 0 && dA < prevdA)
-                remA = dA / (1 - dA / prevdA);
-            else if (isfinite(prevdA))
-                remA = dA * S->c.Q;
-            if (isfinite(prevdP) && prevdP > 0 && dP < prevdP)
-                remP = dP / (1 - dP / prevdP);
-            else if (isfinite(prevdP))
-                remP = dP * S->c.Q;
+            double dA = A - prevA, dP = P - prevP;
+            double remA = remaining(dA, prevdA, S->c.Q), remP = remaining(dP, prevdP, S->c.Q);
             if (remA < tol && remP < tol)
                 ok_in_row++;
             else
