@@ -52,6 +52,7 @@ struct tt_sim {
     double y0[NY], y1[NY], k[7][NY];
     double rcont[5][2];  /* dopri5 dense output of d and v */
     double acc1;         /* rk4: acceleration at the step end */
+    double rk4_dmax;     /* rk4: deepest penetration among the step's stages and end */
     /* sampling */
     int nsamp;
     tt_sample *samples;
@@ -358,17 +359,24 @@ static void rk4_step(tt_sim *S, double h)
     int cs = S->contact_state;
     ensure_fsal(S);
     memcpy(k[0], S->fsal, sizeof k[0]);
+    double smid = S->s0 + S->sdot * (t + 0.5 * h), send = S->s0 + S->sdot * (t + h);
     for (int i = 0; i < NY; i++)
         yt[i] = y0[i] + 0.5 * h * k[0][i];
+    double dmax = yt[Y_D] - smid;
     rhs(S, t + 0.5 * h, yt, cs, k[1]);
     for (int i = 0; i < NY; i++)
         yt[i] = y0[i] + 0.5 * h * k[1][i];
+    dmax = fmax(dmax, yt[Y_D] - smid);
     rhs(S, t + 0.5 * h, yt, cs, k[2]);
     for (int i = 0; i < NY; i++)
         yt[i] = y0[i] + h * k[2][i];
+    dmax = fmax(dmax, yt[Y_D] - send);
     rhs(S, t + h, yt, cs, k[3]);
     for (int i = 0; i < NY; i++)
         S->y1[i] = y0[i] + h / 6.0 * (k[0][i] + 2 * k[1][i] + 2 * k[2][i] + k[3][i]);
+    /* A step that enters a stiff contact (from its soft onset, where the stiffness at the
+     * start says nothing) shows it in its stages: they overshoot deep into it. */
+    S->rk4_dmax = fmax(dmax, S->y1[Y_D] - send);
     /* The derivative at the end serves the cubic Hermite dense output and, unless the
      * state changes there, the next step's first stage. */
     rhs(S, t + h, S->y1, cs, k[6]);
@@ -622,23 +630,25 @@ static int check_finite(tt_sim *S)
 }
 
 /* rk4 is stable for oscillation only while h * sqrt(k_contact / m) < 2.8; past that it
- * returns wrong numbers, so refuse with the cause. */
-static int rk4_check_stiffness(tt_sim *S, double h)
+ * returns wrong numbers, so refuse with the cause. The stiffness is the current branch's
+ * at penetration delta: out of contact too, since a branch may already push back there
+ * (Hertz without adhesion has one force law for both states). */
+static int rk4_check_stiffness(tt_sim *S, double h, double delta)
 {
-    if (!S->contact_state || !S->contact)
+    if (!S->contact)
         return TT_OK;
     double dPdd = 0;
-    double delta = S->y[Y_D] - (S->s0 + S->sdot * S->tau);
-    (void)tt_contact_load(S->contact, delta, 1, &dPdd, NULL);
+    (void)tt_contact_load(S->contact, delta, S->contact_state, &dPdd, NULL);
     double keff = S->c.k + (dPdd > 0 ? dPdd : 0);
-    double wc = sqrt(keff / S->c.m), zeta = S->ci / (2 * sqrt(keff * S->c.m));
-    if (h * wc > 2.5 || h * S->ci / S->c.m > 2.5)
+    double ci = S->contact_state ? S->ci : 0.0; /* interaction damping acts in contact only */
+    double wc = sqrt(keff / S->c.m), zeta = ci / (2 * sqrt(keff * S->c.m));
+    if (h * wc > 2.5 || h * ci / S->c.m > 2.5)
         return tt_error(TT_ENUM,
                         "rk4 step too large for the contact: contact stiffness %.3g N/m (%.0f times "
                         "the cantilever's)%s needs at least %.0f steps per cycle; raise [solver] "
                         "steps_per_cycle or use method = dopri5",
                         keff, keff / S->c.k, zeta > 1 ? " and its damping" : "",
-                        ceil(S->c.T * fmax(wc, S->ci / S->c.m) / 2.5));
+                        ceil(S->c.T * fmax(wc, ci / S->c.m) / 2.5));
     return TT_OK;
 }
 
@@ -696,10 +706,13 @@ int tt_sim_cycle(tt_sim *S, tt_cycle *out)
                 }
                 continue;
             }
-            int rc = rk4_check_stiffness(S, h);
+            int rc = rk4_check_stiffness(S, h, S->y[Y_D] - (S->s0 + S->sdot * S->tau));
             if (rc)
                 return rc;
             rk4_step(S, h);
+            /* ... and at the deepest stage, before an unstable step is taken */
+            if ((rc = rk4_check_stiffness(S, h, S->rk4_dmax)))
+                return rc;
         } else {
             h = S->h;
             if (h > T / 8)
