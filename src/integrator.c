@@ -641,14 +641,14 @@ static int rk4_check_stiffness(tt_sim *S, double h, double delta)
     (void)tt_contact_load(S->contact, delta, S->contact_state, &dPdd, NULL);
     double keff = S->c.k + (dPdd > 0 ? dPdd : 0);
     double ci = S->contact_state ? S->ci : 0.0; /* interaction damping acts in contact only */
-    double wc = sqrt(keff / S->c.m), zeta = ci / (2 * sqrt(keff * S->c.m));
-    if (h * wc > 2.5 || h * ci / S->c.m > 2.5)
+    double wc = sqrt(keff / S->c.m), wi = ci / S->c.m; /* the damping's rate, 1/s */
+    if (h * wc > 2.5 || h * wi > 2.5)
         return tt_error(TT_ENUM,
                         "rk4 step too large for the contact: contact stiffness %.3g N/m (%.0f times "
                         "the cantilever's)%s needs at least %.0f steps per cycle; raise [solver] "
                         "steps_per_cycle or use method = dopri5",
-                        keff, keff / S->c.k, zeta > 1 ? " and its damping" : "",
-                        ceil(S->c.T * fmax(wc, ci / S->c.m) / 2.5));
+                        keff, keff / S->c.k, wi > wc ? " and its damping" : "",
+                        ceil(S->c.T * fmax(wc, wi) / 2.5));
     return TT_OK;
 }
 
