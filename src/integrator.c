@@ -852,7 +852,7 @@ int tt_sim_settle(tt_sim *S, long max_cycles, double tol, tt_cycle *out, int *se
      * to cycle instead, and the adaptive step pattern may keep a tiny pattern of a few
      * cycles going for ever; see settle_estimate. */
     enum { H = 2 * SETTLE_PERIOD + 1 };
-    double hA[H], hP[H];
+    double hA[H] = {0}, hP[H] = {0}; /* only the first nh are read */
     int nh = 0, ok_in_row = 0;
     *settled = 0;
     long n;
