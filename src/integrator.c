@@ -63,6 +63,7 @@ struct tt_sim {
     double newton_eta;   /* contraction estimate theta / (1 - theta) of the last step */
     int newton_it;       /* Newton iterations of the last step (0: it failed) */
     int last_rejected;
+    double rk4_dmax;     /* rk4: deepest penetration among the step's stages and end */
     /* sampling */
     int nsamp;
     tt_sample *samples;
@@ -430,17 +431,24 @@ static void rk4_step(tt_sim *S, double h)
     int cs = S->contact_state;
     ensure_fsal(S);
     memcpy(k[0], S->fsal, sizeof k[0]);
+    double smid = S->s0 + S->sdot * (t + 0.5 * h), send = S->s0 + S->sdot * (t + h);
     for (int i = 0; i < NY; i++)
         yt[i] = y0[i] + 0.5 * h * k[0][i];
+    double dmax = yt[Y_D] - smid;
     rhs(S, t + 0.5 * h, yt, cs, k[1]);
     for (int i = 0; i < NY; i++)
         yt[i] = y0[i] + 0.5 * h * k[1][i];
+    dmax = fmax(dmax, yt[Y_D] - smid);
     rhs(S, t + 0.5 * h, yt, cs, k[2]);
     for (int i = 0; i < NY; i++)
         yt[i] = y0[i] + h * k[2][i];
+    dmax = fmax(dmax, yt[Y_D] - send);
     rhs(S, t + h, yt, cs, k[3]);
     for (int i = 0; i < NY; i++)
         S->y1[i] = y0[i] + h / 6.0 * (k[0][i] + 2 * k[1][i] + 2 * k[2][i] + k[3][i]);
+    /* A step that enters a stiff contact (from its soft onset, where the stiffness at the
+     * start says nothing) shows it in its stages: they overshoot deep into it. */
+    S->rk4_dmax = fmax(dmax, S->y1[Y_D] - send);
     /* The derivative at the end serves the cubic Hermite dense output and, unless the
      * state changes there, the next step's first stage. */
     rhs(S, t + h, S->y1, cs, k[6]);
@@ -919,24 +927,26 @@ static int check_finite(tt_sim *S)
 }
 
 /* rk4 is stable for oscillation only while h * sqrt(k_contact / m) < 2.8; past that it
- * returns wrong numbers, so refuse with the cause. */
-static int rk4_check_stiffness(tt_sim *S, double h)
+ * returns wrong numbers, so refuse with the cause. The stiffness is the current branch's
+ * at penetration delta: out of contact too, since a branch may already push back there
+ * (Hertz without adhesion has one force law for both states). */
+static int rk4_check_stiffness(tt_sim *S, double h, double delta)
 {
-    if (!S->contact_state || !S->contact)
+    if (!S->contact)
         return TT_OK;
     double dPdd = 0;
-    double delta = S->y[Y_D] - (S->s0 + S->sdot * S->tau);
-    (void)tt_contact_load(S->contact, delta, 1, &dPdd, NULL);
+    (void)tt_contact_load(S->contact, delta, S->contact_state, &dPdd, NULL);
     double keff = S->c.k + (dPdd > 0 ? dPdd : 0);
-    double wc = sqrt(keff / S->c.m), zeta = S->ci / (2 * sqrt(keff * S->c.m));
-    if (h * wc > 2.5 || h * S->ci / S->c.m > 2.5)
+    double ci = S->contact_state ? S->ci : 0.0; /* interaction damping acts in contact only */
+    double wc = sqrt(keff / S->c.m), wi = ci / S->c.m; /* the damping's rate, 1/s */
+    if (h * wc > 2.5 || h * wi > 2.5)
         return tt_error(TT_ENUM,
                         "rk4 step too large for the contact: contact stiffness %.3g N/m (%.0f times "
                         "the cantilever's)%s needs at least %.0f steps per cycle; raise [solver] "
                         "steps_per_cycle or use method = dopri5 (or radau, implicit, for a contact "
                         "this stiff)",
-                        keff, keff / S->c.k, zeta > 1 ? " and its damping" : "",
-                        ceil(S->c.T * fmax(wc, S->ci / S->c.m) / 2.5));
+                        keff, keff / S->c.k, wi > wc ? " and its damping" : "",
+                        ceil(S->c.T * fmax(wc, wi) / 2.5));
     return TT_OK;
 }
 
@@ -994,10 +1004,13 @@ int tt_sim_cycle(tt_sim *S, tt_cycle *out)
                 }
                 continue;
             }
-            int rc = rk4_check_stiffness(S, h);
+            int rc = rk4_check_stiffness(S, h, S->y[Y_D] - (S->s0 + S->sdot * S->tau));
             if (rc)
                 return rc;
             rk4_step(S, h);
+            /* ... and at the deepest stage, before an unstable step is taken */
+            if ((rc = rk4_check_stiffness(S, h, S->rk4_dmax)))
+                return rc;
         } else {
             h = S->h;
             if (h > T / 8)
@@ -1105,15 +1118,60 @@ double tt_sim_force(const tt_sim *S, const tt_sample *smp, double *a)
     return P + (smp->contact ? S->ci * (smp->v - S->sdot) : 0.0);
 }
 
+/* What is left of a settling sequence, from its last two signed changes d and prevd
+ * (NAN: none yet), r = d / prevd. Changes of one sign that shrink are a geometric tail
+ * summing to d / (1 - r), and ones that do not shrink a drift of Q cycles. Changes that
+ * alternate in sign are an oscillation about the limit, which every value lies within
+ * |d| of while it does not grow; its growth is extrapolated over Q cycles, so that a
+ * steady alternation (|r| = 1 up to rounding) passes and a growing one does not. */
+static double remaining(double d, double prevd, double Q)
+{
+    if (!isfinite(prevd))
+        return fabs(d);
+    double r = prevd != 0 ? d / prevd : (d == 0 ? 0 : INFINITY);
+    if (r < 0)
+        return fabs(d) * pow(fmax(1.0, -r), Q);
+    if (r < 1)
+        return fabs(d) / (1 - r);
+    return fabs(d) * Q;
+}
+
+/* The longest cycle-to-cycle pattern the settling test sees through. */
+#define SETTLE_PERIOD 4
+
+/* What is left to settle of a sequence x (x[0] the newest of n values), the least over
+ * periods p of: its drift over p cycles, extrapolated by remaining() with a memory of
+ * Q / p periods, plus the spread of its last p values, which a steady pattern of period
+ * p keeps for ever. p = 1 is the plain geometric extrapolation; longer periods let a
+ * jitter far below the tolerance (the adaptive step pattern can sustain one, with
+ * period 2 or 3) count as steady, while a real period-doubled orbit, whose spread is
+ * large, does not. */
+static double settle_estimate(const double *x, int n, double Q)
+{
+    double best = n >= 2 ? remaining(x[0] - x[1], n >= 3 ? x[1] - x[2] : NAN, Q) : INFINITY;
+    for (int p = 2; p <= SETTLE_PERIOD && 2 * p < n; p++) {
+        double spread = 0;
+        for (int j = 1; j < p; j++)
+            spread = fmax(spread, fabs(x[0] - x[j]));
+        double est = remaining(x[0] - x[p], x[p] - x[2 * p], Q / p) + spread;
+        if (est < best)
+            best = est;
+    }
+    return best;
+}
+
 int tt_sim_settle(tt_sim *S, long max_cycles, double tol, tt_cycle *out, int *settled,
                   long *cycles)
 {
     /* Amplitude and phase approach their steady values geometrically (rate about
      * exp(-pi/Q) per cycle near resonance); the change still to come is estimated
      * from the ratio of successive changes, so a slow approach is not taken for
-     * convergence. */
-    double prevA = NAN, prevP = NAN, prevdA = NAN, prevdP = NAN;
-    int ok_in_row = 0;
+     * convergence. Far off resonance the free mode's transient alternates from cycle
+     * to cycle instead, and the adaptive step pattern may keep a tiny pattern of a few
+     * cycles going for ever; see settle_estimate. */
+    enum { H = 2 * SETTLE_PERIOD + 1 };
+    double hA[H] = {0}, hP[H] = {0}; /* only the first nh are read */
+    int nh = 0, ok_in_row = 0;
     *settled = 0;
     long n;
     for (n = 0; n < max_cycles; n++) {
@@ -1123,32 +1181,23 @@ int tt_sim_settle(tt_sim *S, long max_cycles, double tol, tt_cycle *out, int *se
                 *cycles = n + 1;
             return rc;
         }
-        double A = out->amplitude / S->c.A0, P = out->phase;
-        if (isfinite(prevA)) {
-            double dA = fabs(A - prevA), dP = fabs(P - prevP);
-            double remA = dA, remP = dP;
-            if (isfinite(prevdA) && prevdA > 0 && dA < prevdA)
-                remA = dA / (1 - dA / prevdA);
-            else if (isfinite(prevdA))
-                remA = dA * S->c.Q;
-            if (isfinite(prevdP) && prevdP > 0 && dP < prevdP)
-                remP = dP / (1 - dP / prevdP);
-            else if (isfinite(prevdP))
-                remP = dP * S->c.Q;
-            if (remA < tol && remP < tol)
+        memmove(hA + 1, hA, (H - 1) * sizeof hA[0]);
+        memmove(hP + 1, hP, (H - 1) * sizeof hP[0]);
+        hA[0] = out->amplitude / S->c.A0;
+        hP[0] = out->phase;
+        if (nh < H)
+            nh++;
+        if (nh >= 2) {
+            if (settle_estimate(hA, nh, S->c.Q) < tol && settle_estimate(hP, nh, S->c.Q) < tol)
                 ok_in_row++;
             else
                 ok_in_row = 0;
-            prevdA = dA;
-            prevdP = dP;
             if (ok_in_row >= 3) {
                 *settled = 1;
                 n++;
                 break;
             }
         }
-        prevA = A;
-        prevP = P;
     }
     if (cycles)
         *cycles = n;
