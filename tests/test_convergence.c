@@ -1,6 +1,7 @@
 /* Convergence as the step shrinks: amplitude, phase and the contact-event times of a
  * tapping cantilever converge at the method's order (PHYSICS.md). */
 #include "tt_test.h"
+#include "tt_laws.h"
 #include "tiptap/contact.h"
 #include "tiptap/error.h"
 #include "tiptap/integrator.h"
@@ -32,35 +33,12 @@ static double order(double a, double b, double c)
     return log2(fabs(a - b) / fabs(b - c));
 }
 
-/* A smooth force law, P = k3 delta^3 in contact: the solution is smooth through the
- * contact events, so RK4 must show its order, 4, in everything including event times. */
-static double cubic_load(double delta, int in_contact, double *dPdd, void *user)
-{
-    (void)in_contact;
-    double k3 = *(double *)user;
-    if (delta <= 0) {
-        if (dPdd)
-            *dPdd = 0;
-        return 0;
-    }
-    if (dPdd)
-        *dPdd = 3 * k3 * delta * delta;
-    return k3 * delta * delta * delta;
-}
-
-static double cubic_energy(double delta, int in_contact, void *user)
-{
-    (void)in_contact;
-    double k3 = *(double *)user;
-    return delta <= 0 ? 0 : 0.25 * k3 * delta * delta * delta * delta;
-}
-
 static void rk4_converges_at_fourth_order(void **st)
 {
     (void)st;
     double k3 = 3e18; /* N/m^3: 3 N/m of contact stiffness at 1 nm */
     tt_contact *ct;
-    assert_int_equal(tt_contact_alloc_custom(&ct, cubic_load, cubic_energy, &k3, 0, 0), TT_OK);
+    assert_int_equal(tt_contact_alloc_custom(&ct, tt_cubic_load, tt_cubic_energy, &k3, 0, 0), TT_OK);
     tt_cycle c1 = run(ct, 10, TT_METHOD_RK4, 256, 0);
     tt_cycle c2 = run(ct, 10, TT_METHOD_RK4, 512, 0);
     tt_cycle c3 = run(ct, 10, TT_METHOD_RK4, 1024, 0);

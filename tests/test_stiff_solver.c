@@ -3,32 +3,12 @@
  * with heavy interaction damping it agrees with a tight dopri5 reference, keeps the
  * energy balance, and needs far fewer steps than dopri5 while the tip stays in contact. */
 #include "tt_test.h"
+#include "tt_laws.h"
 #include "tiptap/contact.h"
 #include "tiptap/error.h"
 #include "tiptap/integrator.h"
 
 /* ---- convergence: the tapping scene of test_convergence.c on a smooth law ---- */
-
-static double cubic_load(double delta, int in_contact, double *dPdd, void *user)
-{
-    (void)in_contact;
-    double k3 = *(double *)user;
-    if (delta <= 0) {
-        if (dPdd)
-            *dPdd = 0;
-        return 0;
-    }
-    if (dPdd)
-        *dPdd = 3 * k3 * delta * delta;
-    return k3 * delta * delta * delta;
-}
-
-static double cubic_energy(double delta, int in_contact, void *user)
-{
-    (void)in_contact;
-    double k3 = *(double *)user;
-    return delta <= 0 ? 0 : 0.25 * k3 * delta * delta * delta * delta;
-}
 
 /* A fixed number of cycles from the free steady state (a deterministic map), the last
  * cycle returned with the mean steps per cycle over the run. */
@@ -64,7 +44,7 @@ static void radau_converges_at_fifth_order(void **st)
      * the error against the steps it took, error ~ (steps per cycle)^-5. */
     double k3 = 3e18;
     tt_contact *ct;
-    assert_int_equal(tt_contact_alloc_custom(&ct, cubic_load, cubic_energy, &k3, 0, 0), TT_OK);
+    assert_int_equal(tt_contact_alloc_custom(&ct, tt_cubic_load, tt_cubic_energy, &k3, 0, 0), TT_OK);
     tt_cycle ref = run_standard(ct, 10, TT_METHOD_DOPRI5, 1e-14, NULL);
     assert_true(ref.contact_fraction > 0.05);
     /* least-squares slopes of log error against log steps over six tolerances */
