@@ -715,6 +715,39 @@ double tt_contact_energy(const tt_contact *c, double delta, int in_contact)
     return U * c->F * c->d;
 }
 
+double tt_contact_table_error(const tt_contact *c, size_t n)
+{
+    if (c->hertz || c->custom || n < 2)
+        return 0; /* closed forms: nothing tabulated */
+    double lo, hi, worst = 0;
+    curve_range(c->kind, &lo, &hi);
+    hi = c->kind == CURVE_MAUGIS ? 12 : 50; /* A up to about 1e5, then the exact Hertz tail */
+    /* the stable branch begins past the least Delta (the fold, or the A -> 0 end):
+     * before it the curve is the unstable branch, tabulated by no one */
+    size_t first = 0;
+    double Dleast = INFINITY;
+    for (size_t i = 0; i < n; i++) {
+        double p = lo + (hi - lo) * (double)i / (double)(n - 1), A, D, P, dA, dD, dP;
+        curve_at(c->kind, c->lambda, p, &A, &D, &P, &dA, &dD, &dP);
+        if (D < Dleast) {
+            Dleast = D;
+            first = i + 1;
+        }
+    }
+    for (size_t i = first; i < n; i++) {
+        double p = lo + (hi - lo) * (double)i / (double)(n - 1), A, D, P, dA, dD, dP;
+        curve_at(c->kind, c->lambda, p, &A, &D, &P, &dA, &dD, &dP);
+        /* its first 1e-9 is the fold's own scale; past Dend the tail is exact Hertz */
+        if (D < c->dmin + 1e-9 || D > c->Dend)
+            continue;
+        double Pt = tt_contact_load(c, D * c->d, 1, NULL, NULL) / c->F;
+        double e = fabs(Pt - P) / fmax(1, fabs(P));
+        if (e > worst)
+            worst = e;
+    }
+    return worst;
+}
+
 int tt_contact_curve(const tt_contact *c, size_t n, double A_max, double *A, double *Delta,
                      double *P, int *stable)
 {

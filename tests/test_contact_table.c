@@ -73,6 +73,25 @@ static void table_matches_eq7_at_the_fold(void **st)
     assert_true(worst_near < 1e-9);
 }
 
+/* The self-check every `tiptap contact` run reports agrees with the test above: small,
+ * but not trivially zero, on every model that has a table. */
+static void table_self_check(void **st)
+{
+    (void)st;
+    for (double l = 1e-3; l <= 1.0001e3; l *= 10) {
+        tt_contact *c;
+        assert_int_equal(tt_contact_alloc_normalised(&c, TT_CONTACT_MAUGIS, l, 0.3), TT_OK);
+        double e = tt_contact_table_error(c, 2000);
+        assert_true(e > 0 && e < 2e-9);
+        tt_contact_free(c);
+    }
+    tt_contact_params p = {TT_CONTACT_MAUGIS, 50e9, 20e-9, 0, 0.265e-9, NAN};
+    tt_contact *h;
+    assert_int_equal(tt_contact_alloc(&h, &p), TT_OK); /* w = 0: exact Hertz, no table */
+    assert_true(tt_contact_table_error(h, 2000) == 0);
+    tt_contact_free(h);
+}
+
 static void seed_figure_4a_summary(void **st)
 {
     (void)st;
@@ -102,6 +121,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(table_matches_eq7),
         cmocka_unit_test(table_matches_eq7_at_the_fold),
+        cmocka_unit_test(table_self_check),
         cmocka_unit_test(seed_figure_4a_summary),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

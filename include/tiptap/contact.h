@@ -110,6 +110,11 @@ double tt_contact_jumpout(const tt_contact *c);
  * and for the full curve in plots; never called in a time loop. */
 void tt_contact_maugis_point(double lambda, double m, double *A, double *Delta, double *P);
 
+/* The largest error of the tabulated load against direct evaluation of the curve
+ * (eq. 7 for Maugis) at n points spread over the stable branch, relative to max(1, |P|)
+ * in normalised units: the run's own check of its table (0 for closed forms). */
+double tt_contact_table_error(const tt_contact *c, size_t n);
+
 /* Sample the whole normalised contact curve (stable and unstable parts) of c at n
  * points ordered by A from near 0 to A_max: A, Delta, P, and stable (1 where
  * dDelta/dA > 0, the displacement-controlled stable branch). */
