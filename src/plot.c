@@ -312,8 +312,12 @@ static void text(cairo_t *cr, double x, double y, const char *s, double ax, doub
 
 static void fmt_tick(char *buf, size_t n, double v, double step)
 {
-    if (fabs(v) < 1e-12 * step)
-        v = 0;
+    /* zero is "0" whatever the step: on an axis of tiny steps the other ticks are in
+     * %g form, and a zero with the step's decimals ("0.000000000") is clipped */
+    if (fabs(v) < 1e-12 * step) {
+        snprintf(buf, n, "0");
+        return;
+    }
     if ((fabs(v) >= 1e5 || (fabs(v) < 1e-3 && v != 0)))
         snprintf(buf, n, "%.3g", v);
     else {

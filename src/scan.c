@@ -20,10 +20,29 @@ static const struct {
 } channel_info[TT_CH_COUNT] = {
     {"height", "m"},     {"amplitude", "m"},   {"phase", "deg"},       {"peak_force", "N"},
     {"indentation", "m"}, {"dissipation", "J"}, {"topography", "m"},
+    {"harmonic2", "m"},  {"harmonic3", "m"},   {"harmonic4", "m"},     {"harmonic5", "m"},
+    {"harmonic6", "m"},  {"harmonic7", "m"},   {"harmonic8", "m"},
+    {"harmonic2_phase", "deg"}, {"harmonic3_phase", "deg"}, {"harmonic4_phase", "deg"},
+    {"harmonic5_phase", "deg"}, {"harmonic6_phase", "deg"}, {"harmonic7_phase", "deg"},
+    {"harmonic8_phase", "deg"},
 };
+
+enum { NHARM = TT_CH_HARMONIC_MAX - 1 }; /* harmonic channels of each kind */
+_Static_assert(TT_CH_COUNT <= 8 * sizeof(unsigned), "a channel mask holds every channel");
 
 const char *tt_scan_channel_name(int i) { return i >= 0 && i < TT_CH_COUNT ? channel_info[i].name : "?"; }
 const char *tt_scan_channel_unit(int i) { return i >= 0 && i < TT_CH_COUNT ? channel_info[i].unit : "?"; }
+
+int tt_scan_channel_harmonic(int i)
+{
+    if (i == 1 || i == 2)
+        return 1;
+    if (i >= TT_CH_HARMONIC_INDEX && i < TT_CH_HARMONIC_INDEX + NHARM)
+        return i - TT_CH_HARMONIC_INDEX + 2;
+    if (i >= TT_CH_HARMONIC_PHASE_INDEX && i < TT_CH_HARMONIC_PHASE_INDEX + NHARM)
+        return i - TT_CH_HARMONIC_PHASE_INDEX + 2;
+    return 0;
+}
 
 int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t len)
 {
@@ -45,8 +64,9 @@ int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t l
         if (found < 0) {
             snprintf(why, len,
                      "unknown channel '%.*s'; channels are height, amplitude, phase, peak_force, "
-                     "indentation, dissipation, topography",
-                     (int)(e - p), p);
+                     "indentation, dissipation, topography, harmonic2 to harmonic%d, "
+                     "harmonic2_phase to harmonic%d_phase",
+                     (int)(e - p), p, TT_CH_HARMONIC_MAX, TT_CH_HARMONIC_MAX);
             return -1;
         }
         *mask |= 1u << found;
@@ -119,8 +139,22 @@ static int get_keys(tt_scan *S)
         return rc;
     S->lockin.samples_per_period = (int)spp;
     S->lockin.filter_order = (int)order;
-    S->lockin.harmonics = (int)harm;
     S->lockin.periods_per_block = (int)ppb;
+    if (2 * harm >= spp)
+        return tt_scene_fail(sc, "lockin", NULL, "harmonics",
+                             "%ld harmonics need more than %ld samples per period "
+                             "([lockin] samples_per_period is %ld)",
+                             harm, 2 * harm, spp);
+    /* [lockin] harmonics is what the lock-in offers; it demodulates only up to the
+     * highest harmonic a channel records, since nothing else reads the rest. */
+    S->lockin.harmonics = 1;
+    for (int c = 0; c < TT_CH_COUNT; c++)
+        if ((S->channels & (1u << c)) && tt_scan_channel_harmonic(c) > S->lockin.harmonics)
+            S->lockin.harmonics = tt_scan_channel_harmonic(c);
+    if (S->lockin.harmonics > harm)
+        return tt_scene_fail(sc, "scan", NULL, "channels",
+                             "harmonic%d needs [lockin] harmonics = %d or more (it is %ld)",
+                             S->lockin.harmonics, S->lockin.harmonics, harm);
     /* feedback */
     tt_dim dim;
     if ((rc = tt_scene_get_quantity(sc, "feedback", NULL, "setpoint", &S->setpoint, &dim)) ||
@@ -218,10 +252,18 @@ static int worker_alloc(tt_scan *S, worker *W)
 
 /* Per-pixel sums of one scan direction. */
 typedef struct {
-    double sum[TT_CH_COUNT];
+    double sum[TT_CH_COUNT]; /* harmonic phases: the in-phase parts, X = A cos(phase) */
+    double quad[NHARM];      /* harmonic phases: the quadrature parts, Y = A sin(phase) */
     long n;    /* cycles, for the per-cycle channels */
     long nblk; /* cycles of the lock-in blocks that ended in this pixel */
 } pixel_acc;
+
+/* Phase lag in the lock-in's range, (-90, 270] degrees (see src/lockin.c). */
+static double lag(double X, double Y)
+{
+    double ph = atan2(Y, X);
+    return ph < -M_PI / 2 ? ph + 2 * M_PI : ph;
+}
 
 /* Scan one line: engage at its first pixel, then trace and retrace. */
 static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *worst, int *clamped)
@@ -336,6 +378,15 @@ static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *wor
                 a->sum[1] += (A - S->setpoint) * P;
                 a->sum[2] += ph * 180 / M_PI * P;
                 a->nblk += P;
+                for (int h = 2; h <= S->lockin.harmonics; h++) {
+                    double Ah = tt_lockin_amplitude(W->lockin, h);
+                    a->sum[TT_CH_HARMONIC_INDEX + h - 2] += Ah * P;
+                    /* a harmonic's phase is averaged as a vector: near zero amplitude it
+                     * is noise, and a plain mean across its wrap would be meaningless */
+                    double phh = tt_lockin_phase(W->lockin, h);
+                    a->sum[TT_CH_HARMONIC_PHASE_INDEX + h - 2] += Ah * cos(phh) * P;
+                    a->quad[h - 2] += Ah * sin(phh) * P;
+                }
             }
         }
     }
@@ -344,11 +395,13 @@ static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *wor
             for (long px = 0; px < R->pixels; px++) {
                 pixel_acc *a = &pix[(size_t)dir * (size_t)R->pixels + (size_t)px];
                 for (int ch = 0; ch < TT_CH_COUNT; ch++) {
-                    /* amplitude and phase come once per lock-in block, the rest per cycle */
-                    long cnt = (ch == 1 || ch == 2) ? a->nblk : a->n;
+                    /* lock-in channels come once per lock-in block, the rest per cycle */
+                    long cnt = tt_scan_channel_harmonic(ch) ? a->nblk : a->n;
+                    double v = cnt ? a->sum[ch] / (double)cnt : NAN;
+                    if (ch >= TT_CH_HARMONIC_PHASE_INDEX && cnt)
+                        v = lag(a->sum[ch], a->quad[ch - TT_CH_HARMONIC_PHASE_INDEX]) * 180 / M_PI;
                     if (S->img[dir][ch])
-                        S->img[dir][ch][tt_raster_index(R, line, px)] =
-                            cnt ? a->sum[ch] / (double)cnt : NAN;
+                        S->img[dir][ch][tt_raster_index(R, line, px)] = v;
                 }
             }
     }

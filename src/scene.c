@@ -250,16 +250,18 @@ static int check_value(const tt_scene_key *k, const char *v, char *why, size_t l
                     sym = tt_units_symbol((tt_dim)d);
                     break;
                 }
+        /* the space goes with the unit, so that a plain number ends the message */
+        const char *sp = *sym ? " " : "";
         if (!lo_ok && isfinite(k->max) && k->max < 1e300)
-            snprintf(why, len, "%s is out of range; expected %s %g %s and %s %g %s", v,
-                     (k->flags & TT_KEY_MIN_EXCL) ? "above" : "at least", k->min, sym,
-                     (k->flags & TT_KEY_MAX_EXCL) ? "below" : "at most", k->max, sym);
+            snprintf(why, len, "%s is out of range; expected %s %g%s%s and %s %g%s%s", v,
+                     (k->flags & TT_KEY_MIN_EXCL) ? "above" : "at least", k->min, sp, sym,
+                     (k->flags & TT_KEY_MAX_EXCL) ? "below" : "at most", k->max, sp, sym);
         else if (!lo_ok)
-            snprintf(why, len, "%s is out of range; expected %s %g %s", v,
-                     (k->flags & TT_KEY_MIN_EXCL) ? "above" : "at least", k->min, sym);
+            snprintf(why, len, "%s is out of range; expected %s %g%s%s", v,
+                     (k->flags & TT_KEY_MIN_EXCL) ? "above" : "at least", k->min, sp, sym);
         else
-            snprintf(why, len, "%s is out of range; expected %s %g %s", v,
-                     (k->flags & TT_KEY_MAX_EXCL) ? "below" : "at most", k->max, sym);
+            snprintf(why, len, "%s is out of range; expected %s %g%s%s", v,
+                     (k->flags & TT_KEY_MAX_EXCL) ? "below" : "at most", k->max, sp, sym);
         return -1;
     }
     return 0;

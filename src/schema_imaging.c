@@ -45,7 +45,7 @@ const tt_scene_key tt_schema_lockin[] = {
      "low-pass time constant of each filter section (0: none); a 1 Hz, 128-pixel line has 3.9 ms per pixel"},
     {"filter_order", TT_KEY_INT, 0, "2", 1, 8, 0, NULL, "low-pass sections in cascade (6 dB/octave each)"},
     {"samples_per_period", TT_KEY_INT, 0, "32", 8, 1024, 0, NULL, "deflection samples per drive period"},
-    {"harmonics", TT_KEY_INT, 0, "1", 1, 16, 0, NULL, "harmonics demodulated (1: the fundamental only)"},
+    {"harmonics", TT_KEY_INT, 0, "1", 1, 16, 0, NULL, "highest harmonic the lock-in offers to [scan] channels (1: the fundamental only)"},
     {"periods_per_block", TT_KEY_INT, 0, "4", 1, 1000, 0, NULL,
      "drive periods per transform, which is also the feedback's update interval"},
 };

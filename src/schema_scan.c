@@ -16,7 +16,8 @@ const tt_scene_key tt_schema_scan[] = {
     {"retrace", TT_KEY_BOOL, 0, "yes", 0, 0, 0, NULL, "record the retrace images too"},
     {"channels", TT_KEY_STRING, 0, "height, amplitude, phase, peak_force, indentation, dissipation", 0,
      0, 0, NULL,
-     "what to record: height, amplitude, phase, peak_force, indentation, dissipation, topography"},
+     "what to record: height, amplitude, phase, peak_force, indentation, dissipation, topography, "
+     "harmonic2 to harmonic8 (need [lockin] harmonics >= h), harmonic2_phase to harmonic8_phase"},
     {"profile_line", TT_KEY_INT, 0, "-1", -1, 16383, 0, NULL,
      "line written to profile.csv (-1: the middle line)"},
     {"settle_cycles", TT_KEY_INT, 0, "3000", 0, 1e9, 0, NULL,

@@ -38,6 +38,11 @@ for case in "1000 -1.5" "0.001 -2"; do
   done
 done
 
+# JKR's infinite lambda is explained, and the value still reads as a number
+"$tiptap" contact --model jkr >"$tmp/jkr.txt" || bad "contact --model jkr ran"
+grep -qx "lambda = inf (JKR limit)" "$tmp/jkr.txt" && [ "$(value lambda "$tmp/jkr.txt")" = inf ] &&
+  ok "JKR lambda" || bad "JKR lambda: $(grep lambda "$tmp/jkr.txt")"
+
 # the curve: CSV with its header, PNG with its signature
 if "$tiptap" contact --lambda 2 -o "$tmp/curve.csv" --plot "$tmp/curve.png" >/dev/null; then
   head -1 "$tmp/curve.csv" | grep -qx "A,Delta,P,stable" && ok "CSV header" || bad "CSV header: $(head -1 "$tmp/curve.csv")"

@@ -18,6 +18,15 @@ expect_error() { # name, expected fragment, command...
   echo "ok   $name"
 }
 
+expect_exact() { # name, the whole expected message, command...
+  local name=$1 want=$2; shift 2
+  local out rc
+  out=$("$@" 2>&1 >/dev/null); rc=$?
+  if [ $rc -eq 0 ]; then echo "FAIL $name: exit 0"; fail=1; return; fi
+  if [ "$out" != "$want" ]; then echo "FAIL $name: '$out' is not '$want'"; fail=1; return; fi
+  echo "ok   $name"
+}
+
 cat >"$tmp/typo.ini" <<'INI'
 [cantilever]
 spring_constnat = 2 N/m
@@ -45,6 +54,14 @@ INI
 expect_error "typo in a key" "typo.ini: [cantilever] spring_constnat: unknown key" "$tiptap" approach "$tmp/typo.ini"
 expect_error "missing unit" "nounit.ini: [cantilever] resonance_frequency: missing unit" "$tiptap" trace "$tmp/nounit.ini"
 expect_error "negative stiffness" "neg.ini: [cantilever] spring_constant:" "$tiptap" approach "$tmp/neg.ini"
+# the whole text of out-of-range messages, with a unit and without one (no double or
+# trailing space)
+expect_exact "out of range, exact text" \
+  "tiptap: $tmp/neg.ini: [cantilever] spring_constant: -0.5 N/m is out of range; expected above 0 N/m" \
+  "$tiptap" approach "$tmp/neg.ini"
+expect_exact "out of range without a unit, exact text" \
+  "tiptap: --set: [scan] pixels: 1 is out of range; expected at least 2 and at most 16384" \
+  "$tiptap" scan "$tmp/good.ini" -o "$tmp/never" --set scan.pixels=1
 expect_error "NaN" "nan.ini: [material glass] adhesion_energy:" "$tiptap" contact "$tmp/nan.ini"
 expect_error "bad --set" "--set: [material glass] adhesion_energy:" "$tiptap" contact "$tmp/good.ini" --set "material.glass.adhesion_energy=5 kHz"
 expect_error "missing scene" "$tmp/none.ini" "$tiptap" contact "$tmp/none.ini"

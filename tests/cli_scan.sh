@@ -37,6 +37,18 @@ cmp -s "$tmp/out/height_trace.gsf" "$tmp/again/height_trace.gsf" && ok "effectiv
 "$tiptap" scan "$src/surfaces/png-map.ini" "$tmp/s.ini" -o "$tmp/one" -q -j 1 || bad "one thread"
 cmp -s "$tmp/out/height_trace.gsf" "$tmp/one/height_trace.gsf" && ok "independent of threads" || bad "threads change the image"
 
+# higher-harmonic channels: files in SI units, profile columns, the other channels unchanged
+"$tiptap" scan "$src/surfaces/png-map.ini" "$tmp/s.ini" -o "$tmp/harm" -q \
+  --set lockin.harmonics=3 --set "scan.channels=height, harmonic2, harmonic3_phase" || bad "harmonic scan ran"
+grep -aq "^ZUnits = m$" "$tmp/harm/harmonic2_trace.gsf" && [ -s "$tmp/harm/harmonic2_retrace.png" ] &&
+  grep -aq "^ZUnits = deg$" "$tmp/harm/harmonic3_phase_trace.gsf" && ok "harmonic files" || bad "harmonic files"
+head -1 "$tmp/harm/profile.csv" | grep -q "^position_nm,height_trace_m,height_retrace_m,harmonic2_trace_m,harmonic2_retrace_m,harmonic3_phase_trace_deg,harmonic3_phase_retrace_deg$" &&
+  ok "harmonic profile columns" || bad "harmonic profile header: $(head -1 "$tmp/harm/profile.csv")"
+cmp -s "$tmp/out/height_trace.gsf" "$tmp/harm/height_trace.gsf" && ok "harmonics leave the height alone" || bad "harmonics change the height"
+"$tiptap" scan "$tmp/s.ini" -o "$tmp/harm2" -q --set scan.channels=harmonic2 2>"$tmp/harm2.err" && bad "harmonic2 without harmonics accepted"
+grep -q "^tiptap: --set: \[scan\] channels: harmonic2 needs \[lockin\] harmonics = 2 or more (it is 1)$" "$tmp/harm2.err" &&
+  ok "harmonic2 needs [lockin] harmonics" || bad "message: $(cat "$tmp/harm2.err")"
+
 # Ctrl-C keeps the finished lines in valid files. Lines are cheap (about 2000 cycles:
 # a tenth of a second, a second under the sanitizers) and many, so that some but not all
 # are finished after a few seconds on any build.

@@ -35,12 +35,22 @@ enum {
     TT_CH_INDENTATION = 1 << 4, /* greatest penetration per cycle, m */
     TT_CH_DISSIPATION = 1 << 5, /* tip-sample energy lost per cycle, J */
     TT_CH_TOPOGRAPHY = 1 << 6,  /* the true surface height under the tip, m (reference) */
-    TT_CH_COUNT = 7
+    /* Higher harmonics of the deflection, h = 2 to TT_CH_HARMONIC_MAX: channel index
+     * TT_CH_HARMONIC_INDEX + h - 2 is "harmonicH", the lock-in amplitude of harmonic h
+     * (m), and TT_CH_HARMONIC_PHASE_INDEX + h - 2 is "harmonicH_phase", its lag behind
+     * cos(h w t) (deg). */
+    TT_CH_HARMONIC_MAX = 8,
+    TT_CH_HARMONIC_INDEX = 7,
+    TT_CH_HARMONIC_PHASE_INDEX = 14,
+    TT_CH_COUNT = 21
 };
 
 /* Name ("height"), unit ("m", "deg", "N", "J") and title of channel index i. */
 const char *tt_scan_channel_name(int i);
 const char *tt_scan_channel_unit(int i);
+/* The harmonic a channel index demodulates: 1 for amplitude and phase, h for
+ * harmonicH and harmonicH_phase, 0 for the others. */
+int tt_scan_channel_harmonic(int i);
 /* Parse "height, phase" into a channel mask; -1 with a message naming the channel. */
 int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t len);
 

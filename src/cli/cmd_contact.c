@@ -29,11 +29,11 @@ static void help(void)
            "                     displacement-controlled stable branch)\n"
            "      --plot FILE    PNG of P against Delta, with the van der Waals branch and\n"
            "                     the Hertz, DMT and JKR curves for reference\n\n"
-           "stdout: key = value lines: lambda, P0 and Delta0 (the A -> 0 end, eq. 8),\n"
-           "pulloff_load (least load: pull-off under load control), jumpout_delta (least\n"
-           "penetration on the stable branch: pull-off under displacement control),\n"
-           "jumpin_load, hysteresis, loop_area; for a scene also physical values and the\n"
-           "Hamaker constant implied by continuity at (P0, Delta0).\n"
+           "stdout: key = value lines: lambda (\"inf (JKR limit)\" for jkr), P0 and Delta0\n"
+           "(the A -> 0 end, eq. 8), pulloff_load (least load: pull-off under load control),\n"
+           "jumpout_delta (least penetration on the stable branch: pull-off under\n"
+           "displacement control), jumpin_load, hysteresis, loop_area; for a scene also\n"
+           "physical values and the Hamaker constant implied by continuity at (P0, Delta0).\n"
            "stderr: run_time_s and error_estimate, the largest error of the tabulated load\n"
            "against eq. 7 evaluated directly at 2000 points of the stable branch.\n");
 }
@@ -59,6 +59,16 @@ static int write_csv(const char *path, const tt_contact *c, double Amax)
     return tt_outfile_close(o, 1);
 }
 
+/* lambda as a person reads it: JKR's is infinite, which "inf" alone does not explain;
+ * the number stays first, so "key = value" parsers still read it. */
+static const char *lambda_text(double lambda, const char *fmt, char *buf, size_t n)
+{
+    if (isinf(lambda))
+        return "inf (JKR limit)";
+    snprintf(buf, n, fmt, lambda);
+    return buf;
+}
+
 static int plot(const char *path, const tt_contact *c, double xi0n, int references)
 {
     enum { N = 600 };
@@ -68,8 +78,10 @@ static int plot(const char *path, const tt_contact *c, double xi0n, int referenc
     char title[160];
     snprintf(title, sizeof title, "Contact mechanics (seed figure 3): %s",
              s->adhesive ? "Maugis-Dugdale" : "Hertz");
+    char lt[32];
     if (s->adhesive)
-        snprintf(title, sizeof title, "Contact mechanics (seed figure 3), lambda = %.4g", s->lambda);
+        snprintf(title, sizeof title, "Contact mechanics (seed figure 3), lambda = %s",
+                 lambda_text(s->lambda, "%.4g", lt, sizeof lt));
     tt_figure *f = tt_figure_alloc(1, title);
     if (!f)
         return tt_error(TT_ENOMEM, "out of memory");
@@ -129,10 +141,11 @@ static void print_summary(const tt_contact *c, const tt_contact_params *phys, do
         }
         return;
     }
-    printf("lambda = %.10g\nP0 = %.10g\nDelta0 = %.10g\npulloff_load = %.10g\npulloff_delta = %.10g\n"
+    char lt[32];
+    printf("lambda = %s\nP0 = %.10g\nDelta0 = %.10g\npulloff_load = %.10g\npulloff_delta = %.10g\n"
            "jumpout_delta = %.10g\njumpout_load = %.10g\njumpin_delta = %.10g\njumpin_load = %.10g\n"
            "hysteresis = %d\n",
-           s->lambda, s->P0, s->Delta0, s->pulloff_load, s->pulloff_delta, s->jumpout_delta,
+           lambda_text(s->lambda, "%.10g", lt, sizeof lt), s->P0, s->Delta0, s->pulloff_load, s->pulloff_delta, s->jumpout_delta,
            s->jumpout_load, s->jumpin_delta, s->jumpin_load, s->hysteresis);
     if (!phys) {
         printf("loop_area = %.10g\n", s->loop_energy);

@@ -30,8 +30,10 @@ static void help(void)
            "  -q, --quiet        no progress and summary on stderr\n\n"
            "Channels ([scan] channels): height (m), amplitude (error: amplitude - setpoint, m),\n"
            "phase (lag, deg), peak_force (N), indentation (m), dissipation (J per cycle),\n"
-           "topography (the true surface, m). Ctrl-C stops after the lines under way and\n"
-           "writes the finished lines (the others are NaN, shown grey).\n"
+           "topography (the true surface, m), harmonic2 ... harmonic8 (amplitude of the\n"
+           "deflection's harmonic h, m; needs [lockin] harmonics >= h), harmonic2_phase ...\n"
+           "harmonic8_phase (its lag behind cos(h w t), deg). Ctrl-C stops after the lines\n"
+           "under way and writes the finished lines (the others are NaN, shown grey).\n"
            "stderr ends with the run time, the real-time factor (instrument time / run time)\n"
            "and the error estimate: the largest energy-balance residual of a cycle relative\n"
            "to the free oscillation's drive work per cycle.\n");
@@ -47,6 +49,17 @@ static void show_progress(void *user, long done, long total)
 
 static double display_scale(int ch, const char **unit, tt_colormap *cmap)
 {
+    /* higher harmonics are tens of picometres where the fundamental is nanometres */
+    if (ch >= TT_CH_HARMONIC_PHASE_INDEX) {
+        *unit = "deg";
+        *cmap = TT_CMAP_VIRIDIS;
+        return 1;
+    }
+    if (ch >= TT_CH_HARMONIC_INDEX) {
+        *unit = "pm";
+        *cmap = TT_CMAP_VIRIDIS;
+        return 1e12;
+    }
     switch (ch) {
     case 2: *unit = "deg"; *cmap = TT_CMAP_VIRIDIS; return 1;
     case 3: *unit = "nN"; *cmap = TT_CMAP_VIRIDIS; return 1e9;
