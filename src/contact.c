@@ -288,7 +288,8 @@ static inline double herm(const segment *g, const double *y, const double *dy, d
 }
 
 /* Normalised contact branch at Delta: load, dP/dDelta, A and U = I(s), the integral
- * of P dDelta from the branch's end. */
+ * of P dDelta from the branch's end. A and U may be NULL: the time loop needs neither,
+ * and each is a table look-up of its own. */
 static void branch(const struct tt_contact *c, double D, double *P, double *dPdD, double *A,
                    double *U)
 {
@@ -297,7 +298,8 @@ static void branch(const struct tt_contact *c, double D, double *P, double *dPdD
         double r = sqrt(D), re = sqrt(c->Dend);
         *P = c->Pend + D * r - c->Dend * re;
         *dPdD = 1.5 * r;
-        *A = c->Aend + r - re;
+        if (A)
+            *A = c->Aend + r - re;
         if (U)
             *U = c->Uend + (c->Pend - c->Dend * re) * (D - c->Dend) +
                  0.4 * (D * D * r - c->Dend * c->Dend * re);
@@ -321,22 +323,22 @@ static void branch(const struct tt_contact *c, double D, double *P, double *dPdD
          * stage overshoots (the first cubic spans only S_LO) */
         g = &c->seg[0];
         *P = g->P[0] + g->dP[0] * s;
-        *A = g->A[0] + g->dA[0] * s;
+        if (A)
+            *A = g->A[0] + g->dA[0] * s < 0 ? 0.0 : g->A[0] + g->dA[0] * s;
         *dPdD = g->dP[0] / (2 * fmax(-s, 1e-9));
         if (U)
             *U = g->U[0] + g->dU[0] * s;
-        if (*A < 0)
-            *A = 0;
         return;
     }
     *P = herm(g, g->P, g->dP, r, &dPr);
-    *A = herm(g, g->A, g->dA, r, NULL);
+    if (A) {
+        double Av = herm(g, g->A, g->dA, r, NULL);
+        *A = Av < 0 ? 0 : Av;
+    }
     /* dP/dDelta = (dP/ds) / (2 s) = (dP/d ln s) / (2 s^2) */
     *dPdD = g->log ? dPr / (2 * s * s) : dPr / (2 * fmax(s, 1e-9));
     if (U)
         *U = herm(g, g->U, g->dU, r, NULL);
-    if (*A < 0)
-        *A = 0;
 }
 
 /* Van der Waals branch (eq. 10 with PHYSICS.md's sign): P = P0 (Delta0 - xi)^2 /
@@ -684,9 +686,9 @@ double tt_contact_load(const tt_contact *c, double delta, int in_contact, double
             *a = ra;
         return c->p.K * ra * delta;
     }
-    double D = delta / c->d, P, dP, A;
+    double D = delta / c->d, P, dP, A = 0;
     if (in_contact) {
-        branch(c, D, &P, &dP, &A, NULL);
+        branch(c, D, &P, &dP, a ? &A : NULL, NULL);
         if (a)
             *a = A * c->a;
     } else {
@@ -705,9 +707,9 @@ double tt_contact_energy(const tt_contact *c, double delta, int in_contact)
         return c->cenergy(delta, in_contact, c->cuser);
     if (c->hertz)
         return delta <= 0 ? 0 : 0.4 * c->p.K * sqrt(c->p.R) * delta * delta * sqrt(delta);
-    double D = delta / c->d, P, dP, A, U;
+    double D = delta / c->d, P, dP, U;
     if (in_contact) {
-        branch(c, D, &P, &dP, &A, &U);
+        branch(c, D, &P, &dP, NULL, &U);
         U += c->Uc_shift;
     } else {
         vdw(c, D, &P, &dP, &U);

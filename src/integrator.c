@@ -374,19 +374,22 @@ static double dopri5_step(tt_sim *S, double h)
     int cs = S->contact_state;
     ensure_fsal(S);
     memcpy(k[0], S->fsal, sizeof k[0]);
-    for (int i = 0; i < NY; i++)
+    /* The stages read only the motion (d, v): the integrals do not feed back, so only
+     * the step's end carries them. */
+    memcpy(yt, y0, sizeof yt);
+    for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + h * A21 * k[0][i];
     rhs(S, t + C2 * h, yt, cs, k[1]);
-    for (int i = 0; i < NY; i++)
+    for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + h * (A31 * k[0][i] + A32 * k[1][i]);
     rhs(S, t + C3 * h, yt, cs, k[2]);
-    for (int i = 0; i < NY; i++)
+    for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + h * (A41 * k[0][i] + A42 * k[1][i] + A43 * k[2][i]);
     rhs(S, t + C4 * h, yt, cs, k[3]);
-    for (int i = 0; i < NY; i++)
+    for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + h * (A51 * k[0][i] + A52 * k[1][i] + A53 * k[2][i] + A54 * k[3][i]);
     rhs(S, t + C5 * h, yt, cs, k[4]);
-    for (int i = 0; i < NY; i++)
+    for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + h * (A61 * k[0][i] + A62 * k[1][i] + A63 * k[2][i] + A64 * k[3][i] +
                              A65 * k[4][i]);
     rhs(S, t + h, yt, cs, k[5]);
@@ -431,16 +434,17 @@ static void rk4_step(tt_sim *S, double h)
     int cs = S->contact_state;
     ensure_fsal(S);
     memcpy(k[0], S->fsal, sizeof k[0]);
+    memcpy(yt, y0, sizeof yt); /* the stages read only (d, v) */
     double smid = S->s0 + S->sdot * (t + 0.5 * h), send = S->s0 + S->sdot * (t + h);
-    for (int i = 0; i < NY; i++)
+    for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + 0.5 * h * k[0][i];
     double dmax = yt[Y_D] - smid;
     rhs(S, t + 0.5 * h, yt, cs, k[1]);
-    for (int i = 0; i < NY; i++)
+    for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + 0.5 * h * k[1][i];
     dmax = fmax(dmax, yt[Y_D] - smid);
     rhs(S, t + 0.5 * h, yt, cs, k[2]);
-    for (int i = 0; i < NY; i++)
+    for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + h * k[2][i];
     dmax = fmax(dmax, yt[Y_D] - send);
     rhs(S, t + h, yt, cs, k[3]);
