@@ -30,6 +30,7 @@
 
 typedef struct {
     double x0, h;          /* grid start and spacing in the segment's variable */
+    double inv_h;          /* 1 / h: look-ups multiply rather than divide */
     int log;               /* variable: 0 = s, 1 = ln s */
     int n;
     double P[N1], dP[N1];  /* values and derivatives in the segment's variable */
@@ -57,6 +58,8 @@ struct tt_contact {
     double s_in;           /* s at the jump-in point Delta0 */
     double Uc_shift;       /* U_contact = I(s) + Uc_shift */
     double vdw_cap;
+    double vdw_k2;         /* P0 (Delta0 - xi)^2, the van der Waals law's constant */
+    double inv_d, F_per_d; /* 1 / d* and F* / d*: look-ups multiply rather than divide */
     segment seg[NSEG];     /* [0, S_LO], [S_LO, S_A], [S_A, S1], [S1, S_MAX] */
     double Pend, Dend, Aend, Uend;
     /* physical scales F*, d*, a* */
@@ -271,7 +274,7 @@ static double solve_p(curve_kind k, double lam, double target, double pl, double
 /* Cubic Hermite on a segment: value and derivative in the segment's variable. */
 static inline double herm(const segment *g, const double *y, const double *dy, double x, double *d)
 {
-    double u = (x - g->x0) / g->h;
+    double u = (x - g->x0) * g->inv_h;
     int i = (int)floor(u);
     if (i < 0)
         i = 0;
@@ -282,13 +285,14 @@ static inline double herm(const segment *g, const double *y, const double *dy, d
                (t3 - t2) * h * dy[i + 1];
     if (d)
         *d = ((6 * t2 - 6 * t) * y[i] + (3 * t2 - 4 * t + 1) * h * dy[i] + (-6 * t2 + 6 * t) * y[i + 1] +
-              (3 * t2 - 2 * t) * h * dy[i + 1]) /
-             h;
+              (3 * t2 - 2 * t) * h * dy[i + 1]) *
+             g->inv_h;
     return v;
 }
 
 /* Normalised contact branch at Delta: load, dP/dDelta, A and U = I(s), the integral
- * of P dDelta from the branch's end. */
+ * of P dDelta from the branch's end. dPdD, A and U may be NULL: the time loop needs
+ * none of them, and each costs work of its own (a division, a table look-up). */
 static void branch(const struct tt_contact *c, double D, double *P, double *dPdD, double *A,
                    double *U)
 {
@@ -296,8 +300,10 @@ static void branch(const struct tt_contact *c, double D, double *P, double *dPdD
         /* Hertz tail (eq. 4), continuous with the table at its end */
         double r = sqrt(D), re = sqrt(c->Dend);
         *P = c->Pend + D * r - c->Dend * re;
-        *dPdD = 1.5 * r;
-        *A = c->Aend + r - re;
+        if (dPdD)
+            *dPdD = 1.5 * r;
+        if (A)
+            *A = c->Aend + r - re;
         if (U)
             *U = c->Uend + (c->Pend - c->Dend * re) * (D - c->Dend) +
                  0.4 * (D * D * r - c->Dend * c->Dend * re);
@@ -306,7 +312,7 @@ static void branch(const struct tt_contact *c, double D, double *P, double *dPdD
     double x = D - c->dmin;
     double s = x >= 0 ? sqrt(x) : -sqrt(-x);
     const segment *g;
-    double r, dPr;
+    double r, dPr = 0;
     if (s >= S_A && s <= S1) {
         g = &c->seg[2]; /* most contacts: uniform in s, no log */
         r = s;
@@ -321,22 +327,24 @@ static void branch(const struct tt_contact *c, double D, double *P, double *dPdD
          * stage overshoots (the first cubic spans only S_LO) */
         g = &c->seg[0];
         *P = g->P[0] + g->dP[0] * s;
-        *A = g->A[0] + g->dA[0] * s;
-        *dPdD = g->dP[0] / (2 * fmax(-s, 1e-9));
+        if (A)
+            *A = g->A[0] + g->dA[0] * s < 0 ? 0.0 : g->A[0] + g->dA[0] * s;
+        if (dPdD)
+            *dPdD = g->dP[0] / (2 * fmax(-s, 1e-9));
         if (U)
             *U = g->U[0] + g->dU[0] * s;
-        if (*A < 0)
-            *A = 0;
         return;
     }
-    *P = herm(g, g->P, g->dP, r, &dPr);
-    *A = herm(g, g->A, g->dA, r, NULL);
+    *P = herm(g, g->P, g->dP, r, dPdD ? &dPr : NULL);
+    if (A) {
+        double Av = herm(g, g->A, g->dA, r, NULL);
+        *A = Av < 0 ? 0 : Av;
+    }
     /* dP/dDelta = (dP/ds) / (2 s) = (dP/d ln s) / (2 s^2) */
-    *dPdD = g->log ? dPr / (2 * s * s) : dPr / (2 * fmax(s, 1e-9));
+    if (dPdD)
+        *dPdD = g->log ? dPr / (2 * s * s) : dPr / (2 * fmax(s, 1e-9));
     if (U)
         *U = herm(g, g->U, g->dU, r, NULL);
-    if (*A < 0)
-        *A = 0;
 }
 
 /* Van der Waals branch (eq. 10 with PHYSICS.md's sign): P = P0 (Delta0 - xi)^2 /
@@ -345,25 +353,29 @@ static void branch(const struct tt_contact *c, double D, double *P, double *dPdD
 static void vdw(const struct tt_contact *c, double D, double *P, double *dPdD, double *U)
 {
     if (c->P0 == 0) {
-        *P = *dPdD = 0;
+        *P = 0;
+        if (dPdD)
+            *dPdD = 0;
         if (U)
             *U = 0;
         return;
     }
-    double k2 = (c->D0 - c->xi) * (c->D0 - c->xi) * c->P0;
+    double k2 = c->vdw_k2;
     double Dc = D < c->vdw_cap ? D : c->vdw_cap;
-    double r = Dc - c->xi;
-    double Pc = k2 / (r * r), dPc = -2 * k2 / (r * r * r), Uc = -k2 / r;
+    double ir = 1.0 / (Dc - c->xi); /* one division for all three */
+    double Uc = -k2 * ir, Pc = -Uc * ir, dPc = -2 * Pc * ir;
     if (D <= c->vdw_cap) {
         *P = Pc;
-        *dPdD = dPc;
+        if (dPdD)
+            *dPdD = dPc;
         if (U)
             *U = Uc;
         return;
     }
     double e = D - c->vdw_cap;
     *P = Pc + dPc * e;
-    *dPdD = dPc;
+    if (dPdD)
+        *dPdD = dPc;
     if (U)
         *U = Uc + Pc * e + 0.5 * dPc * e * e;
 }
@@ -396,6 +408,7 @@ static void build_table(struct tt_contact *c, double pf)
         g->n = nodes[gi];
         g->x0 = lo_s[gi];
         g->h = (hi_s[gi] - lo_s[gi]) / (g->n - 1);
+        g->inv_h = 1.0 / g->h;
         for (int i = 0; i < g->n; i++) {
             double x = g->x0 + g->h * i;
             double s = g->log ? exp(x) : x;
@@ -475,6 +488,9 @@ static int build_curve(struct tt_contact *c)
     tt_contact_summary *S = &c->sum;
     double pf, pmin, Pmin;
     curve_end(c->kind, c->lambda, &c->P0, &c->D0);
+    c->vdw_k2 = (c->D0 - c->xi) * (c->D0 - c->xi) * c->P0;
+    c->inv_d = 1.0 / c->d;
+    c->F_per_d = c->F / c->d;
     find_extrema(c->kind, c->lambda, &pf, &pmin, &Pmin);
     if (c->kind == CURVE_DMT)
         pf = 0; /* Delta rises from A = 0, its own end */
@@ -684,18 +700,18 @@ double tt_contact_load(const tt_contact *c, double delta, int in_contact, double
             *a = ra;
         return c->p.K * ra * delta;
     }
-    double D = delta / c->d, P, dP, A;
+    double D = delta * c->inv_d, P, dP, A = 0;
     if (in_contact) {
-        branch(c, D, &P, &dP, &A, NULL);
+        branch(c, D, &P, dPdd ? &dP : NULL, a ? &A : NULL, NULL);
         if (a)
             *a = A * c->a;
     } else {
-        vdw(c, D, &P, &dP, NULL);
+        vdw(c, D, &P, dPdd ? &dP : NULL, NULL);
         if (a)
             *a = 0;
     }
     if (dPdd)
-        *dPdd = dP * c->F / c->d;
+        *dPdd = dP * c->F_per_d;
     return P * c->F;
 }
 
@@ -705,12 +721,12 @@ double tt_contact_energy(const tt_contact *c, double delta, int in_contact)
         return c->cenergy(delta, in_contact, c->cuser);
     if (c->hertz)
         return delta <= 0 ? 0 : 0.4 * c->p.K * sqrt(c->p.R) * delta * delta * sqrt(delta);
-    double D = delta / c->d, P, dP, A, U;
+    double D = delta * c->inv_d, P, U;
     if (in_contact) {
-        branch(c, D, &P, &dP, &A, &U);
+        branch(c, D, &P, NULL, NULL, &U);
         U += c->Uc_shift;
     } else {
-        vdw(c, D, &P, &dP, &U);
+        vdw(c, D, &P, NULL, &U);
     }
     return U * c->F * c->d;
 }
