@@ -43,6 +43,19 @@ tt_scene *cli_load_scene(char **files, int nfiles, char **sets, int nsets)
     return s;
 }
 
+tt_scene *cli_scene_args(const char *cmd, int argc, char **argv, int optind_, char **sets,
+                         int nsets, int *exit_code)
+{
+    tt_scene *scene = NULL;
+    *exit_code = CLI_USAGE;
+    if (optind_ >= argc)
+        fprintf(stderr, "tiptap %s: needs a scene file; see 'tiptap %s --help'\n", cmd, cmd);
+    else if (!(scene = cli_load_scene(argv + optind_, argc - optind_, sets, nsets)))
+        *exit_code = CLI_FAIL;
+    free(sets);
+    return scene;
+}
+
 int cli_progress_enabled(void) { return isatty(STDERR_FILENO); }
 
 static void on_sigint(int sig)

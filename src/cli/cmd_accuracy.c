@@ -407,15 +407,10 @@ int cmd_accuracy(int argc, char **argv)
         }
         p.ladders = picked;
     }
-    if (optind >= argc) {
-        free(sets);
-        fprintf(stderr, "tiptap accuracy: needs a scene file; see 'tiptap accuracy --help'\n");
-        return CLI_USAGE;
-    }
-    tt_scene *scene = cli_load_scene(argv + optind, argc - optind, sets, nsets);
-    free(sets);
+    int code;
+    tt_scene *scene = cli_scene_args("accuracy", argc, argv, optind, sets, nsets, &code);
     if (!scene)
-        return CLI_FAIL;
+        return code;
     double t0 = cli_now();
     tt_accuracy *a = NULL;
     tt_outfile *of = NULL;

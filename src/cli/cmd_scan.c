@@ -163,15 +163,15 @@ int cmd_scan(int argc, char **argv)
         default: free(sets); return CLI_USAGE;
         }
     }
-    if (optind >= argc || !dir) {
+    if (!dir) {
         free(sets);
-        fprintf(stderr, "tiptap scan: needs a scene file and -o DIR; see 'tiptap scan --help'\n");
+        fprintf(stderr, "tiptap scan: needs -o DIR; see 'tiptap scan --help'\n");
         return CLI_USAGE;
     }
-    tt_scene *scene = cli_load_scene(argv + optind, argc - optind, sets, nsets);
-    free(sets);
+    int code;
+    tt_scene *scene = cli_scene_args("scan", argc, argv, optind, sets, nsets, &code);
     if (!scene)
-        return CLI_FAIL;
+        return code;
     double t0 = cli_now();
     tt_scan *scan = NULL;
     char path[4096];

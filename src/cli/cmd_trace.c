@@ -116,15 +116,10 @@ int cmd_trace(int argc, char **argv)
         default: free(sets); return CLI_USAGE;
         }
     }
-    if (optind >= argc) {
-        free(sets);
-        fprintf(stderr, "tiptap trace: needs a scene file; see 'tiptap trace --help'\n");
-        return CLI_USAGE;
-    }
-    tt_scene *scene = cli_load_scene(argv + optind, argc - optind, sets, nsets);
-    free(sets);
+    int code;
+    tt_scene *scene = cli_scene_args("trace", argc, argv, optind, sets, nsets, &code);
     if (!scene)
-        return CLI_FAIL;
+        return code;
     double t0 = cli_now();
     tt_setup *st = NULL;
     tt_outfile *of = NULL;

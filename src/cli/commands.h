@@ -24,6 +24,12 @@ int cli_fail(int status, const char *msg);
 /* Load scene files in order and apply --set assignments; NULL on error (reported). */
 tt_scene *cli_load_scene(char **files, int nfiles, char **sets, int nsets);
 
+/* The scene files left after the options (argv from optind on) and the --set
+ * assignments, for command cmd. Frees sets. NULL with *exit_code set when there is no
+ * scene file (usage) or it does not load (failure, reported). */
+tt_scene *cli_scene_args(const char *cmd, int argc, char **argv, int optind_, char **sets,
+                         int nsets, int *exit_code);
+
 /* 1 when stderr is a terminal: progress lines go there only then. */
 int cli_progress_enabled(void);
 
