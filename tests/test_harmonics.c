@@ -4,7 +4,7 @@
 #include <stdlib.h>
 
 #include "tt_test.h"
-#include "tt_refuse.h"
+#include "tt_scan_test.h"
 #include "tiptap/error.h"
 #include "tiptap/lockin.h"
 #include "tiptap/scan.h"
@@ -20,19 +20,7 @@ static const char *base =
     "[lockin]\nharmonics = 3\n"
     "[feedback]\nsetpoint = 80 %\nintegral_gain = 3000 Hz\n";
 
-static tt_scan *run_scan(const char *extra, tt_scene **sc)
-{
-    *sc = tt_scene_alloc();
-    assert_int_equal(tt_scene_load_string(*sc, base, "base"), TT_OK);
-    if (tt_scene_load_string(*sc, extra, "extra") != TT_OK)
-        fail_msg("%s", tt_error_message());
-    tt_scan *s;
-    if (tt_scan_alloc(&s, *sc) != TT_OK)
-        fail_msg("%s", tt_error_message());
-    if (tt_scan_run(s, 2, NULL, NULL) != TT_OK)
-        fail_msg("%s", tt_error_message());
-    return s;
-}
+static tt_scan *run_scan(const char *extra, tt_scene **sc) { return tt_run_scan(base, extra, sc); }
 
 static double row_mean(const double *img, long row)
 {

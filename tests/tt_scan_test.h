@@ -1,0 +1,41 @@
+/* Scans for tests: run one on a scene base plus extra text, or expect one refused. */
+#ifndef TT_SCAN_TEST_H
+#define TT_SCAN_TEST_H
+
+#include "tiptap/error.h"
+#include "tiptap/scan.h"
+
+/* The scan of base plus extra, run on two threads; *sc receives the scene (the caller
+ * frees both). */
+static inline tt_scan *tt_run_scan(const char *base, const char *extra, tt_scene **sc)
+{
+    *sc = tt_scene_alloc();
+    assert_int_equal(tt_scene_load_string(*sc, base, "base"), TT_OK);
+    if (tt_scene_load_string(*sc, extra, "extra") != TT_OK)
+        fail_msg("%s", tt_error_message());
+    tt_scan *s;
+    if (tt_scan_alloc(&s, *sc) != TT_OK)
+        fail_msg("%s", tt_error_message());
+    if (tt_scan_run(s, 2, NULL, NULL) != TT_OK)
+        fail_msg("%s", tt_error_message());
+    return s;
+}
+
+/* The scene base plus text must be refused, by the loader or by tt_scan_alloc, with a
+ * message containing fragment. */
+static inline void tt_expect_scan_refused(const char *base, const char *text, const char *fragment)
+{
+    tt_scene *sc = tt_scene_alloc();
+    assert_int_equal(tt_scene_load_string(sc, base, "base"), TT_OK);
+    int rc = tt_scene_load_string(sc, text, "bad.ini");
+    tt_scan *s = NULL;
+    if (rc == TT_OK)
+        rc = tt_scan_alloc(&s, sc);
+    if (rc == TT_OK)
+        fail_msg("accepted: %s", text);
+    if (!strstr(tt_error_message(), fragment))
+        fail_msg("'%s' lacks '%s'", tt_error_message(), fragment);
+    tt_scene_free(sc);
+}
+
+#endif
