@@ -172,7 +172,6 @@ int tt_solver_from_scene(tt_solver *s, const tt_scene *scene)
     return TT_OK;
 }
 
-
 /* The free flight's constants for the current cantilever. Out of contact seed eq. 2 is
  * m d'' + c d' + k d = k z + c z' + F - P_vdw(d - s): its drive part has the steady
  * solution d_p = Re(D e^(i w t)), D = (k a + F0 + i c w a) / (k - m w^2 + i c w), and
@@ -1210,6 +1209,15 @@ static void observe(tt_sim *S, double th)
             S->peak_force = F;
         if (delta > S->max_indent)
             S->max_indent = delta;
+    }
+    /* A flight step's ends are too far apart to stand for the far turning point, where an
+     * attraction is weakest and the force greatest: locate a minimum of the penetration. */
+    if (S->step_flight && v0 < 0 && v1 > 0) {
+        double tm = bracket_root(S, 1, 0, 0, th, v0, v1);
+        dense(S, tm, &d, &v);
+        F = ts_force(S, t0 + tm * h, d, v, S->contact_state, &delta);
+        if (F > S->peak_force)
+            S->peak_force = F;
     }
     /* In contact the force (load plus interaction damping) may peak anywhere in the
      * step: sample it at quarter steps and refine an interior maximum by a parabola. */
