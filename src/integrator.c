@@ -5,7 +5,9 @@
  * the same steps, the per-cycle integrals that give the observables: the Fourier
  * sums of the deflection, the energies, the contact time. Events are found on the
  * step's continuous extension (dense output), then the step is redone up to the event
- * so that the state at the switch is a true integration result. */
+ * so that the state at the switch is a true integration result. Out of contact and away
+ * from the surface, dopri5 gives way to exact-propagator steps (flight_step), which
+ * integrate the same quantities by quadrature and hand back before any event. */
 #include "tiptap/integrator.h"
 
 #include <float.h>
