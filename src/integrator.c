@@ -104,6 +104,7 @@ struct tt_sim {
     int fl_rej;          /* the last flight attempt was rejected: do not lengthen the next */
     double fl_h0;        /* the ladder's longest step, min(T, 2 pi / w0) / 8 */
     double fl_sig, fl_wdm, fl_w02; /* decay rate c / 2m, damped frequency, k / m */
+    double fl_hr[FL_RUNGS]; /* the rungs' step lengths, fl_h0 2^(-r/4) */
     double fl_Dr, fl_Di; /* steady drive response d_p = Dr cos(w t) - Di sin(w t) */
     double fl_margin;    /* hand over to dopri5 within this penetration of jump-in */
     double fl_vinv[FL_N][FL_N]; /* node values to monomial coefficients in theta */
@@ -197,7 +198,8 @@ static void flight_setup(tt_sim *S)
     S->fl_nrung = 0;
     for (int r = 0; r < FL_RUNGS; r++) {
         S->fl_lad[r].ok = 0;
-        if (c->w0 * S->fl_h0 * pow(2.0, -0.25 * r) >= 0.1)
+        S->fl_hr[r] = S->fl_h0 * pow(2.0, -0.25 * r);
+        if (c->w0 * S->fl_hr[r] >= 0.1)
             S->fl_nrung = r + 1;
     }
     if (S->fl_nrung < 4)
@@ -1414,7 +1416,7 @@ int tt_sim_cycle(tt_sim *S, tt_cycle *out)
             if (S->fl_ok && !S->contact_state && S->fl_skip == 0 && !S->fl_wait &&
                 S->y[Y_D] - (S->s0 + S->sdot * S->tau) < S->jumpin - S->fl_margin) {
                 int r = S->fl_rung;
-                double hf = S->fl_h0 * pow(2.0, -0.25 * r);
+                double hf = S->fl_hr[r];
                 const fl_cache *F;
                 int lastf = 0;
                 if (S->tau + hf >= T - hmin) {
