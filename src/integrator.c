@@ -5,7 +5,9 @@
  * the same steps, the per-cycle integrals that give the observables: the Fourier
  * sums of the deflection, the energies, the contact time. Events are found on the
  * step's continuous extension (dense output), then the step is redone up to the event
- * so that the state at the switch is a true integration result. */
+ * so that the state at the switch is a true integration result. Out of contact and away
+ * from the surface, dopri5 gives way to exact-propagator steps (flight_step), which
+ * integrate the same quantities by quadrature and hand back before any event. */
 #include "tiptap/integrator.h"
 
 #include <float.h>
@@ -29,6 +31,24 @@ enum {
     Y_TC,     /* time in contact */
     NY
 };
+
+/* Free flight: Gauss-Legendre nodes on [0, 1] (the collocation points of the forcing
+ * and the quadrature of the per-cycle integrals) and the step ladder. */
+enum { FL_N = 6, FL_RUNGS = 12 };
+static const double FL_C[FL_N] = {
+    0.5 - 0.4662347571015760, 0.5 - 0.3306046932331323, 0.5 - 0.1193095930415985,
+    0.5 + 0.1193095930415985, 0.5 + 0.3306046932331323, 0.5 + 0.4662347571015760};
+static const double FL_W[FL_N] = {0.0856622461895852, 0.1803807865240693, 0.2339569672863455,
+                                  0.2339569672863455, 0.1803807865240693, 0.0856622461895852};
+
+/* The free oscillator's propagator and the drive's rotation at the nodes and the end
+ * (index FL_N) of a step of length h. */
+typedef struct {
+    double h;
+    double e[FL_N + 1], cd[FL_N + 1], sd[FL_N + 1]; /* exp(-sig tau), cos, sin(wdm tau) */
+    double cw[FL_N + 1], sw[FL_N + 1];              /* cos, sin(w tau) */
+    int ok;
+} fl_cache;
 
 struct tt_sim {
     tt_cantilever c;
@@ -74,6 +94,25 @@ struct tt_sim {
     double peak_force, max_indent, y_min, y_max, e_jumps, t_contact, t_release;
     long steps, rejected, events;
     int failed;
+    /* free flight: exponential steps out of contact (dopri5 only; see flight_step) */
+    int fl_ok;           /* this sim may fly: dopri5, underdamped, no extremes tracked */
+    int step_flight;     /* the current step is a flight step: dense output from fl_* */
+    int fl_rung;         /* ladder rung of the flight's next step */
+    int fl_nrung;        /* rungs usable (w0 h >= 0.1; see flight_particular) */
+    int fl_skip;         /* dopri5 steps to take before the flight is tried again */
+    int fl_wait;         /* handed over near the surface: dopri5 until the tip recedes */
+    int fl_rej;          /* the last flight attempt was rejected: do not lengthen the next */
+    double fl_h0;        /* the ladder's longest step, min(T, 2 pi / w0) / 8 */
+    double fl_sig, fl_wdm, fl_w02; /* decay rate c / 2m, damped frequency, k / m */
+    double fl_hr[FL_RUNGS]; /* the rungs' step lengths, fl_h0 2^(-r/4) */
+    double fl_Dr, fl_Di; /* steady drive response d_p = Dr cos(w t) - Di sin(w t) */
+    double fl_margin;    /* hand over to dopri5 within this penetration of jump-in */
+    double fl_vinv[FL_N][FL_N]; /* node values to monomial coefficients in theta */
+    fl_cache fl_lad[FL_RUNGS], fl_scr; /* propagators per ladder rung, and a scratch one */
+    /* the current flight step: q(theta) = sum b_k theta^k and the homogeneous part's
+     * initial offset r0 and its time derivative */
+    double fl_b[FL_N], fl_r0, fl_r0d;
+    double fl_pen[FL_N + 2], fl_vel[FL_N + 2]; /* penetration and its rate at 0, nodes, 1 */
 };
 
 /* ---- dopri5 coefficients (Dormand & Prince 1980; dense output of Hairer's dopri5) ---- */
@@ -136,6 +175,72 @@ int tt_solver_from_scene(tt_solver *s, const tt_scene *scene)
     return TT_OK;
 }
 
+/* The free flight's constants for the current cantilever. Out of contact seed eq. 2 is
+ * m d'' + c d' + k d = k z + c z' + F - P_vdw(d - s): its drive part has the steady
+ * solution d_p = Re(D e^(i w t)), D = (k a + F0 + i c w a) / (k - m w^2 + i c w), and
+ * x = d - d_p obeys a damped oscillator forced by -P / m alone. */
+static void flight_setup(tt_sim *S)
+{
+    const tt_cantilever *c = &S->c;
+    double zeta = 0.5 * c->c / (c->m * c->w0);
+    S->fl_ok = S->solver.method == TT_METHOD_DOPRI5 && zeta < 0.8 && !S->track_extremes;
+    S->fl_sig = 0.5 * c->c / c->m;
+    S->fl_w02 = c->k / c->m;
+    S->fl_wdm = sqrt(fmax(S->fl_w02 - S->fl_sig * S->fl_sig, 0.0));
+    double a = c->drive == TT_DRIVE_BASE ? c->a_d : 0.0, F0 = c->drive == TT_DRIVE_BASE ? 0.0 : c->F0;
+    double nr = c->k * a + F0, ni = c->c * c->wd * a;
+    double dr = c->k - c->m * c->wd * c->wd, di = c->c * c->wd, den = dr * dr + di * di;
+    S->fl_Dr = (nr * dr + ni * di) / den;
+    S->fl_Di = (ni * dr - nr * di) / den;
+    /* at most one turning point of the drive or the free motion per step (T/8), which the
+     * hand-over check relies on */
+    S->fl_h0 = fmin(c->T, 2 * M_PI / c->w0) / 8;
+    S->fl_nrung = 0;
+    for (int r = 0; r < FL_RUNGS; r++) {
+        S->fl_lad[r].ok = 0;
+        S->fl_hr[r] = S->fl_h0 * pow(2.0, -0.25 * r);
+        if (c->w0 * S->fl_hr[r] >= 0.1)
+            S->fl_nrung = r + 1;
+    }
+    if (S->fl_nrung < 4)
+        S->fl_ok = 0;
+    S->fl_rung = 0;
+    S->fl_skip = 0;
+    S->fl_wait = 0;
+    S->fl_scr.ok = 0;
+    /* the node-value to monomial map: the inverse of the Vandermonde matrix V[j][k] =
+     * c_j^k, by Gauss-Jordan (well conditioned at degree 5 on [0, 1]) */
+    double V[FL_N][2 * FL_N];
+    for (int j = 0; j < FL_N; j++)
+        for (int k = 0; k < FL_N; k++) {
+            V[j][k] = pow(FL_C[j], k);
+            V[j][FL_N + k] = j == k;
+        }
+    for (int col = 0; col < FL_N; col++) {
+        int p = col;
+        for (int r = col + 1; r < FL_N; r++)
+            if (fabs(V[r][col]) > fabs(V[p][col]))
+                p = r;
+        for (int k = 0; k < 2 * FL_N; k++) {
+            double t = V[col][k];
+            V[col][k] = V[p][k];
+            V[p][k] = t;
+        }
+        double piv = V[col][col];
+        for (int k = 0; k < 2 * FL_N; k++)
+            V[col][k] /= piv;
+        for (int r = 0; r < FL_N; r++)
+            if (r != col) {
+                double f = V[r][col];
+                for (int k = 0; k < 2 * FL_N; k++)
+                    V[r][k] -= f * V[col][k];
+            }
+    }
+    for (int k = 0; k < FL_N; k++)
+        for (int j = 0; j < FL_N; j++)
+            S->fl_vinv[k][j] = V[k][FL_N + j];
+}
+
 int tt_sim_alloc(tt_sim **out, const tt_cantilever *c, const tt_solver *solver)
 {
     *out = NULL;
@@ -157,6 +262,7 @@ int tt_sim_alloc(tt_sim **out, const tt_cantilever *c, const tt_solver *solver)
      * of the amplitude (measured), which the motion's estimate does not see. */
     S->radau_hmax = solver->method == TT_METHOD_RADAU ? pow(1e5 * solver->tolerance, 1.0 / 6.0) / c->wd
                                                       : INFINITY;
+    flight_setup(S);
     tt_sim_set_contact(S, NULL, NAN);
     tt_sim_reset_free(S);
     *out = S;
@@ -192,6 +298,9 @@ void tt_sim_set_contact(tt_sim *S, const tt_contact *contact, double Qi)
      * threshold, and a grazing tip may end a step just past one without a sign change;
      * only past this margin is a switch forced (tiny next to any force-law length). */
     S->margin = 1e-6 * S->c.A0;
+    /* within this of jump-in the flight hands over to dopri5, so that contact events are
+     * always located on dopri5 steps exactly as without it */
+    S->fl_margin = 0.05 * S->c.A0;
     invalidate(S);
 }
 
@@ -208,13 +317,19 @@ void tt_sim_set_sampling(tt_sim *S, int n, tt_sample *buf)
     S->samples = buf;
 }
 
-void tt_sim_track_extremes(tt_sim *S, int on) { S->track_extremes = on; }
+void tt_sim_track_extremes(tt_sim *S, int on)
+{
+    S->track_extremes = on;
+    /* the extremes are taken at step ends, which the flight's long steps would coarsen */
+    flight_setup(S);
+}
 
 void tt_sim_set_cantilever(tt_sim *S, const tt_cantilever *c)
 {
     /* Same drive period required: the cycle bookkeeping assumes it. */
     S->c = *c;
     S->inv_m = 1.0 / c->m;
+    flight_setup(S);
     tt_sim_set_contact(S, S->contact, S->ci > 0 ? S->c.m * S->c.w0 / S->ci : NAN);
 }
 
@@ -460,6 +575,7 @@ static double dopri5_step(tt_sim *S, double h)
     memcpy(S->y0, y0, sizeof S->y0);
     S->step_tau = t;
     S->step_h = h;
+    S->step_flight = 0;
     return err;
 }
 
@@ -497,6 +613,7 @@ static void rk4_step(tt_sim *S, double h)
     memcpy(S->y0, y0, sizeof S->y0);
     S->step_tau = t;
     S->step_h = h;
+    S->step_flight = 0;
 }
 
 /* A radau collocation polynomial of d and v in Newton form on the nodes 0, c1, c2, 1. */
@@ -574,6 +691,7 @@ static double radau_step(tt_sim *S, double h)
     memcpy(S->y0, y0, sizeof S->y0);
     S->step_tau = t;
     S->step_h = h;
+    S->step_flight = 0;
 
     /* Jacobian of (d' = v, v' = f) at the step start: df/dd = -(k + dP/ddelta) / m,
      * df/dv = -(c + c_i) / m. */
@@ -700,10 +818,217 @@ static double radau_step(tt_sim *S, double h)
     return isfinite(err) ? err : INFINITY;
 }
 
+/* ---- free flight: an exponential step out of contact ---- */
+
+static void fl_fill(const tt_sim *S, fl_cache *F, double h)
+{
+    for (int j = 0; j <= FL_N; j++) {
+        double tau = (j < FL_N ? FL_C[j] : 1.0) * h;
+        F->e[j] = exp(-S->fl_sig * tau);
+        F->cd[j] = cos(S->fl_wdm * tau);
+        F->sd[j] = sin(S->fl_wdm * tau);
+        F->cw[j] = cos(S->c.wd * tau);
+        F->sw[j] = sin(S->c.wd * tau);
+    }
+    F->h = h;
+    F->ok = 1;
+}
+
+/* The flight's force term -P(d - s) / m on the out-of-contact branch. */
+static inline double fl_force(const tt_sim *S, double delta)
+{
+    return S->contact ? -tt_contact_load(S->contact, delta, 0, NULL, NULL) * S->inv_m : 0.0;
+}
+
+/* The polynomial particular solution of x_thth + 2 sig h x_th + w0^2 h^2 x = h^2 p(theta)
+ * for p = sum a_k theta^k, by back substitution from the top degree; it loses about
+ * (w0 h)^-10 of rounding relative to the forcing's displacement, which the ladder's
+ * floor w0 h >= 0.1 keeps far below any tolerance. */
+static void flight_particular(const tt_sim *S, double h, const double *a, double *b)
+{
+    double h2 = h * h, s2 = 2 * S->fl_sig * h, iw = 1.0 / (S->fl_w02 * h2);
+    double b1 = 0, b2 = 0;
+    for (int k = FL_N - 1; k >= 0; k--) {
+        double bk = (h2 * a[k] - (k + 1) * s2 * b1 - (k + 2) * (k + 1) * b2) * iw;
+        b[k] = bk;
+        b2 = b1;
+        b1 = bk;
+    }
+}
+
+/* x and x' at a node j of the cache F from the current step's q and r0. */
+static inline void fl_node(const tt_sim *S, const fl_cache *F, int j, double th, double h, double *x,
+                           double *xd)
+{
+    const double *b = S->fl_b;
+    double q = b[FL_N - 1], qd = 0;
+    for (int k = FL_N - 2; k >= 0; k--) {
+        qd = qd * th + q;
+        q = q * th + b[k];
+    }
+    double A = S->fl_r0, B = (S->fl_r0d + S->fl_sig * A) / S->fl_wdm;
+    double e = F->e[j], cs = F->cd[j], sn = F->sd[j];
+    *x = q + e * (A * cs + B * sn);
+    *xd = qd / h + e * (S->fl_r0d * cs - (S->fl_sig * B + S->fl_wdm * A) * sn);
+}
+
+/* One exponential step of length h from (tau, y) out of contact, into y1 with the
+ * per-cycle integrals, filling the dense data. d = d_p + x with x advanced exactly for
+ * the linear part (the damped oscillator's propagator) and the van der Waals force
+ * interpolated at six Gauss-Legendre nodes by a degree-5 polynomial (collocation,
+ * solved by Picard iteration, which contracts by about (dP/ddelta / k) (w0 h)^2, tiny
+ * out of contact). The error estimate is the interpolation's miss at the step end,
+ * mapped to the velocity it moves over the step (h |dN|), relative to the tolerance of
+ * dopri5's estimate. Returns it (<= 1 accepts), or -1 if the iteration did not
+ * converge. */
+static double flight_step(tt_sim *S, double h, const fl_cache *F)
+{
+    const tt_cantilever *c = &S->c;
+    const double t0 = S->tau, w = c->wd, *y0 = S->y;
+    const double Dr = S->fl_Dr, Di = S->fl_Di;
+    const double sc = 1.0 / (S->solver.tolerance * c->A0 * w);
+    double s0w, c0w;
+    phase_sincos(w * t0, &s0w, &c0w);
+    double cw[FL_N + 1], sw[FL_N + 1], dp[FL_N + 1], dpd[FL_N + 1], sj[FL_N + 1];
+    for (int j = 0; j <= FL_N; j++) {
+        cw[j] = c0w * F->cw[j] - s0w * F->sw[j];
+        sw[j] = s0w * F->cw[j] + c0w * F->sw[j];
+        dp[j] = Dr * cw[j] - Di * sw[j];
+        dpd[j] = -w * (Dr * sw[j] + Di * cw[j]);
+        sj[j] = S->s0 + S->sdot * (t0 + (j < FL_N ? FL_C[j] : 1.0) * h);
+    }
+    const double x0 = y0[Y_D] - (Dr * c0w - Di * s0w), x0d = y0[Y_V] + w * (Dr * s0w + Di * c0w);
+    double N[FL_N], a[FL_N], xj[FL_N], xdj[FL_N];
+    double N0 = fl_force(S, y0[Y_D] - (S->s0 + S->sdot * t0));
+    for (int j = 0; j < FL_N; j++)
+        N[j] = N0;
+    /* Picard iteration. After the first round the next change of the forcing is bounded
+     * by its slope |dP/ddelta| / m at the node nearest the surface (the largest, the
+     * force rising towards it) times the change of x, which spares the second round of
+     * force evaluations when that is small enough. */
+    int conv = 0;
+    double L = -1, xprev[FL_N];
+    for (int it = 0; it < 5 && !conv; it++) {
+        for (int k = 0; k < FL_N; k++) {
+            double acc = 0;
+            for (int j = 0; j < FL_N; j++)
+                acc += S->fl_vinv[k][j] * N[j];
+            a[k] = acc;
+        }
+        flight_particular(S, h, a, S->fl_b);
+        S->fl_r0 = x0 - S->fl_b[0];
+        S->fl_r0d = x0d - S->fl_b[1] / h;
+        double dx = 0;
+        for (int j = 0; j < FL_N; j++) {
+            fl_node(S, F, j, FL_C[j], h, &xj[j], &xdj[j]);
+            if (it > 0)
+                dx = fmax(dx, fabs(xj[j] - xprev[j]));
+            xprev[j] = xj[j];
+        }
+        /* the last change moves the velocity by about h chg: converged when that is a
+         * hundredth of the tolerance */
+        if (it > 0 && L >= 0 && h * (2 * L * dx) * sc < 0.01)
+        {
+            conv = 1;
+            break;
+        }
+        double chg = 0;
+        int jn = 0;
+        for (int j = 0; j < FL_N; j++) {
+            double pen = dp[j] + xj[j] - sj[j];
+            double Nn = fl_force(S, pen);
+            chg = fmax(chg, fabs(Nn - N[j]));
+            N[j] = Nn;
+            if (pen > dp[jn] + xj[jn] - sj[jn])
+                jn = j;
+        }
+        conv = h * chg * sc < 0.01;
+        if (!conv && it == 0 && S->contact) {
+            double dPdd = 0;
+            (void)tt_contact_load(S->contact, dp[jn] + xj[jn] - sj[jn], 0, &dPdd, NULL);
+            L = fabs(dPdd) * S->inv_m;
+        }
+    }
+    if (!conv)
+        return -1;
+    double xe, xed;
+    fl_node(S, F, FL_N, 1.0, h, &xe, &xed);
+    double *y1 = S->y1;
+    y1[Y_D] = dp[FL_N] + xe;
+    y1[Y_V] = dpd[FL_N] + xed;
+    double pe = 0;
+    for (int k = 0; k < FL_N; k++)
+        pe += a[k];
+    double err = h * fabs(fl_force(S, y1[Y_D] - sj[FL_N]) - pe) * sc;
+    /* the per-cycle integrals by the nodes' Gauss-Legendre rule: exact to about
+     * 1e-13 of a step's share for integrands up to twice the drive frequency at h = T/8 */
+    double q[NY] = {0};
+    for (int j = 0; j < FL_N; j++) {
+        double d = dp[j] + xj[j], v = dpd[j] + xdj[j];
+        double z, zd, Fd;
+        if (c->drive == TT_DRIVE_BASE) {
+            z = c->a_d * cw[j];
+            zd = -c->a_d * w * sw[j];
+            Fd = 0;
+        } else {
+            z = zd = 0;
+            Fd = c->F0 * cw[j];
+        }
+        double y = d - z, spring = c->k * y, damp = c->c * (v - zd), W = FL_W[j];
+        q[Y_WDRIVE] += W * (Fd * v - (spring + damp) * zd);
+        q[Y_WDAMP] += W * damp * (v - zd);
+        q[Y_WS] += W * (-N[j] * c->m) * S->sdot;
+        q[Y_IC] += W * y * cw[j];
+        q[Y_IS] += W * y * sw[j];
+        q[Y_IY] += W * y;
+    }
+    for (int i = Y_WDRIVE; i < NY; i++)
+        y1[i] = y0[i] + h * q[i];
+    S->fl_pen[0] = y0[Y_D] - (S->s0 + S->sdot * t0);
+    S->fl_vel[0] = y0[Y_V] - S->sdot;
+    for (int j = 0; j < FL_N; j++) {
+        S->fl_pen[j + 1] = dp[j] + xj[j] - sj[j];
+        S->fl_vel[j + 1] = dpd[j] + xdj[j] - S->sdot;
+    }
+    S->fl_pen[FL_N + 1] = y1[Y_D] - sj[FL_N];
+    S->fl_vel[FL_N + 1] = y1[Y_V] - S->sdot;
+    memcpy(S->y0, y0, sizeof S->y0);
+    S->step_tau = t0;
+    S->step_h = h;
+    S->step_flight = 1;
+    return isfinite(err) ? err : INFINITY;
+}
+
+/* Dense output of a flight step: the exact propagator at any fraction th. */
+static void dense_flight(const tt_sim *S, double th, double *d, double *v)
+{
+    if (th == 0 || th == 1) {
+        const double *y = th == 0 ? S->y0 : S->y1;
+        *d = y[Y_D];
+        *v = y[Y_V];
+        return;
+    }
+    fl_cache F;
+    double h = S->step_h, tau = th * h;
+    F.e[0] = exp(-S->fl_sig * tau);
+    /* the damped rotation's angle is below 2 pi (steps of at most 1/8 of a free period),
+     * where the drive's own sine and cosine serve, at a third of the library's cost */
+    phase_sincos(S->fl_wdm * tau, &F.sd[0], &F.cd[0]);
+    double x, xd, sn, cs;
+    fl_node(S, &F, 0, th, h, &x, &xd);
+    phase_sincos(S->c.wd * (S->step_tau + tau), &sn, &cs);
+    *d = S->fl_Dr * cs - S->fl_Di * sn + x;
+    *v = -S->c.wd * (S->fl_Dr * sn + S->fl_Di * cs) + xd;
+}
+
 /* Dense output of d and v at fraction th of the current step. */
 static void dense(const tt_sim *S, double th, double *d, double *v)
 {
     double h = S->step_h;
+    if (S->step_flight) {
+        dense_flight(S, th, d, v);
+        return;
+    }
     if (S->solver.method == TT_METHOD_RADAU) {
         radau_poly(S->rcont, th, d, v);
         return;
@@ -807,6 +1132,27 @@ static double find_event(const tt_sim *S)
     return 2;
 }
 
+/* Whether the current flight step comes within fl_margin of jump-in: at its start, nodes
+ * or end, or at a maximum of the penetration between them (located on the exact dense
+ * output), so that a brief approach between the step's points is not missed. */
+static int flight_near(const tt_sim *S)
+{
+    if (!S->contact || !isfinite(S->jumpin))
+        return 0;
+    double thr = S->jumpin - S->fl_margin;
+    for (int j = 0; j < FL_N + 2; j++)
+        if (S->fl_pen[j] >= thr)
+            return 1;
+    for (int j = 0; j < FL_N + 1; j++)
+        if (S->fl_vel[j] > 0 && S->fl_vel[j + 1] < 0) {
+            double a = j == 0 ? 0.0 : FL_C[j - 1], b = j == FL_N ? 1.0 : FL_C[j];
+            double tm = bracket_root(S, 1, 0, a, b, S->fl_vel[j], S->fl_vel[j + 1]);
+            if (g_delta(S, tm, thr) >= 0)
+                return 1;
+        }
+    return 0;
+}
+
 /* Tip-sample force on the current branch at a state. */
 static double ts_force(const tt_sim *S, double tau, double d, double v, int contact, double *delta)
 {
@@ -869,6 +1215,15 @@ static void observe(tt_sim *S, double th)
         if (delta > S->max_indent)
             S->max_indent = delta;
     }
+    /* A flight step's ends are too far apart to stand for the far turning point, where an
+     * attraction is weakest and the force greatest: locate a minimum of the penetration. */
+    if (S->step_flight && v0 < 0 && v1 > 0) {
+        double tm = bracket_root(S, 1, 0, 0, th, v0, v1);
+        dense(S, tm, &d, &v);
+        F = ts_force(S, t0 + tm * h, d, v, S->contact_state, &delta);
+        if (F > S->peak_force)
+            S->peak_force = F;
+    }
     /* In contact the force (load plus interaction damping) may peak anywhere in the
      * step: sample it at quarter steps and refine an interior maximum by a parabola. */
     if (S->contact_state && th > 0) {
@@ -905,7 +1260,7 @@ static void accept_full(tt_sim *S)
     observe(S, 1);
     memcpy(S->y, S->y1, sizeof S->y);
     memcpy(S->fsal, S->k[6], sizeof S->fsal);
-    S->fsal_ok = 1;
+    S->fsal_ok = !S->step_flight; /* a flight step computes no derivative at its end */
     if (S->solver.method == TT_METHOD_RADAU) {
         memcpy(S->ext, S->rcont, sizeof S->ext);
         S->ext_tau = S->step_tau;
@@ -1009,6 +1364,7 @@ int tt_sim_cycle(tt_sim *S, tt_cycle *out)
     S->steps = S->rejected = S->events = 0;
     S->next_sample = 0;
     S->rk4_j = 1;
+    S->step_flight = 0;
     double E_start = energy(S, 0, S->y, S->contact_state);
 
     /* the sample at k = 0 is the cycle-start state */
@@ -1054,6 +1410,69 @@ int tt_sim_cycle(tt_sim *S, tt_cycle *out)
             if ((rc = rk4_check_stiffness(S, h, S->rk4_dmax)))
                 return rc;
         } else {
+            /* Out of contact and away from the surface, the free flight's exponential
+             * steps; they hand over to dopri5 near jump-in and when they would be short. */
+            if (S->fl_wait && S->y[Y_V] - S->sdot < 0)
+                S->fl_wait = 0;
+            if (S->fl_ok && !S->contact_state && S->fl_skip == 0 && !S->fl_wait &&
+                S->y[Y_D] - (S->s0 + S->sdot * S->tau) < S->jumpin - S->fl_margin) {
+                int r = S->fl_rung;
+                double hf = S->fl_hr[r];
+                const fl_cache *F;
+                int lastf = 0;
+                if (S->tau + hf >= T - hmin) {
+                    hf = T - S->tau;
+                    lastf = 1;
+                }
+                if (lastf) {
+                    if (!(S->fl_scr.ok && S->fl_scr.h == hf))
+                        fl_fill(S, &S->fl_scr, hf);
+                    F = &S->fl_scr;
+                } else {
+                    if (!S->fl_lad[r].ok)
+                        fl_fill(S, &S->fl_lad[r], hf);
+                    F = &S->fl_lad[r];
+                }
+                if (S->c.w0 * hf >= 0.1) {
+                    double err = flight_step(S, hf, F);
+                    if (err < 0 || flight_near(S))
+                        S->fl_wait = 1; /* the approach: no more tries until it recedes */
+                    else {
+                        /* the estimate is O(h^7): one rung (2^(1/4)) per factor 5 */
+                        int nr = r;
+                        if (err > 1)
+                            nr = r + 1 + (int)(log(err) * (4.0 / 7.0 / M_LN2));
+                        else if (!lastf && !S->fl_rej && err < 0.2)
+                            /* grow by 0.9 err^(-1/7), at most two rungs (a factor 1.41):
+                             * an approaching tip's error grows fast from step to step */
+                            nr = r - (err < 0.04 ? 2 : 1);
+                        S->fl_rej = err > 1;
+                        if (nr < 0)
+                            nr = 0;
+                        if (err > 1) {
+                            S->rejected++;
+                            if (nr >= S->fl_nrung) {
+                                S->fl_rung = S->fl_nrung - 1;
+                                S->fl_skip = 4; /* too short to pay: dopri5 for a while */
+                            } else {
+                                S->fl_rung = nr;
+                            }
+                            continue;
+                        }
+                        if (!lastf)
+                            S->fl_rung = nr;
+                        accept_full(S);
+                        int rc = check_finite(S);
+                        if (rc)
+                            return rc;
+                        if (S->tau > T)
+                            S->tau = T;
+                        continue;
+                    }
+                }
+            }
+            if (S->fl_skip > 0)
+                S->fl_skip--;
             h = S->h;
             if (h > T / 8)
                 h = T / 8; /* keeps turning points of a cycle within reach of the checks */
