@@ -365,6 +365,14 @@ void tt_sim_reset_free(tt_sim *S)
     S->y[Y_V] = ydot; /* z' = 0 at t = 0 */
     S->contact_state = 0;
     S->tau = 0;
+    /* the step controllers' memory too: a run from the free state must not depend on
+     * what the sim did before (scan lines give the same images on any thread) */
+    S->h = c->T / 64;
+    S->last_rejected = 0;
+    S->fl_rung = 0;
+    S->fl_skip = 0;
+    S->fl_wait = 0;
+    S->fl_rej = 0;
     invalidate(S);
 }
 
