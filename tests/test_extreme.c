@@ -85,7 +85,8 @@ static void assert_finite_cycle(const tt_cycle *c, const char *what)
                            "contact_fraction", "e_drive", "e_damp", "e_ts", "e_sample",
                            "residual", "residual_rel", "y_min", "y_max"};
     for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
-        if (!isfinite(v[i]))
+        /* untracked extremes are +-INFINITY by contract; any NaN fails */
+        if (!isfinite(v[i]) && !(i >= 12 && isinf(v[i]) && (v[12] == INFINITY) && (v[13] == -INFINITY)))
             fail_msg("%s: %s is %g", what, names[i], v[i]);
     /* event times are NaN exactly when no such event happened in the cycle */
     if (c->events == 0 && (!isnan(c->t_contact) || !isnan(c->t_release)))
@@ -116,7 +117,9 @@ static int run_from_steady(const run_ctx *r, const tt_solver *s, tt_cycle *out, 
     tt_sim_set_contact(sim, r->ct, r->su->Qi[r->su->current]);
     tt_sim_set_sample(sim, r->z, 0);
     tt_sim_set_state(sim, r->d, r->v, r->contact);
-    tt_sim_track_extremes(sim, 1);
+    /* dopri5 runs as in a scan, without tracking the extremes, so that it takes its
+     * free-flight steps out of contact (tracking turns them off) */
+    tt_sim_track_extremes(sim, s->method != TT_METHOD_DOPRI5);
     if (events)
         *events = 0;
     for (int i = 0; i < NC && rc == TT_OK; i++)
@@ -191,7 +194,7 @@ static void check_method(const run_ctx *r, const method_row *m, const tt_cycle *
          * least-squares slope of log error against log tolerance must be at least 0.5
          * (measured: dopri5 0.7 to 1.1; radau 0.55 to 0.9, its estimate being held to
          * tolerance^(2/3)), and the finest rung at least 100 times better than the
-         * coarsest, unless both are down at the reference's own level. */
+         * coarsest, unless the coarsest is already down near the reference's level. */
         double lt[7], le[7], sx = 0, sy = 0, sxx = 0, sxy = 0;
         int n = 0;
         for (int i = 0; i < 7; i++) {
@@ -219,7 +222,9 @@ static void check_method(const run_ctx *r, const method_row *m, const tt_cycle *
         double slope = n >= 3 ? (n * sxy - sx * sy) / (n * sxx - sx * sx) : NAN;
         print_message("  %-7s tolerance 1e-5..1e-11: errors %.1e .. %.1e, slope %.2f over %d rungs\n",
                       m->name, e[0], e[2], slope, n);
-        if (n >= 3)
+        /* an error already below 1e-9 at 1e-5 leaves no trend to see (measured: the free
+         * flight solves the 0.1 nm hover to 1e-9 at every rung) */
+        if (n >= 3 && e[0] > 1e-9)
             assert_true(slope >= 0.5);
         if (e[0] > 1e-9)
             assert_true(e[2] < e[0] / 100);
