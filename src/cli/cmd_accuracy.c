@@ -322,6 +322,20 @@ static int interrupted(const char *out, size_t n)
     return tt_error(TT_EINTR, "interrupted: %s keeps the %zu rows finished", out, n);
 }
 
+/* A whole-number option of at least min into *out; 1 (reported) when it is not. */
+static int whole(const char *text, const char *option, long min, long *out)
+{
+    char *end;
+    long v = strtol(text, &end, 10);
+    if (*end || end == text || v < min || v > 100000000L) {
+        fprintf(stderr, "tiptap accuracy: %s %s: expected a whole number of at least %ld\n", option,
+                text, min);
+        return 1;
+    }
+    *out = v;
+    return 0;
+}
+
 int cmd_accuracy(int argc, char **argv)
 {
     static const struct option opts[] = {{"output", required_argument, NULL, 'o'},
@@ -359,24 +373,14 @@ int cmd_accuracy(int argc, char **argv)
             }
             p.kind = TT_ACCURACY_POINT;
             break;
-        case 'c':
-            p.cycles = strtol(optarg, &end, 10);
-            bad = *end || p.cycles < 10;
-            if (bad)
-                fprintf(stderr, "tiptap accuracy: --cycles %s: expected a whole number of at least 10\n", optarg);
+        case 'c': bad = whole(optarg, "--cycles", 10, &p.cycles); break;
+        case 'x': bad = whole(optarg, "--pixels", 2, &p.line_pixels); break;
+        case 'r': {
+            long r = 0;
+            bad = whole(optarg, "--repeats", 1, &r);
+            p.repeats = (int)r;
             break;
-        case 'x':
-            p.line_pixels = strtol(optarg, &end, 10);
-            bad = *end || p.line_pixels < 2;
-            if (bad)
-                fprintf(stderr, "tiptap accuracy: --pixels %s: expected a whole number of at least 2\n", optarg);
-            break;
-        case 'r':
-            p.repeats = (int)strtol(optarg, &end, 10);
-            bad = *end || p.repeats < 1;
-            if (bad)
-                fprintf(stderr, "tiptap accuracy: --repeats %s: expected a whole number of at least 1\n", optarg);
-            break;
+        }
         case 't':
             target = tt_strtod(optarg, &end);
             bad = *end || !(target > 0 && target < 1);
