@@ -4,21 +4,7 @@
 # usage: cli_accuracy.sh path/to/tiptap source_dir
 set -u
 tiptap=$1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fail=0
-ok() { echo "ok   $1"; }
-bad() { echo "FAIL $1"; fail=1; }
-
-expect_error() { # name, expected fragment, command...
-  local name=$1 frag=$2; shift 2
-  local out rc
-  out=$("$@" 2>&1 >/dev/null); rc=$?
-  if [ $rc -eq 0 ]; then bad "$name: exit 0"; return; fi
-  if ! grep -qF -- "$frag" <<<"$out"; then bad "$name: '$out' lacks '$frag'"; return; fi
-  if [ "$(wc -l <<<"$out")" -ne 1 ]; then bad "$name: not one line: $out"; return; fi
-  ok "$name"
-}
+source "$(dirname "$0")/tt_cli.sh"
 
 # a cheap tapping point: Q 40 settles in about 240 cycles
 cat >"$tmp/tap.ini" <<'INI'

@@ -5,11 +5,7 @@
 # usage: cli_contact.sh path/to/tiptap source_dir
 set -u
 tiptap=$1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fail=0
-ok() { echo "ok   $1"; }
-bad() { echo "FAIL $1"; fail=1; }
+source "$(dirname "$0")/tt_cli.sh"
 
 value() { # key, file: the value of "key = value"
   awk -v k="$1" '$1 == k && $2 == "=" { print $3; exit }' "$2"

@@ -4,28 +4,7 @@
 # usage: cli_errors.sh path/to/tiptap source_dir
 set -u
 tiptap=$1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fail=0
-
-expect_error() { # name, expected fragment, command...
-  local name=$1 frag=$2; shift 2
-  local out rc
-  out=$("$@" 2>&1 >/dev/null); rc=$?
-  if [ $rc -eq 0 ]; then echo "FAIL $name: exit 0"; fail=1; return; fi
-  if ! grep -qF -- "$frag" <<<"$out"; then echo "FAIL $name: '$out' lacks '$frag'"; fail=1; return; fi
-  if [ "$(wc -l <<<"$out")" -ne 1 ]; then echo "FAIL $name: not one line: $out"; fail=1; return; fi
-  echo "ok   $name"
-}
-
-expect_exact() { # name, the whole expected message, command...
-  local name=$1 want=$2; shift 2
-  local out rc
-  out=$("$@" 2>&1 >/dev/null); rc=$?
-  if [ $rc -eq 0 ]; then echo "FAIL $name: exit 0"; fail=1; return; fi
-  if [ "$out" != "$want" ]; then echo "FAIL $name: '$out' is not '$want'"; fail=1; return; fi
-  echo "ok   $name"
-}
+source "$(dirname "$0")/tt_cli.sh"
 
 cat >"$tmp/typo.ini" <<'INI'
 [cantilever]

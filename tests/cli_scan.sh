@@ -5,11 +5,7 @@
 set -u
 tiptap=$(realpath "$1")
 src=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fail=0
-ok() { echo "ok   $1"; }
-bad() { echo "FAIL $1"; fail=1; }
+source "$(dirname "$0")/tt_cli.sh"
 
 cat >"$tmp/s.ini" <<'INI'
 [cantilever]

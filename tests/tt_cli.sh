@@ -1,0 +1,26 @@
+# Shared by the tests/cli_*.sh scripts (sourced, not run): a scratch folder removed at
+# exit, ok/bad reporting that sets the exit status, and checks of refused commands.
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+ok() { echo "ok   $1"; }
+bad() { echo "FAIL $1"; fail=1; }
+
+expect_error() { # name, expected fragment, command...: non-zero exit, one line naming it
+  local name=$1 frag=$2; shift 2
+  local out rc
+  out=$("$@" 2>&1 >/dev/null); rc=$?
+  if [ $rc -eq 0 ]; then bad "$name: exit 0"; return; fi
+  if ! grep -qF -- "$frag" <<<"$out"; then bad "$name: '$out' lacks '$frag'"; return; fi
+  if [ "$(wc -l <<<"$out")" -ne 1 ]; then bad "$name: not one line: $out"; return; fi
+  ok "$name"
+}
+
+expect_exact() { # name, the whole expected message, command...
+  local name=$1 want=$2; shift 2
+  local out rc
+  out=$("$@" 2>&1 >/dev/null); rc=$?
+  if [ $rc -eq 0 ]; then bad "$name: exit 0"; return; fi
+  if [ "$out" != "$want" ]; then bad "$name: '$out' is not '$want'"; return; fi
+  ok "$name"
+}
