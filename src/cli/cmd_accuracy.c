@@ -122,6 +122,16 @@ static void print_header(const tt_accuracy_observable *obs, size_t nobs)
     printf(" %11s\n", "residual");
 }
 
+/* Whether row i (past the reference and the floor, rows 0 and 1) is its method's first:
+ * the plot draws and the summary reports each method once. */
+static int first_of_method(const tt_accuracy *a, size_t i)
+{
+    for (size_t k = 2; k < i; k++)
+        if (tt_accuracy_row_at(a, k)->method == tt_accuracy_row_at(a, i)->method)
+            return 0;
+    return 1;
+}
+
 static int plot(const char *path, const tt_accuracy *a, const char *title)
 {
     const tt_accuracy_observable *obs;
@@ -146,11 +156,7 @@ static int plot(const char *path, const tt_accuracy *a, const char *title)
         int colour = 0;
         for (size_t i = 2; i < n && rc == TT_OK; i++) {
             const tt_accuracy_row *r = tt_accuracy_row_at(a, i);
-            int first = 1;
-            for (size_t k = 2; k < i; k++)
-                if (tt_accuracy_row_at(a, k)->method == r->method)
-                    first = 0;
-            if (!first)
+            if (!first_of_method(a, i))
                 continue;
             colour++;
             size_t m = 0;
@@ -264,11 +270,7 @@ static void summary(const tt_accuracy *a, double target, double t0)
         const tt_accuracy_row *r = tt_accuracy_row_at(a, i);
         if (r->role != TT_ACCURACY_SETTING)
             continue;
-        int first = 1;
-        for (size_t k = 2; k < i; k++)
-            if (tt_accuracy_row_at(a, k)->method == r->method)
-                first = 0;
-        if (!first)
+        if (!first_of_method(a, i))
             continue;
         const tt_accuracy_row *c = tt_accuracy_cheapest(a, (int)r->method, target);
         if (c) {
