@@ -6,26 +6,9 @@
 #include "tiptap/error.h"
 #include "tiptap/integrator.h"
 
-/* Run a fixed number of cycles from the free steady state (a deterministic map, no
- * settling criterion in the way) and return the last cycle. */
 static tt_cycle run(const tt_contact *ct, double Qi, tt_method m, int steps, double tol)
 {
-    tt_cantilever c;
-    tt_cantilever_init(&c, 40, 300e3, 400, 20e-9, 300e3, TT_DRIVE_BASE);
-    tt_solver s;
-    tt_solver_default(&s);
-    s.method = m;
-    s.steps_per_cycle = steps;
-    s.tolerance = tol;
-    tt_sim *sim;
-    assert_int_equal(tt_sim_alloc(&sim, &c, &s), TT_OK);
-    tt_sim_set_contact(sim, ct, Qi);
-    tt_sim_set_sample(sim, 15e-9, 0);
-    tt_cycle cy;
-    for (int i = 0; i < 40; i++)
-        assert_int_equal(tt_sim_cycle(sim, &cy), TT_OK);
-    tt_sim_free(sim);
-    return cy;
+    return tt_run_tapping(ct, Qi, m, steps, tol, NULL);
 }
 
 static double order(double a, double b, double c)

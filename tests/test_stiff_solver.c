@@ -10,31 +10,9 @@
 
 /* ---- convergence: the tapping scene of test_convergence.c on a smooth law ---- */
 
-/* A fixed number of cycles from the free steady state (a deterministic map), the last
- * cycle returned with the mean steps per cycle over the run. */
 static tt_cycle run_standard(const tt_contact *ct, double Qi, tt_method m, double tol, double *spc)
 {
-    tt_cantilever c;
-    tt_cantilever_init(&c, 40, 300e3, 400, 20e-9, 300e3, TT_DRIVE_BASE);
-    tt_solver s;
-    tt_solver_default(&s);
-    s.method = m;
-    s.tolerance = tol;
-    tt_sim *sim;
-    assert_int_equal(tt_sim_alloc(&sim, &c, &s), TT_OK);
-    tt_sim_set_contact(sim, ct, Qi);
-    tt_sim_set_sample(sim, 15e-9, 0);
-    tt_cycle cy;
-    long steps = 0;
-    const int n = 40;
-    for (int i = 0; i < n; i++) {
-        assert_int_equal(tt_sim_cycle(sim, &cy), TT_OK);
-        steps += cy.steps;
-    }
-    if (spc)
-        *spc = (double)steps / n;
-    tt_sim_free(sim);
-    return cy;
+    return tt_run_tapping(ct, Qi, m, 0, tol, spc);
 }
 
 static void radau_converges_at_fifth_order(void **st)
