@@ -4,8 +4,8 @@
 #include <stdlib.h>
 
 #include "tt_test.h"
-#include "tiptap/accuracy.h"
-#include "tiptap/error.h"
+#include "tiptap/instrument/accuracy.h"
+#include "tiptap/util/error.h"
 
 /* The standard cantilever at Q 40 (settles in about 240 cycles) tapping the standard
  * polymer at 80 % of the free amplitude. */

@@ -13,9 +13,9 @@
 #include <stdlib.h>
 
 #include "tt_test.h"
-#include "tiptap/approach.h"
-#include "tiptap/error.h"
-#include "tiptap/setup.h"
+#include "tiptap/instrument/approach.h"
+#include "tiptap/util/error.h"
+#include "tiptap/config/setup.h"
 
 #define DIR TT_SOURCE_DIR "/examples/extreme/"
 #define NPTS 7

@@ -1,8 +1,8 @@
 /* The hysteresis loop of jump-in and pull-off: its energy equals an independent
  * quadrature of the area between the approach and retract branches. */
 #include "tt_test.h"
-#include "tiptap/contact.h"
-#include "tiptap/error.h"
+#include "tiptap/physics/contact.h"
+#include "tiptap/util/error.h"
 
 static double simpson(const tt_contact *c, int in, double a, double b)
 {

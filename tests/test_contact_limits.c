@@ -1,7 +1,7 @@
 /* Contact mechanics against its analytic limits (seed eqs. 4-8, PHYSICS.md). */
 #include "tt_test.h"
-#include "tiptap/contact.h"
-#include "tiptap/error.h"
+#include "tiptap/physics/contact.h"
+#include "tiptap/util/error.h"
 
 static tt_contact *norm(tt_contact_model m, double lambda)
 {

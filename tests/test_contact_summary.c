@@ -2,8 +2,8 @@
  * lambda from 1e-3 to 1e3 and across the onset of the fold, against an independent
  * minimisation of eq. 7 written out here. */
 #include "tt_test.h"
-#include "tiptap/contact.h"
-#include "tiptap/error.h"
+#include "tiptap/physics/contact.h"
+#include "tiptap/util/error.h"
 
 #include <complex.h>
 #include <gsl/gsl_errno.h>

@@ -2,8 +2,8 @@
  * finely across the onset of the fold, and the physical summary of the seed's figure-4a
  * contact. */
 #include "tt_test.h"
-#include "tiptap/contact.h"
-#include "tiptap/error.h"
+#include "tiptap/physics/contact.h"
+#include "tiptap/util/error.h"
 
 /* Largest error of the table's load, relative to max(1, |P|), over points of eq. 7 on
  * the stable branch, and (*near) over its part within 0.04 of its end in Delta; the

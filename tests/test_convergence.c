@@ -2,9 +2,9 @@
  * tapping cantilever converge at the method's order (PHYSICS.md). */
 #include "tt_test.h"
 #include "tt_laws.h"
-#include "tiptap/contact.h"
-#include "tiptap/error.h"
-#include "tiptap/integrator.h"
+#include "tiptap/physics/contact.h"
+#include "tiptap/util/error.h"
+#include "tiptap/solver/integrator.h"
 
 static tt_cycle run(const tt_contact *ct, double Qi, tt_method m, int steps, double tol)
 {

@@ -10,9 +10,9 @@
 #include <stdlib.h>
 
 #include "tt_test.h"
-#include "tiptap/contact.h"
-#include "tiptap/error.h"
-#include "tiptap/setup.h"
+#include "tiptap/physics/contact.h"
+#include "tiptap/util/error.h"
+#include "tiptap/config/setup.h"
 
 #define SCENE_DIR TT_SOURCE_DIR "/examples/extreme/"
 

@@ -1,6 +1,6 @@
 /* The PI loop on a plant whose amplitude is limited by the gap (A = min(A0, gap)). */
 #include "tt_test.h"
-#include "tiptap/feedback.h"
+#include "tiptap/instrument/feedback.h"
 
 /* Run the loop against a surface at height h; returns the final amplitude error. */
 static double run(tt_feedback *f, double h, int steps, double dt, double *zmin, double *zmax)

@@ -3,8 +3,8 @@
  * same steady cycle as dopri5's own steps (forced by tracking the extremes, which keeps
  * the flight off), near the surface and touching it. */
 #include "tt_test.h"
-#include "tiptap/error.h"
-#include "tiptap/integrator.h"
+#include "tiptap/util/error.h"
+#include "tiptap/solver/integrator.h"
 
 /* An attraction -F a0^2 / (a0 - delta)^2 out of contact (van der Waals-like, F = 1 nN at
  * delta = 0), a cubic repulsion added in contact; contact at delta = 0 both ways. */

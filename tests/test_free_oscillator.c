@@ -2,8 +2,8 @@
  * both drives, below, at and above resonance, from Q = 1 (liquid) to 1e4 (vacuum); and
  * the energy balance of a free cycle. */
 #include "tt_test.h"
-#include "tiptap/error.h"
-#include "tiptap/integrator.h"
+#include "tiptap/util/error.h"
+#include "tiptap/solver/integrator.h"
 
 static void check_free(tt_drive drive, double Q, double fd_ratio, tt_method method)
 {

@@ -6,8 +6,8 @@
 #include <unistd.h>
 
 #include "tt_test.h"
-#include "tiptap/error.h"
-#include "tiptap/gsf.h"
+#include "tiptap/util/error.h"
+#include "tiptap/io/gsf.h"
 
 static void layout_is_exact(void **st)
 {

@@ -5,10 +5,10 @@
 
 #include "tt_test.h"
 #include "tt_scan_test.h"
-#include "tiptap/error.h"
-#include "tiptap/lockin.h"
-#include "tiptap/scan.h"
-#include "tiptap/setup.h"
+#include "tiptap/util/error.h"
+#include "tiptap/instrument/lockin.h"
+#include "tiptap/instrument/scan.h"
+#include "tiptap/config/setup.h"
 
 /* test_scan.c's fast cantilever (Q 100) on a stiff sample. */
 static const char *base =
@@ -75,7 +75,7 @@ static void harmonics_match_the_lockin_on_the_steady_deflection(void **st)
         double h = row_mean(tt_scan_image(s, 0, r), 1);
         double a2 = row_mean(tt_scan_image(s, i2, r), 1), a3 = row_mean(tt_scan_image(s, i3, r), 1);
         double ph2 = row_mean(tt_scan_image(s, p2, r), 1);
-        /* on the flat sample the sample sits at setpoint - 0 + height (src/scan.c) */
+        /* on the flat sample the sample sits at setpoint - 0 + height (src/instrument/scan.c) */
         double A[4], ph;
         steady_lockin(sc, 16e-9 + h, A, &ph);
         print_message("%s: harmonic2 %.4f pm (lock-in %.4f pm), harmonic3 %.4f pm (%.4f pm), "

@@ -3,8 +3,8 @@
 #include <stdlib.h>
 
 #include "tt_test.h"
-#include "tiptap/error.h"
-#include "tiptap/lockin.h"
+#include "tiptap/util/error.h"
+#include "tiptap/instrument/lockin.h"
 
 static void demodulates_exactly(void **st)
 {

@@ -1,9 +1,9 @@
 /* A run from the free state is the same whatever the sim did before: scan lines restart
  * from it on whichever thread is free, and the images must not depend on the threads. */
 #include "tt_test.h"
-#include "tiptap/error.h"
-#include "tiptap/setup.h"
-#include "tiptap/standard.h"
+#include "tiptap/util/error.h"
+#include "tiptap/config/setup.h"
+#include "tiptap/config/standard.h"
 
 static void history_is_forgotten(tt_method m)
 {

@@ -8,8 +8,8 @@
 #include <stdlib.h>
 
 #include "tt_test.h"
-#include "tiptap/error.h"
-#include "tiptap/setup.h"
+#include "tiptap/util/error.h"
+#include "tiptap/config/setup.h"
 
 static const char *stiff =
     "[cantilever]\nspring_constant = 0.1 N/m\nresonance_frequency = 10 kHz\nquality_factor = 30\n"

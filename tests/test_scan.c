@@ -4,9 +4,9 @@
 
 #include "tt_test.h"
 #include "tt_scan_test.h"
-#include "tiptap/error.h"
-#include "tiptap/scan.h"
-#include "tiptap/setup.h"
+#include "tiptap/util/error.h"
+#include "tiptap/instrument/scan.h"
+#include "tiptap/config/setup.h"
 
 /* A fast cantilever for tests: Q 100 settles in a few hundred cycles. */
 static const char *base =

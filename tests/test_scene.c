@@ -4,8 +4,8 @@
 #include <unistd.h>
 
 #include "tt_test.h"
-#include "tiptap/error.h"
-#include "tiptap/scene.h"
+#include "tiptap/util/error.h"
+#include "tiptap/config/scene.h"
 
 /* Load text as a scene file named origin; return the status, message in *msg. */
 static int load(const char *text, const char **msg)

@@ -2,7 +2,7 @@
 #include <stdlib.h>
 
 #include "tt_test.h"
-#include "tiptap/scene.h"
+#include "tiptap/config/scene.h"
 
 static void every_key_is_documented(void **st)
 {

@@ -1,9 +1,9 @@
 /* The seed's experiments: capture by adhesion on the figure-4a cantilever, and tapping
  * in water without adhesion (figure 4b). */
 #include "tt_test.h"
-#include "tiptap/approach.h"
-#include "tiptap/error.h"
-#include "tiptap/setup.h"
+#include "tiptap/instrument/approach.h"
+#include "tiptap/util/error.h"
+#include "tiptap/config/setup.h"
 
 static const char *air =
     "[cantilever]\nspring_constant = 0.58 N/m\nresonance_frequency = 52 kHz\nquality_factor = 40\n"

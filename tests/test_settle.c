@@ -6,9 +6,9 @@
  * holds for a jitter of period 3 far below the tolerance, while a real period-3 orbit
  * is still reported as unsettled. */
 #include "tt_test.h"
-#include "tiptap/error.h"
-#include "tiptap/integrator.h"
-#include "tiptap/setup.h"
+#include "tiptap/util/error.h"
+#include "tiptap/solver/integrator.h"
+#include "tiptap/config/setup.h"
 
 /* The standard cantilever driven at 600 kHz, started off its steady state by a
  * fraction kick of the free amplitude, so that the free mode rings. */

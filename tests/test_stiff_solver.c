@@ -4,9 +4,9 @@
  * energy balance, and needs far fewer steps than dopri5 while the tip stays in contact. */
 #include "tt_test.h"
 #include "tt_laws.h"
-#include "tiptap/contact.h"
-#include "tiptap/error.h"
-#include "tiptap/integrator.h"
+#include "tiptap/physics/contact.h"
+#include "tiptap/util/error.h"
+#include "tiptap/solver/integrator.h"
 
 /* ---- convergence: the tapping scene of test_convergence.c on a smooth law ---- */
 

@@ -4,8 +4,8 @@
 #include <unistd.h>
 
 #include "tt_test.h"
-#include "tiptap/error.h"
-#include "tiptap/surface.h"
+#include "tiptap/util/error.h"
+#include "tiptap/instrument/surface.h"
 
 static const char *mats = "[material a]\nyoungs_modulus = 1 GPa\nmap_value = 0\n"
                           "[material b]\nyoungs_modulus = 50 GPa\nmap_value = #ff0000\n";

@@ -2,9 +2,9 @@
  * cantilever damping + tip-sample loss; a conservative contact loses nothing; with
  * hysteresis and no interaction damping the loss per tap is the loop's area. */
 #include "tt_test.h"
-#include "tiptap/contact.h"
-#include "tiptap/error.h"
-#include "tiptap/integrator.h"
+#include "tiptap/physics/contact.h"
+#include "tiptap/util/error.h"
+#include "tiptap/solver/integrator.h"
 
 typedef struct {
     double K, w, Qi, gap;

@@ -7,7 +7,7 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "tiptap/units.h"
+#include "tiptap/config/units.h"
 
 static double parse_ok(const char *text, unsigned dims)
 {

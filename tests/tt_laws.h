@@ -3,8 +3,8 @@
 #ifndef TT_LAWS_H
 #define TT_LAWS_H
 
-#include "tiptap/error.h"
-#include "tiptap/integrator.h"
+#include "tiptap/util/error.h"
+#include "tiptap/solver/integrator.h"
 
 /* A smooth law, P = k3 delta^3 in contact (user points to k3): the solution stays smooth
  * through the contact events, so a method must show its full order, event times

@@ -2,8 +2,8 @@
 #ifndef TT_SCAN_TEST_H
 #define TT_SCAN_TEST_H
 
-#include "tiptap/error.h"
-#include "tiptap/scan.h"
+#include "tiptap/util/error.h"
+#include "tiptap/instrument/scan.h"
 
 /* The scan of base plus extra, run on two threads; *sc receives the scene (the caller
  * frees both). */

@@ -6,8 +6,8 @@
 #include <unistd.h>
 
 #include "commands.h"
-#include "tiptap/cancel.h"
-#include "tiptap/error.h"
+#include "tiptap/util/cancel.h"
+#include "tiptap/util/error.h"
 
 int cli_fail(int status, const char *msg)
 {

@@ -5,10 +5,10 @@
 #include <string.h>
 
 #include "commands.h"
-#include "tiptap/error.h"
-#include "tiptap/scan.h"
-#include "tiptap/setup.h"
-#include "tiptap/standard.h"
+#include "tiptap/util/error.h"
+#include "tiptap/instrument/scan.h"
+#include "tiptap/config/setup.h"
+#include "tiptap/config/standard.h"
 
 static void help(void)
 {

@@ -5,11 +5,11 @@
 #include <string.h>
 
 #include "commands.h"
-#include "tiptap/contact.h"
-#include "tiptap/error.h"
-#include "tiptap/material.h"
-#include "tiptap/outfile.h"
-#include "tiptap/plot.h"
+#include "tiptap/physics/contact.h"
+#include "tiptap/util/error.h"
+#include "tiptap/physics/material.h"
+#include "tiptap/io/outfile.h"
+#include "tiptap/io/plot.h"
 
 static void help(void)
 {

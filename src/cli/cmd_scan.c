@@ -6,13 +6,13 @@
 #include <string.h>
 
 #include "commands.h"
-#include "tiptap/cancel.h"
-#include "tiptap/cantilever.h"
-#include "tiptap/error.h"
-#include "tiptap/gsf.h"
-#include "tiptap/image.h"
-#include "tiptap/outfile.h"
-#include "tiptap/scan.h"
+#include "tiptap/util/cancel.h"
+#include "tiptap/physics/cantilever.h"
+#include "tiptap/util/error.h"
+#include "tiptap/io/gsf.h"
+#include "tiptap/io/image.h"
+#include "tiptap/io/outfile.h"
+#include "tiptap/instrument/scan.h"
 
 static void help(void)
 {

@@ -6,12 +6,12 @@
 #include <string.h>
 
 #include "commands.h"
-#include "tiptap/cancel.h"
-#include "tiptap/error.h"
-#include "tiptap/outfile.h"
-#include "tiptap/plot.h"
-#include "tiptap/material.h"
-#include "tiptap/setup.h"
+#include "tiptap/util/cancel.h"
+#include "tiptap/util/error.h"
+#include "tiptap/io/outfile.h"
+#include "tiptap/io/plot.h"
+#include "tiptap/physics/material.h"
+#include "tiptap/config/setup.h"
 
 static void help(void)
 {

@@ -4,7 +4,7 @@
 
 #include <stdio.h>
 
-#include "tiptap/scene.h"
+#include "tiptap/config/scene.h"
 
 int cmd_contact(int argc, char **argv);
 int cmd_keys(int argc, char **argv);

@@ -1,0 +1,60 @@
+/* tiptap: approach curves (seed figures 1, 4): amplitude, phase and the rest against
+ * the rest separation between the undeflected tip and the sample.
+ *
+ * steady mode: at each separation the cantilever runs until amplitude and phase
+ * settle, starting from the previous point's state (so the branch followed depends on
+ * the history, as on an instrument), optionally followed by the retract branch.
+ * ramp mode: the sample moves continuously at a given speed, as in the seed's figure 4;
+ * each row is the cycle running at that moment.
+ *
+ * Usage: tt_approach_alloc(&a, sim, &params); while (!tt_approach_done(a))
+ * { tt_approach_iterate(a, &pt); ... }; tt_approach_free(a).
+ * Ownership: the approach borrows sim (which must outlive it) and drives it.
+ */
+#ifndef TIPTAP_APPROACH_H
+#define TIPTAP_APPROACH_H
+
+#include <stddef.h>
+
+#include "tiptap/solver/integrator.h"
+#include "tiptap/config/scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum { TT_APPROACH_STEADY = 0, TT_APPROACH_RAMP = 1 } tt_approach_mode;
+
+typedef struct {
+    double from, to;       /* rest separations, m */
+    long points;
+    tt_approach_mode mode;
+    int retract;
+    double speed;          /* ramp mode, m/s */
+    long max_cycles;       /* steady mode: per point */
+    double settle_tolerance;
+} tt_approach_params;
+
+int tt_approach_params_from_scene(tt_approach_params *p, const tt_scene *scene);
+
+typedef struct {
+    double z;        /* rest separation, m */
+    int retract;     /* 0 approach branch, 1 retract branch */
+    int settled;     /* steady mode: whether the point settled within max_cycles */
+    long cycles;     /* cycles run for this row */
+    tt_cycle cycle;  /* the last cycle's observables */
+} tt_approach_point;
+
+typedef struct tt_approach tt_approach;
+
+int tt_approach_alloc(tt_approach **out, tt_sim *sim, const tt_approach_params *p);
+void tt_approach_free(tt_approach *a);
+size_t tt_approach_rows(const tt_approach *a);
+int tt_approach_done(const tt_approach *a);
+/* Compute the next row. TT_ENUM etc. on solver failure. */
+int tt_approach_iterate(tt_approach *a, tt_approach_point *pt);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,97 @@
+/* tiptap: closed-loop imaging (seed section 3.2.4; DESIGN.md's data flow).
+ *
+ * A scan moves the sample under the tapping tip line by line. Each drive cycle the
+ * tip sits over the surface point the raster has reached (height and material
+ * looked up there), the lock-in demodulates the deflection over whole periods, and
+ * the PI feedback moves the sample to hold the amplitude at the setpoint. Per pixel
+ * it records the channels asked for, trace and retrace.
+ *
+ * Lines are independent: each starts from a settled state at its first pixel (the
+ * feedback engaged there for [scan] settle_cycles cycles), so lines can run in
+ * parallel and the images do not depend on the number of threads. What this costs
+ * is the continuity of a real raster: a line does not inherit the previous line's
+ * retrace state (the same place, one line away), only its feedback's height there.
+ *
+ * Ownership: tt_scan_alloc borrows the scene (it must outlive the scan); the scan
+ * owns its surface, images and per-thread workspaces, freed by tt_scan_free.
+ */
+#ifndef TIPTAP_SCAN_H
+#define TIPTAP_SCAN_H
+
+#include <stddef.h>
+
+#include "tiptap/config/scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Channels (bit flags). */
+enum {
+    TT_CH_HEIGHT = 1 << 0,      /* feedback height, m */
+    TT_CH_AMPLITUDE = 1 << 1,   /* amplitude error: lock-in amplitude - setpoint, m */
+    TT_CH_PHASE = 1 << 2,       /* lock-in phase lag, deg */
+    TT_CH_PEAK_FORCE = 1 << 3,  /* greatest tip-sample force per cycle, N */
+    TT_CH_INDENTATION = 1 << 4, /* greatest penetration per cycle, m */
+    TT_CH_DISSIPATION = 1 << 5, /* tip-sample energy lost per cycle, J */
+    TT_CH_TOPOGRAPHY = 1 << 6,  /* the true surface height under the tip, m (reference) */
+    /* Higher harmonics of the deflection, h = 2 to TT_CH_HARMONIC_MAX: channel index
+     * TT_CH_HARMONIC_INDEX + h - 2 is "harmonicH", the lock-in amplitude of harmonic h
+     * (m), and TT_CH_HARMONIC_PHASE_INDEX + h - 2 is "harmonicH_phase", its lag behind
+     * cos(h w t) (deg). */
+    TT_CH_HARMONIC_MAX = 8,
+    TT_CH_HARMONIC_INDEX = 7,
+    TT_CH_HARMONIC_PHASE_INDEX = 14,
+    TT_CH_COUNT = 21
+};
+
+/* Name ("height"), unit ("m", "deg", "N", "J") and title of channel index i. */
+const char *tt_scan_channel_name(int i);
+const char *tt_scan_channel_unit(int i);
+/* The harmonic a channel index demodulates: 1 for amplitude and phase, h for
+ * harmonicH and harmonicH_phase, 0 for the others. */
+int tt_scan_channel_harmonic(int i);
+/* Parse "height, phase" into a channel mask; -1 with a message naming the channel. */
+int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t len);
+
+typedef struct tt_scan tt_scan;
+
+int tt_scan_alloc(tt_scan **out, tt_scene *scene);
+void tt_scan_free(tt_scan *s);
+
+/* Run all lines on up to threads threads (0: all cores). progress, if not NULL, is
+ * called (from one thread at a time) after each finished line with the number of
+ * lines done. Stops early with TT_EINTR when cancellation is requested (cancel.h);
+ * finished lines keep their data, the others stay NaN. */
+int tt_scan_run(tt_scan *s, int threads, void (*progress)(void *user, long done, long total),
+                void *user);
+
+/* Geometry and results. Images are stored in the sample's orientation whatever the
+ * fast axis: xres columns along x, yres rows along y, row 0 at y = 0 (the top);
+ * retrace images are stored in the same orientation as the trace. */
+long tt_scan_xres(const tt_scan *s);
+long tt_scan_yres(const tt_scan *s);
+int tt_scan_fast_y(const tt_scan *s);
+long tt_scan_lines(const tt_scan *s);
+double tt_scan_size_x(const tt_scan *s);
+double tt_scan_size_y(const tt_scan *s);
+unsigned tt_scan_channels(const tt_scan *s);
+int tt_scan_has_retrace(const tt_scan *s);
+long tt_scan_lines_done(const tt_scan *s);
+/* NULL when the channel was not asked for. */
+const double *tt_scan_image(const tt_scan *s, int channel_index, int retrace);
+/* The line chosen for the CSV profile ([scan] profile_line). */
+long tt_scan_profile_line(const tt_scan *s);
+/* Simulated instrument time of the whole scan, s (trace and retrace of every line). */
+double tt_scan_instrument_time(const tt_scan *s);
+/* Cantilever cycles simulated (including settling) and the worst energy-balance
+ * residual relative to the drive work of a cycle. */
+long tt_scan_cycles(const tt_scan *s);
+double tt_scan_error_estimate(const tt_scan *s);
+/* Whether the z piezo hit its range limits during the scan. */
+int tt_scan_clamped(const tt_scan *s);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

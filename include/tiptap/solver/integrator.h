@@ -1,0 +1,130 @@
+/* tiptap: time integration of the tapping cantilever, one drive cycle at a time.
+ *
+ * A tt_sim advances the cantilever of tt_cantilever against one material's force law
+ * (tt_contact) through whole drive cycles. The contact state is part of the state and
+ * flips only at located events (jump-in, pull-off; PHYSICS.md), never inside a step.
+ * Time is kept as (cycle index, time within the cycle), so the drive phase never
+ * drifts however long the run. Each cycle yields the observables of tt_cycle, computed
+ * as integrals carried along by the same integrator (so they are as accurate as the
+ * motion), and an energy-balance residual that estimates the run's integration error.
+ *
+ * Usage (initialise, iterate, test):
+ *   tt_sim_alloc(&sim, &cantilever, &solver);
+ *   tt_sim_set_contact(sim, contact, Qi);
+ *   tt_sim_set_sample(sim, gap, 0);
+ *   tt_sim_reset_free(sim);
+ *   while (...) { tt_sim_cycle(sim, &cycle); ... }
+ *
+ * Ownership: the sim keeps pointers to the tt_contact given to it (not copies); they
+ * must outlive their use. A sim is used by one thread at a time.
+ */
+#ifndef TIPTAP_INTEGRATOR_H
+#define TIPTAP_INTEGRATOR_H
+
+#include "tiptap/physics/cantilever.h"
+#include "tiptap/physics/contact.h"
+#include "tiptap/config/scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum { TT_METHOD_DOPRI5 = 0, TT_METHOD_RK4 = 1, TT_METHOD_RADAU = 2 } tt_method;
+
+typedef struct {
+    tt_method method;
+    double tolerance;     /* dopri5, radau: local error per step relative to the free amplitude */
+    int steps_per_cycle;  /* rk4 */
+} tt_solver;
+
+/* Defaults: dopri5, tolerance 1e-8, rk4 at 512 steps per cycle. */
+void tt_solver_default(tt_solver *s);
+int tt_solver_from_scene(tt_solver *s, const tt_scene *scene);
+const char *tt_method_name(tt_method m);
+
+/* What one drive cycle did. Energies in J per cycle. */
+typedef struct {
+    double amplitude;        /* fundamental of the deflection y = d - z, m */
+    double phase;            /* its lag behind the drive, rad (pi/2 at free resonance) */
+    double mean;             /* mean deflection, m */
+    double y_min, y_max;     /* extremes of the deflection at step ends and events, m
+                              * (only with tt_sim_track_extremes; else +-INFINITY) */
+    double peak_force;       /* greatest tip-sample force (load + interaction damping), N */
+    double max_indentation;  /* greatest penetration d - s, m (negative: a gap remained) */
+    double contact_fraction; /* fraction of the cycle in contact */
+    double e_drive;          /* work done by the drive */
+    double e_damp;           /* lost to the cantilever's damping */
+    double e_ts;             /* lost in the tip-sample interaction: damping + hysteresis */
+    double e_sample;         /* work done on a moving sample (ramps, scans) */
+    double residual;         /* e_drive - e_damp - e_ts - e_sample - (E_end - E_start) */
+    double residual_rel;     /* |residual| relative to the free oscillation's loss per cycle,
+                              * pi c w A0^2: the run's error estimate, also where the drive
+                              * work itself is small (capture, transients) */
+    double t_contact;        /* time of the cycle's first jump-in from its start, s (NAN: none) */
+    double t_release;        /* time of the cycle's last pull-off from its start, s (NAN: none) */
+    long steps;              /* accepted steps */
+    long rejected;           /* rejected steps (dopri5, radau; radau counts Newton failures) */
+    long events;             /* contact changes */
+} tt_cycle;
+
+/* A state sample at a fixed time within a cycle (see tt_sim_set_sampling). */
+typedef struct {
+    double t;       /* s, absolute */
+    double z;       /* base position, m */
+    double d, v;    /* tip position (m) and velocity (m/s) */
+    double s;       /* sample surface position, m */
+    int contact;
+} tt_sample;
+
+typedef struct tt_sim tt_sim;
+
+int tt_sim_alloc(tt_sim **out, const tt_cantilever *c, const tt_solver *solver);
+void tt_sim_free(tt_sim *sim);
+
+/* The force law under the tip (NULL: no sample interaction) and the interaction
+ * quality factor Q_i (NAN or <= 0: no interaction damping); c_i = m* w0 / Q_i. */
+void tt_sim_set_contact(tt_sim *sim, const tt_contact *contact, double Qi);
+
+/* Sample surface position s (m, along the axis into the sample) at the start of the
+ * next cycle, moving at sdot (m/s) through it. With the base at rest at 0, s is the
+ * rest separation (gap) of the scene. */
+void tt_sim_set_sample(tt_sim *sim, double s, double sdot);
+
+/* Record n samples per cycle at t = k T / n (k = 0 .. n-1) into buf (NULL: none). */
+void tt_sim_set_sampling(tt_sim *sim, int n, tt_sample *buf);
+
+/* Change the cantilever's constants (a ramp of its stiffness), keeping the state and
+ * the interaction damping coefficient. The drive frequency must stay the same. */
+void tt_sim_set_cantilever(tt_sim *sim, const tt_cantilever *c);
+const tt_cantilever *tt_sim_cantilever(const tt_sim *sim);
+
+/* Track the deflection's extremes in each cycle (costs a little; off by default). */
+void tt_sim_track_extremes(tt_sim *sim, int on);
+
+/* Put the cantilever in its free steady oscillation at a cycle start, out of contact. */
+void tt_sim_reset_free(tt_sim *sim);
+
+/* Advance one drive cycle. TT_ENUM with a message if the solution fails (NaN, step
+ * size underflow, rk4 steps too coarse for the contact stiffness, radau's Newton
+ * iteration failing at an event). */
+int tt_sim_cycle(tt_sim *sim, tt_cycle *out);
+
+/* Run cycles until amplitude and phase settle: the remaining change, extrapolated
+ * from the geometric decay of successive changes, is below tol (relative to the free
+ * amplitude, and in rad); at most max_cycles. *settled tells whether it did. The last
+ * cycle is returned in out. */
+int tt_sim_settle(tt_sim *sim, long max_cycles, double tol, tt_cycle *out, int *settled,
+                  long *cycles);
+
+/* Absolute time at the current cycle start, s; cycles completed. */
+double tt_sim_time(const tt_sim *sim);
+long tt_sim_cycles(const tt_sim *sim);
+void tt_sim_get_state(const tt_sim *sim, double *d, double *v, int *contact);
+void tt_sim_set_state(tt_sim *sim, double d, double v, int contact);
+/* Tip-sample force (N) for a recorded sample, on the sim's current material. */
+double tt_sim_force(const tt_sim *sim, const tt_sample *smp, double *a);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,148 @@
+/* Approach curves: the outer loop over rest separations (see include/tiptap/instrument/approach.h). */
+#include "tiptap/instrument/approach.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tiptap/util/error.h"
+
+struct tt_approach {
+    tt_sim *sim;
+    tt_approach_params p;
+    size_t row, rows;
+    /* ramp mode */
+    long cycles_total, cycles_done;
+    double dz_cycle;       /* sample travel per cycle, m (signed) */
+};
+
+int tt_approach_params_from_scene(tt_approach_params *p, const tt_scene *s)
+{
+    int rc;
+    const char *mode = tt_scene_get_string(s, "approach", NULL, "mode");
+    p->mode = (mode && strcmp(mode, "ramp") == 0) ? TT_APPROACH_RAMP : TT_APPROACH_STEADY;
+    if ((rc = tt_scene_get_double(s, "approach", NULL, "from", &p->from)) ||
+        (rc = tt_scene_get_double(s, "approach", NULL, "to", &p->to)) ||
+        (rc = tt_scene_get_int(s, "approach", NULL, "points", &p->points)) ||
+        (rc = tt_scene_get_bool(s, "approach", NULL, "retract", &p->retract)) ||
+        (rc = tt_scene_get_double(s, "approach", NULL, "speed", &p->speed)) ||
+        (rc = tt_scene_get_int(s, "approach", NULL, "max_cycles", &p->max_cycles)) ||
+        (rc = tt_scene_get_double(s, "approach", NULL, "settle_tolerance", &p->settle_tolerance)))
+        return rc;
+    if (p->points > 1 && p->from == p->to)
+        return tt_scene_fail(s, "approach", NULL, "to", "equals 'from'; an approach needs a range");
+    return TT_OK;
+}
+
+int tt_approach_alloc(tt_approach **out, tt_sim *sim, const tt_approach_params *p)
+{
+    *out = NULL;
+    if (p->points < 1)
+        return tt_error(TT_EINVAL, "[approach] points: must be at least 1");
+    if (!isfinite(p->from) || !isfinite(p->to))
+        return tt_error(TT_EINVAL, "[approach] from/to: must be finite");
+    tt_approach *a = calloc(1, sizeof *a);
+    if (!a)
+        return tt_error(TT_ENOMEM, "out of memory");
+    a->sim = sim;
+    a->p = *p;
+    a->rows = (size_t)p->points * (p->retract ? 2 : 1);
+    if (p->mode == TT_APPROACH_RAMP) {
+        double T = tt_sim_cantilever(sim)->T;
+        if (!(p->speed > 0)) {
+            free(a);
+            return tt_error(TT_EINVAL, "[approach] speed: must be positive in ramp mode");
+        }
+        double dist = fabs(p->to - p->from);
+        a->cycles_total = (long)ceil(dist / (p->speed * T));
+        if (a->cycles_total < 1)
+            a->cycles_total = 1;
+        if (a->cycles_total > 2000000000L) {
+            free(a);
+            return tt_error(TT_EINVAL, "[approach] speed: the ramp would take more than 2e9 cycles");
+        }
+        a->dz_cycle = (p->to - p->from) / (double)a->cycles_total;
+        tt_sim_track_extremes(sim, 1);
+    }
+    *out = a;
+    return TT_OK;
+}
+
+void tt_approach_free(tt_approach *a) { free(a); }
+size_t tt_approach_rows(const tt_approach *a) { return a->rows; }
+int tt_approach_done(const tt_approach *a) { return a->row >= a->rows; }
+
+/* Separation of row i of a branch of n points, from -> to (or back). */
+static double branch_z(const tt_approach_params *p, size_t i, int retract)
+{
+    if (p->points == 1)
+        return p->from;
+    double f = (double)i / (double)(p->points - 1);
+    return retract ? p->to + f * (p->from - p->to) : p->from + f * (p->to - p->from);
+}
+
+static int iterate_steady(tt_approach *a, tt_approach_point *pt)
+{
+    size_t n = (size_t)a->p.points;
+    int retract = a->row >= n;
+    size_t i = retract ? a->row - n : a->row;
+    double z = branch_z(&a->p, i, retract);
+    if (a->row == 0)
+        tt_sim_reset_free(a->sim);
+    tt_sim_set_sample(a->sim, z, 0);
+    memset(pt, 0, sizeof *pt);
+    pt->z = z;
+    pt->retract = retract;
+    int rc = tt_sim_settle(a->sim, a->p.max_cycles, a->p.settle_tolerance, &pt->cycle, &pt->settled,
+                           &pt->cycles);
+    a->row++;
+    return rc;
+}
+
+static int iterate_ramp(tt_approach *a, tt_approach_point *pt)
+{
+    size_t n = (size_t)a->p.points;
+    int retract = a->row >= n;
+    size_t i = retract ? a->row - n : a->row;
+    int rc;
+    memset(pt, 0, sizeof *pt);
+    if (a->row == 0) {
+        /* Start in the free steady state far away, as an instrument does. */
+        tt_sim_reset_free(a->sim);
+        tt_sim_set_sample(a->sim, a->p.from, 0);
+        int settled;
+        long cyc;
+        if ((rc = tt_sim_settle(a->sim, a->p.max_cycles, a->p.settle_tolerance, &pt->cycle,
+                                &settled, &cyc)))
+            return rc;
+        a->cycles_done = 0;
+    }
+    /* The cycle at which this row is taken along the branch. */
+    long target = n == 1 ? 0 : (long)llround((double)i * (double)a->cycles_total / (double)(n - 1));
+    long base = retract ? a->cycles_total : 0;
+    double sdot = (retract ? -a->dz_cycle : a->dz_cycle) / tt_sim_cantilever(a->sim)->T;
+    long ran = 0;
+    double z = retract ? a->p.to : a->p.from;
+    do {
+        long k = a->cycles_done - base; /* cycles into this branch */
+        z = retract ? a->p.to - (double)k * a->dz_cycle : a->p.from + (double)k * a->dz_cycle;
+        tt_sim_set_sample(a->sim, z, (k < a->cycles_total) ? sdot : 0.0);
+        if ((rc = tt_sim_cycle(a->sim, &pt->cycle)))
+            return rc;
+        a->cycles_done++;
+        ran++;
+    } while (a->cycles_done - base <= target);
+    pt->z = z;
+    pt->retract = retract;
+    pt->settled = 0;
+    pt->cycles = ran;
+    a->row++;
+    return TT_OK;
+}
+
+int tt_approach_iterate(tt_approach *a, tt_approach_point *pt)
+{
+    if (tt_approach_done(a))
+        return tt_error(TT_EINVAL, "approach already finished");
+    return a->p.mode == TT_APPROACH_RAMP ? iterate_ramp(a, pt) : iterate_steady(a, pt);
+}

@@ -1,0 +1,130 @@
+/* Lock-in demodulation over whole drive periods with FFTW, then a low-pass filter
+ * (see include/tiptap/instrument/lockin.h). */
+#include "tiptap/instrument/lockin.h"
+
+#include <fftw3.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tiptap/util/error.h"
+
+#define MAXH 16
+#define MAXORDER 8
+
+struct tt_lockin {
+    tt_lockin_params p;
+    int n;                  /* samples per block */
+    double *in;
+    fftw_complex *out;
+    fftw_plan plan;
+    double alpha;           /* filter coefficient per block */
+    double X[MAXORDER][MAXH], Y[MAXORDER][MAXH]; /* filter stages */
+    double rawX[MAXH], rawY[MAXH], mean;
+};
+
+int tt_lockin_alloc(tt_lockin **out, const tt_lockin_params *p)
+{
+    *out = NULL;
+    if (!(p->drive_frequency > 0) || p->samples_per_period < 8 || p->periods_per_block < 1 ||
+        p->harmonics < 1 || p->harmonics > MAXH || p->filter_order < 1 || p->filter_order > MAXORDER ||
+        !(p->time_constant >= 0))
+        return tt_error(TT_EINVAL, "lock-in: invalid parameters");
+    if (2 * p->harmonics >= p->samples_per_period)
+        return tt_error(TT_EINVAL, "lock-in: %d harmonics need more than %d samples per period",
+                        p->harmonics, 2 * p->harmonics);
+    tt_lockin *l = calloc(1, sizeof *l);
+    if (!l)
+        return tt_error(TT_ENOMEM, "out of memory");
+    l->p = *p;
+    l->n = p->samples_per_period * p->periods_per_block;
+    l->in = fftw_alloc_real((size_t)l->n);
+    l->out = fftw_alloc_complex((size_t)l->n / 2 + 1);
+    if (!l->in || !l->out) {
+        tt_lockin_free(l);
+        return tt_error(TT_ENOMEM, "out of memory");
+    }
+    /* FFTW's planner is not thread-safe; execution on separate arrays is. */
+#pragma omp critical(tt_fftw_planner)
+    l->plan = fftw_plan_dft_r2c_1d(l->n, l->in, l->out, FFTW_ESTIMATE);
+    if (!l->plan) {
+        tt_lockin_free(l);
+        return tt_error(TT_ENOMEM, "lock-in: no FFTW plan");
+    }
+    double Tb = p->periods_per_block / p->drive_frequency;
+    /* exact discretisation of a first-order section for a block-held input */
+    l->alpha = p->time_constant > 0 ? 1 - exp(-Tb / p->time_constant) : 1.0;
+    *out = l;
+    return TT_OK;
+}
+
+void tt_lockin_free(tt_lockin *l)
+{
+    if (!l)
+        return;
+#pragma omp critical(tt_fftw_planner)
+    {
+        if (l->plan)
+            fftw_destroy_plan(l->plan);
+    }
+    fftw_free(l->in);
+    fftw_free(l->out);
+    free(l);
+}
+
+void tt_lockin_reset(tt_lockin *l, double amplitude, double phase)
+{
+    memset(l->X, 0, sizeof l->X);
+    memset(l->Y, 0, sizeof l->Y);
+    for (int k = 0; k < l->p.filter_order; k++) {
+        l->X[k][0] = amplitude * cos(phase);
+        l->Y[k][0] = amplitude * sin(phase);
+    }
+    l->rawX[0] = amplitude * cos(phase);
+    l->rawY[0] = amplitude * sin(phase);
+}
+
+int tt_lockin_push(tt_lockin *l, const double *samples)
+{
+    memcpy(l->in, samples, (size_t)l->n * sizeof(double));
+    fftw_execute(l->plan);
+    double scale = 2.0 / l->n;
+    l->mean = l->out[0][0] / l->n;
+    for (int h = 1; h <= l->p.harmonics; h++) {
+        int bin = h * l->p.periods_per_block;
+        /* y = A cos(h w t - phi) = A cos(phi) cos + A sin(phi) sin; the transform's
+         * bin holds (X - iY) n / 2 */
+        double X = l->out[bin][0] * scale, Y = -l->out[bin][1] * scale;
+        l->rawX[h - 1] = X;
+        l->rawY[h - 1] = Y;
+        for (int k = 0; k < l->p.filter_order; k++) {
+            l->X[k][h - 1] += l->alpha * (X - l->X[k][h - 1]);
+            l->Y[k][h - 1] += l->alpha * (Y - l->Y[k][h - 1]);
+            X = l->X[k][h - 1];
+            Y = l->Y[k][h - 1];
+        }
+    }
+    return TT_OK;
+}
+
+static double lag(double X, double Y)
+{
+    double ph = atan2(Y, X);
+    return ph < -M_PI / 2 ? ph + 2 * M_PI : ph; /* continuous through 90 and 180 degrees */
+}
+
+double tt_lockin_amplitude(const tt_lockin *l, int h)
+{
+    int o = l->p.filter_order - 1;
+    return hypot(l->X[o][h - 1], l->Y[o][h - 1]);
+}
+
+double tt_lockin_phase(const tt_lockin *l, int h)
+{
+    int o = l->p.filter_order - 1;
+    return lag(l->X[o][h - 1], l->Y[o][h - 1]);
+}
+
+double tt_lockin_raw_amplitude(const tt_lockin *l, int h) { return hypot(l->rawX[h - 1], l->rawY[h - 1]); }
+double tt_lockin_raw_phase(const tt_lockin *l, int h) { return lag(l->rawX[h - 1], l->rawY[h - 1]); }
+double tt_lockin_mean(const tt_lockin *l) { return l->mean; }

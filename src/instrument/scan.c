@@ -1,0 +1,495 @@
+/* Closed-loop imaging: raster, lock-in, feedback and per-pixel channels
+ * (see include/tiptap/instrument/scan.h). */
+#include "tiptap/instrument/scan.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tiptap/util/cancel.h"
+#include "tiptap/util/error.h"
+#include "tiptap/instrument/feedback.h"
+#include "tiptap/instrument/lockin.h"
+#include "tiptap/instrument/scanner.h"
+#include "tiptap/config/setup.h"
+#include "tiptap/instrument/surface.h"
+
+static const struct {
+    const char *name, *unit;
+} channel_info[TT_CH_COUNT] = {
+    {"height", "m"},     {"amplitude", "m"},   {"phase", "deg"},       {"peak_force", "N"},
+    {"indentation", "m"}, {"dissipation", "J"}, {"topography", "m"},
+    {"harmonic2", "m"},  {"harmonic3", "m"},   {"harmonic4", "m"},     {"harmonic5", "m"},
+    {"harmonic6", "m"},  {"harmonic7", "m"},   {"harmonic8", "m"},
+    {"harmonic2_phase", "deg"}, {"harmonic3_phase", "deg"}, {"harmonic4_phase", "deg"},
+    {"harmonic5_phase", "deg"}, {"harmonic6_phase", "deg"}, {"harmonic7_phase", "deg"},
+    {"harmonic8_phase", "deg"},
+};
+
+enum { NHARM = TT_CH_HARMONIC_MAX - 1 }; /* harmonic channels of each kind */
+_Static_assert(TT_CH_COUNT <= 8 * sizeof(unsigned), "a channel mask holds every channel");
+
+const char *tt_scan_channel_name(int i) { return i >= 0 && i < TT_CH_COUNT ? channel_info[i].name : "?"; }
+const char *tt_scan_channel_unit(int i) { return i >= 0 && i < TT_CH_COUNT ? channel_info[i].unit : "?"; }
+
+int tt_scan_channel_harmonic(int i)
+{
+    if (i == 1 || i == 2)
+        return 1;
+    if (i >= TT_CH_HARMONIC_INDEX && i < TT_CH_HARMONIC_INDEX + NHARM)
+        return i - TT_CH_HARMONIC_INDEX + 2;
+    if (i >= TT_CH_HARMONIC_PHASE_INDEX && i < TT_CH_HARMONIC_PHASE_INDEX + NHARM)
+        return i - TT_CH_HARMONIC_PHASE_INDEX + 2;
+    return 0;
+}
+
+int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t len)
+{
+    *mask = 0;
+    const char *p = text;
+    while (*p) {
+        while (*p == ' ' || *p == ',' || *p == '\t')
+            p++;
+        if (!*p)
+            break;
+        const char *e = p;
+        while (*e && *e != ',' && *e != ' ' && *e != '\t')
+            e++;
+        int found = -1;
+        for (int i = 0; i < TT_CH_COUNT; i++)
+            if (strlen(channel_info[i].name) == (size_t)(e - p) &&
+                strncmp(channel_info[i].name, p, (size_t)(e - p)) == 0)
+                found = i;
+        if (found < 0) {
+            snprintf(why, len,
+                     "unknown channel '%.*s'; channels are height, amplitude, phase, peak_force, "
+                     "indentation, dissipation, topography, harmonic2 to harmonic%d, "
+                     "harmonic2_phase to harmonic%d_phase",
+                     (int)(e - p), p, TT_CH_HARMONIC_MAX, TT_CH_HARMONIC_MAX);
+            return -1;
+        }
+        *mask |= 1u << found;
+        p = e;
+    }
+    if (!*mask) {
+        snprintf(why, len, "no channel named");
+        return -1;
+    }
+    return 0;
+}
+
+/* One thread's workspace: its own simulation, lock-in and sample buffer. */
+typedef struct {
+    tt_setup *setup;
+    tt_lockin *lockin;
+    tt_sample *samples;
+    double *y;
+} worker;
+
+struct tt_scan {
+    tt_scene *scene;
+    tt_raster raster;
+    tt_surface *surface;
+    int uniform, flat;
+    unsigned channels;
+    long settle_cycles;
+    long profile_line;
+    /* lock-in and feedback */
+    tt_lockin_params lockin;
+    double setpoint, kp, ki, z_range;
+    double A0;
+    /* results: [retrace][channel] -> lines * pixels */
+    double *img[2][TT_CH_COUNT];
+    char *line_done;
+    long lines_done;
+    long cycles;
+    double worst_residual;
+    int clamped;
+    /* the first failure of any thread */
+    int status;
+    char message[1024];
+};
+
+static int get_keys(tt_scan *S)
+{
+    tt_scene *sc = S->scene;
+    int rc;
+    char why[256];
+    if ((rc = tt_raster_from_scene(&S->raster, sc)))
+        return rc;
+    const char *ch = tt_scene_get_string(sc, "scan", NULL, "channels");
+    if (tt_scan_channels_parse(ch ? ch : "height", &S->channels, why, sizeof why) != 0)
+        return tt_scene_fail(sc, "scan", NULL, "channels", "%s", why);
+    if ((rc = tt_scene_get_int(sc, "scan", NULL, "settle_cycles", &S->settle_cycles)) ||
+        (rc = tt_scene_get_int(sc, "scan", NULL, "profile_line", &S->profile_line)))
+        return rc;
+    if (S->profile_line < 0)
+        S->profile_line = S->raster.lines / 2;
+    if (S->profile_line >= S->raster.lines)
+        return tt_scene_fail(sc, "scan", NULL, "profile_line", "%ld is past the last line (%ld)",
+                             S->profile_line, S->raster.lines - 1);
+    /* lock-in */
+    long spp, order, harm, ppb;
+    if ((rc = tt_scene_get_double(sc, "lockin", NULL, "time_constant", &S->lockin.time_constant)) ||
+        (rc = tt_scene_get_int(sc, "lockin", NULL, "filter_order", &order)) ||
+        (rc = tt_scene_get_int(sc, "lockin", NULL, "samples_per_period", &spp)) ||
+        (rc = tt_scene_get_int(sc, "lockin", NULL, "harmonics", &harm)) ||
+        (rc = tt_scene_get_int(sc, "lockin", NULL, "periods_per_block", &ppb)))
+        return rc;
+    S->lockin.samples_per_period = (int)spp;
+    S->lockin.filter_order = (int)order;
+    S->lockin.periods_per_block = (int)ppb;
+    if (2 * harm >= spp)
+        return tt_scene_fail(sc, "lockin", NULL, "harmonics",
+                             "%ld harmonics need more than %ld samples per period "
+                             "([lockin] samples_per_period is %ld)",
+                             harm, 2 * harm, spp);
+    /* [lockin] harmonics is what the lock-in offers; it demodulates only up to the
+     * highest harmonic a channel records, since nothing else reads the rest. */
+    S->lockin.harmonics = 1;
+    for (int c = 0; c < TT_CH_COUNT; c++)
+        if ((S->channels & (1u << c)) && tt_scan_channel_harmonic(c) > S->lockin.harmonics)
+            S->lockin.harmonics = tt_scan_channel_harmonic(c);
+    if (S->lockin.harmonics > harm)
+        return tt_scene_fail(sc, "scan", NULL, "channels",
+                             "harmonic%d needs [lockin] harmonics = %d or more (it is %ld)",
+                             S->lockin.harmonics, S->lockin.harmonics, harm);
+    /* feedback */
+    tt_dim dim;
+    if ((rc = tt_scene_get_quantity(sc, "feedback", NULL, "setpoint", &S->setpoint, &dim)) ||
+        (rc = tt_scene_get_double(sc, "feedback", NULL, "proportional_gain", &S->kp)) ||
+        (rc = tt_scene_get_double(sc, "feedback", NULL, "integral_gain", &S->ki)) ||
+        (rc = tt_scene_get_double(sc, "feedback", NULL, "z_range", &S->z_range)))
+        return rc;
+    tt_cantilever c;
+    if ((rc = tt_cantilever_from_scene(&c, sc)))
+        return rc;
+    S->A0 = c.A0;
+    S->lockin.drive_frequency = c.fd;
+    if (dim == TT_DIM_FRACTION) {
+        if (!(S->setpoint > 0 && S->setpoint < 1))
+            return tt_scene_fail(sc, "feedback", NULL, "setpoint",
+                                 "a percentage must lie between 0 and 100 %% (exclusive)");
+        S->setpoint *= c.A0;
+    } else if (!(S->setpoint > 0 && S->setpoint < c.A0)) {
+        return tt_scene_fail(sc, "feedback", NULL, "setpoint",
+                             "must lie between 0 and the free amplitude (%g nm)", c.A0 * 1e9);
+    }
+    return TT_OK;
+}
+
+int tt_scan_alloc(tt_scan **out, tt_scene *scene)
+{
+    *out = NULL;
+    tt_scan *S = calloc(1, sizeof *S);
+    if (!S)
+        return tt_error(TT_ENOMEM, "out of memory");
+    S->scene = scene;
+    int rc;
+    if ((rc = get_keys(S)) ||
+        (rc = tt_surface_alloc(&S->surface, scene, S->raster.size_x, S->raster.size_y))) {
+        tt_scan_free(S);
+        return rc;
+    }
+    S->uniform = tt_surface_uniform(S->surface);
+    S->flat = tt_surface_flat(S->surface);
+    size_t n = (size_t)S->raster.pixels * (size_t)S->raster.lines;
+    for (int r = 0; r < (S->raster.retrace ? 2 : 1); r++)
+        for (int c = 0; c < TT_CH_COUNT; c++) {
+            if (!(S->channels & (1u << c)))
+                continue;
+            S->img[r][c] = malloc(n * sizeof(double));
+            if (!S->img[r][c]) {
+                tt_scan_free(S);
+                return tt_error(TT_ENOMEM, "out of memory for the images");
+            }
+            for (size_t i = 0; i < n; i++)
+                S->img[r][c][i] = NAN;
+        }
+    S->line_done = calloc((size_t)S->raster.lines, 1);
+    if (!S->line_done) {
+        tt_scan_free(S);
+        return tt_error(TT_ENOMEM, "out of memory");
+    }
+    *out = S;
+    return TT_OK;
+}
+
+void tt_scan_free(tt_scan *S)
+{
+    if (!S)
+        return;
+    for (int r = 0; r < 2; r++)
+        for (int c = 0; c < TT_CH_COUNT; c++)
+            free(S->img[r][c]);
+    free(S->line_done);
+    tt_surface_free(S->surface);
+    free(S);
+}
+
+static void worker_free(worker *W)
+{
+    tt_setup_free(W->setup);
+    tt_lockin_free(W->lockin);
+    free(W->samples);
+    free(W->y);
+}
+
+static int worker_alloc(tt_scan *S, worker *W)
+{
+    memset(W, 0, sizeof *W);
+    int rc;
+    if ((rc = tt_setup_alloc(&W->setup, S->scene)) || (rc = tt_lockin_alloc(&W->lockin, &S->lockin)))
+        return rc;
+    size_t n = (size_t)S->lockin.samples_per_period * (size_t)S->lockin.periods_per_block;
+    W->samples = calloc(n, sizeof *W->samples);
+    W->y = calloc(n, sizeof *W->y);
+    if (!W->samples || !W->y)
+        return tt_error(TT_ENOMEM, "out of memory");
+    return TT_OK;
+}
+
+/* Per-pixel sums of one scan direction. */
+typedef struct {
+    double sum[TT_CH_COUNT]; /* harmonic phases: the in-phase parts, X = A cos(phase) */
+    double quad[NHARM];      /* harmonic phases: the quadrature parts, Y = A sin(phase) */
+    long n;    /* cycles, for the per-cycle channels */
+    long nblk; /* cycles of the lock-in blocks that ended in this pixel */
+} pixel_acc;
+
+/* Phase lag in the lock-in's range, (-90, 270] degrees (see src/instrument/lockin.c). */
+static double lag(double X, double Y)
+{
+    double ph = atan2(Y, X);
+    return ph < -M_PI / 2 ? ph + 2 * M_PI : ph;
+}
+
+/* Scan one line: engage at its first pixel, then trace and retrace. */
+static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *worst, int *clamped)
+{
+    const tt_raster *R = &S->raster;
+    tt_setup *st = W->setup;
+    tt_sim *sim = st->sim;
+    const tt_cantilever *c = &st->cantilever;
+    const double T = c->T;
+    const int P = S->lockin.periods_per_block, N = S->lockin.samples_per_period;
+    const long nc = tt_raster_cycles_per_direction(R, T);
+    const double h_ref = 0; /* heights are reported against the surface's own zero */
+    int rc;
+
+    double x, y;
+    tt_raster_position(R, line, 0, nc, 0, &x, &y);
+    double h0 = tt_surface_height(S->surface, x, y);
+    size_t mat = S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
+    if ((rc = tt_setup_use_material(st, mat)))
+        return rc;
+    size_t current = mat;
+
+    /* Engage: the rest separation of a free tip whose amplitude the surface limits to
+     * the setpoint is about the setpoint; the feedback then settles the rest. */
+    const double s_ref = S->setpoint;
+    tt_feedback fb;
+    tt_feedback_init(&fb, S->setpoint, S->kp, S->ki, h_ref - 0.5 * S->z_range,
+                     h_ref + 0.5 * S->z_range, h0);
+    double z_from = fb.z, z_to = fb.z;
+    tt_sim_reset_free(sim);
+    tt_sim_set_sampling(sim, N, W->samples);
+    tt_lockin_reset(W->lockin, c->A0, c->phi0);
+
+    pixel_acc *pix = calloc((size_t)R->pixels * 2, sizeof *pix);
+    if (!pix)
+        return tt_error(TT_ENOMEM, "out of memory");
+
+    /* Phase 0 settles at the first pixel; phases 1 and 2 are trace and retrace. */
+    long settle_blocks = (S->settle_cycles + P - 1) / P;
+    for (int phase = 0; phase < (R->retrace ? 3 : 2) && rc == TT_OK; phase++) {
+        long nblocks = phase == 0 ? settle_blocks : (nc + P - 1) / P;
+        int dir = phase == 2 ? 1 : 0;
+        for (long b = 0; b < nblocks && rc == TT_OK; b++) {
+            if ((b & 63) == 0 && tt_cancel_requested()) {
+                rc = TT_EINTR;
+                break;
+            }
+            for (int j = 0; j < P; j++) {
+                long k = b * P + j; /* cycle index within this direction */
+                if (phase > 0 && k >= nc)
+                    break;
+                double xa, ya, xb, yb;
+                if (phase == 0) {
+                    tt_raster_position(R, line, 0, nc, 0, &xa, &ya);
+                    xb = xa;
+                    yb = ya;
+                } else {
+                    tt_raster_position(R, line, dir, nc, k, &xa, &ya);
+                    tt_raster_position(R, line, dir, nc, k + 1, &xb, &yb);
+                }
+                double ha = S->flat ? 0 : tt_surface_height(S->surface, xa, ya);
+                double hb = S->flat ? 0 : tt_surface_height(S->surface, xb, yb);
+                if (!S->uniform) {
+                    size_t m = (size_t)tt_surface_material(S->surface, xa, ya);
+                    if (m != current) {
+                        if ((rc = tt_setup_use_material(st, m)))
+                            break;
+                        current = m;
+                    }
+                }
+                /* The z piezo moves linearly from the last output to the new one over
+                 * the block after an update, so the sample never jumps. */
+                double za = z_from + (z_to - z_from) * (double)j / P;
+                double zb = z_from + (z_to - z_from) * (double)(j + 1) / P;
+                double sa = s_ref - ha + za, sb = s_ref - hb + zb;
+                tt_sim_set_sample(sim, sa, (sb - sa) / T);
+                tt_cycle cy;
+                if ((rc = tt_sim_cycle(sim, &cy)))
+                    break;
+                (*cycles)++;
+                if (cy.residual_rel > *worst)
+                    *worst = cy.residual_rel;
+                for (int q = 0; q < N; q++)
+                    W->y[j * N + q] = W->samples[q].d - W->samples[q].z;
+                if (phase > 0) {
+                    long px = tt_raster_pixel(R, dir, nc, k);
+                    pixel_acc *a = &pix[(size_t)dir * (size_t)R->pixels + (size_t)px];
+                    a->sum[3] += cy.peak_force;
+                    a->sum[4] += cy.max_indentation;
+                    a->sum[5] += cy.e_ts;
+                    a->sum[6] += ha;
+                    a->sum[0] += za;
+                    a->n++;
+                }
+            }
+            if (rc)
+                break;
+            if ((rc = tt_lockin_push(W->lockin, W->y)))
+                break;
+            double A = tt_lockin_amplitude(W->lockin, 1), ph = tt_lockin_phase(W->lockin, 1);
+            z_from = z_to;
+            z_to = tt_feedback_update(&fb, A, P * T);
+            if (fb.clamped)
+                *clamped = 1;
+            if (phase > 0) {
+                /* the block's lock-in outputs belong to the pixel of its last cycle */
+                long k = b * P + P - 1;
+                if (k >= nc)
+                    k = nc - 1;
+                long px = tt_raster_pixel(R, dir, nc, k);
+                pixel_acc *a = &pix[(size_t)dir * (size_t)R->pixels + (size_t)px];
+                a->sum[1] += (A - S->setpoint) * P;
+                a->sum[2] += ph * 180 / M_PI * P;
+                a->nblk += P;
+                for (int h = 2; h <= S->lockin.harmonics; h++) {
+                    double Ah = tt_lockin_amplitude(W->lockin, h);
+                    a->sum[TT_CH_HARMONIC_INDEX + h - 2] += Ah * P;
+                    /* a harmonic's phase is averaged as a vector: near zero amplitude it
+                     * is noise, and a plain mean across its wrap would be meaningless */
+                    double phh = tt_lockin_phase(W->lockin, h);
+                    a->sum[TT_CH_HARMONIC_PHASE_INDEX + h - 2] += Ah * cos(phh) * P;
+                    a->quad[h - 2] += Ah * sin(phh) * P;
+                }
+            }
+        }
+    }
+    if (rc == TT_OK) {
+        for (int dir = 0; dir < (R->retrace ? 2 : 1); dir++)
+            for (long px = 0; px < R->pixels; px++) {
+                pixel_acc *a = &pix[(size_t)dir * (size_t)R->pixels + (size_t)px];
+                for (int ch = 0; ch < TT_CH_COUNT; ch++) {
+                    /* lock-in channels come once per lock-in block, the rest per cycle */
+                    long cnt = tt_scan_channel_harmonic(ch) ? a->nblk : a->n;
+                    double v = cnt ? a->sum[ch] / (double)cnt : NAN;
+                    if (ch >= TT_CH_HARMONIC_PHASE_INDEX && cnt)
+                        v = lag(a->sum[ch], a->quad[ch - TT_CH_HARMONIC_PHASE_INDEX]) * 180 / M_PI;
+                    if (S->img[dir][ch])
+                        S->img[dir][ch][tt_raster_index(R, line, px)] = v;
+                }
+            }
+    }
+    free(pix);
+    return rc;
+}
+
+int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done, long total),
+                void *user)
+{
+    if (threads <= 0)
+        threads = omp_get_max_threads();
+    if (threads > S->raster.lines)
+        threads = (int)S->raster.lines;
+    if (threads < 1)
+        threads = 1;
+    worker *W = calloc((size_t)threads, sizeof *W);
+    if (!W)
+        return tt_error(TT_ENOMEM, "out of memory");
+    int rc = TT_OK;
+    for (int i = 0; i < threads && rc == TT_OK; i++)
+        rc = worker_alloc(S, &W[i]);
+    if (rc == TT_OK) {
+        S->status = TT_OK;
+        long total = S->raster.lines;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+        for (long line = 0; line < total; line++) {
+            int failed;
+#pragma omp atomic read
+            failed = S->status;
+            if (failed || S->line_done[line] || tt_cancel_requested())
+                continue;
+            worker *w = &W[omp_get_thread_num()];
+            long cycles = 0;
+            double worst = 0;
+            int clamped = 0;
+            int lrc = scan_line(S, w, line, &cycles, &worst, &clamped);
+#pragma omp critical(tt_scan_result)
+            {
+                S->cycles += cycles;
+                if (worst > S->worst_residual)
+                    S->worst_residual = worst;
+                S->clamped |= clamped;
+                if (lrc == TT_OK) {
+                    S->line_done[line] = 1;
+                    S->lines_done++;
+                    if (progress)
+                        progress(user, S->lines_done, total);
+                } else if (lrc != TT_EINTR && S->status == TT_OK) {
+                    snprintf(S->message, sizeof S->message, "line %ld: %s", line, tt_error_message());
+                    S->status = lrc;
+                }
+            }
+        }
+        if (S->status != TT_OK)
+            rc = tt_error(S->status, "%s", S->message);
+        else if (S->lines_done < S->raster.lines)
+            rc = tt_error(TT_EINTR, "interrupted after %ld of %ld lines", S->lines_done,
+                          S->raster.lines);
+    }
+    for (int i = 0; i < threads; i++)
+        worker_free(&W[i]);
+    free(W);
+    return rc;
+}
+
+long tt_scan_xres(const tt_scan *S) { return S->raster.fast_y ? S->raster.lines : S->raster.pixels; }
+long tt_scan_yres(const tt_scan *S) { return S->raster.fast_y ? S->raster.pixels : S->raster.lines; }
+long tt_scan_lines(const tt_scan *S) { return S->raster.lines; }
+int tt_scan_fast_y(const tt_scan *S) { return S->raster.fast_y; }
+double tt_scan_size_x(const tt_scan *S) { return S->raster.size_x; }
+double tt_scan_size_y(const tt_scan *S) { return S->raster.size_y; }
+unsigned tt_scan_channels(const tt_scan *S) { return S->channels; }
+int tt_scan_has_retrace(const tt_scan *S) { return S->raster.retrace; }
+long tt_scan_lines_done(const tt_scan *S) { return S->lines_done; }
+long tt_scan_profile_line(const tt_scan *S) { return S->profile_line; }
+long tt_scan_cycles(const tt_scan *S) { return S->cycles; }
+double tt_scan_error_estimate(const tt_scan *S) { return S->worst_residual; }
+int tt_scan_clamped(const tt_scan *S) { return S->clamped; }
+
+const double *tt_scan_image(const tt_scan *S, int channel, int retrace)
+{
+    if (channel < 0 || channel >= TT_CH_COUNT || retrace < 0 || retrace > 1)
+        return NULL;
+    return S->img[retrace][channel];
+}
+
+double tt_scan_instrument_time(const tt_scan *S)
+{
+    return (double)S->raster.lines / S->raster.line_rate;
+}

@@ -1,0 +1,527 @@
+/* Sample topography and material map (see include/tiptap/instrument/surface.h, docs/surfaces.md).
+ * Analytic shapes are evaluated directly; rough surfaces and PNG maps live on grids. */
+#include "tiptap/instrument/surface.h"
+
+#include <fftw3.h>
+#include <math.h>
+#include <png.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tiptap/util/error.h"
+#include "tiptap/physics/material.h"
+
+typedef enum { S_FLAT, S_STEPS, S_GRATING, S_PARTICLES, S_ROUGH, S_PNG } shape;
+typedef enum { M_UNIFORM, M_STRIPES, M_DISKS, M_CHECKER, M_ISLANDS, M_PNG } mapkind;
+
+struct tt_surface {
+    shape type;
+    mapkind map;
+    double sx, sy;
+    /* shapes */
+    double step_h, step_w, period, duty, height, edge;
+    double pr;              /* particle radius */
+    double *px, *py;        /* particle centres */
+    long np;
+    int *cell_start, *cell_list; /* particles binned on a grid of cells 2 r wide */
+    int ncx, ncy;
+    /* height grid (rough, png) */
+    double *grid;
+    int gw, gh, periodic;
+    /* map */
+    int mat[2];             /* background, second material */
+    double map_period, map_duty, map_radius;
+    int *mgrid;             /* png material map */
+    int mw, mh;
+};
+
+/* ---- PNG input ---- */
+
+/* Read a PNG as 8-bit RGB or as grey (8 bit, or 16 bit when the file is) into a
+ * freshly allocated array; errors name the file and the key. */
+static int read_png(const tt_scene *sc, const char *key, const char *path, int want_rgb,
+                    unsigned short **pix, int *w, int *h, int *maxval)
+{
+    png_image im;
+    memset(&im, 0, sizeof im);
+    im.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_file(&im, path))
+        return tt_scene_fail(sc, "surface", NULL, key, "%s: cannot read as PNG: %s", path, im.message);
+    int sixteen = (im.format & PNG_FORMAT_FLAG_LINEAR) != 0 && !want_rgb;
+    im.format = want_rgb ? PNG_FORMAT_RGB : sixteen ? PNG_FORMAT_LINEAR_Y : PNG_FORMAT_GRAY;
+    size_t ch = want_rgb ? 3 : 1, bytes = sixteen ? 2 : 1;
+    size_t n = (size_t)im.width * im.height * ch;
+    void *buf = malloc(n * bytes);
+    *pix = malloc(n * sizeof **pix);
+    if (!buf || !*pix) {
+        free(buf);
+        free(*pix);
+        png_image_free(&im);
+        return tt_error(TT_ENOMEM, "out of memory reading %s", path);
+    }
+    if (!png_image_finish_read(&im, NULL, buf, 0, NULL)) {
+        free(buf);
+        free(*pix);
+        *pix = NULL;
+        return tt_scene_fail(sc, "surface", NULL, key, "%s: malformed PNG: %s", path, im.message);
+    }
+    for (size_t i = 0; i < n; i++)
+        (*pix)[i] = sixteen ? ((unsigned short *)buf)[i] : ((unsigned char *)buf)[i];
+    free(buf);
+    *w = (int)im.width;
+    *h = (int)im.height;
+    *maxval = sixteen ? 65535 : 255;
+    return TT_OK;
+}
+
+/* ---- helpers ---- */
+
+static unsigned long long rng_next(unsigned long long *s)
+{
+    /* splitmix64: deterministic across platforms for a given seed */
+    unsigned long long z = (*s += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+}
+
+static double rng_uniform(unsigned long long *s) { return (double)(rng_next(s) >> 11) * 0x1.0p-53; }
+
+static double rng_gauss(unsigned long long *s)
+{
+    double u = rng_uniform(s), v = rng_uniform(s);
+    return sqrt(-2 * log(u + 1e-300)) * cos(2 * M_PI * v);
+}
+
+static int material_index(const tt_scene *sc, const char *name, size_t len, int *out)
+{
+    for (size_t i = 0; i < tt_material_count(sc); i++) {
+        const char *m = tt_material_name(sc, i);
+        if (strlen(m) == len && strncmp(m, name, len) == 0) {
+            *out = (int)i;
+            return TT_OK;
+        }
+    }
+    return tt_scene_fail(sc, "surface", NULL, "map_materials", "no [material %.*s] in the scene", (int)len,
+                         name);
+}
+
+static int get_d(const tt_scene *sc, const char *key, double *v)
+{
+    return tt_scene_get_double(sc, "surface", NULL, key, v);
+}
+
+/* ---- topography ---- */
+
+static int build_particles(tt_surface *S, const tt_scene *sc)
+{
+    long n, seed;
+    int rc;
+    if ((rc = get_d(sc, "particle_radius", &S->pr)) ||
+        (rc = tt_scene_get_int(sc, "surface", NULL, "particle_count", &n)) ||
+        (rc = tt_scene_get_int(sc, "surface", NULL, "seed", &seed)))
+        return rc;
+    S->px = malloc(((size_t)n + 1) * sizeof *S->px);
+    S->py = malloc(((size_t)n + 1) * sizeof *S->py);
+    if (!S->px || !S->py)
+        return tt_error(TT_ENOMEM, "out of memory");
+    unsigned long long st = (unsigned long long)seed * 7919ULL + 1;
+    double r = S->pr;
+    for (long tries = 0; S->np < n && tries < 1000 * (n + 1); tries++) {
+        double x = rng_uniform(&st) * S->sx, y = rng_uniform(&st) * S->sy;
+        int ok = 1;
+        for (long j = 0; j < S->np && ok; j++)
+            ok = hypot(x - S->px[j], y - S->py[j]) >= 2 * r;
+        if (ok) {
+            S->px[S->np] = x;
+            S->py[S->np] = y;
+            S->np++;
+        }
+    }
+    if (S->np < n)
+        return tt_scene_fail(sc, "surface", NULL, "particle_count",
+                             "%ld spheres of radius %g nm do not fit in the scan area without overlap",
+                             n, r * 1e9);
+    /* bin the centres in cells 2 r wide: a look-up checks only its own and the
+     * neighbouring cells */
+    S->ncx = (int)ceil(S->sx / (2 * r)) + 1;
+    S->ncy = (int)ceil(S->sy / (2 * r)) + 1;
+    size_t nc = (size_t)S->ncx * (size_t)S->ncy;
+    S->cell_start = calloc(nc + 1, sizeof *S->cell_start);
+    S->cell_list = malloc(((size_t)S->np + 1) * sizeof *S->cell_list);
+    if (!S->cell_start || !S->cell_list)
+        return tt_error(TT_ENOMEM, "out of memory");
+    for (long j = 0; j < S->np; j++) {
+        int cx = (int)(S->px[j] / (2 * r)), cy = (int)(S->py[j] / (2 * r));
+        S->cell_start[(size_t)cy * S->ncx + cx + 1]++;
+    }
+    for (size_t c = 0; c < nc; c++)
+        S->cell_start[c + 1] += S->cell_start[c];
+    int *fill = calloc(nc, sizeof *fill);
+    if (!fill)
+        return tt_error(TT_ENOMEM, "out of memory");
+    for (long j = 0; j < S->np; j++) {
+        int cx = (int)(S->px[j] / (2 * r)), cy = (int)(S->py[j] / (2 * r));
+        size_t c = (size_t)cy * S->ncx + cx;
+        S->cell_list[S->cell_start[c] + fill[c]++] = (int)j;
+    }
+    free(fill);
+    return TT_OK;
+}
+
+/* Height of the sphere under (x, y), or -1 when none; *which tells which. */
+static double particle_at(const tt_surface *S, double x, double y)
+{
+    if (!S->np)
+        return -1;
+    double r = S->pr;
+    int cx = (int)floor(x / (2 * r)), cy = (int)floor(y / (2 * r));
+    double best = -1;
+    for (int j = cy - 1; j <= cy + 1; j++)
+        for (int i = cx - 1; i <= cx + 1; i++) {
+            if (i < 0 || j < 0 || i >= S->ncx || j >= S->ncy)
+                continue;
+            size_t c = (size_t)j * S->ncx + i;
+            for (int k = S->cell_start[c]; k < S->cell_start[c + 1]; k++) {
+                int p = S->cell_list[k];
+                double d2 = (x - S->px[p]) * (x - S->px[p]) + (y - S->py[p]) * (y - S->py[p]);
+                if (d2 < r * r) {
+                    double h = r + sqrt(r * r - d2); /* a sphere resting on the flat */
+                    if (h > best)
+                        best = h;
+                }
+            }
+        }
+    return best;
+}
+
+static int build_rough(tt_surface *S, const tt_scene *sc)
+{
+    double rms, L;
+    long seed;
+    int rc;
+    if ((rc = get_d(sc, "rms", &rms)) || (rc = get_d(sc, "correlation_length", &L)) ||
+        (rc = tt_scene_get_int(sc, "surface", NULL, "seed", &seed)))
+        return rc;
+    /* a periodic grid fine enough to resolve the correlation length */
+    int n = 256;
+    while (n < 2048 && fmax(S->sx, S->sy) / n > L / 4)
+        n *= 2;
+    S->gw = S->gh = n;
+    S->periodic = 1;
+    S->grid = fftw_alloc_real((size_t)n * n);
+    fftw_complex *F = fftw_alloc_complex((size_t)n * (n / 2 + 1));
+    if (!S->grid || !F) {
+        fftw_free(F);
+        return tt_error(TT_ENOMEM, "out of memory");
+    }
+    fftw_plan p;
+#pragma omp critical(tt_fftw_planner)
+    p = fftw_plan_dft_c2r_2d(n, n, F, S->grid, FFTW_ESTIMATE);
+    unsigned long long st = (unsigned long long)seed * 104729ULL + 7;
+    /* white noise filtered by the square root of a Gaussian spectrum: the result has
+     * the Gaussian autocorrelation exp(-r^2 / L^2) */
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i <= n / 2; i++) {
+            double kx = 2 * M_PI * i / S->sx, ky = 2 * M_PI * (j <= n / 2 ? j : j - n) / S->sy;
+            double a = exp(-(kx * kx + ky * ky) * L * L / 8);
+            size_t k = (size_t)j * (n / 2 + 1) + i;
+            F[k][0] = a * rng_gauss(&st);
+            F[k][1] = (i == 0 && (j == 0 || j == n / 2)) || (i == n / 2) ? 0 : a * rng_gauss(&st);
+        }
+    F[0][0] = F[0][1] = 0;
+    fftw_execute(p);
+#pragma omp critical(tt_fftw_planner)
+    fftw_destroy_plan(p);
+    fftw_free(F);
+    double s2 = 0, m = 0;
+    size_t N = (size_t)n * n;
+    for (size_t k = 0; k < N; k++)
+        m += S->grid[k];
+    m /= (double)N;
+    for (size_t k = 0; k < N; k++)
+        s2 += (S->grid[k] - m) * (S->grid[k] - m);
+    double scale = s2 > 0 ? rms / sqrt(s2 / (double)N) : 0;
+    for (size_t k = 0; k < N; k++)
+        S->grid[k] = (S->grid[k] - m) * scale;
+    return TT_OK;
+}
+
+static int build_png_height(tt_surface *S, const tt_scene *sc)
+{
+    char path[4096];
+    double range;
+    int rc, maxv;
+    unsigned short *pix = NULL;
+    if ((rc = tt_scene_get_path(sc, "surface", NULL, "png", path, sizeof path)) ||
+        (rc = get_d(sc, "png_height_range", &range)))
+        return rc;
+    if ((rc = read_png(sc, "png", path, 0, &pix, &S->gw, &S->gh, &maxv)))
+        return rc;
+    S->grid = fftw_alloc_real((size_t)S->gw * S->gh);
+    if (!S->grid) {
+        free(pix);
+        return tt_error(TT_ENOMEM, "out of memory");
+    }
+    for (size_t k = 0; k < (size_t)S->gw * S->gh; k++)
+        S->grid[k] = range * pix[k] / maxv;
+    free(pix);
+    return TT_OK;
+}
+
+/* Bilinear interpolation on the grid, pixel centres at (i + 1/2) size / n. */
+static double grid_at(const tt_surface *S, double x, double y)
+{
+    double u = x / S->sx * S->gw - 0.5, v = y / S->sy * S->gh - 0.5;
+    int i = (int)floor(u), j = (int)floor(v);
+    double fu = u - i, fv = v - j;
+    int i1 = i + 1, j1 = j + 1;
+    if (S->periodic) {
+        i = ((i % S->gw) + S->gw) % S->gw;
+        j = ((j % S->gh) + S->gh) % S->gh;
+        i1 = i1 % S->gw;
+        j1 = j1 % S->gh;
+    } else {
+        i = i < 0 ? 0 : i >= S->gw ? S->gw - 1 : i;
+        i1 = i1 < 0 ? 0 : i1 >= S->gw ? S->gw - 1 : i1;
+        j = j < 0 ? 0 : j >= S->gh ? S->gh - 1 : j;
+        j1 = j1 < 0 ? 0 : j1 >= S->gh ? S->gh - 1 : j1;
+    }
+    const double *g = S->grid;
+    return (1 - fu) * (1 - fv) * g[(size_t)j * S->gw + i] + fu * (1 - fv) * g[(size_t)j * S->gw + i1] +
+           (1 - fu) * fv * g[(size_t)j1 * S->gw + i] + fu * fv * g[(size_t)j1 * S->gw + i1];
+}
+
+double tt_surface_height(const tt_surface *S, double x, double y)
+{
+    switch (S->type) {
+    case S_STEPS:
+        return S->step_h * floor(x / S->step_w);
+    case S_GRATING: {
+        /* trapezoidal lines along y: up-edge, top, down-edge, bottom */
+        double u = x - S->period * floor(x / S->period), top = S->duty * S->period, e = S->edge;
+        if (e > 0 && u < e)
+            return S->height * u / e;
+        if (u < top)
+            return S->height;
+        if (e > 0 && u < top + e)
+            return S->height * (1 - (u - top) / e);
+        return 0;
+    }
+    case S_PARTICLES: {
+        double h = particle_at(S, x, y);
+        return h > 0 ? h : 0;
+    }
+    case S_ROUGH:
+    case S_PNG:
+        return grid_at(S, x, y);
+    default:
+        return 0;
+    }
+}
+
+int tt_surface_material(const tt_surface *S, double x, double y)
+{
+    switch (S->map) {
+    case M_STRIPES: {
+        double u = x / S->map_period;
+        return (u - floor(u)) < S->map_duty ? S->mat[1] : S->mat[0];
+    }
+    case M_DISKS: {
+        /* a square lattice of disks centred in each period cell */
+        double p = S->map_period;
+        double dx = x - p * (floor(x / p) + 0.5), dy = y - p * (floor(y / p) + 0.5);
+        return dx * dx + dy * dy < S->map_radius * S->map_radius ? S->mat[1] : S->mat[0];
+    }
+    case M_CHECKER: {
+        long c = (long)floor(2 * x / S->map_period) + (long)floor(2 * y / S->map_period);
+        return (c & 1) ? S->mat[1] : S->mat[0];
+    }
+    case M_ISLANDS:
+        return particle_at(S, x, y) > 0 ? S->mat[1] : S->mat[0];
+    case M_PNG: {
+        int i = (int)(x / S->sx * S->mw), j = (int)(y / S->sy * S->mh);
+        i = i < 0 ? 0 : i >= S->mw ? S->mw - 1 : i;
+        j = j < 0 ? 0 : j >= S->mh ? S->mh - 1 : j;
+        return S->mgrid[(size_t)j * S->mw + i];
+    }
+    default:
+        return S->mat[0];
+    }
+}
+
+int tt_surface_uniform(const tt_surface *S) { return S->map == M_UNIFORM; }
+int tt_surface_flat(const tt_surface *S) { return S->type == S_FLAT; }
+
+/* ---- material map ---- */
+
+static int parse_map_value(const char *v, int *rgb)
+{
+    unsigned r, g, b;
+    char *end;
+    if (v[0] == '#' && strlen(v) == 7 && sscanf(v + 1, "%2x%2x%2x", &r, &g, &b) == 3) {
+        *rgb = (int)(r << 16 | g << 8 | b);
+        return 0;
+    }
+    long l = strtol(v, &end, 10);
+    if (end != v && *end == '\0' && l >= 0 && l <= 255) {
+        *rgb = (int)(l << 16 | l << 8 | l);
+        return 0;
+    }
+    return -1;
+}
+
+static int build_png_map(tt_surface *S, const tt_scene *sc)
+{
+    char path[4096];
+    int rc, maxv;
+    unsigned short *pix = NULL;
+    size_t nm = tt_material_count(sc);
+    int *rgb = malloc(nm * sizeof *rgb);
+    if (!rgb)
+        return tt_error(TT_ENOMEM, "out of memory");
+    for (size_t i = 0; i < nm; i++) {
+        const char *name = tt_material_name(sc, i);
+        const char *v = tt_scene_get_string(sc, "material", name, "map_value");
+        rgb[i] = -1;
+        if (v && parse_map_value(v, &rgb[i]) != 0) {
+            free(rgb);
+            return tt_scene_fail(sc, "material", name, "map_value",
+                                 "'%s' is neither a grey level 0-255 nor a colour #rrggbb", v);
+        }
+    }
+    if ((rc = tt_scene_get_path(sc, "surface", NULL, "map_png", path, sizeof path)) ||
+        (rc = read_png(sc, "map_png", path, 1, &pix, &S->mw, &S->mh, &maxv))) {
+        free(rgb);
+        return rc;
+    }
+    S->mgrid = malloc((size_t)S->mw * S->mh * sizeof *S->mgrid);
+    if (!S->mgrid) {
+        free(rgb);
+        free(pix);
+        return tt_error(TT_ENOMEM, "out of memory");
+    }
+    rc = TT_OK;
+    for (size_t k = 0; k < (size_t)S->mw * S->mh && rc == TT_OK; k++) {
+        int c = pix[3 * k] << 16 | pix[3 * k + 1] << 8 | pix[3 * k + 2];
+        int found = -1;
+        for (size_t i = 0; i < nm; i++)
+            if (rgb[i] == c)
+                found = (int)i;
+        if (found < 0)
+            rc = tt_scene_fail(sc, "surface", NULL, "map_png",
+                               "%s: pixel (%zu, %zu) has colour #%06x, which no [material] map_value names",
+                               path, k % (size_t)S->mw, k / (size_t)S->mw, c);
+        S->mgrid[k] = found;
+    }
+    free(rgb);
+    free(pix);
+    return rc;
+}
+
+int tt_surface_alloc(tt_surface **out, const tt_scene *sc, double size_x, double size_y)
+{
+    *out = NULL;
+    tt_surface *S = calloc(1, sizeof *S);
+    if (!S)
+        return tt_error(TT_ENOMEM, "out of memory");
+    S->sx = size_x;
+    S->sy = size_y;
+    int rc = TT_OK;
+    static const char *types[] = {"flat", "steps", "grating", "particles", "rough", "png"};
+    static const char *maps[] = {"uniform", "stripes", "disks", "checkerboard", "islands", "png"};
+    const char *t = tt_scene_get_string(sc, "surface", NULL, "type");
+    const char *m = tt_scene_get_string(sc, "surface", NULL, "map");
+    for (int i = 0; i < 6; i++) {
+        if (t && strcmp(t, types[i]) == 0)
+            S->type = (shape)i;
+        if (m && strcmp(m, maps[i]) == 0)
+            S->map = (mapkind)i;
+    }
+    switch (S->type) {
+    case S_STEPS:
+        if (!(rc = get_d(sc, "step_height", &S->step_h)))
+            rc = get_d(sc, "step_width", &S->step_w);
+        break;
+    case S_GRATING:
+        if (!(rc = get_d(sc, "period", &S->period)) && !(rc = get_d(sc, "duty", &S->duty)) &&
+            !(rc = get_d(sc, "height", &S->height)) && !(rc = get_d(sc, "edge_width", &S->edge)) &&
+            2 * S->edge > S->period * fmin(S->duty, 1 - S->duty) * 2)
+            rc = tt_scene_fail(sc, "surface", NULL, "edge_width",
+                               "%g nm is wider than the line or the gap allows", S->edge * 1e9);
+        break;
+    case S_PARTICLES:
+        rc = build_particles(S, sc);
+        break;
+    case S_ROUGH:
+        rc = build_rough(S, sc);
+        break;
+    case S_PNG:
+        rc = build_png_height(S, sc);
+        break;
+    default:
+        break;
+    }
+    if (rc == TT_OK && S->map != M_UNIFORM && S->map != M_PNG) {
+        const char *list = tt_scene_get_string(sc, "surface", NULL, "map_materials");
+        if (list) {
+            const char *p = list;
+            int k = 0;
+            while (*p && rc == TT_OK) {
+                while (*p == ' ' || *p == ',')
+                    p++;
+                const char *e = p;
+                while (*e && *e != ',' && *e != ' ')
+                    e++;
+                if (e == p)
+                    break;
+                if (k >= 2) {
+                    rc = tt_scene_fail(sc, "surface", NULL, "map_materials",
+                                       "names more than two materials; this map takes a background and one other");
+                    break;
+                }
+                rc = material_index(sc, p, (size_t)(e - p), &S->mat[k++]);
+                p = e;
+            }
+            if (rc == TT_OK && k < 2)
+                rc = tt_scene_fail(sc, "surface", NULL, "map_materials",
+                                   "needs two materials: the background, then the other");
+        } else if (tt_material_count(sc) < 2) {
+            rc = tt_scene_fail(sc, "surface", NULL, "map",
+                               "a %s map needs two [material NAME] sections", maps[S->map]);
+        } else {
+            S->mat[0] = 0;
+            S->mat[1] = 1;
+        }
+        if (rc == TT_OK && !(rc = get_d(sc, "map_period", &S->map_period)) &&
+            !(rc = get_d(sc, "map_duty", &S->map_duty)))
+            rc = get_d(sc, "map_radius", &S->map_radius);
+        if (rc == TT_OK && S->map == M_DISKS && 2 * S->map_radius >= S->map_period)
+            rc = tt_scene_fail(sc, "surface", NULL, "map_radius",
+                               "disks of radius %g nm overlap at period %g nm", S->map_radius * 1e9,
+                               S->map_period * 1e9);
+        if (rc == TT_OK && S->map == M_ISLANDS && S->type != S_PARTICLES)
+            rc = tt_scene_fail(sc, "surface", NULL, "map", "islands need type = particles");
+    }
+    if (rc == TT_OK && S->map == M_PNG)
+        rc = build_png_map(S, sc);
+    if (rc) {
+        tt_surface_free(S);
+        return rc;
+    }
+    *out = S;
+    return TT_OK;
+}
+
+void tt_surface_free(tt_surface *S)
+{
+    if (!S)
+        return;
+    free(S->px);
+    free(S->py);
+    free(S->cell_start);
+    free(S->cell_list);
+    fftw_free(S->grid);
+    free(S->mgrid);
+    free(S);
+}

@@ -1,0 +1,557 @@
+/* Line plots with axes, ticks, labels and a legend, rendered with cairo
+ * (see include/tiptap/io/plot.h). */
+#include "tiptap/io/plot.h"
+
+#include <cairo.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tiptap/util/error.h"
+#include "tiptap/io/outfile.h"
+
+#define MAX_PANELS 8
+
+typedef struct {
+    double *x, *y;
+    size_t n;
+    char *label;
+    unsigned style;
+} series;
+
+typedef struct {
+    double x, y;
+    char *text;
+} note;
+
+typedef struct {
+    char *xlabel, *ylabel, *y2label;
+    double xlo, xhi, ylo, yhi;
+    int logx, logy;
+    series *s;
+    size_t ns;
+    double *vl, *hl;
+    size_t nv, nh;
+    note *notes;
+    size_t nnotes;
+} panel;
+
+struct tt_figure {
+    char *title;
+    int npanels;
+    panel p[MAX_PANELS];
+};
+
+/* Okabe-Ito: distinguishable by colour-blind readers. */
+static const double palette[][3] = {
+    {0.00, 0.45, 0.70}, {0.84, 0.37, 0.00}, {0.00, 0.62, 0.45}, {0.80, 0.47, 0.65},
+    {0.34, 0.71, 0.91}, {0.90, 0.62, 0.00}, {0.20, 0.20, 0.20}, {0.94, 0.89, 0.26},
+};
+
+static char *dup(const char *s)
+{
+    if (!s)
+        return NULL;
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d)
+        memcpy(d, s, n);
+    return d;
+}
+
+tt_figure *tt_figure_alloc(int panels, const char *title)
+{
+    if (panels < 1 || panels > MAX_PANELS)
+        return NULL;
+    tt_figure *f = calloc(1, sizeof *f);
+    if (!f)
+        return NULL;
+    f->npanels = panels;
+    f->title = dup(title);
+    for (int i = 0; i < panels; i++)
+        f->p[i].xlo = f->p[i].xhi = f->p[i].ylo = f->p[i].yhi = NAN;
+    return f;
+}
+
+void tt_figure_free(tt_figure *f)
+{
+    if (!f)
+        return;
+    for (int i = 0; i < f->npanels; i++) {
+        panel *p = &f->p[i];
+        for (size_t k = 0; k < p->ns; k++) {
+            free(p->s[k].x);
+            free(p->s[k].y);
+            free(p->s[k].label);
+        }
+        free(p->s);
+        free(p->xlabel);
+        free(p->ylabel);
+        free(p->y2label);
+        free(p->vl);
+        free(p->hl);
+        for (size_t k = 0; k < p->nnotes; k++)
+            free(p->notes[k].text);
+        free(p->notes);
+    }
+    free(f->title);
+    free(f);
+}
+
+static panel *get(tt_figure *f, int i) { return (f && i >= 0 && i < f->npanels) ? &f->p[i] : NULL; }
+
+int tt_figure_axes(tt_figure *f, int i, const char *xlabel, const char *ylabel)
+{
+    panel *p = get(f, i);
+    if (!p)
+        return tt_error(TT_EINVAL, "plot: no panel %d", i);
+    free(p->xlabel);
+    free(p->ylabel);
+    p->xlabel = dup(xlabel);
+    p->ylabel = dup(ylabel);
+    return TT_OK;
+}
+
+int tt_figure_axis_right(tt_figure *f, int i, const char *ylabel)
+{
+    panel *p = get(f, i);
+    if (!p)
+        return tt_error(TT_EINVAL, "plot: no panel %d", i);
+    free(p->y2label);
+    p->y2label = dup(ylabel);
+    return TT_OK;
+}
+
+int tt_figure_xlim(tt_figure *f, int i, double lo, double hi)
+{
+    panel *p = get(f, i);
+    if (!p)
+        return tt_error(TT_EINVAL, "plot: no panel %d", i);
+    p->xlo = lo;
+    p->xhi = hi;
+    return TT_OK;
+}
+
+int tt_figure_ylim(tt_figure *f, int i, double lo, double hi)
+{
+    panel *p = get(f, i);
+    if (!p)
+        return tt_error(TT_EINVAL, "plot: no panel %d", i);
+    p->ylo = lo;
+    p->yhi = hi;
+    return TT_OK;
+}
+
+int tt_figure_log(tt_figure *f, int i, int logx, int logy)
+{
+    panel *p = get(f, i);
+    if (!p)
+        return tt_error(TT_EINVAL, "plot: no panel %d", i);
+    p->logx = logx;
+    p->logy = logy;
+    return TT_OK;
+}
+
+int tt_figure_line(tt_figure *f, int i, const double *x, const double *y, size_t n, const char *label,
+                   unsigned style)
+{
+    panel *p = get(f, i);
+    if (!p)
+        return tt_error(TT_EINVAL, "plot: no panel %d", i);
+    series *ns = realloc(p->s, (p->ns + 1) * sizeof *ns);
+    if (!ns)
+        return tt_error(TT_ENOMEM, "out of memory");
+    p->s = ns;
+    series *s = &p->s[p->ns];
+    memset(s, 0, sizeof *s);
+    s->x = malloc((n ? n : 1) * sizeof(double));
+    s->y = malloc((n ? n : 1) * sizeof(double));
+    if (!s->x || !s->y) {
+        free(s->x);
+        free(s->y);
+        return tt_error(TT_ENOMEM, "out of memory");
+    }
+    if (n) {
+        memcpy(s->x, x, n * sizeof(double));
+        memcpy(s->y, y, n * sizeof(double));
+    }
+    s->n = n;
+    s->label = dup(label);
+    if ((style & TT_PLOT_COLOR_MASK) == 0)
+        style |= (unsigned)(p->ns % 8) + 1;
+    s->style = style;
+    p->ns++;
+    return TT_OK;
+}
+
+static int add_ref(double **arr, size_t *n, double v)
+{
+    double *a = realloc(*arr, (*n + 1) * sizeof *a);
+    if (!a)
+        return tt_error(TT_ENOMEM, "out of memory");
+    a[(*n)++] = v;
+    *arr = a;
+    return TT_OK;
+}
+
+int tt_figure_vline(tt_figure *f, int i, double x, const char *label)
+{
+    (void)label;
+    panel *p = get(f, i);
+    return p ? add_ref(&p->vl, &p->nv, x) : tt_error(TT_EINVAL, "plot: no panel %d", i);
+}
+
+int tt_figure_hline(tt_figure *f, int i, double y, const char *label)
+{
+    (void)label;
+    panel *p = get(f, i);
+    return p ? add_ref(&p->hl, &p->nh, y) : tt_error(TT_EINVAL, "plot: no panel %d", i);
+}
+
+int tt_figure_text(tt_figure *f, int i, double x, double y, const char *text)
+{
+    panel *p = get(f, i);
+    if (!p)
+        return tt_error(TT_EINVAL, "plot: no panel %d", i);
+    note *n = realloc(p->notes, (p->nnotes + 1) * sizeof *n);
+    if (!n)
+        return tt_error(TT_ENOMEM, "out of memory");
+    p->notes = n;
+    n[p->nnotes].x = x;
+    n[p->nnotes].y = y;
+    n[p->nnotes].text = dup(text);
+    if (!n[p->nnotes].text)
+        return tt_error(TT_ENOMEM, "out of memory");
+    p->nnotes++;
+    return TT_OK;
+}
+
+/* ---- rendering ---- */
+
+typedef struct {
+    double lo, hi;
+    int log;
+} axis;
+
+static double tf(const axis *a, double v) { return a->log ? log10(v) : v; }
+
+/* Data range of a panel's series on one side (right = 0/1) and coordinate (0 x, 1 y). */
+static void range(const panel *p, int coord, int right, int logscale, double *lo, double *hi)
+{
+    *lo = INFINITY;
+    *hi = -INFINITY;
+    for (size_t k = 0; k < p->ns; k++) {
+        const series *s = &p->s[k];
+        if (coord == 1 && (!!(s->style & TT_PLOT_RIGHT)) != right)
+            continue;
+        const double *v = coord ? s->y : s->x;
+        for (size_t i = 0; i < s->n; i++) {
+            double x = v[i];
+            if (!isfinite(x) || (logscale && x <= 0))
+                continue;
+            if (x < *lo)
+                *lo = x;
+            if (x > *hi)
+                *hi = x;
+        }
+    }
+    if (!isfinite(*lo)) {
+        *lo = logscale ? 1 : 0;
+        *hi = logscale ? 10 : 1;
+    }
+}
+
+static void nice_axis(axis *a, double lo, double hi, double flo, double fhi, int logscale)
+{
+    a->log = logscale;
+    if (isfinite(flo))
+        lo = flo;
+    if (isfinite(fhi))
+        hi = fhi;
+    if (logscale) {
+        /* a little room, so that a value on a decade is not drawn on the frame */
+        lo = floor(log10(lo) - 0.02);
+        hi = ceil(log10(hi) + 0.02);
+        if (hi <= lo)
+            hi = lo + 1;
+        a->lo = pow(10, lo);
+        a->hi = pow(10, hi);
+        return;
+    }
+    if (hi <= lo) {
+        double d = fabs(lo) > 0 ? 0.1 * fabs(lo) : 1;
+        lo -= d;
+        hi += d;
+    } else if (!isfinite(flo) && !isfinite(fhi)) {
+        double pad = 0.04 * (hi - lo);
+        lo -= pad;
+        hi += pad;
+    }
+    a->lo = lo;
+    a->hi = hi;
+}
+
+static double nice_step(double span)
+{
+    double raw = span / 6, mag = pow(10, floor(log10(raw))), r = raw / mag;
+    return (r < 1.5 ? 1 : r < 3.5 ? 2 : r < 7.5 ? 5 : 10) * mag;
+}
+
+static void text(cairo_t *cr, double x, double y, const char *s, double ax, double ay, double angle)
+{
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, s, &e);
+    cairo_save(cr);
+    cairo_translate(cr, x, y);
+    cairo_rotate(cr, angle);
+    cairo_move_to(cr, -e.x_bearing - ax * e.width, -e.y_bearing - ay * e.height);
+    cairo_show_text(cr, s);
+    cairo_restore(cr);
+}
+
+static void fmt_tick(char *buf, size_t n, double v, double step)
+{
+    /* zero is "0" whatever the step: on an axis of tiny steps the other ticks are in
+     * %g form, and a zero with the step's decimals ("0.000000000") is clipped */
+    if (fabs(v) < 1e-12 * step) {
+        snprintf(buf, n, "0");
+        return;
+    }
+    if ((fabs(v) >= 1e5 || (fabs(v) < 1e-3 && v != 0)))
+        snprintf(buf, n, "%.3g", v);
+    else {
+        int dec = step >= 1 ? 0 : (int)ceil(-log10(step) - 1e-9);
+        snprintf(buf, n, "%.*f", dec, v);
+    }
+}
+
+/* Ticks on one axis: positions in data units through a callback. */
+static void draw_ticks(cairo_t *cr, const axis *a, int vertical, double x0, double y0, double len,
+                       int label_side, double other0, double other1)
+{
+    char buf[64];
+    double lo = tf(a, a->lo), hi = tf(a, a->hi);
+    double step = a->log ? 1 : nice_step(hi - lo);
+    if (a->log && hi - lo > 8)
+        step = ceil((hi - lo) / 8);
+    double first = ceil(lo / step - 1e-9) * step;
+    for (double v = first; v <= hi + 1e-9 * step; v += step) {
+        double frac = (v - lo) / (hi - lo);
+        double pos = vertical ? y0 - frac * len : x0 + frac * len;
+        /* grid line */
+        cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
+        cairo_set_line_width(cr, 1);
+        if (vertical) {
+            cairo_move_to(cr, other0, pos);
+            cairo_line_to(cr, other1, pos);
+        } else {
+            cairo_move_to(cr, pos, other0);
+            cairo_line_to(cr, pos, other1);
+        }
+        cairo_stroke(cr);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        if (a->log)
+            snprintf(buf, sizeof buf, "1e%d", (int)lrint(v));
+        else
+            fmt_tick(buf, sizeof buf, v, step);
+        if (vertical)
+            text(cr, label_side < 0 ? x0 - 6 : x0 + 6, pos, buf, label_side < 0 ? 1 : 0, 0.5, 0);
+        else
+            text(cr, pos, y0 + 6, buf, 0.5, 0, 0);
+    }
+}
+
+static void draw_panel(cairo_t *cr, const panel *p, double X, double Y, double W, double H)
+{
+    axis ax, ay, ay2;
+    double lo, hi;
+    range(p, 0, 0, p->logx, &lo, &hi);
+    nice_axis(&ax, lo, hi, p->xlo, p->xhi, p->logx);
+    range(p, 1, 0, p->logy, &lo, &hi);
+    for (size_t i = 0; i < p->nh; i++)
+        if (isfinite(p->hl[i]) && !p->logy) {
+            if (p->hl[i] < lo)
+                lo = p->hl[i];
+            if (p->hl[i] > hi)
+                hi = p->hl[i];
+        }
+    nice_axis(&ay, lo, hi, p->ylo, p->yhi, p->logy);
+    range(p, 1, 1, 0, &lo, &hi);
+    nice_axis(&ay2, lo, hi, NAN, NAN, 0);
+    int has_right = p->y2label != NULL;
+    double ml = 80, mr = has_right ? 80 : 20, mt = 10, mb = 50;
+    double x0 = X + ml, x1 = X + W - mr, y0 = Y + H - mb, y1 = Y + mt;
+    cairo_set_font_size(cr, 13);
+    draw_ticks(cr, &ax, 0, x0, y0, x1 - x0, 0, y0, y1);
+    draw_ticks(cr, &ay, 1, x0, y0, y0 - y1, -1, x0, x1);
+    if (has_right)
+        draw_ticks(cr, &ay2, 1, x1, y0, y0 - y1, 1, x1, x1);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_set_line_width(cr, 1.2);
+    cairo_rectangle(cr, x0, y1, x1 - x0, y0 - y1);
+    cairo_stroke(cr);
+    cairo_set_font_size(cr, 15);
+    if (p->xlabel)
+        text(cr, 0.5 * (x0 + x1), y0 + 28, p->xlabel, 0.5, 0, 0);
+    if (p->ylabel)
+        text(cr, X + 14, 0.5 * (y0 + y1), p->ylabel, 0.5, 0, -M_PI / 2);
+    if (has_right)
+        text(cr, X + W - 14, 0.5 * (y0 + y1), p->y2label, 0.5, 1, -M_PI / 2);
+    /* data, clipped to the frame */
+    cairo_save(cr);
+    cairo_rectangle(cr, x0, y1, x1 - x0, y0 - y1);
+    cairo_clip(cr);
+    double xl = tf(&ax, ax.lo), xh = tf(&ax, ax.hi);
+    cairo_set_source_rgb(cr, 0.4, 0.4, 0.4);
+    cairo_set_line_width(cr, 1);
+    double dash[] = {3, 3};
+    cairo_set_dash(cr, dash, 2, 0);
+    for (size_t i = 0; i < p->nv; i++) {
+        double px = x0 + (tf(&ax, p->vl[i]) - xl) / (xh - xl) * (x1 - x0);
+        cairo_move_to(cr, px, y0);
+        cairo_line_to(cr, px, y1);
+        cairo_stroke(cr);
+    }
+    for (size_t i = 0; i < p->nh; i++) {
+        double yl = tf(&ay, ay.lo), yh = tf(&ay, ay.hi);
+        double py = y0 - (tf(&ay, p->hl[i]) - yl) / (yh - yl) * (y0 - y1);
+        cairo_move_to(cr, x0, py);
+        cairo_line_to(cr, x1, py);
+        cairo_stroke(cr);
+    }
+    cairo_set_dash(cr, NULL, 0, 0);
+    for (size_t k = 0; k < p->ns; k++) {
+        const series *s = &p->s[k];
+        const axis *ya = (s->style & TT_PLOT_RIGHT) ? &ay2 : &ay;
+        double yl = tf(ya, ya->lo), yh = tf(ya, ya->hi);
+        const double *c = palette[((s->style & TT_PLOT_COLOR_MASK) - 1) % 8];
+        cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+        cairo_set_line_width(cr, (s->style & TT_PLOT_THICK) ? 3.0 : 2.0);
+        double d2[] = {8, 5};
+        cairo_set_dash(cr, d2, (s->style & TT_PLOT_DASHED) ? 2 : 0, 0);
+        int pen = 0;
+        for (size_t i = 0; i < s->n; i++) {
+            double xv = s->x[i], yv = s->y[i];
+            if (!isfinite(xv) || !isfinite(yv) || (ax.log && xv <= 0) || (ya->log && yv <= 0)) {
+                pen = 0;
+                continue;
+            }
+            double px = x0 + (tf(&ax, xv) - xl) / (xh - xl) * (x1 - x0);
+            double py = y0 - (tf(ya, yv) - yl) / (yh - yl) * (y0 - y1);
+            if (s->style & TT_PLOT_POINTS) {
+                cairo_new_sub_path(cr);
+                cairo_arc(cr, px, py, 3.5, 0, 2 * M_PI);
+                cairo_fill(cr);
+                continue;
+            }
+            if (pen)
+                cairo_line_to(cr, px, py);
+            else
+                cairo_move_to(cr, px, py);
+            pen = 1;
+        }
+        if (!(s->style & TT_PLOT_POINTS))
+            cairo_stroke(cr);
+        cairo_set_dash(cr, NULL, 0, 0);
+    }
+    cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
+    cairo_set_font_size(cr, 10);
+    for (size_t k = 0; k < p->nnotes; k++) {
+        const note *nt = &p->notes[k];
+        if (!isfinite(nt->x) || !isfinite(nt->y) || (ax.log && nt->x <= 0) || (ay.log && nt->y <= 0))
+            continue;
+        double yl = tf(&ay, ay.lo), yh = tf(&ay, ay.hi);
+        double px = x0 + (tf(&ax, nt->x) - xl) / (xh - xl) * (x1 - x0);
+        double py = y0 - (tf(&ay, nt->y) - yl) / (yh - yl) * (y0 - y1);
+        cairo_text_extents_t e;
+        cairo_text_extents(cr, nt->text, &e);
+        /* near the right-hand frame the note goes to the left of its point */
+        if (px + 4 + e.width > x1)
+            text(cr, px - 4, py - 4, nt->text, 1, 1, 0);
+        else
+            text(cr, px + 4, py - 4, nt->text, 0, 1, 0);
+    }
+    cairo_restore(cr);
+    /* legend, top right inside the frame */
+    cairo_set_font_size(cr, 13);
+    double ly = y1 + 16, lw = 0;
+    size_t nl = 0;
+    for (size_t k = 0; k < p->ns; k++)
+        if (p->s[k].label) {
+            cairo_text_extents_t e;
+            cairo_text_extents(cr, p->s[k].label, &e);
+            if (e.width > lw)
+                lw = e.width;
+            nl++;
+        }
+    if (nl) {
+        double lx = x1 - lw - 50;
+        cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
+        cairo_rectangle(cr, lx - 8, y1 + 4, lw + 54, 18.0 * (double)nl + 8);
+        cairo_fill(cr);
+        for (size_t k = 0; k < p->ns; k++) {
+            const series *s = &p->s[k];
+            if (!s->label)
+                continue;
+            const double *c = palette[((s->style & TT_PLOT_COLOR_MASK) - 1) % 8];
+            cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+            cairo_set_line_width(cr, 2);
+            double d2[] = {8, 5};
+            cairo_set_dash(cr, d2, (s->style & TT_PLOT_DASHED) ? 2 : 0, 0);
+            if (s->style & TT_PLOT_POINTS) {
+                cairo_arc(cr, lx + 14, ly, 3.5, 0, 2 * M_PI);
+                cairo_fill(cr);
+            } else {
+                cairo_move_to(cr, lx, ly);
+                cairo_line_to(cr, lx + 30, ly);
+                cairo_stroke(cr);
+            }
+            cairo_set_dash(cr, NULL, 0, 0);
+            cairo_set_source_rgb(cr, 0, 0, 0);
+            text(cr, lx + 38, ly, s->label, 0, 0.5, 0);
+            ly += 18;
+        }
+    }
+}
+
+static cairo_status_t write_fn(void *closure, const unsigned char *data, unsigned int len)
+{
+    return fwrite(data, 1, len, (FILE *)closure) == len ? CAIRO_STATUS_SUCCESS
+                                                         : CAIRO_STATUS_WRITE_ERROR;
+}
+
+int tt_figure_write_png(const tt_figure *f, const char *path, int width, int height)
+{
+    if (!f || width < 100 || height < 100)
+        return tt_error(TT_EINVAL, "plot: bad figure or size");
+    cairo_surface_t *sf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
+    cairo_t *cr = cairo_create(sf);
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
+    cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    double top = 0;
+    if (f->title) {
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        cairo_set_font_size(cr, 18);
+        text(cr, width / 2.0, 10, f->title, 0.5, 0, 0);
+        top = 36;
+    }
+    double ph = (height - top) / f->npanels;
+    for (int i = 0; i < f->npanels; i++)
+        draw_panel(cr, &f->p[i], 0, top + ph * i, width, ph);
+    cairo_destroy(cr);
+    tt_outfile *o;
+    int rc = tt_outfile_open(&o, path);
+    if (rc) {
+        cairo_surface_destroy(sf);
+        return rc;
+    }
+    cairo_status_t st = cairo_surface_write_to_png_stream(sf, write_fn, tt_outfile_stream(o));
+    cairo_surface_destroy(sf);
+    if (st != CAIRO_STATUS_SUCCESS) {
+        tt_outfile_close(o, 0);
+        return tt_error(TT_EIO, "%s: cannot write: %s", path, cairo_status_to_string(st));
+    }
+    return tt_outfile_close(o, 1);
+}
