@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Regenerates the committed outputs of the seed-figure examples and the bistability
-# figure (about a minute on two cores); the imaging examples have run-imaging.sh.
+# Regenerates the committed outputs of the examples that reproduce Burnham et al.'s
+# figures (examples/seed-fig*; docs/physics.md) and the bistability figure (about a
+# minute on two cores); the imaging examples have run-imaging.sh.
 set -euo pipefail
 cd "$(dirname "$0")"
 t=$(realpath ../build/tiptap)

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Runs every committed example (seed figures, extreme scenes, imaging examples, the
-# README's main job) with the tiptap binary given, writing all outputs under OUTDIR.
+# Runs every committed example (Burnham et al.'s figures, extreme scenes, imaging
+# examples, the README's main job) with the tiptap binary given, writing all outputs
+# under OUTDIR.
 # Used with scripts/compare-outputs.sh to prove a refactor changes no output byte.
 #   scripts/regenerate-all.sh BINARY OUTDIR [quick]
 # "quick" skips the imaging examples (the slow part).

@@ -79,7 +79,7 @@ for model in maugis dmt jkr hertz; do
   fi
   [ -z "$miss" ] && ok "scene, $model: physical values" || bad "scene, $model: missing or wrong$miss"
 done
-# the Hamaker constant by continuity is of the order of 1e-19 J (the seed), none for JKR and Hertz
+# the Hamaker constant by continuity is of the order of 1e-19 J (Burnham et al.), none for JKR and Hertz
 for case in "maugis 5e-20 5e-19" "dmt 5e-20 5e-19" "jkr 0 0" "hertz 0 0"; do
   set -- $case
   h=$(value hamaker_J "$tmp/scene-$1.txt")
