@@ -1,6 +1,5 @@
 /* tiptap trace: a time series of the tapping cantilever, with an optional ramp of one
  * scene key over the run (seed figures 4b to 8). */
-#include <getopt.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -22,7 +21,7 @@ static void help(void)
            "                     pressure_GPa (Hertzian K a / pi R, as in the seed), contact,\n"
            "                     and the ramped key's value when [trace] ramp is set\n"
            "      --plot FILE    PNG: positions and deflection; force and pressure\n"
-           "      --set S.K=V    override a scene key (material.NAME.key for named sections)\n"
+           CLI_HELP_SET
            "  -q, --quiet        no summary on stderr\n\n"
            "Positions are along the axis into the sample, the base at rest at 0; the\n"
            "deflection is tip - base, what a beam-deflection detector measures.\n"
@@ -108,31 +107,15 @@ static void write_row(FILE *f, const tt_trace_row *r, int ramp)
 
 int cmd_trace(int argc, char **argv)
 {
-    static const struct option opts[] = {{"output", required_argument, NULL, 'o'},
-                                         {"plot", required_argument, NULL, 'p'},
-                                         {"set", required_argument, NULL, 's'},
-                                         {"quiet", no_argument, NULL, 'q'},
-                                         {"help", no_argument, NULL, 'h'},
-                                         {NULL, 0, NULL, 0}};
-    const char *out = "trace.csv", *plotpath = NULL;
-    char **sets = calloc((size_t)argc, sizeof *sets);
-    int nsets = 0, quiet = 0, c;
-    if (!sets)
-        return cli_fail(TT_ENOMEM, "out of memory");
-    while ((c = getopt_long(argc, argv, "o:qh", opts, NULL)) != -1) {
-        switch (c) {
-        case 'o': out = optarg; break;
-        case 'p': plotpath = optarg; break;
-        case 's': sets[nsets++] = optarg; break;
-        case 'q': quiet = 1; break;
-        case 'h': help(); free(sets); return CLI_OK;
-        default: free(sets); return CLI_USAGE;
-        }
-    }
+    static const cli_spec spec = {"trace", CLI_OPT_OUTPUT | CLI_OPT_PLOT | CLI_OPT_SET | CLI_OPT_QUIET,
+                                  NULL, "", help};
+    cli_args args = {.output = "trace.csv"};
     int code;
-    tt_scene *scene = cli_scene_args("trace", argc, argv, optind, sets, nsets, &code);
+    tt_scene *scene = cli_options_scene(&spec, &args, argc, argv, &code);
     if (!scene)
         return code;
+    const char *out = args.output, *plotpath = args.plot;
+    int quiet = args.quiet;
     double t0 = cli_now(), worst = 0;
     tt_setup *st = NULL;
     tt_trace *tr = NULL;
@@ -149,6 +132,7 @@ int cmd_trace(int argc, char **argv)
                "contact%s%s\n",
             p.ramp ? "," : "", p.ramp ? p.ramp : "");
     cli_catch_interrupt();
+    int progress = !quiet && cli_progress_enabled();
     while (!tt_trace_done(tr)) {
         if (tt_cancel_requested()) {
             rc = tt_error(TT_EINTR, "interrupted: %s keeps the %ld cycles finished", out, done_cycles);
@@ -165,7 +149,12 @@ int cmd_trace(int argc, char **argv)
         if (rc)
             break;
         done_cycles++;
+        /* a cycle takes a millisecond or less: a line every 64 keeps the terminal calm */
+        if (progress && (done_cycles % 64 == 0 || tt_trace_done(tr)))
+            fprintf(stderr, "\rtrace: %ld/%zu cycles", done_cycles, tt_trace_rows(tr));
     }
+    if (progress)
+        fprintf(stderr, "\n");
     /* Keep what finished, also when interrupted or when the solver failed later on. */
     {
         int crc = tt_outfile_close(of, done_cycles > 0);
