@@ -340,34 +340,26 @@ static int whole(const char *text, const char *option, long min, long *out)
 
 int cmd_accuracy(int argc, char **argv)
 {
-    static const struct option opts[] = {{"output", required_argument, NULL, 'o'},
-                                         {"plot", required_argument, NULL, 'p'},
-                                         {"set", required_argument, NULL, 's'},
-                                         {"point", required_argument, NULL, 'z'},
+    static const struct option opts[] = {{"point", required_argument, NULL, 'z'},
                                          {"cycles", required_argument, NULL, 'c'},
                                          {"pixels", required_argument, NULL, 'x'},
                                          {"methods", required_argument, NULL, 'm'},
                                          {"repeats", required_argument, NULL, 'r'},
                                          {"target", required_argument, NULL, 't'},
                                          {"clock", required_argument, NULL, 'k'},
-                                         {"quiet", no_argument, NULL, 'q'},
-                                         {"help", no_argument, NULL, 'h'},
                                          {NULL, 0, NULL, 0}};
-    const char *out = "accuracy.csv", *plotpath = NULL, *methods = NULL;
-    char **sets = calloc((size_t)argc, sizeof *sets);
-    int nsets = 0, quiet = 0, c;
+    static const cli_spec spec = {"accuracy", CLI_OPT_OUTPUT | CLI_OPT_PLOT | CLI_OPT_SET | CLI_OPT_QUIET,
+                                  opts, "", help};
+    cli_args args = {.output = "accuracy.csv"};
+    const char *methods = NULL;
+    int c;
     double target = 1e-4;
     tt_accuracy_params p;
     tt_accuracy_params_default(&p);
-    if (!sets)
-        return cli_fail(TT_ENOMEM, "out of memory");
     char why[256], *end;
-    while ((c = getopt_long(argc, argv, "o:qh", opts, NULL)) != -1) {
+    while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) {
         int bad = 0;
         switch (c) {
-        case 'o': out = optarg; break;
-        case 'p': plotpath = optarg; break;
-        case 's': sets[nsets++] = optarg; break;
         case 'z':
             if (tt_units_parse(optarg, TT_DIM_LENGTH, &p.point, NULL, why, sizeof why) != 0) {
                 fprintf(stderr, "tiptap accuracy: --point %s: %s\n", optarg, why);
@@ -396,25 +388,26 @@ int cmd_accuracy(int argc, char **argv)
                 fprintf(stderr, "tiptap accuracy: --clock %s: expected wall or cpu\n", optarg);
             use_cpu = p.cpu_clock = strcmp(optarg, "cpu") == 0;
             break;
-        case 'q': quiet = 1; break;
-        case 'h': help(); free(sets); return CLI_OK;
-        default: free(sets); return CLI_USAGE;
         }
         if (bad) {
-            free(sets);
+            cli_args_free(&args);
             return CLI_USAGE;
         }
     }
+    if (c == CLI_EXIT)
+        return args.exit;
+    const char *out = args.output, *plotpath = args.plot;
+    int quiet = args.quiet;
     tt_accuracy_ladder picked[16];
     if (methods) {
         if (pick_methods(methods, picked, &p.nladders) != 0) {
-            free(sets);
+            cli_args_free(&args);
             return CLI_USAGE;
         }
         p.ladders = picked;
     }
     int code;
-    tt_scene *scene = cli_scene_args("accuracy", argc, argv, optind, sets, nsets, &code);
+    tt_scene *scene = cli_args_scene(&spec, &args, argc, argv, &code);
     if (!scene)
         return code;
     double t0 = cli_now();

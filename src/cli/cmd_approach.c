@@ -23,7 +23,7 @@ static void help(void)
            "                     drive_work_aJ, energy_residual, deflection_min_nm,\n"
            "                     deflection_max_nm (default approach.csv)\n"
            "      --plot FILE    PNG of amplitude, phase and dissipation against z\n"
-           "      --set S.K=V    override a scene key (material.NAME.key for named sections)\n"
+           CLI_HELP_SET
            "  -q, --quiet        no summary on stderr\n\n"
            "z is the rest separation: the gap between the undeflected, non-interacting tip\n"
            "and the sample (negative: the rest position is below the surface).\n"
@@ -95,31 +95,15 @@ static int plot(const char *path, const tt_approach_point *pts, size_t n, int ra
 
 int cmd_approach(int argc, char **argv)
 {
-    static const struct option opts[] = {{"output", required_argument, NULL, 'o'},
-                                         {"plot", required_argument, NULL, 'p'},
-                                         {"set", required_argument, NULL, 's'},
-                                         {"quiet", no_argument, NULL, 'q'},
-                                         {"help", no_argument, NULL, 'h'},
-                                         {NULL, 0, NULL, 0}};
-    const char *out = "approach.csv", *plotpath = NULL;
-    char **sets = calloc((size_t)argc, sizeof *sets);
-    int nsets = 0, quiet = 0, c;
-    if (!sets)
-        return cli_fail(TT_ENOMEM, "out of memory");
-    while ((c = getopt_long(argc, argv, "o:qh", opts, NULL)) != -1) {
-        switch (c) {
-        case 'o': out = optarg; break;
-        case 'p': plotpath = optarg; break;
-        case 's': sets[nsets++] = optarg; break;
-        case 'q': quiet = 1; break;
-        case 'h': help(); free(sets); return CLI_OK;
-        default: free(sets); return CLI_USAGE;
-        }
-    }
+    static const cli_spec spec = {"approach", CLI_OPT_OUTPUT | CLI_OPT_PLOT | CLI_OPT_SET | CLI_OPT_QUIET,
+                                  NULL, "", help};
+    cli_args args = {.output = "approach.csv"};
     int code;
-    tt_scene *scene = cli_scene_args("approach", argc, argv, optind, sets, nsets, &code);
+    tt_scene *scene = cli_options_scene(&spec, &args, argc, argv, &code);
     if (!scene)
         return code;
+    const char *out = args.output, *plotpath = args.plot;
+    int quiet = args.quiet;
     double t0 = cli_now();
     tt_setup *st = NULL;
     tt_approach *ap = NULL;

@@ -113,19 +113,20 @@ int cmd_bench(int argc, char **argv)
     static const struct option opts[] = {{"cycles", required_argument, NULL, 'n'},
                                          {"print-scene", no_argument, NULL, 'p'},
                                          {"imaging-lines", required_argument, NULL, 'i'},
-                                         {"help", no_argument, NULL, 'h'},
                                          {NULL, 0, NULL, 0}};
+    static const cli_spec spec = {"bench", 0, opts, "", help};
+    cli_args args = {0}; /* no --set: nothing to free */
     long n = 20000, ilines = 4;
     int c;
-    while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+    while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) {
         switch (c) {
         case 'n': n = atol(optarg); break;
         case 'i': ilines = atol(optarg); break;
         case 'p': fputs(tt_standard_scene(), stdout); return CLI_OK;
-        case 'h': help(); return CLI_OK;
-        default: return CLI_USAGE;
         }
     }
+    if (c == CLI_EXIT)
+        return args.exit;
     if (n < 10) {
         fprintf(stderr, "tiptap bench: --cycles must be at least 10\n");
         return CLI_USAGE;

@@ -169,24 +169,19 @@ int cmd_contact(int argc, char **argv)
                                          {"model", required_argument, NULL, 'm'},
                                          {"xi0", required_argument, NULL, 'x'},
                                          {"material", required_argument, NULL, 'M'},
-                                         {"output", required_argument, NULL, 'o'},
-                                         {"plot", required_argument, NULL, 'p'},
-                                         {"set", required_argument, NULL, 's'},
-                                         {"help", no_argument, NULL, 'h'},
                                          {NULL, 0, NULL, 0}};
+    static const cli_spec spec = {"contact", CLI_OPT_OUTPUT | CLI_OPT_PLOT | CLI_OPT_SET, opts, "l:m:", help};
+    cli_args args = {0};
     double lambda = NAN, xi0n = 0.3;
-    const char *model = NULL, *material = NULL, *out = NULL, *plotpath = NULL;
-    char **sets = calloc((size_t)argc, sizeof *sets);
-    int nsets = 0, c;
-    if (!sets)
-        return cli_fail(TT_ENOMEM, "out of memory");
-    while ((c = getopt_long(argc, argv, "l:m:o:h", opts, NULL)) != -1) {
+    const char *model = NULL, *material = NULL;
+    int c;
+    while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) {
         char *end;
         switch (c) {
         case 'l':
             lambda = strtod(optarg, &end);
             if (*end || !isfinite(lambda) || lambda <= 0) {
-                free(sets);
+                cli_args_free(&args);
                 fprintf(stderr, "tiptap contact: --lambda: '%s' is not a positive number\n", optarg);
                 return CLI_USAGE;
             }
@@ -194,29 +189,27 @@ int cmd_contact(int argc, char **argv)
         case 'x':
             xi0n = strtod(optarg, &end);
             if (*end || !(xi0n > 0)) {
-                free(sets);
+                cli_args_free(&args);
                 fprintf(stderr, "tiptap contact: --xi0: '%s' is not a positive number\n", optarg);
                 return CLI_USAGE;
             }
             break;
         case 'm': model = optarg; break;
         case 'M': material = optarg; break;
-        case 'o': out = optarg; break;
-        case 'p': plotpath = optarg; break;
-        case 's': sets[nsets++] = optarg; break;
-        case 'h': help(); free(sets); return CLI_OK;
-        default: free(sets); return CLI_USAGE;
         }
     }
+    if (c == CLI_EXIT)
+        return args.exit;
+    const char *out = args.output, *plotpath = args.plot;
     tt_contact_model m = TT_CONTACT_MAUGIS;
     if (model && tt_contact_model_parse(model, &m) != 0) {
-        free(sets);
+        cli_args_free(&args);
         fprintf(stderr, "tiptap contact: --model: '%s' is not one of maugis, hertz, dmt, jkr\n", model);
         return CLI_USAGE;
     }
     int have_scene = optind < argc;
     if (have_scene == isfinite(lambda) && !(model && !have_scene && m != TT_CONTACT_MAUGIS)) {
-        free(sets);
+        cli_args_free(&args);
         fprintf(stderr, "tiptap contact: give either --lambda or a scene; see 'tiptap contact --help'\n");
         return CLI_USAGE;
     }
@@ -227,8 +220,8 @@ int cmd_contact(int argc, char **argv)
     double Qi = NAN;
     int rc;
     if (have_scene) {
-        scene = cli_load_scene(argv + optind, argc - optind, sets, nsets);
-        free(sets);
+        scene = cli_load_scene(argv + optind, argc - optind, args.sets, args.nsets);
+        cli_args_free(&args);
         if (!scene)
             return CLI_FAIL;
         const char *name = material ? material : tt_material_name(scene, 0);
@@ -252,7 +245,7 @@ int cmd_contact(int argc, char **argv)
                    ? tt_contact_summary_of(ct)->xi0 / tt_contact_summary_of(ct)->depth_scale
                    : 0.3;
     } else {
-        free(sets);
+        cli_args_free(&args);
         if ((rc = tt_contact_alloc_normalised(&ct, m, isfinite(lambda) ? lambda : 1, xi0n)))
             goto done;
     }

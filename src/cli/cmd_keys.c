@@ -5,25 +5,23 @@
 
 #include "commands.h"
 
+static void help(void)
+{
+    printf("Usage: tiptap keys [--markdown]\n"
+           "Lists every scene section and key: kind, default, meaning.\n"
+           "  --markdown  as the tables of docs/scene-format.md\n");
+}
+
 int cmd_keys(int argc, char **argv)
 {
-    static const struct option opts[] = {{"help", no_argument, NULL, 'h'},
-                                         {"markdown", no_argument, NULL, 'm'},
-                                         {NULL, 0, NULL, 0}};
+    static const struct option opts[] = {{"markdown", no_argument, NULL, 'm'}, {NULL, 0, NULL, 0}};
+    static const cli_spec spec = {"keys", 0, opts, "m", help};
+    cli_args args = {0}; /* no --set: nothing to free */
     int c, markdown = 0;
-    while ((c = getopt_long(argc, argv, "hm", opts, NULL)) != -1) {
-        if (c == 'h') {
-            printf("Usage: tiptap keys [--markdown]\n"
-                   "Lists every scene section and key: kind, default, meaning.\n"
-                   "  --markdown  as the tables of docs/scene-format.md\n");
-            return CLI_OK;
-        }
-        if (c == 'm') {
-            markdown = 1;
-            continue;
-        }
-        return CLI_USAGE;
-    }
+    while ((c = cli_getopt(&spec, &args, argc, argv)) > 0)
+        markdown = 1; /* 'm', its only option */
+    if (c == CLI_EXIT)
+        return args.exit;
     size_t n;
     const tt_scene_section *sec = tt_scene_schema(&n);
     if (markdown) {

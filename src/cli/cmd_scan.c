@@ -26,7 +26,7 @@ static void help(void)
            "                     (the effective scene, every key)\n"
            "  -j, --threads N    lines computed in parallel (default: all cores); the images\n"
            "                     do not depend on it\n"
-           "      --set S.K=V    override a scene key (material.NAME.key for named sections)\n"
+           CLI_HELP_SET
            "  -q, --quiet        no progress and summary on stderr\n\n"
            "Channels ([scan] channels): height (m), amplitude (error: amplitude - setpoint, m),\n"
            "phase (lag, deg), peak_force (N), indentation (m), dissipation (J per cycle),\n"
@@ -142,34 +142,23 @@ static int write_outputs(const tt_scan *scan, const tt_scene *scene, const char 
 
 int cmd_scan(int argc, char **argv)
 {
-    static const struct option opts[] = {{"output", required_argument, NULL, 'o'},
-                                         {"threads", required_argument, NULL, 'j'},
-                                         {"set", required_argument, NULL, 's'},
-                                         {"quiet", no_argument, NULL, 'q'},
-                                         {"help", no_argument, NULL, 'h'},
-                                         {NULL, 0, NULL, 0}};
-    const char *dir = NULL;
-    char **sets = calloc((size_t)argc, sizeof *sets);
-    int nsets = 0, quiet = 0, threads = 0, c;
-    if (!sets)
-        return cli_fail(TT_ENOMEM, "out of memory");
-    while ((c = getopt_long(argc, argv, "o:j:qh", opts, NULL)) != -1) {
-        switch (c) {
-        case 'o': dir = optarg; break;
-        case 'j': threads = atoi(optarg); break;
-        case 's': sets[nsets++] = optarg; break;
-        case 'q': quiet = 1; break;
-        case 'h': help(); free(sets); return CLI_OK;
-        default: free(sets); return CLI_USAGE;
-        }
-    }
+    static const struct option opts[] = {{"threads", required_argument, NULL, 'j'}, {NULL, 0, NULL, 0}};
+    static const cli_spec spec = {"scan", CLI_OPT_OUTPUT | CLI_OPT_SET | CLI_OPT_QUIET, opts, "j:", help};
+    cli_args args = {0};
+    int threads = 0, c;
+    while ((c = cli_getopt(&spec, &args, argc, argv)) > 0)
+        threads = atoi(optarg); /* 'j', its only own option */
+    if (c == CLI_EXIT)
+        return args.exit;
+    const char *dir = args.output;
+    int quiet = args.quiet;
     if (!dir) {
-        free(sets);
+        cli_args_free(&args);
         fprintf(stderr, "tiptap scan: needs -o DIR; see 'tiptap scan --help'\n");
         return CLI_USAGE;
     }
     int code;
-    tt_scene *scene = cli_scene_args("scan", argc, argv, optind, sets, nsets, &code);
+    tt_scene *scene = cli_args_scene(&spec, &args, argc, argv, &code);
     if (!scene)
         return code;
     double t0 = cli_now();

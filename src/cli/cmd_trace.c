@@ -1,7 +1,5 @@
 /* tiptap trace: a time series of the tapping cantilever, with an optional ramp of one
  * scene key over the run (seed figures 4b to 8). */
-#include <getopt.h>
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -10,8 +8,8 @@
 #include "tiptap/util/error.h"
 #include "tiptap/io/outfile.h"
 #include "tiptap/io/plot.h"
-#include "tiptap/physics/material.h"
-#include "tiptap/config/setup.h"
+#include "tiptap/config/read_trace.h"
+#include "tiptap/instrument/trace.h"
 
 static void help(void)
 {
@@ -23,7 +21,7 @@ static void help(void)
            "                     pressure_GPa (Hertzian K a / pi R, as in the seed), contact,\n"
            "                     and the ramped key's value when [trace] ramp is set\n"
            "      --plot FILE    PNG: positions and deflection; force and pressure\n"
-           "      --set S.K=V    override a scene key (material.NAME.key for named sections)\n"
+           CLI_HELP_SET
            "  -q, --quiet        no summary on stderr\n\n"
            "Positions are along the axis into the sample, the base at rest at 0; the\n"
            "deflection is tip - base, what a beam-deflection detector measures.\n"
@@ -37,7 +35,8 @@ typedef struct {
     size_t n, cap;
 } series;
 
-static int series_push(series *S, double t, double z, double d, double s, double F, double p)
+/* One sample in the plot's units. */
+static int series_push(series *S, const tt_trace_sample *x)
 {
     if (S->n == S->cap) {
         size_t cap = S->cap ? 2 * S->cap : 4096;
@@ -50,13 +49,13 @@ static int series_push(series *S, double t, double z, double d, double s, double
         }
         S->cap = cap;
     }
-    S->t[S->n] = t * 1e6;
-    S->z[S->n] = z * 1e9;
-    S->d[S->n] = d * 1e9;
-    S->s[S->n] = s * 1e9;
-    S->y[S->n] = (d - z) * 1e9;
-    S->F[S->n] = F * 1e9;
-    S->p[S->n] = p * 1e-9;
+    S->t[S->n] = x->t * 1e6;
+    S->z[S->n] = x->base * 1e9;
+    S->d[S->n] = x->tip * 1e9;
+    S->s[S->n] = x->sample * 1e9;
+    S->y[S->n] = (x->tip - x->base) * 1e9;
+    S->F[S->n] = x->force * 1e9;
+    S->p[S->n] = x->pressure * 1e-9;
     S->n++;
     return TT_OK;
 }
@@ -93,138 +92,70 @@ static int plot(const char *path, const series *S, const char *ramp)
     return rc;
 }
 
+static void write_row(FILE *f, const tt_trace_row *r, int ramp)
+{
+    for (size_t k = 0; k < r->nsamples; k++) {
+        const tt_trace_sample *x = &r->samples[k];
+        fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d", x->t * 1e6, x->base * 1e9,
+                x->tip * 1e9, x->sample * 1e9, (x->tip - x->base) * 1e9, x->force * 1e9,
+                x->contact_radius * 1e9, x->pressure * 1e-9, x->contact);
+        if (ramp)
+            fprintf(f, ",%.9g", r->ramp_value);
+        fputc('\n', f);
+    }
+}
+
 int cmd_trace(int argc, char **argv)
 {
-    static const struct option opts[] = {{"output", required_argument, NULL, 'o'},
-                                         {"plot", required_argument, NULL, 'p'},
-                                         {"set", required_argument, NULL, 's'},
-                                         {"quiet", no_argument, NULL, 'q'},
-                                         {"help", no_argument, NULL, 'h'},
-                                         {NULL, 0, NULL, 0}};
-    const char *out = "trace.csv", *plotpath = NULL;
-    char **sets = calloc((size_t)argc, sizeof *sets);
-    int nsets = 0, quiet = 0, c;
-    if (!sets)
-        return cli_fail(TT_ENOMEM, "out of memory");
-    while ((c = getopt_long(argc, argv, "o:qh", opts, NULL)) != -1) {
-        switch (c) {
-        case 'o': out = optarg; break;
-        case 'p': plotpath = optarg; break;
-        case 's': sets[nsets++] = optarg; break;
-        case 'q': quiet = 1; break;
-        case 'h': help(); free(sets); return CLI_OK;
-        default: free(sets); return CLI_USAGE;
-        }
-    }
+    static const cli_spec spec = {"trace", CLI_OPT_OUTPUT | CLI_OPT_PLOT | CLI_OPT_SET | CLI_OPT_QUIET,
+                                  NULL, "", help};
+    cli_args args = {.output = "trace.csv"};
     int code;
-    tt_scene *scene = cli_scene_args("trace", argc, argv, optind, sets, nsets, &code);
+    tt_scene *scene = cli_options_scene(&spec, &args, argc, argv, &code);
     if (!scene)
         return code;
-    double t0 = cli_now();
+    const char *out = args.output, *plotpath = args.plot;
+    int quiet = args.quiet;
+    double t0 = cli_now(), worst = 0;
     tt_setup *st = NULL;
+    tt_trace *tr = NULL;
     tt_outfile *of = NULL;
-    tt_sample *smp = NULL;
+    tt_trace_params p;
     series S = {0};
-    size_t mat = 0;
-    long cycles = 0, settle = 0, nsamp = 0, done_cycles = 0;
-    double sep = 0, sep_end = 0, worst = 0, ramp_from = 0, ramp_to = 0;
-    const char *ramp = tt_scene_get_string(scene, "trace", NULL, "ramp");
+    long done_cycles = 0;
     int rc;
-    if ((rc = tt_setup_alloc(&st, scene)) ||
-        (rc = tt_setup_find_material(st, tt_scene_get_string(scene, "trace", NULL, "material"),
-                                     "trace", "material", &mat)) ||
-        (rc = tt_setup_use_material(st, mat)) ||
-        (rc = tt_scene_get_double(scene, "trace", NULL, "separation", &sep)) ||
-        (rc = tt_scene_get_int(scene, "trace", NULL, "cycles", &cycles)) ||
-        (rc = tt_scene_get_int(scene, "trace", NULL, "settle_cycles", &settle)) ||
-        (rc = tt_scene_get_int(scene, "trace", NULL, "samples_per_cycle", &nsamp)))
-        goto done;
-    sep_end = sep;
-    if (tt_scene_has(scene, "trace", NULL, "separation_end") &&
-        (rc = tt_scene_get_double(scene, "trace", NULL, "separation_end", &sep_end)))
-        goto done;
-    if (ramp) {
-        const char *from = tt_scene_get_string(scene, "trace", NULL, "ramp_from");
-        const char *to = tt_scene_get_string(scene, "trace", NULL, "ramp_to");
-        if (!from || !to) {
-            rc = tt_scene_fail(scene, "trace", NULL, from ? "ramp_to" : "ramp_from",
-                               "missing; a ramp needs ramp_from and ramp_to");
-            goto done;
-        }
-        if (tt_setup_parse_key_value(st, ramp, from, &ramp_from) ||
-            tt_setup_parse_key_value(st, ramp, to, &ramp_to)) {
-            rc = tt_scene_fail(scene, "trace", NULL, "ramp", "%s", tt_error_message());
-            goto done;
-        }
-        if ((rc = tt_setup_apply(st, ramp, ramp_from))) {
-            rc = tt_scene_fail(scene, "trace", NULL, "ramp", "%s", tt_error_message());
-            goto done;
-        }
-    }
-    smp = calloc((size_t)nsamp, sizeof *smp);
-    if (!smp) {
-        rc = tt_error(TT_ENOMEM, "out of memory");
-        goto done;
-    }
-    if ((rc = tt_outfile_open(&of, out)))
+    if ((rc = tt_setup_alloc(&st, scene)) || (rc = tt_config_trace(scene, &p)) ||
+        (rc = tt_trace_alloc(&tr, st, &p)) || (rc = tt_outfile_open(&of, out)))
         goto done;
     FILE *f = tt_outfile_stream(of);
     fprintf(f, "t_us,base_nm,tip_nm,sample_nm,deflection_nm,force_nN,contact_radius_nm,pressure_GPa,"
                "contact%s%s\n",
-            ramp ? "," : "", ramp ? ramp : "");
-    const tt_cantilever *cant = &st->cantilever;
-    tt_sim *sim = st->sim;
-    tt_sim_reset_free(sim);
-    tt_sim_set_sample(sim, sep, 0);
-    tt_cycle cy;
-    for (long i = 0; i < settle && rc == TT_OK; i++)
-        rc = tt_sim_cycle(sim, &cy);
-    if (rc)
-        goto done;
+            p.ramp ? "," : "", p.ramp ? p.ramp : "");
     cli_catch_interrupt();
-    tt_sim_set_sampling(sim, (int)nsamp, smp);
-    double sdot = (sep_end - sep) / ((double)cycles * cant->T);
-    for (long i = 0; i < cycles; i++) {
+    int progress = !quiet && cli_progress_enabled();
+    while (!tt_trace_done(tr)) {
         if (tt_cancel_requested()) {
             rc = tt_error(TT_EINTR, "interrupted: %s keeps the %ld cycles finished", out, done_cycles);
             break;
         }
-        double rv = 0;
-        if (ramp) {
-            rv = cycles > 1 ? ramp_from + (ramp_to - ramp_from) * (double)i / (double)(cycles - 1) : ramp_from;
-            if ((rc = tt_setup_apply(st, ramp, rv)))
-                break;
-        }
-        tt_sim_set_sample(sim, sep + sdot * (double)i * cant->T, sdot);
-        if ((rc = tt_sim_cycle(sim, &cy)))
+        tt_trace_row row;
+        if ((rc = tt_trace_iterate(tr, &row)))
             break;
-        double rel = cy.residual_rel;
-        if (rel > worst)
-            worst = rel;
-        /* pressure: the seed's instantaneous Hertzian pressure K a / (pi R) */
-        tt_contact_params cp;
-        double Qi, K = 0, R = 1;
-        if (tt_material_params(scene, st->names[mat], &cp, &Qi) == TT_OK) {
-            K = cp.K;
-            R = cp.R;
-        }
-        for (long k = 0; k < nsamp; k++) {
-            double a = 0;
-            double F = tt_sim_force(sim, &smp[k], &a);
-            double p = smp[k].contact ? K * a / (M_PI * R) : 0;
-            fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d", smp[k].t * 1e6, smp[k].z * 1e9,
-                    smp[k].d * 1e9, smp[k].s * 1e9, (smp[k].d - smp[k].z) * 1e9, F * 1e9, a * 1e9,
-                    p * 1e-9, smp[k].contact);
-            if (ramp)
-                fprintf(f, ",%.9g", rv);
-            fputc('\n', f);
-            if (plotpath && (rc = series_push(&S, smp[k].t, smp[k].z, smp[k].d, smp[k].s, F, p)))
-                break;
-        }
+        if (row.summary.residual_rel > worst)
+            worst = row.summary.residual_rel;
+        write_row(f, &row, p.ramp != NULL);
+        for (size_t k = 0; plotpath && k < row.nsamples && rc == TT_OK; k++)
+            rc = series_push(&S, &row.samples[k]);
         if (rc)
             break;
         done_cycles++;
+        /* a cycle takes a millisecond or less: a line every 64 keeps the terminal calm */
+        if (progress && (done_cycles % 64 == 0 || tt_trace_done(tr)))
+            fprintf(stderr, "\rtrace: %ld/%zu cycles", done_cycles, tt_trace_rows(tr));
     }
+    if (progress)
+        fprintf(stderr, "\n");
+    /* Keep what finished, also when interrupted or when the solver failed later on. */
     {
         int crc = tt_outfile_close(of, done_cycles > 0);
         of = NULL;
@@ -232,7 +163,7 @@ int cmd_trace(int argc, char **argv)
             rc = crc;
     }
     if (plotpath && S.n > 0) {
-        int prc = plot(plotpath, &S, ramp);
+        int prc = plot(plotpath, &S, p.ramp);
         if (!rc)
             rc = prc;
     }
@@ -246,7 +177,7 @@ done:
     if (rc)
         cli_fail(rc, NULL);
     series_free(&S);
-    free(smp);
+    tt_trace_free(tr);
     tt_setup_free(st);
     tt_scene_free(scene);
     return rc == TT_OK ? CLI_OK : rc == TT_EINTR ? CLI_INTERRUPTED : CLI_FAIL;

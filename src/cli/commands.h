@@ -2,6 +2,7 @@
 #ifndef TIPTAP_CLI_COMMANDS_H
 #define TIPTAP_CLI_COMMANDS_H
 
+#include <getopt.h>
 #include <stdio.h>
 
 #include "tiptap/config/scene.h"
@@ -20,6 +21,59 @@ enum { CLI_OK = 0, CLI_FAIL = 1, CLI_USAGE = 2, CLI_INTERRUPTED = 130 };
 /* Print "tiptap: message" (the library's last error if msg is NULL) and return the
  * exit code matching status. */
 int cli_fail(int status, const char *msg);
+
+/* The option skeleton every command shares: the options it picks from the common
+ * ones (CLI_OPT_*; --help always), merged with its own into one getopt table, and the
+ * --set assignments collected for the scene files that follow the options.
+ *
+ *   cli_args a = {.output = "trace.csv"};
+ *   static const cli_spec spec = {"trace", CLI_OPT_OUTPUT | CLI_OPT_PLOT | ..., NULL, "", help};
+ *   while ((c = cli_getopt(&spec, &a, argc, argv)) > 0) { ...the command's own options... }
+ *   if (c == CLI_EXIT) return a.exit;
+ *   tt_scene *scene = cli_args_scene(&spec, &a, argc, argv, &code);
+ *
+ * Ownership: the --set list belongs to the cli_args; cli_args_scene frees it, and so
+ * does cli_args_free on a return before it. Texts point into argv. */
+enum { CLI_OPT_OUTPUT = 1, CLI_OPT_PLOT = 2, CLI_OPT_SET = 4, CLI_OPT_QUIET = 8 };
+
+/* getopt codes of the long-only common options, above every character */
+enum { CLI_CODE_PLOT = 0x100, CLI_CODE_SET = 0x101 };
+
+/* cli_getopt's ends: the options are read (run on), or the command returns a.exit
+ * (0 after --help, 2 for a bad option, 1 out of memory). */
+enum { CLI_END = -1, CLI_EXIT = -2 };
+
+typedef struct {
+    const char *cmd;           /* the command's name, for messages */
+    unsigned common;           /* the CLI_OPT_* it takes */
+    const struct option *own;  /* its own options, {NULL} ended; NULL: none */
+    const char *own_short;     /* their short letters, getopt style ("j:") */
+    void (*help)(void);        /* prints --help to stdout */
+} cli_spec;
+
+typedef struct {
+    const char *output, *plot; /* -o, --plot: as given, else as the command set them */
+    int quiet;                 /* -q */
+    char **sets;               /* --set assignments in order */
+    int nsets;
+    int exit;                  /* the exit code when cli_getopt returns CLI_EXIT */
+    struct option table[32];   /* the merged getopt table */
+    char shorts[64];
+} cli_args;
+
+/* The next option: the command's own code (> 0), CLI_END, or CLI_EXIT. */
+int cli_getopt(const cli_spec *spec, cli_args *a, int argc, char **argv);
+void cli_args_free(cli_args *a);
+
+/* cli_scene_args for the operands left after cli_getopt and the --set list. */
+tt_scene *cli_args_scene(const cli_spec *spec, cli_args *a, int argc, char **argv, int *exit_code);
+
+/* For a command without options of its own: cli_getopt to the end, then
+ * cli_args_scene. NULL with *exit_code also after --help (0) and a bad option. */
+tt_scene *cli_options_scene(const cli_spec *spec, cli_args *a, int argc, char **argv, int *exit_code);
+
+/* The --help line of --set, the same in every command that takes it. */
+#define CLI_HELP_SET "      --set S.K=V    override a scene key (material.NAME.key for named sections)\n"
 
 /* Load scene files in order and apply --set assignments; NULL on error (reported). */
 tt_scene *cli_load_scene(char **files, int nfiles, char **sets, int nsets);

@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "tiptap/util/error.h"
-#include "tiptap/io/outfile.h"
+#include "png_internal.h"
 
 /* Colour maps as a few anchors, interpolated linearly. */
 static void cmap(tt_colormap m, double t, double *r, double *g, double *b)
@@ -36,11 +36,6 @@ static double nice(double span)
 {
     double raw = span / 5, mag = pow(10, floor(log10(raw))), r = raw / mag;
     return (r < 1.5 ? 1 : r < 3.5 ? 2 : r < 7.5 ? 5 : 10) * mag;
-}
-
-static cairo_status_t write_fn(void *closure, const unsigned char *data, unsigned int len)
-{
-    return fwrite(data, 1, len, (FILE *)closure) == len ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
 }
 
 int tt_image_write_png(const char *path, const tt_image *im)
@@ -148,17 +143,7 @@ int tt_image_write_png(const char *path, const tt_image *im)
     cairo_show_text(cr, buf);
     cairo_destroy(cr);
     cairo_surface_destroy(data);
-    tt_outfile *o;
-    int rc = tt_outfile_open(&o, path);
-    if (rc) {
-        cairo_surface_destroy(sf);
-        return rc;
-    }
-    cairo_status_t st = cairo_surface_write_to_png_stream(sf, write_fn, tt_outfile_stream(o));
+    int rc = tt_png_write_surface(sf, path);
     cairo_surface_destroy(sf);
-    if (st != CAIRO_STATUS_SUCCESS) {
-        tt_outfile_close(o, 0);
-        return tt_error(TT_EIO, "%s: cannot write: %s", path, cairo_status_to_string(st));
-    }
-    return tt_outfile_close(o, 1);
+    return rc;
 }

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "tiptap/util/error.h"
+#include "tiptap/util/str.h"
 
 struct tt_outfile {
     FILE *f;
@@ -22,7 +23,7 @@ int tt_outfile_open(tt_outfile **out, const char *path)
     size_t n = strlen(path);
     if (!o)
         return tt_error(TT_ENOMEM, "out of memory");
-    o->path = malloc(n + 1);
+    o->path = tt_strdup(path);
     o->tmp = malloc(n + 16);
     if (!o->path || !o->tmp) {
         free(o->path);
@@ -30,7 +31,6 @@ int tt_outfile_open(tt_outfile **out, const char *path)
         free(o);
         return tt_error(TT_ENOMEM, "out of memory");
     }
-    memcpy(o->path, path, n + 1);
     /* beside the target, so that rename() stays within one file system */
     snprintf(o->tmp, n + 16, "%s.tmp.XXXXXX", path);
     int fd = mkstemp(o->tmp);

@@ -9,7 +9,8 @@
 #include <string.h>
 
 #include "tiptap/util/error.h"
-#include "tiptap/io/outfile.h"
+#include "tiptap/util/str.h"
+#include "png_internal.h"
 
 #define MAX_PANELS 8
 
@@ -49,17 +50,6 @@ static const double palette[][3] = {
     {0.34, 0.71, 0.91}, {0.90, 0.62, 0.00}, {0.20, 0.20, 0.20}, {0.94, 0.89, 0.26},
 };
 
-static char *dup(const char *s)
-{
-    if (!s)
-        return NULL;
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d)
-        memcpy(d, s, n);
-    return d;
-}
-
 tt_figure *tt_figure_alloc(int panels, const char *title)
 {
     if (panels < 1 || panels > MAX_PANELS)
@@ -68,7 +58,7 @@ tt_figure *tt_figure_alloc(int panels, const char *title)
     if (!f)
         return NULL;
     f->npanels = panels;
-    f->title = dup(title);
+    f->title = tt_strdup(title);
     for (int i = 0; i < panels; i++)
         f->p[i].xlo = f->p[i].xhi = f->p[i].ylo = f->p[i].yhi = NAN;
     return f;
@@ -108,8 +98,8 @@ int tt_figure_axes(tt_figure *f, int i, const char *xlabel, const char *ylabel)
         return tt_error(TT_EINVAL, "plot: no panel %d", i);
     free(p->xlabel);
     free(p->ylabel);
-    p->xlabel = dup(xlabel);
-    p->ylabel = dup(ylabel);
+    p->xlabel = tt_strdup(xlabel);
+    p->ylabel = tt_strdup(ylabel);
     return TT_OK;
 }
 
@@ -119,7 +109,7 @@ int tt_figure_axis_right(tt_figure *f, int i, const char *ylabel)
     if (!p)
         return tt_error(TT_EINVAL, "plot: no panel %d", i);
     free(p->y2label);
-    p->y2label = dup(ylabel);
+    p->y2label = tt_strdup(ylabel);
     return TT_OK;
 }
 
@@ -177,7 +167,7 @@ int tt_figure_line(tt_figure *f, int i, const double *x, const double *y, size_t
         memcpy(s->y, y, n * sizeof(double));
     }
     s->n = n;
-    s->label = dup(label);
+    s->label = tt_strdup(label);
     if ((style & TT_PLOT_COLOR_MASK) == 0)
         style |= (unsigned)(p->ns % 8) + 1;
     s->style = style;
@@ -220,7 +210,7 @@ int tt_figure_text(tt_figure *f, int i, double x, double y, const char *text)
     p->notes = n;
     n[p->nnotes].x = x;
     n[p->nnotes].y = y;
-    n[p->nnotes].text = dup(text);
+    n[p->nnotes].text = tt_strdup(text);
     if (!n[p->nnotes].text)
         return tt_error(TT_ENOMEM, "out of memory");
     p->nnotes++;
@@ -515,12 +505,6 @@ static void draw_panel(cairo_t *cr, const panel *p, double X, double Y, double W
     }
 }
 
-static cairo_status_t write_fn(void *closure, const unsigned char *data, unsigned int len)
-{
-    return fwrite(data, 1, len, (FILE *)closure) == len ? CAIRO_STATUS_SUCCESS
-                                                         : CAIRO_STATUS_WRITE_ERROR;
-}
-
 int tt_figure_write_png(const tt_figure *f, const char *path, int width, int height)
 {
     if (!f || width < 100 || height < 100)
@@ -541,17 +525,7 @@ int tt_figure_write_png(const tt_figure *f, const char *path, int width, int hei
     for (int i = 0; i < f->npanels; i++)
         draw_panel(cr, &f->p[i], 0, top + ph * i, width, ph);
     cairo_destroy(cr);
-    tt_outfile *o;
-    int rc = tt_outfile_open(&o, path);
-    if (rc) {
-        cairo_surface_destroy(sf);
-        return rc;
-    }
-    cairo_status_t st = cairo_surface_write_to_png_stream(sf, write_fn, tt_outfile_stream(o));
+    int rc = tt_png_write_surface(sf, path);
     cairo_surface_destroy(sf);
-    if (st != CAIRO_STATUS_SUCCESS) {
-        tt_outfile_close(o, 0);
-        return tt_error(TT_EIO, "%s: cannot write: %s", path, cairo_status_to_string(st));
-    }
-    return tt_outfile_close(o, 1);
+    return rc;
 }

@@ -1,0 +1,74 @@
+/* tiptap: time traces of the tapping cantilever (seed figures 4b to 8): the tip, base
+ * and sample positions and the tip-sample force sampled through each drive cycle,
+ * optionally while the sample moves from one rest separation to another and while one
+ * scene key (the adhesion energy, the spring constant) ramps linearly over the run.
+ *
+ * The cantilever starts in its free steady oscillation, runs settle_cycles at the first
+ * separation unrecorded, then records cycles rows, each one drive cycle of
+ * samples_per_cycle samples.
+ *
+ * Usage: tt_trace_alloc(&t, setup, &params); while (!tt_trace_done(t))
+ * { tt_trace_iterate(t, &row); ... }; tt_trace_free(t).
+ * Ownership: the trace borrows the setup (which must outlive it) and drives its sim;
+ * a ramp changes the setup's scene through tt_setup_apply. The samples of a row
+ * belong to the trace and are overwritten by the next tt_trace_iterate.
+ */
+#ifndef TIPTAP_TRACE_H
+#define TIPTAP_TRACE_H
+
+#include <stddef.h>
+
+#include "tiptap/config/setup.h"
+#include "tiptap/solver/integrator.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+    const char *material;    /* material under the tip (NULL: the first) */
+    double separation;       /* rest separation at the first recorded cycle, m */
+    double separation_end;   /* at the end of the last one (= separation: the sample rests), m */
+    long cycles;             /* recorded cycles */
+    long settle_cycles;      /* unrecorded cycles at separation first */
+    long samples_per_cycle;
+    const char *ramp;        /* key ramped over the recorded cycles, "material.NAME.key" or
+                              * "cantilever.key" (NULL: none) */
+    double ramp_from, ramp_to; /* its values at the first and last recorded cycle, SI */
+} tt_trace_params;
+
+/* One sample within a cycle, SI units along the axis into the sample. */
+typedef struct {
+    double t;                /* s, absolute */
+    double base, tip;        /* base and tip positions, m (deflection = tip - base) */
+    double sample;           /* sample surface, m */
+    double force;            /* tip-sample force, N */
+    double contact_radius;   /* m */
+    double pressure;         /* Hertzian mean pressure K a / (pi R), Pa (0 out of contact) */
+    int contact;
+} tt_trace_sample;
+
+typedef struct {
+    long cycle;                     /* recorded cycle, from 0 */
+    double ramp_value;              /* the ramped key's value during the cycle (0: no ramp) */
+    tt_cycle summary;               /* the cycle's observables */
+    size_t nsamples;
+    const tt_trace_sample *samples; /* belong to the trace, valid until the next iterate */
+} tt_trace_row;
+
+typedef struct tt_trace tt_trace;
+
+/* Puts the material under the tip and the ramped key at its first value. TT_EINVAL
+ * naming "[trace] KEY" for a bad material, ramp or count. */
+int tt_trace_alloc(tt_trace **out, tt_setup *st, const tt_trace_params *p);
+void tt_trace_free(tt_trace *t);
+size_t tt_trace_rows(const tt_trace *t);
+int tt_trace_done(const tt_trace *t);
+/* Run the next recorded cycle (and the settling cycles before the first). TT_ENUM
+ * etc. on solver failure, TT_EINVAL on a ramp value the scene refuses. */
+int tt_trace_iterate(tt_trace *t, tt_trace_row *row);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

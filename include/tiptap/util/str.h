@@ -1,0 +1,18 @@
+/* tiptap: string helpers.
+ *
+ * Ownership: a copy belongs to the caller, who frees it with free().
+ */
+#ifndef TIPTAP_STR_H
+#define TIPTAP_STR_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* A malloc'd copy of s; NULL when s is NULL or memory runs out (C11 has no strdup). */
+char *tt_strdup(const char *s);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,142 @@
+/* Time traces: settle, then record cycles while the sample moves and a key ramps (see
+ * include/tiptap/instrument/trace.h). */
+#include "tiptap/instrument/trace.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "tiptap/physics/material.h"
+#include "tiptap/util/error.h"
+
+struct tt_trace {
+    tt_setup *st;
+    tt_trace_params p;
+    size_t mat;              /* the material under the tip */
+    long row;
+    double sdot;             /* sample speed, m/s, fixed at the first recorded cycle */
+    tt_sample *raw;          /* the sim's samples of the current cycle */
+    tt_trace_sample *out;    /* the same with force and pressure */
+};
+
+int tt_trace_alloc(tt_trace **out, tt_setup *st, const tt_trace_params *p)
+{
+    *out = NULL;
+    if (p->cycles < 1)
+        return tt_error(TT_EINVAL, "[trace] cycles: must be at least 1");
+    if (p->settle_cycles < 0)
+        return tt_error(TT_EINVAL, "[trace] settle_cycles: must not be negative");
+    if (p->samples_per_cycle < 1 || p->samples_per_cycle > 1000000)
+        return tt_error(TT_EINVAL, "[trace] samples_per_cycle: must be 1 to 1e6");
+    size_t mat;
+    int rc;
+    if ((rc = tt_setup_find_material(st, p->material, "trace", "material", &mat)) ||
+        (rc = tt_setup_use_material(st, mat)))
+        return rc;
+    if (p->ramp && tt_setup_apply(st, p->ramp, p->ramp_from))
+        return tt_scene_fail(st->scene, "trace", NULL, "ramp", "%s", tt_error_message());
+    tt_trace *t = calloc(1, sizeof *t);
+    size_t n = (size_t)p->samples_per_cycle;
+    if (!t || !(t->raw = calloc(n, sizeof *t->raw)) || !(t->out = calloc(n, sizeof *t->out))) {
+        tt_trace_free(t);
+        return tt_error(TT_ENOMEM, "out of memory");
+    }
+    t->st = st;
+    t->p = *p;
+    t->mat = mat;
+    *out = t;
+    return TT_OK;
+}
+
+void tt_trace_free(tt_trace *t)
+{
+    if (!t)
+        return;
+    /* the sim outlives the trace: it must not write into freed samples */
+    if (t->st && t->st->sim)
+        tt_sim_set_sampling(t->st->sim, 0, NULL);
+    free(t->raw);
+    free(t->out);
+    free(t);
+}
+
+size_t tt_trace_rows(const tt_trace *t) { return (size_t)t->p.cycles; }
+int tt_trace_done(const tt_trace *t) { return t->row >= t->p.cycles; }
+
+/* From the free steady state, settle_cycles at the first separation, unrecorded. */
+static int settle(tt_trace *t)
+{
+    tt_sim *sim = t->st->sim;
+    tt_cycle cy;
+    int rc = TT_OK;
+    tt_sim_reset_free(sim);
+    tt_sim_set_sample(sim, t->p.separation, 0);
+    for (long i = 0; i < t->p.settle_cycles && rc == TT_OK; i++)
+        rc = tt_sim_cycle(sim, &cy);
+    if (rc)
+        return rc;
+    tt_sim_set_sampling(sim, (int)t->p.samples_per_cycle, t->raw);
+    t->sdot = (t->p.separation_end - t->p.separation) / ((double)t->p.cycles * t->st->cantilever.T);
+    return TT_OK;
+}
+
+/* The ramped key's value at recorded cycle i: linear from ramp_from to ramp_to. */
+static double ramp_value(const tt_trace_params *p, long i)
+{
+    if (p->cycles <= 1)
+        return p->ramp_from;
+    return p->ramp_from + (p->ramp_to - p->ramp_from) * (double)i / (double)(p->cycles - 1);
+}
+
+/* Force and pressure of the cycle's samples. The pressure is the Hertzian mean
+ * pressure over the contact circle, K a / (pi R) (the load K a^3 / R over pi a^2);
+ * K and R are read after each cycle since a ramp may change them. */
+static void fill_samples(tt_trace *t)
+{
+    tt_contact_params cp;
+    double Qi, K = 0, R = 1;
+    if (tt_material_params(t->st->scene, t->st->names[t->mat], &cp, &Qi) == TT_OK) {
+        K = cp.K;
+        R = cp.R;
+    }
+    for (long k = 0; k < t->p.samples_per_cycle; k++) {
+        const tt_sample *s = &t->raw[k];
+        tt_trace_sample *o = &t->out[k];
+        double a = 0;
+        o->force = tt_sim_force(t->st->sim, s, &a);
+        o->t = s->t;
+        o->base = s->z;
+        o->tip = s->d;
+        o->sample = s->s;
+        o->contact_radius = a;
+        o->pressure = s->contact ? K * a / (M_PI * R) : 0;
+        o->contact = s->contact;
+    }
+}
+
+int tt_trace_iterate(tt_trace *t, tt_trace_row *row)
+{
+    if (tt_trace_done(t))
+        return tt_error(TT_EINVAL, "trace already finished");
+    int rc;
+    if (t->row == 0 && (rc = settle(t)))
+        return rc;
+    long i = t->row;
+    row->cycle = i;
+    row->ramp_value = 0;
+    row->nsamples = 0;
+    row->samples = NULL;
+    if (t->p.ramp) {
+        row->ramp_value = ramp_value(&t->p, i);
+        if ((rc = tt_setup_apply(t->st, t->p.ramp, row->ramp_value)))
+            return rc;
+    }
+    /* the sample moves at sdot through the recorded cycles (seed figure 4b) */
+    tt_sim_set_sample(t->st->sim, t->p.separation + t->sdot * (double)i * t->st->cantilever.T, t->sdot);
+    if ((rc = tt_sim_cycle(t->st->sim, &row->summary)))
+        return rc;
+    fill_samples(t);
+    row->nsamples = (size_t)t->p.samples_per_cycle;
+    row->samples = t->out;
+    t->row++;
+    return TT_OK;
+}
