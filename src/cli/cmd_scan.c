@@ -32,8 +32,8 @@ static void help(void)
            "phase (lag, deg), peak_force (N), indentation (m), dissipation (J per cycle),\n"
            "topography (the true surface, m), harmonic2 ... harmonic8 (amplitude of the\n"
            "deflection's harmonic h, m; needs [lockin] harmonics >= h), harmonic2_phase ...\n"
-           "harmonic8_phase (its lag behind cos(h w t), deg). Ctrl-C stops after the lines\n"
-           "under way and writes the finished lines (the others are NaN, shown grey).\n"
+           "harmonic8_phase (its lag behind cos(h w t), deg). Ctrl-C (or SIGTERM) abandons the\n"
+           "lines under way and writes the finished lines (the others are NaN, shown grey).\n"
            "stderr ends with the run time, the real-time factor (instrument time / run time)\n"
            "and the error estimate: the largest energy-balance residual of a cycle relative\n"
            "to the free oscillation's drive work per cycle.\n");
@@ -156,7 +156,19 @@ int cmd_scan(int argc, char **argv)
     while ((c = getopt_long(argc, argv, "o:j:qh", opts, NULL)) != -1) {
         switch (c) {
         case 'o': dir = optarg; break;
-        case 'j': threads = atoi(optarg); break;
+        case 'j': {
+            /* atoi read "abc" and "-3" as 0, which means all cores */
+            char *end;
+            long j = strtol(optarg, &end, 10);
+            if (end == optarg || *end || j < 1 || j > 4096) {
+                free(sets);
+                fprintf(stderr, "tiptap scan: -j: '%s' is not a number of threads from 1 to 4096\n",
+                        optarg);
+                return CLI_USAGE;
+            }
+            threads = (int)j;
+            break;
+        }
         case 's': sets[nsets++] = optarg; break;
         case 'q': quiet = 1; break;
         case 'h': help(); free(sets); return CLI_OK;
