@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what tiptap needs to build and test on Debian 12 (run as root).
 set -euo pipefail
-packages=(build-essential cmake pkg-config libgsl-dev libfftw3-dev libpng-dev libinih-dev
+packages=(build-essential cmake pkg-config libgsl-dev libfftw3-dev libpng-dev
           libcairo2-dev libcmocka-dev fonts-dejavu-core)
 missing=()
 for p in "${packages[@]}"; do

@@ -147,11 +147,10 @@ int cli_progress_enabled(void) { return isatty(STDERR_FILENO); }
 
 static void on_sigint(int sig)
 {
-    (void)sig;
     /* A second Ctrl-C ends the program at once. */
     if (tt_cancel_requested())
-        _exit(CLI_INTERRUPTED);
-    tt_cancel_request();
+        _exit(128 + sig);
+    tt_cancel_request_signal(sig);
 }
 
 void cli_catch_interrupt(void)

@@ -188,9 +188,9 @@ int cmd_contact(int argc, char **argv)
             break;
         case 'x':
             xi0n = strtod(optarg, &end);
-            if (*end || !(xi0n > 0)) {
+            if (*end || !isfinite(xi0n) || !(xi0n > 0)) {
                 cli_args_free(&args);
-                fprintf(stderr, "tiptap contact: --xi0: '%s' is not a positive number\n", optarg);
+                fprintf(stderr, "tiptap contact: --xi0: '%s' is not a finite positive number\n", optarg);
                 return CLI_USAGE;
             }
             break;

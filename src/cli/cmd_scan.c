@@ -32,8 +32,8 @@ static void help(void)
            "phase (lag, deg), peak_force (N), indentation (m), dissipation (J per cycle),\n"
            "topography (the true surface, m), harmonic2 ... harmonic8 (amplitude of the\n"
            "deflection's harmonic h, m; needs [lockin] harmonics >= h), harmonic2_phase ...\n"
-           "harmonic8_phase (its lag behind cos(h w t), deg). Ctrl-C stops after the lines\n"
-           "under way and writes the finished lines (the others are NaN, shown grey).\n"
+           "harmonic8_phase (its lag behind cos(h w t), deg). Ctrl-C (or SIGTERM) abandons the\n"
+           "lines under way and writes the finished lines (the others are NaN, shown grey).\n"
            "stderr ends with the run time, the real-time factor (instrument time / run time)\n"
            "and the error estimate: the largest energy-balance residual of a cycle relative\n"
            "to the free oscillation's drive work per cycle.\n");
@@ -146,8 +146,17 @@ int cmd_scan(int argc, char **argv)
     static const cli_spec spec = {"scan", CLI_OPT_OUTPUT | CLI_OPT_SET | CLI_OPT_QUIET, opts, "j:", help};
     cli_args args = {0};
     int threads = 0, c;
-    while ((c = cli_getopt(&spec, &args, argc, argv)) > 0)
-        threads = atoi(optarg); /* 'j', its only own option */
+    while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) { /* 'j', its only own option */
+        /* atoi read "abc" and "-3" as 0, which means all cores */
+        char *end;
+        long j = strtol(optarg, &end, 10);
+        if (end == optarg || *end || j < 1 || j > 4096) {
+            cli_args_free(&args);
+            fprintf(stderr, "tiptap scan: -j: '%s' is not a number of threads from 1 to 4096\n", optarg);
+            return CLI_USAGE;
+        }
+        threads = (int)j;
+    }
     if (c == CLI_EXIT)
         return args.exit;
     const char *dir = args.output;

@@ -15,7 +15,8 @@ int cmd_bench(int argc, char **argv);
 int cmd_scan(int argc, char **argv);
 int cmd_accuracy(int argc, char **argv);
 
-/* Exit codes: 0 success, 1 bad input or failure, 2 usage, 130 interrupted. */
+/* Exit codes: 0 success, 1 bad input or failure, 2 usage, 130 interrupted (Ctrl-C);
+ * 143 stopped by SIGTERM (main turns CLI_INTERRUPTED into 128 + the signal). */
 enum { CLI_OK = 0, CLI_FAIL = 1, CLI_USAGE = 2, CLI_INTERRUPTED = 130 };
 
 /* Print "tiptap: message" (the library's last error if msg is NULL) and return the
@@ -87,7 +88,7 @@ tt_scene *cli_scene_args(const char *cmd, int argc, char **argv, int optind_, ch
 /* 1 when stderr is a terminal: progress lines go there only then. */
 int cli_progress_enabled(void);
 
-/* Install the SIGINT handler that requests cooperative cancellation. */
+/* Install the SIGINT and SIGTERM handler that requests cooperative cancellation. */
 void cli_catch_interrupt(void);
 
 /* Wall-clock seconds from a monotonic clock. */

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "tiptap/util/cancel.h"
 
 /* The subcommands, in the order --help lists them. */
 static const struct {
@@ -35,7 +36,8 @@ static void usage(FILE *out)
             "  -h, --help     this help; 'tiptap COMMAND --help' for a command's\n"
             "  -V, --version  the version\n\n"
             "Scenes are INI files (docs/scene-format.md); values carry SI units.\n"
-            "Exit status: 0 success, 1 bad input or failure, 2 usage, 130 interrupted.\n");
+            "Exit status: 0 success, 1 bad input or failure, 2 usage, 130 interrupted\n"
+            "(Ctrl-C), 143 stopped by SIGTERM.\n");
 }
 
 int main(int argc, char **argv)
@@ -45,8 +47,13 @@ int main(int argc, char **argv)
         return CLI_USAGE;
     }
     for (size_t i = 0; i < NCOMMANDS; i++)
-        if (strcmp(argv[1], commands[i].name) == 0)
-            return commands[i].run(argc - 1, argv + 1);
+        if (strcmp(argv[1], commands[i].name) == 0) {
+            int code = commands[i].run(argc - 1, argv + 1);
+            /* stopped by a signal: 128 + its number, the shells' convention (143: SIGTERM) */
+            if (code == CLI_INTERRUPTED && tt_cancel_signal())
+                code = 128 + tt_cancel_signal();
+            return code;
+        }
 
     static const struct option opts[] = {
         {"help", no_argument, NULL, 'h'}, {"version", no_argument, NULL, 'V'}, {NULL, 0, NULL, 0}};

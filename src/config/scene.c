@@ -4,12 +4,15 @@
 
 #include <ctype.h>
 #include <errno.h>
-#include <ini.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include "tiptap/config/ini.h"
 #include "tiptap/util/error.h"
 
 typedef struct {
@@ -18,6 +21,7 @@ typedef struct {
     char *key;
     char *value;
     char *origin;  /* file that set it, or "--set" */
+    unsigned load; /* which tt_scene_load set it (0: --set), to refuse a key given twice */
 } entry;
 
 typedef struct {
@@ -26,12 +30,29 @@ typedef struct {
     char *origin;
 } section_use;
 
+/* The names of one named section in order of appearance (indices into uses), so that
+ * listing 50,000 materials is linear. */
+typedef struct {
+    size_t *use;
+    size_t n, cap;
+} name_list;
+
+/* Open-addressing hash index: slot holds an array index + 1, 0 when empty. */
+typedef struct {
+    size_t *slot;
+    size_t cap; /* a power of two, at least twice the number of items */
+} hash_index;
+
 struct tt_scene {
     entry *entries;
     size_t n, cap;
     section_use *uses; /* sections in order of appearance (named ones once per name) */
     size_t nuses, capuses;
     char *origin;
+    hash_index by_key;     /* (section, name, key) -> entries */
+    hash_index by_section; /* (section, name) -> uses */
+    name_list *names;      /* per schema section */
+    unsigned loads;        /* files read so far */
 };
 
 static char *dupstr(const char *s)
@@ -52,6 +73,119 @@ static int streq(const char *a, const char *b)
     return strcmp(a, b) == 0;
 }
 
+/* FNV-1a over section, name and key; a NULL name hashes apart from "". */
+static size_t hash_of(const char *section, const char *name, const char *key)
+{
+    const char *part[3] = {section, name ? name : "\x01", key ? key : ""};
+    size_t h = 1469598103934665603u;
+    for (int i = 0; i < 3; i++) {
+        for (const unsigned char *p = (const unsigned char *)part[i]; *p; p++)
+            h = (h ^ *p) * 1099511628211u;
+        h = (h ^ 0xff) * 1099511628211u;
+    }
+    return h;
+}
+
+static size_t entry_hash(const entry *e) { return hash_of(e->section, e->name, e->key); }
+static size_t use_hash(const section_use *u) { return hash_of(u->section, u->name, NULL); }
+
+/* Make room for one more of n items, rehashing all n when the table grows. */
+static int index_reserve(hash_index *h, size_t n, const void *items, size_t size,
+                         size_t (*hash)(const void *))
+{
+    if (2 * (n + 1) <= h->cap)
+        return TT_OK;
+    size_t cap = h->cap ? 2 * h->cap : 64;
+    while (cap < 2 * (n + 1))
+        cap *= 2;
+    size_t *slot = calloc(cap, sizeof *slot);
+    if (!slot)
+        return tt_error(TT_ENOMEM, "out of memory reading the scene");
+    for (size_t i = 0; i < n; i++) {
+        size_t j = hash((const char *)items + i * size) & (cap - 1);
+        while (slot[j])
+            j = (j + 1) & (cap - 1);
+        slot[j] = i + 1;
+    }
+    free(h->slot);
+    h->slot = slot;
+    h->cap = cap;
+    return TT_OK;
+}
+
+static void index_add(hash_index *h, size_t hash, size_t i)
+{
+    size_t j = hash & (h->cap - 1);
+    while (h->slot[j])
+        j = (j + 1) & (h->cap - 1);
+    h->slot[j] = i + 1;
+}
+
+static size_t entry_hash_v(const void *e) { return entry_hash(e); }
+static size_t use_hash_v(const void *u) { return use_hash(u); }
+
+static entry *find_entry(const tt_scene *s, const char *section, const char *name,
+                         const char *key)
+{
+    if (!s->by_key.cap)
+        return NULL;
+    for (size_t j = hash_of(section, name, key) & (s->by_key.cap - 1); s->by_key.slot[j];
+         j = (j + 1) & (s->by_key.cap - 1)) {
+        entry *e = &s->entries[s->by_key.slot[j] - 1];
+        if (strcmp(e->section, section) == 0 && streq(e->name, name) && strcmp(e->key, key) == 0)
+            return e;
+    }
+    return NULL;
+}
+
+static const section_use *find_use(const tt_scene *s, const char *section, const char *name)
+{
+    if (!s->by_section.cap)
+        return NULL;
+    for (size_t j = hash_of(section, name, NULL) & (s->by_section.cap - 1); s->by_section.slot[j];
+         j = (j + 1) & (s->by_section.cap - 1)) {
+        const section_use *u = &s->uses[s->by_section.slot[j] - 1];
+        if (strcmp(u->section, section) == 0 && streq(u->name, name))
+            return u;
+    }
+    return NULL;
+}
+
+static const tt_scene_section *find_section(const char *name);
+
+/* The list of names of a named schema section, NULL for an unknown one. */
+static name_list *names_of(const tt_scene *s, const char *section)
+{
+    size_t n;
+    const tt_scene_section *all = tt_scene_schema(&n);
+    const tt_scene_section *sec = find_section(section);
+    if (!sec || !s->names)
+        return NULL;
+    return &s->names[sec - all];
+}
+
+static int names_add(tt_scene *s, const char *section, size_t use)
+{
+    if (!s->names) {
+        size_t n;
+        tt_scene_schema(&n);
+        s->names = calloc(n, sizeof *s->names);
+        if (!s->names)
+            return tt_error(TT_ENOMEM, "out of memory reading the scene");
+    }
+    name_list *l = names_of(s, section);
+    if (l->n == l->cap) {
+        size_t cap = l->cap ? 2 * l->cap : 8;
+        size_t *u = realloc(l->use, cap * sizeof *u);
+        if (!u)
+            return tt_error(TT_ENOMEM, "out of memory reading the scene");
+        l->use = u;
+        l->cap = cap;
+    }
+    l->use[l->n++] = use;
+    return TT_OK;
+}
+
 tt_scene *tt_scene_alloc(void) { return calloc(1, sizeof(tt_scene)); }
 
 void tt_scene_free(tt_scene *s)
@@ -70,52 +204,43 @@ void tt_scene_free(tt_scene *s)
         free(s->uses[i].name);
         free(s->uses[i].origin);
     }
+    if (s->names) {
+        size_t n;
+        tt_scene_schema(&n);
+        for (size_t i = 0; i < n; i++)
+            free(s->names[i].use);
+    }
+    free(s->names);
+    free(s->by_key.slot);
+    free(s->by_section.slot);
     free(s->entries);
     free(s->uses);
     free(s->origin);
     free(s);
 }
 
+static int note_section(tt_scene *s, const char *section, const char *name, const char *origin);
+static int store(tt_scene *s, const char *origin, unsigned load, const char *section,
+                 const char *name, const char *key, const char *value);
+
 tt_scene *tt_scene_copy(const tt_scene *s)
 {
     tt_scene *c = tt_scene_alloc();
     if (!c)
         return NULL;
-    c->entries = calloc(s->n ? s->n : 1, sizeof *c->entries);
-    c->uses = calloc(s->nuses ? s->nuses : 1, sizeof *c->uses);
     c->origin = dupstr(s->origin);
-    if (!c->entries || !c->uses || (s->origin && !c->origin)) {
+    c->loads = s->loads;
+    int rc = (s->origin && !c->origin) ? TT_ENOMEM : TT_OK;
+    /* sections first, so that their order and origins are kept */
+    for (size_t i = 0; i < s->nuses && !rc; i++)
+        rc = note_section(c, s->uses[i].section, s->uses[i].name, s->uses[i].origin);
+    for (size_t i = 0; i < s->n && !rc; i++) {
+        const entry *e = &s->entries[i];
+        rc = store(c, e->origin, e->load, e->section, e->name, e->key, e->value);
+    }
+    if (rc) {
         tt_scene_free(c);
         return NULL;
-    }
-    c->cap = s->n ? s->n : 1;
-    c->capuses = s->nuses ? s->nuses : 1;
-    /* Counts grow one at a time so that tt_scene_free releases exactly what was copied. */
-    for (size_t i = 0; i < s->n; i++, c->n++) {
-        const entry *e = &s->entries[i];
-        entry *d = &c->entries[i];
-        d->section = dupstr(e->section);
-        d->name = dupstr(e->name);
-        d->key = dupstr(e->key);
-        d->value = dupstr(e->value);
-        d->origin = dupstr(e->origin);
-        if (!d->section || (e->name && !d->name) || !d->key || !d->value || !d->origin) {
-            c->n++;
-            tt_scene_free(c);
-            return NULL;
-        }
-    }
-    for (size_t i = 0; i < s->nuses; i++, c->nuses++) {
-        const section_use *u = &s->uses[i];
-        section_use *d = &c->uses[i];
-        d->section = dupstr(u->section);
-        d->name = dupstr(u->name);
-        d->origin = dupstr(u->origin);
-        if (!d->section || (u->name && !d->name) || !d->origin) {
-            c->nuses++;
-            tt_scene_free(c);
-            return NULL;
-        }
     }
     return c;
 }
@@ -267,21 +392,10 @@ static int check_value(const tt_scene_key *k, const char *v, char *why, size_t l
     return 0;
 }
 
-static entry *find_entry(const tt_scene *s, const char *section, const char *name,
-                         const char *key)
-{
-    for (size_t i = 0; i < s->n; i++)
-        if (strcmp(s->entries[i].section, section) == 0 && streq(s->entries[i].name, name) &&
-            strcmp(s->entries[i].key, key) == 0)
-            return &s->entries[i];
-    return NULL;
-}
-
 static int note_section(tt_scene *s, const char *section, const char *name, const char *origin)
 {
-    for (size_t i = 0; i < s->nuses; i++)
-        if (strcmp(s->uses[i].section, section) == 0 && streq(s->uses[i].name, name))
-            return TT_OK;
+    if (find_use(s, section, name))
+        return TT_OK;
     if (s->nuses == s->capuses) {
         size_t cap = s->capuses ? 2 * s->capuses : 8;
         section_use *u = realloc(s->uses, cap * sizeof *u);
@@ -290,23 +404,94 @@ static int note_section(tt_scene *s, const char *section, const char *name, cons
         s->uses = u;
         s->capuses = cap;
     }
+    int rc = index_reserve(&s->by_section, s->nuses, s->uses, sizeof *s->uses, use_hash_v);
+    if (rc)
+        return rc;
     section_use *u = &s->uses[s->nuses];
     u->section = dupstr(section);
     u->name = dupstr(name);
     u->origin = dupstr(origin);
-    if (!u->section || (name && !u->name) || !u->origin)
+    if (!u->section || (name && !u->name) || !u->origin) {
+        free(u->section);
+        free(u->name);
+        free(u->origin);
         return tt_error(TT_ENOMEM, "out of memory reading the scene");
+    }
+    if (name && (rc = names_add(s, section, s->nuses)))
+        return rc;
+    index_add(&s->by_section, use_hash(u), s->nuses);
     s->nuses++;
     return TT_OK;
 }
 
-/* Validate and store one key; origin names the file for messages. */
-static int put(tt_scene *s, const char *origin, const char *section, const char *name,
-               const char *key, const char *value)
+/* Store one checked key (a new one, or a new value for a key already there). */
+static int store(tt_scene *s, const char *origin, unsigned load, const char *section,
+                 const char *name, const char *key, const char *value)
 {
-    char label[256], why[512];
+    entry *e = find_entry(s, section, name, key);
+    char *v = dupstr(value), *o = dupstr(origin);
+    if (!v || !o) {
+        free(v);
+        free(o);
+        return tt_error(TT_ENOMEM, "out of memory reading the scene");
+    }
+    if (e) {
+        free(e->value);
+        free(e->origin);
+        e->value = v;
+        e->origin = o;
+        e->load = load;
+        return TT_OK;
+    }
+    int rc = TT_OK;
+    if (s->n == s->cap) {
+        size_t cap = s->cap ? 2 * s->cap : 32;
+        entry *ne = realloc(s->entries, cap * sizeof *ne);
+        if (!ne)
+            rc = tt_error(TT_ENOMEM, "out of memory reading the scene");
+        else {
+            s->entries = ne;
+            s->cap = cap;
+        }
+    }
+    if (!rc)
+        rc = index_reserve(&s->by_key, s->n, s->entries, sizeof *s->entries, entry_hash_v);
+    if (!rc) {
+        e = &s->entries[s->n];
+        *e = (entry){dupstr(section), dupstr(name), dupstr(key), v, o, load};
+        if (!e->section || (name && !e->name) || !e->key) {
+            free(e->section);
+            free(e->name);
+            free(e->key);
+            rc = tt_error(TT_ENOMEM, "out of memory reading the scene");
+        }
+    }
+    if (rc) {
+        free(v);
+        free(o);
+        return rc;
+    }
+    index_add(&s->by_key, entry_hash(e), s->n);
+    s->n++;
+    return TT_OK;
+}
+
+/* Whether text holds a byte that must not reach a terminal or a line of scene.ini. */
+static int has_control(const char *text)
+{
+    for (const unsigned char *p = (const unsigned char *)text; *p; p++)
+        if ((*p < 0x20 && *p != '\t') || *p == 0x7f)
+            return 1;
+    return 0;
+}
+
+/* Check a section header: a known section, with a name exactly when it takes one. */
+static int check_section(const char *origin, const char *section, const char *name)
+{
+    char label[256], shown[160];
     const tt_scene_section *sec = find_section(section);
     section_label(label, sizeof label, section, name);
+    tt_ini_escape(label, shown, sizeof shown);
     if (!sec) {
         size_t n;
         const tt_scene_section *all = tt_scene_schema(&n);
@@ -319,209 +504,223 @@ static int put(tt_scene *s, const char *origin, const char *section, const char 
                 break;
             used += (size_t)w;
         }
-        return tt_error(TT_EINVAL, "%s: [%s]: unknown section; known sections: %s", origin, label,
+        return tt_error(TT_EINVAL, "%s: [%s]: unknown section; known sections: %s", origin, shown,
                         known);
     }
-    if (sec->named && !name)
+    if (sec->named && (!name || !name[0]))
         return tt_error(TT_EINVAL, "%s: [%s]: this section needs a name, as in [%s NAME]", origin,
-                        label, section);
+                        shown, section);
     if (!sec->named && name)
-        return tt_error(TT_EINVAL, "%s: [%s]: this section takes no name; write [%s]", origin, label,
+        return tt_error(TT_EINVAL, "%s: [%s]: this section takes no name; write [%s]", origin, shown,
                         section);
-    const tt_scene_key *k = find_key(sec, key);
-    if (!k) {
-        char keys[768];
-        return tt_error(TT_EINVAL, "%s: [%s] %s: unknown key; [%s] takes %s", origin, label, key,
-                        section, list_keys(sec, keys, sizeof keys));
-    }
-    if (check_value(k, value, why, sizeof why) != 0)
-        return tt_error(TT_EINVAL, "%s: [%s] %s: %s", origin, label, key, why);
-    int rc = note_section(s, section, name, origin);
-    if (rc)
-        return rc;
-    entry *e = find_entry(s, section, name, key);
-    if (e) {
-        char *v = dupstr(value), *o = dupstr(origin);
-        if (!v || !o) {
-            free(v);
-            free(o);
-            return tt_error(TT_ENOMEM, "out of memory reading the scene");
-        }
-        free(e->value);
-        free(e->origin);
-        e->value = v;
-        e->origin = o;
-        return TT_OK;
-    }
-    if (s->n == s->cap) {
-        size_t cap = s->cap ? 2 * s->cap : 32;
-        entry *ne = realloc(s->entries, cap * sizeof *ne);
-        if (!ne)
-            return tt_error(TT_ENOMEM, "out of memory reading the scene");
-        s->entries = ne;
-        s->cap = cap;
-    }
-    e = &s->entries[s->n];
-    e->section = dupstr(section);
-    e->name = dupstr(name);
-    e->key = dupstr(key);
-    e->value = dupstr(value);
-    e->origin = dupstr(origin);
-    if (!e->section || (name && !e->name) || !e->key || !e->value || !e->origin)
-        return tt_error(TT_ENOMEM, "out of memory reading the scene");
-    s->n++;
+    /* the effective scene writes "[section name]": a name must read back the same */
+    if (name && (strpbrk(name, "[]") || isspace((unsigned char)name[0]) ||
+                 isspace((unsigned char)name[strlen(name) - 1]) || has_control(name)))
+        return tt_error(TT_EINVAL, "%s: [%s]: a name must not hold '[', ']', control characters "
+                        "or blanks at its ends", origin, shown);
     return TT_OK;
 }
 
-/* Split an INI section header "material glass" into schema section and name. */
-static int split_header(const char *header, char *section, size_t slen, char *name, size_t nlen)
+/* Validate and store one key; origin names the file for messages. */
+static int put(tt_scene *s, const char *origin, unsigned load, const char *section,
+               const char *name, const char *key, const char *value)
 {
-    const char *p = header;
-    while (isspace((unsigned char)*p))
+    char label[256], why[512], shown[160];
+    int rc = check_section(origin, section, name);
+    if (rc)
+        return rc;
+    const tt_scene_section *sec = find_section(section);
+    section_label(label, sizeof label, section, name);
+    const tt_scene_key *k = find_key(sec, key);
+    if (!k) {
+        char keys[768];
+        return tt_error(TT_EINVAL, "%s: [%s] %s: unknown key; [%s] takes %s", origin, label,
+                        tt_ini_escape(key, shown, sizeof shown), section,
+                        list_keys(sec, keys, sizeof keys));
+    }
+    /* scene.ini holds one key per line, and " ;" there starts a comment */
+    if (has_control(value))
+        return tt_error(TT_EINVAL, "%s: [%s] %s: '%s' holds a control character; a value is one "
+                        "line of text", origin, label, key, tt_ini_escape(value, shown, sizeof shown));
+    for (const char *c = strchr(value, ';'); c; c = strchr(c + 1, ';'))
+        if (c > value && (c[-1] == ' ' || c[-1] == '\t'))
+            return tt_error(TT_EINVAL, "%s: [%s] %s: '%s': a ';' after a blank starts a comment in "
+                            "a scene file", origin, label, key, value);
+    if (check_value(k, value, why, sizeof why) != 0)
+        return tt_error(TT_EINVAL, "%s: [%s] %s: %s", origin, label, key, why);
+    const entry *e = find_entry(s, section, name, key);
+    if (e && load && e->load == load)
+        return tt_error(TT_EINVAL, "%s: [%s] %s: given twice in this file", origin, label, key);
+    if ((rc = note_section(s, section, name, origin)))
+        return rc;
+    return store(s, origin, load, section, name, key, value);
+}
+
+/* Split an INI section header "material glass" into schema section and name (NULL when
+ * there is none); both are allocated together in *buf, which the caller frees. */
+static int split_header(const char *header, char **buf, const char **section, const char **name)
+{
+    size_t n = strlen(header);
+    char *b = malloc(n + 1);
+    if (!b)
+        return tt_error(TT_ENOMEM, "out of memory reading the scene");
+    memcpy(b, header, n + 1);
+    char *p = b;
+    while (*p && !isspace((unsigned char)*p))
         p++;
-    size_t i = 0;
-    while (*p && !isspace((unsigned char)*p) && i + 1 < slen)
-        section[i++] = *p++;
-    section[i] = '\0';
-    while (isspace((unsigned char)*p))
-        p++;
-    i = 0;
-    while (*p && i + 1 < nlen)
-        name[i++] = *p++;
-    while (i > 0 && isspace((unsigned char)name[i - 1]))
-        i--;
-    name[i] = '\0';
-    return 0;
+    char *rest = p;
+    while (isspace((unsigned char)*rest))
+        rest++;
+    *p = '\0';
+    *buf = b;
+    *section = b;
+    *name = *rest ? rest : NULL;
+    return TT_OK;
 }
 
 typedef struct {
     tt_scene *s;
     const char *origin;
-    int status;
-    /* keys seen in this file, to refuse a key written twice in one section */
-    char **seen;
-    size_t nseen, capseen;
+    unsigned load;
 } load_ctx;
 
-static int seen_before(load_ctx *c, const char *header, const char *key)
-{
-    size_t need = strlen(header) + strlen(key) + 2;
-    char *id = malloc(need);
-    if (!id)
-        return 0;
-    snprintf(id, need, "%s\n%s", header, key);
-    for (size_t i = 0; i < c->nseen; i++)
-        if (strcmp(c->seen[i], id) == 0) {
-            free(id);
-            return 1;
-        }
-    if (c->nseen == c->capseen) {
-        size_t cap = c->capseen ? 2 * c->capseen : 32;
-        char **n = realloc(c->seen, cap * sizeof *n);
-        if (!n) {
-            free(id);
-            return 0;
-        }
-        c->seen = n;
-        c->capseen = cap;
-    }
-    c->seen[c->nseen++] = id;
-    return 0;
-}
-
-static int on_key(void *user, const char *header, const char *key, const char *value)
+static int on_item(void *user, const tt_ini_item *it)
 {
     load_ctx *c = user;
-    char section[128], name[128];
-    if (c->status != TT_OK)
-        return 0;
-    split_header(header, section, sizeof section, name, sizeof name);
-    if (section[0] == '\0') {
-        c->status = tt_error(TT_EINVAL, "%s: %s: key outside any section; put it under a [section]",
-                             c->origin, key);
-        return 0;
+    char *buf = NULL;
+    const char *section = NULL, *name = NULL;
+    char shown[160];
+    if (!it->key && !it->section[0])
+        return tt_error(TT_EINVAL, "%s: line %ld: empty section header '[]'", c->origin, it->line);
+    if (!it->section[0])
+        return tt_error(TT_EINVAL, "%s: %s: key outside any section; put it under a [section]",
+                        c->origin, tt_ini_escape(it->key, shown, sizeof shown));
+    int rc = split_header(it->section, &buf, &section, &name);
+    if (rc)
+        return rc;
+    if (!it->key) {
+        /* a section without keys still exists: [material glass] with all defaults */
+        rc = check_section(c->origin, section, name);
+        if (!rc)
+            rc = note_section(c->s, section, name, c->origin);
+    } else {
+        rc = put(c->s, c->origin, c->load, section, name, it->key, it->value);
     }
-    if (seen_before(c, header, key)) {
-        char label[256];
-        section_label(label, sizeof label, section, name[0] ? name : NULL);
-        c->status = tt_error(TT_EINVAL, "%s: [%s] %s: given twice in this file", c->origin, label, key);
-        return 0;
-    }
-    c->status = put(c->s, c->origin, section, name[0] ? name : NULL, key, value);
-    return c->status == TT_OK;
+    free(buf);
+    return rc;
 }
 
-static int finish_load(tt_scene *s, load_ctx *c, int rc, const char *origin)
+static int load_text(tt_scene *s, const char *text, size_t len, const char *origin)
 {
-    for (size_t i = 0; i < c->nseen; i++)
-        free(c->seen[i]);
-    free(c->seen);
-    if (c->status != TT_OK)
-        return c->status;
-    if (rc > 0)
-        return tt_error(TT_EINVAL, "%s: line %d: not a section header or key = value line", origin, rc);
-    if (rc < 0)
-        return tt_error(TT_ENOMEM, "%s: could not be parsed (out of memory)", origin);
-    if (!s->origin) {
-        s->origin = dupstr(origin);
-        if (!s->origin)
-            return tt_error(TT_ENOMEM, "out of memory reading the scene");
-    }
+    load_ctx c = {s, origin, ++s->loads};
+    int rc = tt_ini_parse(text, len, origin, on_item, &c);
+    if (rc)
+        return rc;
+    if (!s->origin && !(s->origin = dupstr(origin)))
+        return tt_error(TT_ENOMEM, "out of memory reading the scene");
     return TT_OK;
 }
 
+/* The largest scene file read: far above any real scene (50,000 materials take 5 MB). */
+#define TT_SCENE_MAX_BYTES (256L << 20)
+
 int tt_scene_load(tt_scene *s, const char *path)
 {
-    FILE *f = fopen(path, "r");
-    if (!f)
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
         return tt_error(TT_EIO, "%s: cannot open scene file: %s", path, strerror(errno));
-    load_ctx c = {s, path, TT_OK, NULL, 0, 0};
-    int rc = ini_parse_file(f, on_key, &c);
-    fclose(f);
-    return finish_load(s, &c, rc, path);
+    struct stat st;
+    int rc = TT_OK;
+    char *text = NULL;
+    size_t len = 0;
+    /* a folder reads as empty and /dev/zero never ends: only regular files are scenes */
+    if (fstat(fd, &st) != 0)
+        rc = tt_error(TT_EIO, "%s: cannot read scene file: %s", path, strerror(errno));
+    else if (S_ISDIR(st.st_mode))
+        rc = tt_error(TT_EINVAL, "%s: is a folder, not a scene file", path);
+    else if (!S_ISREG(st.st_mode))
+        rc = tt_error(TT_EINVAL, "%s: not a regular file (a device, pipe or socket); a scene is "
+                      "a file", path);
+    else if (st.st_size > TT_SCENE_MAX_BYTES)
+        rc = tt_error(TT_EINVAL, "%s: %lld bytes is too large for a scene file (at most %ld)", path,
+                      (long long)st.st_size, TT_SCENE_MAX_BYTES);
+    else if (!(text = malloc((size_t)st.st_size + 1)))
+        rc = tt_error(TT_ENOMEM, "%s: out of memory reading the scene", path);
+    while (!rc && len <= (size_t)st.st_size) {
+        ssize_t got = read(fd, text + len, (size_t)st.st_size + 1 - len);
+        if (got < 0 && errno == EINTR)
+            continue;
+        if (got < 0)
+            rc = tt_error(TT_EIO, "%s: cannot read scene file: %s", path, strerror(errno));
+        else if (got == 0)
+            break;
+        else
+            len += (size_t)got;
+    }
+    close(fd);
+    if (!rc && len > (size_t)st.st_size)
+        rc = tt_error(TT_EIO, "%s: the file grew while it was read", path);
+    if (!rc)
+        rc = load_text(s, text, len, path);
+    free(text);
+    return rc;
 }
 
 int tt_scene_load_string(tt_scene *s, const char *text, const char *origin)
 {
-    load_ctx c = {s, origin, TT_OK, NULL, 0, 0};
-    int rc = ini_parse_string(text, on_key, &c);
-    return finish_load(s, &c, rc, origin);
+    return load_text(s, text, strlen(text), origin);
 }
 
 int tt_scene_set(tt_scene *s, const char *assignment)
 {
+    char shown[160];
     const char *eq = strchr(assignment, '=');
+    tt_ini_escape(assignment, shown, sizeof shown);
     if (!eq)
-        return tt_error(TT_EINVAL, "--set %s: expected section.key=value", assignment);
-    char lhs[256];
+        return tt_error(TT_EINVAL, "--set %s: expected section.key=value", shown);
     size_t n = (size_t)(eq - assignment);
-    if (n >= sizeof lhs)
-        return tt_error(TT_EINVAL, "--set %s: key too long", assignment);
+    char *lhs = malloc(n + 1);
+    if (!lhs)
+        return tt_error(TT_ENOMEM, "out of memory reading --set");
     memcpy(lhs, assignment, n);
     lhs[n] = '\0';
     while (n > 0 && isspace((unsigned char)lhs[n - 1]))
         lhs[--n] = '\0';
     const char *value = eq + 1;
-    while (isspace((unsigned char)*value))
+    while (isspace((unsigned char)*value) && *value != '\n' && *value != '\r')
         value++;
+    size_t vl = strlen(value);
+    while (vl > 0 && (value[vl - 1] == ' ' || value[vl - 1] == '\t'))
+        vl--;
+    char *val = malloc(vl + 1);
     char *d1 = strchr(lhs, '.');
-    if (!d1)
-        return tt_error(TT_EINVAL, "--set %s: expected section.key=value", assignment);
-    *d1 = '\0';
-    const char *section = lhs, *name = NULL, *key = d1 + 1;
-    /* "material.glass.youngs_modulus": the last dot separates the key. */
-    char *d2 = strrchr(d1 + 1, '.');
-    if (d2) {
-        *d2 = '\0';
-        name = d1 + 1;
-        key = d2 + 1;
+    int rc = TT_OK;
+    if (!val)
+        rc = tt_error(TT_ENOMEM, "out of memory reading --set");
+    else if (!d1)
+        rc = tt_error(TT_EINVAL, "--set %s: expected section.key=value", shown);
+    if (!rc) {
+        memcpy(val, value, vl);
+        val[vl] = '\0';
+        *d1 = '\0';
+        const char *section = lhs, *name = NULL, *key = d1 + 1;
+        /* "material.glass.youngs_modulus": the last dot separates the key. */
+        char *d2 = strrchr(d1 + 1, '.');
+        if (d2) {
+            *d2 = '\0';
+            name = d1 + 1;
+            key = d2 + 1;
+        }
+        if (!section[0] || !key[0] || (name && !name[0]))
+            rc = tt_error(TT_EINVAL, "--set %s: empty %s; expected section.key=value or "
+                          "section.name.key=value", shown,
+                          !section[0] ? "section" : !key[0] ? "key" : "name");
+        else
+            rc = put(s, "--set", 0, section, name, key, val);
     }
-    char valbuf[512];
-    snprintf(valbuf, sizeof valbuf, "%s", value);
-    size_t vl = strlen(valbuf);
-    while (vl > 0 && isspace((unsigned char)valbuf[vl - 1]))
-        valbuf[--vl] = '\0';
-    return put(s, "--set", section, name, key, valbuf);
+    free(val);
+    free(lhs);
+    return rc;
 }
 
 int tt_scene_has(const tt_scene *s, const char *section, const char *name, const char *key)
@@ -531,31 +730,21 @@ int tt_scene_has(const tt_scene *s, const char *section, const char *name, const
 
 int tt_scene_has_section(const tt_scene *s, const char *section, const char *name)
 {
-    for (size_t i = 0; i < s->nuses; i++)
-        if (strcmp(s->uses[i].section, section) == 0 && (name == NULL || streq(s->uses[i].name, name)))
-            return 1;
-    return 0;
+    if (name)
+        return find_use(s, section, name) != NULL;
+    return find_use(s, section, NULL) != NULL || tt_scene_count_named(s, section) > 0;
 }
 
 size_t tt_scene_count_named(const tt_scene *s, const char *section)
 {
-    size_t n = 0;
-    for (size_t i = 0; i < s->nuses; i++)
-        if (strcmp(s->uses[i].section, section) == 0 && s->uses[i].name)
-            n++;
-    return n;
+    const name_list *l = names_of(s, section);
+    return l ? l->n : 0;
 }
 
 const char *tt_scene_named(const tt_scene *s, const char *section, size_t idx)
 {
-    size_t n = 0;
-    for (size_t i = 0; i < s->nuses; i++)
-        if (strcmp(s->uses[i].section, section) == 0 && s->uses[i].name) {
-            if (n == idx)
-                return s->uses[i].name;
-            n++;
-        }
-    return NULL;
+    const name_list *l = names_of(s, section);
+    return l && idx < l->n ? s->uses[l->use[idx]].name : NULL;
 }
 
 static const char *origin_of(const tt_scene *s, const char *section, const char *name,
@@ -564,10 +753,8 @@ static const char *origin_of(const tt_scene *s, const char *section, const char 
     const entry *e = key ? find_entry(s, section, name, key) : NULL;
     if (e)
         return e->origin;
-    for (size_t i = 0; i < s->nuses; i++)
-        if (strcmp(s->uses[i].section, section) == 0 && streq(s->uses[i].name, name))
-            return s->uses[i].origin;
-    return tt_scene_origin(s);
+    const section_use *u = find_use(s, section, name);
+    return u ? u->origin : tt_scene_origin(s);
 }
 
 int tt_scene_fail(const tt_scene *s, const char *section, const char *name, const char *key,

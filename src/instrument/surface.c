@@ -2,6 +2,7 @@
  * Analytic shapes are evaluated directly; rough surfaces and PNG maps live on grids. */
 #include "tiptap/instrument/surface.h"
 
+#include <errno.h>
 #include <fftw3.h>
 #include <math.h>
 #include <png.h>
@@ -37,40 +38,144 @@ struct tt_surface {
 
 /* ---- PNG input ---- */
 
-/* Read a PNG as 8-bit RGB or as grey (8 bit, or 16 bit when the file is) into a
- * freshly allocated array; errors name the file and the key. */
+/* A map larger than this is refused before it is decoded: 8192 x 8192 pixels. */
+#define TT_PNG_MAX_PIXELS ((size_t)1 << 26)
+
+/* libpng reports errors by longjmp; the handler keeps the message for ours. */
+typedef struct {
+    char msg[200];
+} png_fault;
+
+static void on_png_error(png_structp png, png_const_charp msg)
+{
+    png_fault *e = png_get_error_ptr(png);
+    snprintf(e->msg, sizeof e->msg, "%s", msg);
+    png_longjmp(png, 1);
+}
+
+static void on_png_warning(png_structp png, png_const_charp msg)
+{
+    (void)png;
+    (void)msg;
+}
+
+/* The samples as the file stores them (palettes expanded to RGB, grey below 8 bits to 8
+ * bits, tRNS to an alpha channel), big-endian when 16 bit. No gamma or colour-space
+ * conversion: a map's levels are labels and heights, not light. */
+static int decode_png(FILE *f, png_fault *e, unsigned char **data, png_uint_32 *w,
+                      png_uint_32 *h, int *channels, int *depth)
+{
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, e, on_png_error, on_png_warning);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    unsigned char *volatile buf = NULL;
+    png_bytep *volatile rows = NULL;
+    if (!info) {
+        png_destroy_read_struct(&png, NULL, NULL);
+        snprintf(e->msg, sizeof e->msg, "out of memory");
+        return -1;
+    }
+    if (setjmp(png_jmpbuf(png))) {
+        free(buf);
+        free(rows);
+        png_destroy_read_struct(&png, &info, NULL);
+        return -1;
+    }
+    png_init_io(png, f);
+#ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
+    /* fuzzing only (TT_FUZZ): mutated files get past the checksums to the decoder */
+    png_set_crc_action(png, PNG_CRC_QUIET_USE, PNG_CRC_QUIET_USE);
+#endif
+    png_read_info(png, info);
+    int type = png_get_color_type(png, info);
+    if (type == PNG_COLOR_TYPE_PALETTE)
+        png_set_palette_to_rgb(png);
+    if (type == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(png, info) < 8)
+        png_set_expand_gray_1_2_4_to_8(png);
+    if (png_get_valid(png, info, PNG_INFO_tRNS))
+        png_set_tRNS_to_alpha(png);
+    png_set_interlace_handling(png);
+    png_read_update_info(png, info);
+    *w = png_get_image_width(png, info);
+    *h = png_get_image_height(png, info);
+    *channels = png_get_channels(png, info);
+    *depth = png_get_bit_depth(png, info);
+    if (*channels < 1 || *channels > 4 || (*depth != 8 && *depth != 16))
+        png_error(png, "unexpected sample layout");
+    if ((size_t)*w * *h > TT_PNG_MAX_PIXELS)
+        png_error(png, "more pixels than a map may have (8192 x 8192)");
+    size_t rowbytes = png_get_rowbytes(png, info);
+    buf = malloc(rowbytes * *h);
+    rows = malloc(*h * sizeof *rows);
+    if (!buf || !rows)
+        png_error(png, "out of memory");
+    for (png_uint_32 y = 0; y < *h; y++)
+        rows[y] = buf + y * rowbytes;
+    png_read_image(png, rows);
+    png_read_end(png, NULL);
+    free(rows);
+    png_destroy_read_struct(&png, &info, NULL);
+    *data = buf;
+    return 0;
+}
+
+/* Read a PNG map into a freshly allocated array at the file's own depth (maxval 255 or
+ * 65535), without gamma conversion: as RGB (want_rgb) or as grey, where a colour pixel is
+ * refused. A transparent pixel is refused: there is no height or material behind it.
+ * Errors name the file, the section and the key. */
 static int read_png(const tt_scene *sc, const char *key, const char *path, int want_rgb,
                     unsigned short **pix, int *w, int *h, int *maxval)
 {
-    png_image im;
-    memset(&im, 0, sizeof im);
-    im.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_file(&im, path))
-        return tt_scene_fail(sc, "surface", NULL, key, "%s: cannot read as PNG: %s", path, im.message);
-    int sixteen = (im.format & PNG_FORMAT_FLAG_LINEAR) != 0 && !want_rgb;
-    im.format = want_rgb ? PNG_FORMAT_RGB : sixteen ? PNG_FORMAT_LINEAR_Y : PNG_FORMAT_GRAY;
-    size_t ch = want_rgb ? 3 : 1, bytes = sixteen ? 2 : 1;
-    size_t n = (size_t)im.width * im.height * ch;
-    void *buf = malloc(n * bytes);
-    *pix = malloc(n * sizeof **pix);
-    if (!buf || !*pix) {
-        free(buf);
-        free(*pix);
-        png_image_free(&im);
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return tt_scene_fail(sc, "surface", NULL, key, "%s: cannot read as PNG: %s", path,
+                             strerror(errno));
+    png_fault e = {""};
+    unsigned char *data = NULL;
+    png_uint_32 W = 0, H = 0;
+    int nch = 0, depth = 0;
+    int bad = decode_png(f, &e, &data, &W, &H, &nch, &depth);
+    fclose(f);
+    if (bad)
+        return tt_scene_fail(sc, "surface", NULL, key, "%s: cannot read as PNG: %s", path, e.msg);
+    size_t n = (size_t)W * H, ch = want_rgb ? 3 : 1;
+    unsigned max = depth == 16 ? 65535 : 255;
+    int alpha = nch == 2 || nch == 4, rc = TT_OK;
+    *pix = malloc((n ? n : 1) * ch * sizeof **pix);
+    if (!*pix) {
+        free(data);
         return tt_error(TT_ENOMEM, "out of memory reading %s", path);
     }
-    if (!png_image_finish_read(&im, NULL, buf, 0, NULL)) {
-        free(buf);
+    for (size_t k = 0; k < n && rc == TT_OK; k++) {
+        unsigned s[4] = {0, 0, 0, 0};
+        for (int c = 0; c < nch; c++) {
+            const unsigned char *p = data + (k * (size_t)nch + (size_t)c) * (depth == 16 ? 2 : 1);
+            s[c] = depth == 16 ? (unsigned)(p[0] << 8 | p[1]) : p[0];
+        }
+        unsigned r = s[0], g = nch >= 3 ? s[1] : s[0], b = nch >= 3 ? s[2] : s[0];
+        if (alpha && s[nch - 1] != max)
+            rc = tt_scene_fail(sc, "surface", NULL, key,
+                               "%s: pixel (%zu, %zu) is transparent (alpha %u of %u); a map must "
+                               "be opaque", path, k % W, k / W, s[nch - 1], max);
+        else if (!want_rgb && (r != g || g != b))
+            rc = tt_scene_fail(sc, "surface", NULL, key,
+                               "%s: pixel (%zu, %zu) has colour (%u, %u, %u); a height map is grey",
+                               path, k % W, k / W, r, g, b);
+        else if (want_rgb) {
+            (*pix)[3 * k] = (unsigned short)r;
+            (*pix)[3 * k + 1] = (unsigned short)g;
+            (*pix)[3 * k + 2] = (unsigned short)b;
+        } else
+            (*pix)[k] = (unsigned short)r;
+    }
+    free(data);
+    if (rc) {
         free(*pix);
         *pix = NULL;
-        return tt_scene_fail(sc, "surface", NULL, key, "%s: malformed PNG: %s", path, im.message);
+        return rc;
     }
-    for (size_t i = 0; i < n; i++)
-        (*pix)[i] = sixteen ? ((unsigned short *)buf)[i] : ((unsigned char *)buf)[i];
-    free(buf);
-    *w = (int)im.width;
-    *h = (int)im.height;
-    *maxval = sixteen ? 65535 : 255;
+    *w = (int)W;
+    *h = (int)H;
+    *maxval = (int)max;
     return TT_OK;
 }
 
@@ -355,17 +460,20 @@ int tt_surface_flat(const tt_surface *S) { return S->type == S_FLAT; }
 
 /* ---- material map ---- */
 
-static int parse_map_value(const char *v, int *rgb)
+/* A map_value as the pixel it names in a map of maxval (255 or 65535), packed r, g, b:
+ * a grey level is taken at the map's own depth, a colour #rrggbb scaled to it. */
+static int parse_map_value(const char *v, unsigned maxval, unsigned long long *key)
 {
     unsigned r, g, b;
     char *end;
     if (v[0] == '#' && strlen(v) == 7 && sscanf(v + 1, "%2x%2x%2x", &r, &g, &b) == 3) {
-        *rgb = (int)(r << 16 | g << 8 | b);
+        unsigned k = maxval / 255;
+        *key = (unsigned long long)r * k << 32 | (unsigned long long)g * k << 16 | b * k;
         return 0;
     }
     long l = strtol(v, &end, 10);
-    if (end != v && *end == '\0' && l >= 0 && l <= 255) {
-        *rgb = (int)(l << 16 | l << 8 | l);
+    if (end != v && *end == '\0' && l >= 0 && l <= (long)maxval) {
+        *key = (unsigned long long)l << 32 | (unsigned long long)l << 16 | (unsigned long long)l;
         return 0;
     }
     return -1;
@@ -377,17 +485,17 @@ static int build_png_map(tt_surface *S, const tt_scene *sc)
     int rc, maxv;
     unsigned short *pix = NULL;
     size_t nm = tt_material_count(sc);
-    int *rgb = malloc(nm * sizeof *rgb);
+    unsigned long long *rgb = malloc((nm ? nm : 1) * sizeof *rgb), none = ~0ULL;
     if (!rgb)
         return tt_error(TT_ENOMEM, "out of memory");
     for (size_t i = 0; i < nm; i++) {
         const char *name = tt_material_name(sc, i);
         const char *v = tt_scene_get_string(sc, "material", name, "map_value");
-        rgb[i] = -1;
-        if (v && parse_map_value(v, &rgb[i]) != 0) {
+        rgb[i] = none;
+        if (v && parse_map_value(v, 65535, &rgb[i]) != 0) {
             free(rgb);
             return tt_scene_fail(sc, "material", name, "map_value",
-                                 "'%s' is neither a grey level 0-255 nor a colour #rrggbb", v);
+                                 "'%s' is neither a grey level 0-65535 nor a colour #rrggbb", v);
         }
     }
     if ((rc = tt_scene_get_path(sc, "surface", NULL, "map_png", path, sizeof path)) ||
@@ -395,23 +503,37 @@ static int build_png_map(tt_surface *S, const tt_scene *sc)
         free(rgb);
         return rc;
     }
-    S->mgrid = malloc((size_t)S->mw * S->mh * sizeof *S->mgrid);
+    /* the levels at the map's own depth: 8-bit maps take grey levels up to 255 */
+    for (size_t i = 0; i < nm && !rc; i++) {
+        const char *name = tt_material_name(sc, i);
+        const char *v = tt_scene_get_string(sc, "material", name, "map_value");
+        if (v && parse_map_value(v, (unsigned)maxv, &rgb[i]) != 0)
+            rc = tt_scene_fail(sc, "material", name, "map_value", "%s is above %d, the largest "
+                               "level of the %d-bit map %s", v, maxv, maxv == 255 ? 8 : 16, path);
+    }
+    S->mgrid = rc ? NULL : malloc((size_t)S->mw * S->mh * sizeof *S->mgrid);
     if (!S->mgrid) {
         free(rgb);
         free(pix);
-        return tt_error(TT_ENOMEM, "out of memory");
+        return rc ? rc : tt_error(TT_ENOMEM, "out of memory");
     }
-    rc = TT_OK;
     for (size_t k = 0; k < (size_t)S->mw * S->mh && rc == TT_OK; k++) {
-        int c = pix[3 * k] << 16 | pix[3 * k + 1] << 8 | pix[3 * k + 2];
+        unsigned long long c = (unsigned long long)pix[3 * k] << 32 |
+                               (unsigned long long)pix[3 * k + 1] << 16 | pix[3 * k + 2];
         int found = -1;
         for (size_t i = 0; i < nm; i++)
             if (rgb[i] == c)
                 found = (int)i;
-        if (found < 0)
+        if (found < 0 && maxv == 255)
             rc = tt_scene_fail(sc, "surface", NULL, "map_png",
-                               "%s: pixel (%zu, %zu) has colour #%06x, which no [material] map_value names",
-                               path, k % (size_t)S->mw, k / (size_t)S->mw, c);
+                               "%s: pixel (%zu, %zu) has colour #%02x%02x%02x, which no [material] "
+                               "map_value names", path, k % (size_t)S->mw, k / (size_t)S->mw,
+                               pix[3 * k], pix[3 * k + 1], pix[3 * k + 2]);
+        else if (found < 0)
+            rc = tt_scene_fail(sc, "surface", NULL, "map_png",
+                               "%s: pixel (%zu, %zu) has 16-bit level (%u, %u, %u), which no [material] "
+                               "map_value names", path, k % (size_t)S->mw, k / (size_t)S->mw,
+                               pix[3 * k], pix[3 * k + 1], pix[3 * k + 2]);
         S->mgrid[k] = found;
     }
     free(rgb);

@@ -4,7 +4,18 @@
 #include <signal.h>
 
 static volatile sig_atomic_t requested = 0;
+static volatile sig_atomic_t by_signal = 0;
 
 void tt_cancel_request(void) { requested = 1; }
+void tt_cancel_request_signal(int sig)
+{
+    by_signal = sig;
+    requested = 1;
+}
 int tt_cancel_requested(void) { return requested != 0; }
-void tt_cancel_reset(void) { requested = 0; }
+int tt_cancel_signal(void) { return by_signal; }
+void tt_cancel_reset(void)
+{
+    requested = 0;
+    by_signal = 0;
+}
