@@ -1,0 +1,82 @@
+/* tiptap: steady oscillations by shooting: the periodic orbit found directly as the
+ * fixed point of the one-period (stroboscopic) map P, instead of by running cycles
+ * until the transient has died away.
+ *
+ * P takes the tip's state (position d, velocity v, contact flag) at a cycle start to
+ * its state one drive period later; it is evaluated with tt_sim_cycle. A steady
+ * oscillation is a state x with P(x) = x. Newton's method on P(x) - x, with P's 2 x 2
+ * Jacobian from finite differences and a backtracking line search, finds it in a few
+ * cycles where settling takes several times Q / pi. The eigenvalues of that Jacobian
+ * at the fixed point are the orbit's Floquet multipliers: it is stable (an oscillation
+ * the instrument can show) when both lie inside the unit circle.
+ *
+ * The map is not smooth where the contact flag flips (jump-in, pull-off): the
+ * difference step is small against the contact's length scales and large against the
+ * integrator's tolerance, perturbed states keep the base state's contact flag, and a
+ * point falls back to settling whenever Newton does not converge cleanly to a stable
+ * orbit touching the sample as the settling cycles before it did.
+ *
+ * Usage: tt_shoot_default(&p); tt_shoot_steady(sim, &p, max_cycles, tol, &cycle, &res);
+ * Ownership: the functions drive the sim given to them and leave it at the end of the
+ * orbit's last cycle; they keep nothing.
+ */
+#ifndef TIPTAP_SHOOTING_H
+#define TIPTAP_SHOOTING_H
+
+#include "tiptap/solver/integrator.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+    long presettle;     /* cycles run first to get into the orbit's basin (at least) */
+    int max_iter;       /* Newton iterations per attempt */
+    int attempts;       /* attempts, each after twice the cycles of settling before */
+    double fd_step;     /* difference step, relative to the free amplitude */
+    double tol;         /* converged when the Newton step is below tol (relative to the
+                         * free amplitude; velocity over w_d times it) */
+} tt_shoot_params;
+
+/* Defaults: 16 cycles first, 20 iterations, 5 attempts, step 1e-5, tol 1e-9. */
+void tt_shoot_default(tt_shoot_params *p);
+
+typedef enum {
+    TT_SHOOT_NEWTON = 0,  /* the point is Newton's fixed point */
+    TT_SHOOT_SETTLED = 1  /* Newton failed or found no stable orbit: the point was settled */
+} tt_shoot_how;
+
+typedef struct {
+    tt_shoot_how how;
+    int converged;          /* Newton converged (also when the orbit was then refused) */
+    int iterations;         /* Newton iterations of the last attempt */
+    long cycles;            /* all cycles run, settling, differences and the last one */
+    double d, v;            /* the fixed point (cycle-start state), m, m/s */
+    int contact;
+    double mu_re[2], mu_im[2]; /* Floquet multipliers at the fixed point (NAN: none) */
+    double mu_abs;          /* the largest |mu|: below 1 for a stable orbit */
+    const char *why;        /* why Newton's orbit was refused ("" if it was not) */
+} tt_shoot_result;
+
+/* Floquet multipliers of the map at the sim's current cycle-start state, from central
+ * differences (4 cycles); the sim is left where it was. */
+int tt_shoot_multipliers(tt_sim *sim, const tt_shoot_params *p, double mu_re[2],
+                         double mu_im[2]);
+
+/* Newton on P(x) = x from the sim's current state, at most p->max_iter iterations.
+ * On convergence (*converged = 1) the sim is set to the fixed point, no cycle run. */
+int tt_shoot_newton(tt_sim *sim, const tt_shoot_params *p, int *converged, int *iterations,
+                    long *cycles);
+
+/* A steady point from the sim's current state: settle p->presettle cycles, Newton,
+ * check the orbit (stable, same contact pattern as the settling cycles before it),
+ * retry after more settling, and fall back to tt_sim_settle (max_cycles, tol) when no
+ * attempt gives a stable orbit. out is the orbit's last cycle (from the fixed point),
+ * *settled whether the point is steady (Newton's or settled within max_cycles). */
+int tt_shoot_steady(tt_sim *sim, const tt_shoot_params *p, long max_cycles, double tol,
+                    tt_cycle *out, int *settled, tt_shoot_result *res);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
