@@ -247,7 +247,7 @@ static int run_cycles(tt_sim *sim, long n, tt_cycle *out, int *pattern, trail *t
     map_init(&m, sim);
     tr->n = 0;
     for (long i = 0; i < n; i++) {
-        if (n - i <= TRAIL)
+        if (n - i <= TRAIL && 2 * i >= n) /* the first cycles may still be far out */
             map_get(&m, tr->x[tr->n++], &dummy);
         int rc = tt_sim_cycle(sim, out);
         (*cycles)++;
