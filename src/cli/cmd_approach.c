@@ -30,7 +30,11 @@ static void help(void)
            "stderr ends with the run time and the error estimate: the largest energy-balance\n"
            "residual of a cycle (drive work - cantilever damping - tip-sample loss - change\n"
            "of stored energy) relative to the free oscillation's drive work per cycle. It is zero for the\n"
-           "exact solution, so it measures the integration error of this run.\n");
+           "exact solution, so it measures the integration error of this run.\n"
+           "In steady mode with [approach] steady = shooting (the default) it also tells how\n"
+           "many points Newton found as periodic orbits, their largest Floquet multiplier,\n"
+           "each point settled instead and why, and where approach and retract found two\n"
+           "stable orbits at the same separation.\n");
 }
 
 static void write_row(FILE *f, const tt_approach_point *p)

@@ -11,10 +11,18 @@
  * the instrument can show) when both lie inside the unit circle.
  *
  * The map is not smooth where the contact flag flips (jump-in, pull-off): the
- * difference step is small against the contact's length scales and large against the
- * integrator's tolerance, perturbed states keep the base state's contact flag, and a
- * point falls back to settling whenever Newton does not converge cleanly to a stable
- * orbit touching the sample as the settling cycles before it did.
+ * difference step (1e-5 of the free amplitude, 0.2 pm on the standard scene) is small
+ * against the contact's length scales and large against the integrator's tolerance,
+ * and perturbed states keep the base state's contact flag.
+ *
+ * Where two stable orbits coexist (attractive and repulsive branches), Newton may find
+ * one the real motion would not reach: the point must be the one settling would give.
+ * So Newton starts from the real motion after a few cycles of it, and its orbit is
+ * taken only if it is stable, touches the sample as those cycles did, and the motion
+ * is running into it: the orbit's quadratic Lyapunov function (from its monodromy
+ * matrix) falls along the last cycles and is still falling, and the motion is within
+ * a tenth of the free amplitude of it (or the map is linear there). Otherwise more
+ * cycles and another try; at last the point is settled (tt_sim_settle).
  *
  * Usage: tt_shoot_default(&p); tt_shoot_steady(sim, &p, max_cycles, tol, &cycle, &res);
  * Ownership: the functions drive the sim given to them and leave it at the end of the
@@ -68,11 +76,12 @@ int tt_shoot_multipliers(tt_sim *sim, const tt_shoot_params *p, double mu_re[2],
 int tt_shoot_newton(tt_sim *sim, const tt_shoot_params *p, int *converged, int *iterations,
                     long *cycles);
 
-/* A steady point from the sim's current state: settle p->presettle cycles, Newton,
- * check the orbit (stable, same contact pattern as the settling cycles before it),
- * retry after more settling, and fall back to tt_sim_settle (max_cycles, tol) when no
- * attempt gives a stable orbit. out is the orbit's last cycle (from the fixed point),
- * *settled whether the point is steady (Newton's or settled within max_cycles). */
+/* A steady point from the sim's current state: run p->presettle cycles, Newton, check
+ * the orbit (see above), retry after twice the cycles, up to p->attempts times and at
+ * most half the cycles settling is expected to take (Q / pi ln(1 / tol) / 2), and fall
+ * back to tt_sim_settle (max_cycles, tol). out is the orbit's last cycle, run from the
+ * fixed point; *settled whether the point is steady (Newton's, or settled within
+ * max_cycles). */
 int tt_shoot_steady(tt_sim *sim, const tt_shoot_params *p, long max_cycles, double tol,
                     tt_cycle *out, int *settled, tt_shoot_result *res);
 
