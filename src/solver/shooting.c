@@ -300,9 +300,10 @@ static int lyapunov(double J[2][2], double M[2][2])
 }
 
 /* Whether the real motion runs into the orbit xs: V, the orbit's Lyapunov function,
- * falls at every one of its last cycles. A stable orbit near a jump between branches
- * has a small basin; a motion that passes by it (and settles on the other branch) shows
- * V rising again, and then settling decides. */
+ * falls along its last cycles (allowing the nonlinear motion a rise of 5 % in a cycle)
+ * and is still at its least at the end. A stable orbit near a jump between branches has
+ * a small basin; a motion that passes by it (and settles on the other branch) shows V
+ * rising again, and then settling decides. */
 static int in_basin(const trail *tr, const double xs[2], double J[2][2], double mu_abs)
 {
     double M[2][2], first = 0, prev = 0, least = INFINITY;
@@ -311,7 +312,6 @@ static int in_basin(const trail *tr, const double xs[2], double J[2][2], double 
     for (int k = 0; k < tr->n; k++) {
         double e0 = tr->x[k][0] - xs[0], e1 = tr->x[k][1] - xs[1];
         double V = M[0][0] * e0 * e0 + 2 * M[0][1] * e0 * e1 + M[1][1] * e1 * e1;
-        /* the nonlinear motion may let V stall or rise a little for a cycle */
         if (k > 0 && V > 1.05 * prev && V > 1e-16)
             return 0;
         if (k == 0)

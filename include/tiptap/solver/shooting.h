@@ -72,7 +72,8 @@ int tt_shoot_multipliers(tt_sim *sim, const tt_shoot_params *p, double mu_re[2],
                          double mu_im[2]);
 
 /* Newton on P(x) = x from the sim's current state, at most p->max_iter iterations.
- * On convergence (*converged = 1) the sim is set to the fixed point, no cycle run. */
+ * The sim is left set to the fixed point (*converged = 1) or to Newton's last iterate,
+ * at a cycle start; *cycles counts the map's evaluations. */
 int tt_shoot_newton(tt_sim *sim, const tt_shoot_params *p, int *converged, int *iterations,
                     long *cycles);
 
