@@ -30,7 +30,11 @@ static void help(void)
            "stderr ends with the run time and the error estimate: the largest energy-balance\n"
            "residual of a cycle (drive work - cantilever damping - tip-sample loss - change\n"
            "of stored energy) relative to the free oscillation's drive work per cycle. It is zero for the\n"
-           "exact solution, so it measures the integration error of this run.\n");
+           "exact solution, so it measures the integration error of this run.\n"
+           "In steady mode with [approach] steady = shooting (the default) it also tells how\n"
+           "many points Newton found as periodic orbits, their largest Floquet multiplier,\n"
+           "each point settled instead and why, and where approach and retract found two\n"
+           "stable orbits at the same separation.\n");
 }
 
 static void write_row(FILE *f, const tt_approach_point *p)
@@ -91,6 +95,42 @@ static int plot(const char *path, const tt_approach_point *pts, size_t n, int ra
     free(lo);
     free(hi);
     return rc;
+}
+
+/* How shooting fared: points by Newton, points settled instead and why, the orbits'
+ * largest Floquet multiplier, and where the approach and retract branches found two
+ * different stable orbits at the same separation (bistability). */
+static void shooting_summary(const tt_approach_point *pts, size_t n)
+{
+    size_t newton = 0;
+    double mu = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (pts[i].shot.how != TT_SHOOT_NEWTON) {
+            fprintf(stderr, "shooting: z = %.6g nm settled instead (%s)\n", pts[i].z * 1e9,
+                    pts[i].shot.why[0] ? pts[i].shot.why : "no Newton attempt");
+            continue;
+        }
+        newton++;
+        mu = fmax(mu, pts[i].shot.mu_abs);
+    }
+    fprintf(stderr, "shooting = %zu of %zu points by Newton, largest Floquet |mu| = %.6g\n",
+            newton, n, mu);
+    size_t lo = 0, hi = 0, both = 0;
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = i + 1; j < n; j++)
+            if (pts[j].retract && !pts[i].retract && fabs(pts[i].z - pts[j].z) < 1e-15 &&
+                pts[i].shot.how == TT_SHOOT_NEWTON && pts[j].shot.how == TT_SHOOT_NEWTON &&
+                fabs(pts[i].cycle.amplitude - pts[j].cycle.amplitude) >
+                    1e-3 * fmax(pts[i].cycle.amplitude, pts[j].cycle.amplitude)) {
+                if (both == 0 || pts[i].z < pts[lo].z)
+                    lo = i;
+                if (both == 0 || pts[i].z > pts[hi].z)
+                    hi = i;
+                both++;
+            }
+    if (both)
+        fprintf(stderr, "bistable: two stable orbits (approach and retract branch) at %zu "
+                        "separations from %.6g to %.6g nm\n", both, pts[lo].z * 1e9, pts[hi].z * 1e9);
 }
 
 int cmd_approach(int argc, char **argv)
@@ -169,6 +209,8 @@ int cmd_approach(int argc, char **argv)
         fprintf(stderr, "points = %zu\ncycles = %ld\nrun_time_s = %.3f\n", n, cycles, cli_now() - t0);
         fprintf(stderr, "error_estimate = %.3g (largest energy-balance residual of a cycle / free drive work per cycle)\n",
                 worst);
+        if (p.mode == TT_APPROACH_STEADY && p.steady == TT_STEADY_SHOOTING)
+            shooting_summary(pts, n);
         if (unsettled)
             fprintf(stderr, "warning: %ld points did not settle within max_cycles = %ld "
                             "(period doubling or chaos, or raise [approach] max_cycles)\n",

@@ -65,6 +65,9 @@ static const tt_scene_key approach_keys[] = {
      "steady mode: most drive cycles spent settling one point"},
     {"settle_tolerance", Q(TT_DIM_NONE), "1e-7", 0, 1, POS, NULL,
      "steady mode: a point is settled when amplitude (relative) and phase (rad) change less than this per cycle"},
+    {"steady", TT_KEY_ENUM, 0, "shooting", 0, 0, 0, "shooting|settle",
+     "steady mode: shooting: Newton on the one-period map finds the periodic orbit (falls back to "
+     "settling); settle: run cycles until the point settles"},
 };
 
 static const tt_scene_key trace_keys[] = {

@@ -21,6 +21,8 @@ int tt_approach_params_from_scene(tt_approach_params *p, const tt_scene *s)
     int rc;
     const char *mode = tt_scene_get_string(s, "approach", NULL, "mode");
     p->mode = (mode && strcmp(mode, "ramp") == 0) ? TT_APPROACH_RAMP : TT_APPROACH_STEADY;
+    const char *steady = tt_scene_get_string(s, "approach", NULL, "steady");
+    p->steady = (steady && strcmp(steady, "settle") == 0) ? TT_STEADY_SETTLE : TT_STEADY_SHOOTING;
     if ((rc = tt_scene_get_double(s, "approach", NULL, "from", &p->from)) ||
         (rc = tt_scene_get_double(s, "approach", NULL, "to", &p->to)) ||
         (rc = tt_scene_get_int(s, "approach", NULL, "points", &p->points)) ||
@@ -93,8 +95,17 @@ static int iterate_steady(tt_approach *a, tt_approach_point *pt)
     memset(pt, 0, sizeof *pt);
     pt->z = z;
     pt->retract = retract;
-    int rc = tt_sim_settle(a->sim, a->p.max_cycles, a->p.settle_tolerance, &pt->cycle, &pt->settled,
-                           &pt->cycles);
+    int rc;
+    if (a->p.steady == TT_STEADY_SHOOTING) {
+        tt_shoot_params sp;
+        tt_shoot_default(&sp);
+        rc = tt_shoot_steady(a->sim, &sp, a->p.max_cycles, a->p.settle_tolerance, &pt->cycle,
+                             &pt->settled, &pt->shot);
+        pt->cycles = pt->shot.cycles;
+    } else {
+        rc = tt_sim_settle(a->sim, a->p.max_cycles, a->p.settle_tolerance, &pt->cycle,
+                           &pt->settled, &pt->cycles);
+    }
     a->row++;
     return rc;
 }

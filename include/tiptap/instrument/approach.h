@@ -1,8 +1,8 @@
 /* tiptap: approach curves (seed figures 1, 4): amplitude, phase and the rest against
  * the rest separation between the undeflected tip and the sample.
  *
- * steady mode: at each separation the cantilever runs until amplitude and phase
- * settle, starting from the previous point's state (so the branch followed depends on
+ * steady mode: at each separation the steady oscillation is found by shooting, or the
+ * cantilever runs until amplitude and phase settle, starting from the previous point's state (so the branch followed depends on
  * the history, as on an instrument), optionally followed by the retract branch.
  * ramp mode: the sample moves continuously at a given speed, as in the seed's figure 4;
  * each row is the cycle running at that moment.
@@ -17,6 +17,7 @@
 #include <stddef.h>
 
 #include "tiptap/solver/integrator.h"
+#include "tiptap/solver/shooting.h"
 #include "tiptap/config/scene.h"
 
 #ifdef __cplusplus
@@ -24,6 +25,9 @@ extern "C" {
 #endif
 
 typedef enum { TT_APPROACH_STEADY = 0, TT_APPROACH_RAMP = 1 } tt_approach_mode;
+/* How steady mode finds a point's oscillation: the periodic orbit by shooting
+ * (tiptap/solver/shooting.h, falling back to settling), or by settling alone. */
+typedef enum { TT_STEADY_SHOOTING = 0, TT_STEADY_SETTLE = 1 } tt_approach_steady;
 
 typedef struct {
     double from, to;       /* rest separations, m */
@@ -33,6 +37,7 @@ typedef struct {
     double speed;          /* ramp mode, m/s */
     long max_cycles;       /* steady mode: per point */
     double settle_tolerance;
+    tt_approach_steady steady; /* steady mode */
 } tt_approach_params;
 
 int tt_approach_params_from_scene(tt_approach_params *p, const tt_scene *scene);
@@ -43,6 +48,7 @@ typedef struct {
     int settled;     /* steady mode: whether the point settled within max_cycles */
     long cycles;     /* cycles run for this row */
     tt_cycle cycle;  /* the last cycle's observables */
+    tt_shoot_result shot; /* steady mode by shooting: how the point was found (else zero) */
 } tt_approach_point;
 
 typedef struct tt_approach tt_approach;
