@@ -4,6 +4,7 @@
 
 #include "tt_test.h"
 #include "tt_scan_test.h"
+#include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 #include "tiptap/instrument/scan.h"
 #include "tiptap/config/setup.h"
@@ -71,14 +72,14 @@ static void crossing(tt_scene *sc, size_t mat, double setpoint, double *z, doubl
     tt_setup *su;
     assert_int_equal(tt_setup_alloc(&su, sc), TT_OK);
     assert_int_equal(tt_setup_use_material(su, mat), TT_OK);
-    tt_sim_reset_free(su->sim);
+    tt_sim_reset_free(tt_setup_sim(su));
     double pz = NAN, pa = NAN, pp = NAN;
     for (double g = 19e-9; g > 10e-9; g -= 0.05e-9) {
-        tt_sim_set_sample(su->sim, g, 0);
+        tt_sim_set_sample(tt_setup_sim(su), g, 0);
         tt_cycle c;
         int ok;
         long n;
-        assert_int_equal(tt_sim_settle(su->sim, 20000, 1e-9, &c, &ok, &n), TT_OK);
+        assert_int_equal(tt_sim_settle(tt_setup_sim(su), 20000, 1e-9, &c, &ok, &n), TT_OK);
         if (c.amplitude <= setpoint && isfinite(pa)) {
             double f = (pa - setpoint) / (pa - c.amplitude);
             *z = pz + f * (g - pz);

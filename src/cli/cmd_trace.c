@@ -172,8 +172,8 @@ int cmd_trace(int argc, char **argv)
     fprintf(f, "t_us,base_nm,tip_nm,sample_nm,deflection_nm,force_nN,contact_radius_nm,pressure_GPa,"
                "contact%s%s\n",
             ramp ? "," : "", ramp ? ramp : "");
-    const tt_cantilever *cant = &st->cantilever;
-    tt_sim *sim = st->sim;
+    const tt_cantilever *cant = tt_setup_cantilever(st);
+    tt_sim *sim = tt_setup_sim(st);
     tt_sim_reset_free(sim);
     tt_sim_set_sample(sim, sep, 0);
     tt_cycle cy;
@@ -202,12 +202,8 @@ int cmd_trace(int argc, char **argv)
         if (rel > worst)
             worst = rel;
         /* pressure: the seed's instantaneous Hertzian pressure K a / (pi R) */
-        tt_contact_params cp;
-        double Qi, K = 0, R = 1;
-        if (tt_material_params(scene, st->names[mat], &cp, &Qi) == TT_OK) {
-            K = cp.K;
-            R = cp.R;
-        }
+        const tt_contact_params *cp = &tt_setup_material(st, mat)->contact;
+        double K = cp->K, R = cp->R;
         for (long k = 0; k < nsamp; k++) {
             double a = 0;
             double F = tt_sim_force(sim, &smp[k], &a);

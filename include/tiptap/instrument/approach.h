@@ -17,7 +17,6 @@
 #include <stddef.h>
 
 #include "tiptap/solver/integrator.h"
-#include "tiptap/config/scene.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -34,8 +33,6 @@ typedef struct {
     long max_cycles;       /* steady mode: per point */
     double settle_tolerance;
 } tt_approach_params;
-
-int tt_approach_params_from_scene(tt_approach_params *p, const tt_scene *scene);
 
 typedef struct {
     double z;        /* rest separation, m */
