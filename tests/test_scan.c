@@ -160,6 +160,38 @@ static void bad_scan_input_is_refused(void **st)
         tt_expect_scan_refused(base, cases[i].text, cases[i].frag);
 }
 
+/* Every material is checked before a scan runs, whether a pixel uses it or the raster
+ * reaches it only late in a line; the scan builds every force law when it is made. */
+static void every_material_is_checked_up_front(void **st)
+{
+    (void)st;
+    tt_expect_scan_refused(base, "[material unused]\nadhesion_energy = 40 mJ/m^2\nlambda = 1e5\n",
+                           "bad.ini: [material unused] lambda:");
+    tt_expect_scan_refused(base,
+                           "[material late]\nadhesion_energy = 40 mJ/m^2\ninteratomic_distance = 1e-6 nm\n"
+                           "[surface]\nmap = stripes\nmap_materials = late, soft\nmap_period = 1 um\n"
+                           "map_duty = 90 %\n",
+                           "bad.ini: [material late] interatomic_distance:");
+    /* typed parameters: a force law that cannot be made fails tt_scan_alloc, used or not */
+    tt_scene *sc = tt_scene_alloc();
+    assert_int_equal(tt_scene_load_string(sc, base, "base"), TT_OK);
+    tt_scan_params p;
+    assert_int_equal(tt_config_scan(sc, &p), TT_OK);
+    assert_int_equal(p.surface.map, TT_MAP_UNIFORM);
+    assert_int_equal(p.nmaterials, 2);
+    const tt_material *own = p.materials;
+    tt_material m[2] = {own[0], own[1]};
+    m[1].contact.K = -1;
+    p.materials = m;
+    tt_scan *s = NULL;
+    assert_int_equal(tt_scan_alloc(&s, &p), TT_EINVAL);
+    assert_null(s);
+    assert_non_null(strstr(tt_error_message(), "[material soft]: contact:"));
+    p.materials = own;
+    tt_config_scan_free(&p);
+    tt_scene_free(sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -168,6 +200,7 @@ int main(void)
         cmocka_unit_test(material_contrast_follows_the_approach_curves),
         cmocka_unit_test(far_too_much_gain_oscillates),
         cmocka_unit_test(bad_scan_input_is_refused),
+        cmocka_unit_test(every_material_is_checked_up_front),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
