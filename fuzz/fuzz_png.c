@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "fuzz_common.h"
+#include "tiptap/config/config.h"
 #include "tiptap/config/scene.h"
 #include "tiptap/instrument/surface.h"
 #include "tiptap/util/error.h"
@@ -27,7 +28,7 @@ static void one_map(const char *path, int material)
         fuzz_fail("the fixed scene is refused: %s", tt_error_message());
     tt_surface *S = NULL;
     tt_error_clear();
-    if (tt_surface_alloc(&S, s, 1e-6, 1e-6) != TT_OK) {
+    if (tt_config_surface_alloc(&S, s, 1e-6, 1e-6) != TT_OK) {
         fuzz_check_refusal(material ? "material map" : "height map");
     } else {
         for (int k = 0; k < 5; k++) {

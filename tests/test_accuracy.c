@@ -5,6 +5,7 @@
 
 #include "tt_test.h"
 #include "tiptap/instrument/accuracy.h"
+#include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 
 /* The standard cantilever at Q 40 (settles in about 240 cycles) tapping the standard
@@ -32,7 +33,7 @@ static tt_accuracy *study(const char *text, const tt_accuracy_ladder *lad, size_
     p.ladders = lad;
     p.nladders = nlad;
     tt_accuracy *a;
-    if (tt_accuracy_alloc(&a, sc, &p) != TT_OK)
+    if (tt_config_accuracy_alloc(&a, sc, &p) != TT_OK)
         fail_msg("%s", tt_error_message());
     tt_scene_free(sc); /* the study keeps its own copy */
     while (!tt_accuracy_done(a)) {
@@ -162,7 +163,7 @@ static void scan_line_height_errors(void **st)
     p.ladders = lad;
     p.nladders = 1;
     tt_accuracy *a;
-    if (tt_accuracy_alloc(&a, sc, &p) != TT_OK)
+    if (tt_config_accuracy_alloc(&a, sc, &p) != TT_OK)
         fail_msg("%s", tt_error_message());
     tt_scene_free(sc);
     assert_int_equal(tt_accuracy_kind_of(a), TT_ACCURACY_LINE);
@@ -218,7 +219,7 @@ static void table_and_parameters(void **st)
     tt_accuracy_params_default(&p);
     p.point = 12e-9;
     tt_accuracy *a;
-    assert_int_equal(tt_accuracy_alloc(&a, sc, &p), TT_OK);
+    assert_int_equal(tt_config_accuracy_alloc(&a, sc, &p), TT_OK);
     assert_int_equal(tt_accuracy_kind_of(a), TT_ACCURACY_POINT);
     assert_close(tt_accuracy_point(a), 12e-9, 0);
     /* the scene's rk4 at 500 steps joins the built-in rk4 ladder between 256 and 512 */
@@ -235,12 +236,12 @@ static void table_and_parameters(void **st)
     tt_accuracy_free(a);
     /* the check reference must be looser than the reference */
     p.check_tolerance = p.ref_tolerance;
-    assert_int_equal(tt_accuracy_alloc(&a, sc, &p), TT_EINVAL);
+    assert_int_equal(tt_config_accuracy_alloc(&a, sc, &p), TT_EINVAL);
     assert_null(a);
     tt_accuracy_params_default(&p);
     p.kind = TT_ACCURACY_LINE;
     p.line_pixels = 1;
-    assert_int_equal(tt_accuracy_alloc(&a, sc, &p), TT_EINVAL);
+    assert_int_equal(tt_config_accuracy_alloc(&a, sc, &p), TT_EINVAL);
     tt_scene_free(sc);
 }
 

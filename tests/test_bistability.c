@@ -14,6 +14,7 @@
 
 #include "tt_test.h"
 #include "tiptap/instrument/approach.h"
+#include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 #include "tiptap/config/setup.h"
 
@@ -61,10 +62,10 @@ static void both_branches_and_the_jumps(void **st)
     assert_int_equal(tt_setup_alloc(&su, s), TT_OK);
     assert_int_equal(tt_setup_use_material(su, 0), TT_OK);
     tt_approach_params p;
-    assert_int_equal(tt_approach_params_from_scene(&p, s), TT_OK);
+    assert_int_equal(tt_config_approach(s, &p), TT_OK);
     assert_true(p.retract);
     tt_approach *a;
-    assert_int_equal(tt_approach_alloc(&a, su->sim, &p), TT_OK);
+    assert_int_equal(tt_approach_alloc(&a, tt_setup_sim(su), &p), TT_OK);
     tt_approach_point pt[2 * NPTS];
     size_t n = 0;
     while (!tt_approach_done(a)) {

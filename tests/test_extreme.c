@@ -11,6 +11,7 @@
 
 #include "tt_test.h"
 #include "tiptap/physics/contact.h"
+#include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 #include "tiptap/config/setup.h"
 
@@ -61,6 +62,7 @@ typedef struct {
     tt_scene *scene;
     tt_setup *su;
     const tt_contact *ct;
+    double qi;       /* the material's interaction quality factor */
     double z;        /* the steady point's rest separation, m */
     tt_cycle steady; /* its last cycle at the scene's own setting */
     long settle_cycles;
@@ -111,10 +113,10 @@ static tt_solver solver_of(const method_row *m, double knob)
 static int run_from_steady(const run_ctx *r, const tt_solver *s, tt_cycle *out, long *events)
 {
     tt_sim *sim;
-    int rc = tt_sim_alloc(&sim, &r->su->cantilever, s);
+    int rc = tt_sim_alloc(&sim, tt_setup_cantilever(r->su), s);
     if (rc)
         return rc;
-    tt_sim_set_contact(sim, r->ct, r->su->Qi[r->su->current]);
+    tt_sim_set_contact(sim, r->ct, r->qi);
     tt_sim_set_sample(sim, r->z, 0);
     tt_sim_set_state(sim, r->d, r->v, r->contact);
     /* dopri5 runs as in a scan, without tracking the extremes, so that it takes its
@@ -132,7 +134,7 @@ static int run_from_steady(const run_ctx *r, const tt_solver *s, tt_cycle *out, 
 /* error of a run against the reference: amplitude relative to A0, phase in rad */
 static double error_of(const run_ctx *r, const tt_cycle *c, const tt_cycle *ref)
 {
-    return fmax(fabs(c->amplitude - ref->amplitude) / r->su->cantilever.A0,
+    return fmax(fabs(c->amplitude - ref->amplitude) / tt_setup_cantilever(r->su)->A0,
                 fabs(c->phase - ref->phase));
 }
 
@@ -156,7 +158,7 @@ static void check_method(const run_ctx *r, const method_row *m, const tt_cycle *
     }
     /* (a) convergence */
     if (m->knob == KNOB_STEPS) {
-        double A0 = r->su->cantilever.A0;
+        double A0 = tt_setup_cantilever(r->su)->A0;
         double pA = order3(c[0].amplitude, c[1].amplitude, c[2].amplitude);
         double pP = order3(c[0].phase, c[1].phase, c[2].phase);
         double pref = log2(e[0] / e[2]) / 2;
@@ -245,7 +247,7 @@ static void check_method(const run_ctx *r, const method_row *m, const tt_cycle *
     for (int i = 0; i < 3 && !isnan(m->bad[i]); i++) {
         tt_solver b = solver_of(m, m->bad[i]);
         tt_sim *sim = NULL;
-        assert_int_equal(tt_sim_alloc(&sim, &r->su->cantilever, &b), TT_EINVAL);
+        assert_int_equal(tt_sim_alloc(&sim, tt_setup_cantilever(r->su), &b), TT_EINVAL);
         assert_null(sim);
         assert_true(strlen(tt_error_message()) > 0);
     }
@@ -295,18 +297,19 @@ static void check_scene(void **state)
         tt_setup_use_material(r.su, mat) != TT_OK ||
         tt_scene_get_double(r.scene, "trace", NULL, "separation", &r.z) != TT_OK)
         fail_msg("%s: %s", sc->file, tt_error_message());
-    r.ct = r.su->contacts[mat];
+    r.ct = tt_setup_contact(r.su, mat);
+    r.qi = tt_setup_material(r.su, mat)->Qi;
 
     /* the steady point, from the free oscillation, at the scene's own setting */
-    tt_sim_reset_free(r.su->sim);
-    tt_sim_set_sample(r.su->sim, r.z, 0);
-    tt_sim_track_extremes(r.su->sim, 1);
+    tt_sim_reset_free(tt_setup_sim(r.su));
+    tt_sim_set_sample(tt_setup_sim(r.su), r.z, 0);
+    tt_sim_track_extremes(tt_setup_sim(r.su), 1);
     int settled;
-    if (tt_sim_settle(r.su->sim, 100000, 1e-6, &r.steady, &settled, &r.settle_cycles) != TT_OK)
+    if (tt_sim_settle(tt_setup_sim(r.su), 100000, 1e-6, &r.steady, &settled, &r.settle_cycles) != TT_OK)
         fail_msg("%s: %s", sc->file, tt_error_message());
     assert_true(settled);
     assert_finite_cycle(&r.steady, sc->file);
-    tt_sim_get_state(r.su->sim, &r.d, &r.v, &r.contact);
+    tt_sim_get_state(tt_setup_sim(r.su), &r.d, &r.v, &r.contact);
     print_message("%s at %g nm: %ld cycles to settle; amplitude %.5g nm, phase %.3f deg, contact "
                   "%.3f, %ld events, %ld steps, residual %.1e\n",
                   sc->file, r.z * 1e9, r.settle_cycles, r.steady.amplitude * 1e9,
@@ -383,8 +386,8 @@ static void extra_stiff(const run_ctx *r)
     double k;
     (void)tt_contact_load(r->ct, r->steady.max_indentation, 1, &k, NULL);
     print_message("  contact stiffness %.3g N/m, %.0f times the cantilever's\n", k,
-                  k / r->su->cantilever.k);
-    assert_true(k > 1000 * r->su->cantilever.k);
+                  k / tt_setup_cantilever(r->su)->k);
+    assert_true(k > 1000 * tt_setup_cantilever(r->su)->k);
 }
 
 static void extra_liquid(const run_ctx *r)
@@ -398,7 +401,7 @@ static void extra_vacuum(const run_ctx *r)
 {
     /* Q = 1e4: the memory is Q / pi cycles, and on this sample the tip settles on the
      * attractive branch without touching it (confirmed with rk4 at 1024 steps) */
-    assert_true(r->settle_cycles > r->su->cantilever.Q / M_PI);
+    assert_true(r->settle_cycles > tt_setup_cantilever(r->su)->Q / M_PI);
     assert_int_equal(r->steady.events, 0);
     assert_true(r->steady.phase > M_PI / 2);
 }
@@ -407,7 +410,7 @@ static void extra_captured(const run_ctx *r)
 {
     /* held in contact all cycle long: the tip barely moves, so the deflection is the base
      * motion turned over, amplitude a_d = A0 / Q at a phase of 180 deg */
-    const tt_cantilever *c = &r->su->cantilever;
+    const tt_cantilever *c = tt_setup_cantilever(r->su);
     assert_close(r->steady.contact_fraction, 1, 1e-12);
     assert_int_equal(r->steady.events, 0);
     assert_close(r->steady.amplitude, c->a_d, 0.01 * c->a_d);
@@ -420,7 +423,7 @@ static void extra_small(const run_ctx *r)
      * y_e of k y = -P(y - z) and the force gradient g there give, for the base drive
      * a_d cos(w t), amplitude |m w^2 - g| a_d / |k + g - m w^2 + i c w| and lag
      * atan2(c w, k + g - m w^2). The nonlinearity, (A / gap)^2 ~ 3e-4, sets the match. */
-    const tt_cantilever *c = &r->su->cantilever;
+    const tt_cantilever *c = tt_setup_cantilever(r->su);
     assert_int_equal(r->steady.events, 0);
     double y = 0, g = 0;
     for (int i = 0; i < 50; i++)
@@ -435,7 +438,7 @@ static void extra_small(const run_ctx *r)
 
 static void extra_setpoint(const run_ctx *r)
 {
-    double ratio = r->steady.amplitude / r->su->cantilever.A0;
+    double ratio = r->steady.amplitude / tt_setup_cantilever(r->su)->A0;
     assert_between(ratio, 0.08, 0.12);
     assert_true(r->steady.contact_fraction > 0);
 }

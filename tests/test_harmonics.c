@@ -5,6 +5,7 @@
 
 #include "tt_test.h"
 #include "tt_scan_test.h"
+#include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 #include "tiptap/instrument/lockin.h"
 #include "tiptap/instrument/scan.h"
@@ -39,16 +40,16 @@ static void steady_lockin(tt_scene *sc, double s, double A[4], double *phase2)
     assert_int_equal(tt_setup_use_material(su, 0), TT_OK);
     tt_sample smp[N];
     double y[N * P];
-    tt_sim_reset_free(su->sim);
-    tt_sim_set_sampling(su->sim, N, smp);
-    tt_sim_set_sample(su->sim, s, 0);
-    tt_lockin_params lp = {su->cantilever.fd, N, P, 3, 0, 1};
+    tt_sim_reset_free(tt_setup_sim(su));
+    tt_sim_set_sampling(tt_setup_sim(su), N, smp);
+    tt_sim_set_sample(tt_setup_sim(su), s, 0);
+    tt_lockin_params lp = {tt_setup_cantilever(su)->fd, N, P, 3, 0, 1};
     tt_lockin *l;
     assert_int_equal(tt_lockin_alloc(&l, &lp), TT_OK);
     for (int b = 0; b < 500; b++) { /* 2000 cycles: about 60 ring-down times at Q 100 */
         for (int j = 0; j < P; j++) {
             tt_cycle c;
-            assert_int_equal(tt_sim_cycle(su->sim, &c), TT_OK);
+            assert_int_equal(tt_sim_cycle(tt_setup_sim(su), &c), TT_OK);
             for (int q = 0; q < N; q++)
                 y[j * N + q] = smp[q].d - smp[q].z;
         }

@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include "tt_test.h"
+#include "tiptap/config/config.h"
+#include "tiptap/config/scene.h"
 #include "tiptap/instrument/surface.h"
 #include "tiptap/util/error.h"
 
@@ -44,7 +46,7 @@ static tt_surface *map_of(const char *path, const char *va, const char *vb)
     tt_scene *s = tt_scene_alloc();
     assert_int_equal(tt_scene_load_string(s, text, "s.ini"), TT_OK);
     tt_surface *S = NULL;
-    int rc = tt_surface_alloc(&S, s, 1e-6, 1e-6);
+    int rc = tt_config_surface_alloc(&S, s, 1e-6, 1e-6);
     tt_scene_free(s);
     return rc ? NULL : S;
 }
@@ -111,7 +113,7 @@ static void transparency_is_refused(void **st)
     tt_scene *s = tt_scene_alloc();
     assert_int_equal(tt_scene_load_string(s, text, "h.ini"), TT_OK);
     tt_surface *S = NULL;
-    assert_int_equal(tt_surface_alloc(&S, s, 1e-6, 1e-6), TT_EINVAL);
+    assert_int_equal(tt_config_surface_alloc(&S, s, 1e-6, 1e-6), TT_EINVAL);
     assert_non_null(strstr(tt_error_message(), "h.ini: [surface] png:"));
     assert_non_null(strstr(tt_error_message(), "pixel (1, 0) is transparent (alpha 17 of 255)"));
     tt_scene_free(s);

@@ -1,6 +1,7 @@
 /* A run from the free state is the same whatever the sim did before: scan lines restart
  * from it on whichever thread is free, and the images must not depend on the threads. */
 #include "tt_test.h"
+#include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 #include "tiptap/config/setup.h"
 #include "tiptap/config/standard.h"
@@ -19,21 +20,21 @@ static void history_is_forgotten(tt_method m)
     assert_int_equal(tt_setup_use_material(a, 0), TT_OK);
     assert_int_equal(tt_setup_use_material(b, 0), TT_OK);
     tt_sample sa[32], sb[32];
-    tt_sim_set_sampling(a->sim, 32, sa);
-    tt_sim_set_sampling(b->sim, 32, sb);
+    tt_sim_set_sampling(tt_setup_sim(a), 32, sa);
+    tt_sim_set_sampling(tt_setup_sim(b), 32, sb);
     /* a history for a: tapping on a moving sample, step sizes and caches of its own */
     tt_cycle ca, cb;
-    tt_sim_reset_free(a->sim);
-    tt_sim_set_sample(a->sim, 12e-9, 1e-4);
+    tt_sim_reset_free(tt_setup_sim(a));
+    tt_sim_set_sample(tt_setup_sim(a), 12e-9, 1e-4);
     for (int i = 0; i < 300; i++)
-        assert_int_equal(tt_sim_cycle(a->sim, &ca), TT_OK);
-    tt_sim_reset_free(a->sim);
-    tt_sim_reset_free(b->sim);
+        assert_int_equal(tt_sim_cycle(tt_setup_sim(a), &ca), TT_OK);
+    tt_sim_reset_free(tt_setup_sim(a));
+    tt_sim_reset_free(tt_setup_sim(b));
     for (int i = 0; i < 200; i++) {
-        tt_sim_set_sample(a->sim, 16e-9, 0);
-        tt_sim_set_sample(b->sim, 16e-9, 0);
-        assert_int_equal(tt_sim_cycle(a->sim, &ca), TT_OK);
-        assert_int_equal(tt_sim_cycle(b->sim, &cb), TT_OK);
+        tt_sim_set_sample(tt_setup_sim(a), 16e-9, 0);
+        tt_sim_set_sample(tt_setup_sim(b), 16e-9, 0);
+        assert_int_equal(tt_sim_cycle(tt_setup_sim(a), &ca), TT_OK);
+        assert_int_equal(tt_sim_cycle(tt_setup_sim(b), &cb), TT_OK);
         /* bit for bit: the same steps on the same numbers */
         if (ca.amplitude != cb.amplitude || ca.phase != cb.phase || ca.steps != cb.steps ||
             sa[7].d != sb[7].d)

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 
 #include "tt_test.h"
+#include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 #include "tiptap/config/setup.h"
 
@@ -30,12 +31,12 @@ static int run(int steps, double z, int *done, tt_cycle *last, long *events)
     tt_setup *su;
     assert_int_equal(tt_setup_alloc(&su, s), TT_OK);
     assert_int_equal(tt_setup_use_material(su, 0), TT_OK);
-    tt_sim_reset_free(su->sim);
-    tt_sim_set_sample(su->sim, z, 0);
+    tt_sim_reset_free(tt_setup_sim(su));
+    tt_sim_set_sample(tt_setup_sim(su), z, 0);
     int rc = TT_OK;
     *events = 0;
     for (*done = 0; *done < 5; (*done)++) {
-        if ((rc = tt_sim_cycle(su->sim, last)))
+        if ((rc = tt_sim_cycle(tt_setup_sim(su), last)))
             break;
         *events += last->events;
     }

@@ -4,6 +4,7 @@
 
 #include "tt_test.h"
 #include "tt_scan_test.h"
+#include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 #include "tiptap/instrument/scan.h"
 #include "tiptap/config/setup.h"
@@ -71,14 +72,14 @@ static void crossing(tt_scene *sc, size_t mat, double setpoint, double *z, doubl
     tt_setup *su;
     assert_int_equal(tt_setup_alloc(&su, sc), TT_OK);
     assert_int_equal(tt_setup_use_material(su, mat), TT_OK);
-    tt_sim_reset_free(su->sim);
+    tt_sim_reset_free(tt_setup_sim(su));
     double pz = NAN, pa = NAN, pp = NAN;
     for (double g = 19e-9; g > 10e-9; g -= 0.05e-9) {
-        tt_sim_set_sample(su->sim, g, 0);
+        tt_sim_set_sample(tt_setup_sim(su), g, 0);
         tt_cycle c;
         int ok;
         long n;
-        assert_int_equal(tt_sim_settle(su->sim, 20000, 1e-9, &c, &ok, &n), TT_OK);
+        assert_int_equal(tt_sim_settle(tt_setup_sim(su), 20000, 1e-9, &c, &ok, &n), TT_OK);
         if (c.amplitude <= setpoint && isfinite(pa)) {
             double f = (pa - setpoint) / (pa - c.amplitude);
             *z = pz + f * (g - pz);
@@ -159,6 +160,38 @@ static void bad_scan_input_is_refused(void **st)
         tt_expect_scan_refused(base, cases[i].text, cases[i].frag);
 }
 
+/* Every material is checked before a scan runs, whether a pixel uses it or the raster
+ * reaches it only late in a line; the scan builds every force law when it is made. */
+static void every_material_is_checked_up_front(void **st)
+{
+    (void)st;
+    tt_expect_scan_refused(base, "[material unused]\nadhesion_energy = 40 mJ/m^2\nlambda = 1e5\n",
+                           "bad.ini: [material unused] lambda:");
+    tt_expect_scan_refused(base,
+                           "[material late]\nadhesion_energy = 40 mJ/m^2\ninteratomic_distance = 1e-6 nm\n"
+                           "[surface]\nmap = stripes\nmap_materials = late, soft\nmap_period = 1 um\n"
+                           "map_duty = 90 %\n",
+                           "bad.ini: [material late] interatomic_distance:");
+    /* typed parameters: a force law that cannot be made fails tt_scan_alloc, used or not */
+    tt_scene *sc = tt_scene_alloc();
+    assert_int_equal(tt_scene_load_string(sc, base, "base"), TT_OK);
+    tt_scan_params p;
+    assert_int_equal(tt_config_scan(sc, &p), TT_OK);
+    assert_int_equal(p.surface.map, TT_MAP_UNIFORM);
+    assert_int_equal(p.nmaterials, 2);
+    const tt_material *own = p.materials;
+    tt_material m[2] = {own[0], own[1]};
+    m[1].contact.K = -1;
+    p.materials = m;
+    tt_scan *s = NULL;
+    assert_int_equal(tt_scan_alloc(&s, &p), TT_EINVAL);
+    assert_null(s);
+    assert_non_null(strstr(tt_error_message(), "[material soft]: contact:"));
+    p.materials = own;
+    tt_config_scan_free(&p);
+    tt_scene_free(sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -167,6 +200,7 @@ int main(void)
         cmocka_unit_test(material_contrast_follows_the_approach_curves),
         cmocka_unit_test(far_too_much_gain_oscillates),
         cmocka_unit_test(bad_scan_input_is_refused),
+        cmocka_unit_test(every_material_is_checked_up_front),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

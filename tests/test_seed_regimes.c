@@ -2,6 +2,7 @@
  * in water without adhesion (figure 4b). */
 #include "tt_test.h"
 #include "tiptap/instrument/approach.h"
+#include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 #include "tiptap/config/setup.h"
 
@@ -21,9 +22,9 @@ static void capture_by_adhesion(void **st)
     assert_int_equal(tt_setup_alloc(&su, s), TT_OK);
     assert_int_equal(tt_setup_use_material(su, 0), TT_OK);
     tt_approach_params p;
-    assert_int_equal(tt_approach_params_from_scene(&p, s), TT_OK);
+    assert_int_equal(tt_config_approach(s, &p), TT_OK);
     tt_approach *a;
-    assert_int_equal(tt_approach_alloc(&a, su->sim, &p), TT_OK);
+    assert_int_equal(tt_approach_alloc(&a, tt_setup_sim(su), &p), TT_OK);
     tt_approach_point pt[74];
     size_t n = 0;
     while (!tt_approach_done(a)) {
@@ -71,15 +72,15 @@ static void tapping_in_water_without_adhesion(void **st)
     tt_setup *su;
     assert_int_equal(tt_setup_alloc(&su, s), TT_OK);
     assert_int_equal(tt_setup_use_material(su, 0), TT_OK);
-    assert_false(tt_contact_summary_of(su->contacts[0])->adhesive); /* w = 0: Hertz exactly */
+    assert_false(tt_contact_summary_of(tt_setup_contact(su, 0))->adhesive); /* w = 0: Hertz exactly */
     double prev_phase = 0;
     for (double z = 15e-9; z > -15e-9; z -= 10e-9) {
-        tt_sim_reset_free(su->sim);
-        tt_sim_set_sample(su->sim, z, 0);
+        tt_sim_reset_free(tt_setup_sim(su));
+        tt_sim_set_sample(tt_setup_sim(su), z, 0);
         tt_cycle c;
         int settled;
         long n;
-        assert_int_equal(tt_sim_settle(su->sim, 5000, 1e-8, &c, &settled, &n), TT_OK);
+        assert_int_equal(tt_sim_settle(tt_setup_sim(su), 5000, 1e-8, &c, &settled, &n), TT_OK);
         assert_true(settled);
         assert_int_equal(c.events, 2);          /* one touch per cycle, no chatter */
         assert_true(c.contact_fraction > 0);

@@ -6,6 +6,7 @@
  * holds for a jitter of period 3 far below the tolerance, while a real period-3 orbit
  * is still reported as unsettled. */
 #include "tt_test.h"
+#include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 #include "tiptap/solver/integrator.h"
 #include "tiptap/config/setup.h"
@@ -70,13 +71,13 @@ static int settle_after(const char *text, double z1, long cycles1, double z2, lo
     tt_setup *su;
     assert_int_equal(tt_setup_alloc(&su, s), TT_OK);
     assert_int_equal(tt_setup_use_material(su, 0), TT_OK);
-    tt_sim_reset_free(su->sim);
-    tt_sim_set_sample(su->sim, z1 * 1e-9, 0);
+    tt_sim_reset_free(tt_setup_sim(su));
+    tt_sim_set_sample(tt_setup_sim(su), z1 * 1e-9, 0);
     for (long i = 0; i < cycles1; i++)
-        assert_int_equal(tt_sim_cycle(su->sim, c), TT_OK);
-    tt_sim_set_sample(su->sim, z2 * 1e-9, 0);
+        assert_int_equal(tt_sim_cycle(tt_setup_sim(su), c), TT_OK);
+    tt_sim_set_sample(tt_setup_sim(su), z2 * 1e-9, 0);
     int settled;
-    assert_int_equal(tt_sim_settle(su->sim, max, 1e-7, c, &settled, n), TT_OK);
+    assert_int_equal(tt_sim_settle(tt_setup_sim(su), max, 1e-7, c, &settled, n), TT_OK);
     tt_setup_free(su);
     tt_scene_free(s);
     return settled;

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "tt_test.h"
+#include "tiptap/config/config.h"
 #include "tiptap/config/setup.h"
 #include "tiptap/config/standard.h"
 #include "tiptap/instrument/approach.h"
@@ -94,9 +95,9 @@ static tt_approach_point standard_point(const char *steady)
     assert_int_equal(tt_setup_alloc(&su, s), TT_OK);
     assert_int_equal(tt_setup_use_material(su, 0), TT_OK);
     tt_approach_params p;
-    assert_int_equal(tt_approach_params_from_scene(&p, s), TT_OK);
+    assert_int_equal(tt_config_approach(s, &p), TT_OK);
     tt_approach *a;
-    assert_int_equal(tt_approach_alloc(&a, su->sim, &p), TT_OK);
+    assert_int_equal(tt_approach_alloc(&a, tt_setup_sim(su), &p), TT_OK);
     tt_approach_point pt;
     assert_int_equal(tt_approach_iterate(a, &pt), TT_OK);
     assert_true(tt_approach_done(a));
@@ -142,11 +143,11 @@ static void bistable_scene_shows_both_branches(void **st)
     tt_cycle cy[2];
     for (int b = 0; b < 2; b++) {
         int settled;
-        const tt_cantilever *c = tt_sim_cantilever(su->sim);
+        const tt_cantilever *c = tt_sim_cantilever(tt_setup_sim(su));
         double A = b ? 4.1e-9 : 3.9e-9, lag = (b ? 60 : 128) * M_PI / 180;
-        tt_sim_set_state(su->sim, c->a_d + A * cos(lag), A * c->wd * sin(lag), 0);
-        tt_sim_set_sample(su->sim, 4e-9, 0);
-        assert_int_equal(tt_shoot_steady(su->sim, &p, 20000, 1e-7, &cy[b], &settled, &r[b]), TT_OK);
+        tt_sim_set_state(tt_setup_sim(su), c->a_d + A * cos(lag), A * c->wd * sin(lag), 0);
+        tt_sim_set_sample(tt_setup_sim(su), 4e-9, 0);
+        assert_int_equal(tt_shoot_steady(tt_setup_sim(su), &p, 20000, 1e-7, &cy[b], &settled, &r[b]), TT_OK);
         print_message("%s: %s, amplitude %.6f nm, phase %.3f deg, |mu| %.6g, %ld cycles %s\n",
                       b ? "from tapping" : "from hovering",
                       r[b].how == TT_SHOOT_NEWTON ? "Newton" : "settled", cy[b].amplitude * 1e9,

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include "tt_test.h"
+#include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 #include "tiptap/instrument/surface.h"
 
@@ -17,7 +18,7 @@ static tt_surface *make(const char *text, int expect_ok)
     int rc = tt_scene_load_string(s, text, "s.ini");
     tt_surface *S = NULL;
     if (rc == TT_OK)
-        rc = tt_surface_alloc(&S, s, 1e-6, 1e-6);
+        rc = tt_config_surface_alloc(&S, s, 1e-6, 1e-6);
     tt_scene_free(s);
     if (expect_ok && rc)
         fail_msg("%s", tt_error_message());

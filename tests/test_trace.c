@@ -51,12 +51,12 @@ static void settled_trace_is_the_steady_state(void **state)
     tt_setup *st;
     assert_int_equal(tt_setup_alloc(&st, s), TT_OK);
     assert_int_equal(tt_setup_use_material(st, 0), TT_OK);
-    tt_sim_reset_free(st->sim);
-    tt_sim_set_sample(st->sim, 16e-9, 0);
+    tt_sim_reset_free(tt_setup_sim(st));
+    tt_sim_set_sample(tt_setup_sim(st), 16e-9, 0);
     tt_cycle ref;
     int settled;
     long n;
-    assert_int_equal(tt_sim_settle(st->sim, 40000, 1e-9, &ref, &settled, &n), TT_OK);
+    assert_int_equal(tt_sim_settle(tt_setup_sim(st), 40000, 1e-9, &ref, &settled, &n), TT_OK);
     assert_true(settled);
     print_message("settled after %ld cycles: amplitude %.9g nm, phase %.6f deg\n", n,
                   ref.amplitude * 1e9, ref.phase * 180 / M_PI);
@@ -93,7 +93,7 @@ static void rows_advance_and_ramp_reaches_its_end(void **state)
     assert_close(r.p.ramp_from, 0.010, 1e-15);
     assert_close(r.p.ramp_to, 0.050, 1e-15);
     tt_trace *t = r.t;
-    double T = r.st->cantilever.T, last_t = -1;
+    double T = tt_setup_cantilever(r.st)->T, last_t = -1;
     tt_trace_row row;
     long rows = 0;
     while (!tt_trace_done(t)) {
@@ -126,9 +126,7 @@ static void pressure_is_hertzian_mean_pressure(void **state)
     run r;
     start(&r, "[trace]\nsettle_cycles = 200\ncycles = 2\nsamples_per_cycle = 200\n");
     tt_trace *t = r.t;
-    tt_contact_params cp;
-    double Qi;
-    assert_int_equal(tt_material_params(r.s, "polymer", &cp, &Qi), TT_OK);
+    tt_contact_params cp = tt_setup_material(r.st, 0)->contact;
     tt_trace_row row;
     int in_contact = 0;
     while (!tt_trace_done(t)) {

@@ -2,6 +2,7 @@
 #ifndef TT_SCAN_TEST_H
 #define TT_SCAN_TEST_H
 
+#include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 #include "tiptap/instrument/scan.h"
 
@@ -14,7 +15,7 @@ static inline tt_scan *tt_run_scan(const char *base, const char *extra, tt_scene
     if (tt_scene_load_string(*sc, extra, "extra") != TT_OK)
         fail_msg("%s", tt_error_message());
     tt_scan *s;
-    if (tt_scan_alloc(&s, *sc) != TT_OK)
+    if (tt_config_scan_alloc(&s, *sc) != TT_OK)
         fail_msg("%s", tt_error_message());
     if (tt_scan_run(s, 2, NULL, NULL) != TT_OK)
         fail_msg("%s", tt_error_message());
@@ -30,7 +31,7 @@ static inline void tt_expect_scan_refused(const char *base, const char *text, co
     int rc = tt_scene_load_string(sc, text, "bad.ini");
     tt_scan *s = NULL;
     if (rc == TT_OK)
-        rc = tt_scan_alloc(&s, sc);
+        rc = tt_config_scan_alloc(&s, sc);
     if (rc == TT_OK)
         fail_msg("accepted: %s", text);
     if (!strstr(tt_error_message(), fragment))

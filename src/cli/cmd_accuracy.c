@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "tiptap/config/config.h"
 #include "tiptap/instrument/accuracy.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
@@ -415,7 +416,7 @@ int cmd_accuracy(int argc, char **argv)
     tt_outfile *of = NULL;
     int rc;
     /* The output opens first: a bad path fails at once, not after the study. */
-    if ((rc = tt_accuracy_alloc(&a, scene, &p)) || (rc = tt_outfile_open(&of, out)))
+    if ((rc = tt_config_accuracy_alloc(&a, scene, &p)) || (rc = tt_outfile_open(&of, out)))
         goto done;
     const tt_accuracy_observable *obs;
     size_t nobs = tt_accuracy_observables(a, &obs), n = 0;

@@ -10,6 +10,7 @@
 #include "tiptap/util/error.h"
 #include "tiptap/io/outfile.h"
 #include "tiptap/io/plot.h"
+#include "tiptap/config/config.h"
 #include "tiptap/config/setup.h"
 
 static void help(void)
@@ -152,11 +153,11 @@ int cmd_approach(int argc, char **argv)
     tt_approach_params p;
     size_t mat = 0, n = 0;
     int rc;
-    if ((rc = tt_setup_alloc(&st, scene)) ||
-        (rc = tt_setup_find_material(st, tt_scene_get_string(scene, "approach", NULL, "material"),
-                                     "approach", "material", &mat)) ||
-        (rc = tt_setup_use_material(st, mat)) || (rc = tt_approach_params_from_scene(&p, scene)) ||
-        (rc = tt_approach_alloc(&ap, st->sim, &p)) || (rc = tt_outfile_open(&of, out)))
+    if ((rc = tt_setup_alloc(&st, scene)) || (rc = tt_config_approach(scene, &p)) ||
+        (rc = tt_config_material_index(scene, "approach", tt_setup_material(st, 0),
+                                       tt_setup_materials(st), &mat)) ||
+        (rc = tt_setup_use_material(st, mat)) || (rc = tt_approach_alloc(&ap, tt_setup_sim(st), &p)) ||
+        (rc = tt_outfile_open(&of, out)))
         goto done;
     pts = calloc(tt_approach_rows(ap), sizeof *pts);
     if (!pts) {

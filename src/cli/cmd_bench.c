@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "tiptap/util/error.h"
+#include "tiptap/config/config.h"
 #include "tiptap/instrument/scan.h"
 #include "tiptap/config/setup.h"
 #include "tiptap/config/standard.h"
@@ -31,65 +32,57 @@ typedef struct {
     int steps;
 } setting;
 
-/* Settle the standard scene with a solver, then time n cycles. */
-static int run(tt_scene *scene, const setting *s, long n, tt_cycle *out, double *rate,
-               double *steps_per_cycle)
+/* Settle the standard scene's tapping point with a solver, then time n cycles. */
+static int run(const tt_setup *st, double sep, const setting *s, long n, tt_cycle *out,
+               double *rate, double *steps_per_cycle)
 {
-    tt_setup *st = NULL;
-    int rc;
-    char buf[64];
-    snprintf(buf, sizeof buf, "solver.method=%s", tt_method_name(s->method));
-    if ((rc = tt_scene_set(scene, buf)))
+    tt_solver sv = *tt_setup_solver(st);
+    sv.method = s->method;
+    sv.tolerance = s->tol;
+    sv.steps_per_cycle = s->steps;
+    tt_sim *sim = NULL;
+    int rc = tt_sim_alloc(&sim, tt_setup_cantilever(st), &sv);
+    if (rc)
         return rc;
-    snprintf(buf, sizeof buf, "solver.tolerance=%g", s->tol);
-    if ((rc = tt_scene_set(scene, buf)))
-        return rc;
-    snprintf(buf, sizeof buf, "solver.steps_per_cycle=%d", s->steps);
-    if ((rc = tt_scene_set(scene, buf)))
-        return rc;
-    if ((rc = tt_setup_alloc(&st, scene)) || (rc = tt_setup_use_material(st, 0)))
-        goto done;
-    double sep;
-    if ((rc = tt_scene_get_double(scene, "trace", NULL, "separation", &sep)))
-        goto done;
-    tt_sim_reset_free(st->sim);
-    tt_sim_set_sample(st->sim, sep, 0);
+    tt_sim_set_contact(sim, tt_setup_contact(st, 0), tt_setup_material(st, 0)->Qi);
+    tt_sim_reset_free(sim);
+    tt_sim_set_sample(sim, sep, 0);
     int settled;
     long cyc;
-    if ((rc = tt_sim_settle(st->sim, 40000, 1e-11, out, &settled, &cyc)))
+    if ((rc = tt_sim_settle(sim, 40000, 1e-11, out, &settled, &cyc)))
         goto done;
     long steps = 0;
     double t0 = cli_now();
     for (long i = 0; i < n && rc == TT_OK; i++) {
-        rc = tt_sim_cycle(st->sim, out);
+        rc = tt_sim_cycle(sim, out);
         steps += out->steps;
     }
     double t = cli_now() - t0;
     *rate = (double)n / t;
     *steps_per_cycle = (double)steps / (double)n;
 done:
-    tt_setup_free(st);
+    tt_sim_free(sim);
     return rc;
 }
 
 /* The imaging figure: the standard scene scanned closed-loop, 256 pixels per line at
  * 1 Hz with an 80 % setpoint; wall time per line and the real-time factor. */
-static int bench_imaging(long lines)
+static int bench_imaging(const tt_scene *scene, long lines)
 {
-    tt_scene *scene = tt_scene_alloc();
-    char buf[64];
-    int rc = scene ? tt_scene_load_string(scene, tt_standard_scene(), "standard scene") : TT_ENOMEM;
-    snprintf(buf, sizeof buf, "scan.lines=%ld", lines);
-    if (!rc)
-        rc = tt_scene_load_string(scene,
-                                  "[scan]\nsize = 1 um\npixels = 256\nline_rate = 1 Hz\nretrace = yes\n"
-                                  "[feedback]\nsetpoint = 80 %\n",
-                                  "bench scan");
-    if (!rc)
-        rc = tt_scene_set(scene, buf);
+    tt_scan_params p;
+    int rc = tt_config_scan(scene, &p);
+    if (rc)
+        return rc;
+    p.raster.size_x = p.raster.size_y = 1e-6;
+    p.raster.pixels = 256;
+    p.raster.lines = lines;
+    p.raster.line_rate = 1;
+    p.raster.retrace = 1;
+    p.profile_line = -1;
+    p.feedback.setpoint = 0.8 * p.cantilever.A0;
     tt_scan *scan = NULL;
-    if (!rc)
-        rc = tt_scan_alloc(&scan, scene);
+    rc = tt_scan_alloc(&scan, &p);
+    tt_config_scan_free(&p);
     double t0 = cli_now();
     if (!rc)
         rc = tt_scan_run(scan, 0, NULL, NULL);
@@ -104,7 +97,6 @@ static int bench_imaging(long lines)
                wall / (double)lines, inst / (double)lines, inst / wall, (double)tt_scan_cycles(scan) / wall);
     }
     tt_scan_free(scan);
-    tt_scene_free(scene);
     return rc;
 }
 
@@ -132,8 +124,13 @@ int cmd_bench(int argc, char **argv)
         return CLI_USAGE;
     }
     tt_scene *scene = tt_scene_alloc();
+    tt_setup *st = NULL;
+    tt_approach_params ap;
     int rc = scene ? tt_scene_load_string(scene, tt_standard_scene(), "standard scene") : TT_ENOMEM;
+    if (!rc && !(rc = tt_setup_alloc(&st, scene)))
+        rc = tt_config_approach(scene, &ap);
     if (rc) {
+        tt_setup_free(st);
         tt_scene_free(scene);
         return cli_fail(rc, NULL);
     }
@@ -155,7 +152,7 @@ int cmd_bench(int argc, char **argv)
     for (size_t i = 0; i < sizeof settings / sizeof settings[0]; i++) {
         tt_cycle cy;
         long cycles = i == 0 ? n / 4 : n;
-        if ((rc = run(scene, &settings[i], cycles, &cy, &rate, &spc)))
+        if ((rc = run(st, ap.from, &settings[i], cycles, &cy, &rate, &spc)))
             break;
         if (i == 0)
             ref = cy;
@@ -170,8 +167,9 @@ int cmd_bench(int argc, char **argv)
            ref.amplitude * 1e9, ref.phase * 180 / M_PI, ref.peak_force * 1e9, ref.e_ts * 1e18);
     printf("# real_time_x: simulated time / wall time for one cantilever on one core "
            "(1 = as fast as the instrument)\n");
-    tt_scene_free(scene);
     if (!rc && ilines > 0)
-        rc = bench_imaging(ilines);
+        rc = bench_imaging(scene, ilines);
+    tt_setup_free(st);
+    tt_scene_free(scene);
     return rc ? cli_fail(rc, NULL) : CLI_OK;
 }

@@ -7,7 +7,7 @@
 #include "commands.h"
 #include "tiptap/physics/contact.h"
 #include "tiptap/util/error.h"
-#include "tiptap/physics/material.h"
+#include "tiptap/config/config.h"
 #include "tiptap/io/outfile.h"
 #include "tiptap/io/plot.h"
 
@@ -224,21 +224,28 @@ int cmd_contact(int argc, char **argv)
         cli_args_free(&args);
         if (!scene)
             return CLI_FAIL;
-        const char *name = material ? material : tt_material_name(scene, 0);
-        int found = 0;
-        for (size_t i = 0; i < tt_material_count(scene); i++)
-            if (strcmp(tt_material_name(scene, i), name) == 0)
-                found = 1;
-        if (!found) {
-            rc = tt_error(TT_EINVAL, "%s: no [material %s] section", tt_scene_origin(scene), name);
+        tt_material *mats = NULL;
+        size_t nmat = 0, pick = 0;
+        if ((rc = tt_config_materials(scene, &mats, &nmat)))
+            goto done;
+        while (material && pick < nmat && strcmp(mats[pick].name, material) != 0)
+            pick++;
+        if (pick == nmat) {
+            free(mats);
+            rc = tt_error(TT_EINVAL, "%s: no [material %s] section", tt_scene_origin(scene), material);
             goto done;
         }
-        if ((rc = tt_material_params(scene, name, &p, &Qi)))
-            goto done;
+        char name[sizeof mats->name];
+        snprintf(name, sizeof name, "%s", mats[pick].name);
+        p = mats[pick].contact;
+        Qi = mats[pick].Qi;
+        free(mats);
         if (model)
             p.model = m;
         if ((rc = tt_contact_alloc(&ct, &p))) {
-            rc = tt_scene_fail(scene, "material", name, NULL, "%s", tt_error_message());
+            char why[512];
+            snprintf(why, sizeof why, "%s", tt_error_message());
+            rc = tt_scene_locate(scene, tt_error(rc, "[material %s]: %s", name, why));
             goto done;
         }
         xi0n = tt_contact_summary_of(ct)->adhesive

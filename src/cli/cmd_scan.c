@@ -7,11 +7,11 @@
 
 #include "commands.h"
 #include "tiptap/util/cancel.h"
-#include "tiptap/physics/cantilever.h"
 #include "tiptap/util/error.h"
 #include "tiptap/io/gsf.h"
 #include "tiptap/io/image.h"
 #include "tiptap/io/outfile.h"
+#include "tiptap/config/config.h"
 #include "tiptap/instrument/scan.h"
 
 static void help(void)
@@ -69,18 +69,16 @@ static double display_scale(int ch, const char **unit, tt_colormap *cmap)
     }
 }
 
-static int write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir)
+static int write_outputs(const tt_scan *scan, const tt_cantilever *c, const char *dir)
 {
     char path[4096], title[128];
     long xres = tt_scan_xres(scan), yres = tt_scan_yres(scan);
-    tt_cantilever c;
-    tt_cantilever_from_scene(&c, scene);
     char v[8][64];
     snprintf(v[0], sizeof v[0], "%s", TT_VERSION);
-    snprintf(v[1], sizeof v[1], "%.6g", c.k);
-    snprintf(v[2], sizeof v[2], "%.6g", c.f0);
-    snprintf(v[3], sizeof v[3], "%.6g", c.Q);
-    snprintf(v[4], sizeof v[4], "%.6g", c.A0);
+    snprintf(v[1], sizeof v[1], "%.6g", c->k);
+    snprintf(v[2], sizeof v[2], "%.6g", c->f0);
+    snprintf(v[3], sizeof v[3], "%.6g", c->Q);
+    snprintf(v[4], sizeof v[4], "%.6g", c->A0);
     snprintf(v[5], sizeof v[5], "%ld", tt_scan_lines_done(scan));
     const char *keys[] = {"tiptap_version", "cantilever_spring_constant_N_per_m",
                           "cantilever_resonance_frequency_Hz", "cantilever_quality_factor",
@@ -172,11 +170,20 @@ int cmd_scan(int argc, char **argv)
         return code;
     double t0 = cli_now();
     tt_scan *scan = NULL;
+    tt_scan_params params;
     char path[4096];
     tt_outfile *of = NULL;
     int rc;
-    /* The folder and the effective scene first: a bad output folder fails at once,
-     * not after an hour of scanning. */
+    /* Every key, every material and the surface are checked, and the force laws built,
+     * before the folder is made: a refused scan leaves no folder and touches none. */
+    if ((rc = tt_config_scan(scene, &params)))
+        goto done;
+    rc = tt_scene_locate(scene, tt_scan_alloc(&scan, &params));
+    tt_config_scan_free(&params);
+    if (rc)
+        goto done;
+    /* Then the folder and the effective scene: a bad output folder fails at once, not
+     * after an hour of scanning. */
     if ((rc = tt_mkdirs(dir)))
         goto done;
     snprintf(path, sizeof path, "%s/scene.ini", dir);
@@ -188,8 +195,6 @@ int cmd_scan(int argc, char **argv)
     }
     if ((rc = tt_outfile_close(of, 1)))
         goto done;
-    if ((rc = tt_scan_alloc(&scan, scene)))
-        goto done;
     cli_catch_interrupt();
     rc = tt_scan_run(scan, threads, (!quiet && cli_progress_enabled()) ? show_progress : NULL, &t0);
     if (!quiet && cli_progress_enabled())
@@ -197,7 +202,7 @@ int cmd_scan(int argc, char **argv)
     if (tt_scan_lines_done(scan) > 0) {
         char saved[1024];
         snprintf(saved, sizeof saved, "%s", tt_error_message());
-        int wrc = write_outputs(scan, scene, dir);
+        int wrc = write_outputs(scan, &params.cantilever, dir);
         if (wrc && !rc)
             rc = wrc;
         else if (rc)

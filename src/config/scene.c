@@ -766,10 +766,35 @@ int tt_scene_fail(const tt_scene *s, const char *section, const char *name, cons
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     section_label(label, sizeof label, section, name);
+    if (!s && key)
+        return tt_error(TT_EINVAL, "[%s] %s: %s", label, key, msg);
+    if (!s)
+        return tt_error(TT_EINVAL, "[%s]: %s", label, msg);
     if (key)
         return tt_error(TT_EINVAL, "%s: [%s] %s: %s", origin_of(s, section, name, key), label, key,
                         msg);
     return tt_error(TT_EINVAL, "%s: [%s]: %s", origin_of(s, section, name, key), label, msg);
+}
+
+int tt_scene_locate(const tt_scene *s, int rc)
+{
+    const char *m = tt_error_message();
+    const char *close = m[0] == '[' ? strchr(m, ']') : NULL;
+    if (rc == TT_OK || !close)
+        return rc;
+    char section[128], name[128] = "", key[128] = "", msg[1024];
+    snprintf(section, sizeof section, "%.*s", (int)(close - m - 1), m + 1);
+    char *space = strchr(section, ' ');
+    if (space) {
+        snprintf(name, sizeof name, "%s", space + 1);
+        *space = '\0';
+    }
+    const char *colon = strchr(close, ':');
+    if (close[1] == ' ' && colon)
+        snprintf(key, sizeof key, "%.*s", (int)(colon - close - 2), close + 2);
+    snprintf(msg, sizeof msg, "%s", m);
+    return tt_error(rc, "%s: %s", origin_of(s, section, name[0] ? name : NULL, key[0] ? key : NULL),
+                    msg);
 }
 
 /* The value text and key description of section.key, or an error. */

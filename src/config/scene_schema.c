@@ -1,7 +1,12 @@
 /* The scene schema: every section and key tiptap reads, with unit, default, range and a
  * one-line description. docs/scene-format.md is written from the same facts; keep both
  * in step (tests/test_scene_doc checks that every key here is documented there). */
-#include "scene_schema_internal.h"
+#include <math.h>
+
+#include "tiptap/config/scene.h"
+
+#define TT_COUNT(a) (sizeof(a) / sizeof((a)[0]))
+#define TT_UNBOUNDED INFINITY
 
 #define Q(dims) TT_KEY_QUANTITY, (dims)
 #define POS TT_KEY_MIN_EXCL
@@ -98,6 +103,82 @@ static const tt_scene_key solver_keys[] = {
      "rk4: fixed steps per drive cycle"},
 };
 
+/* [surface], [lockin], [feedback]: imaging (tiptap scan). */
+static const tt_scene_key surface_keys[] = {
+    {"type", TT_KEY_ENUM, 0, "flat", 0, 0, 0, "flat|steps|grating|particles|rough|png",
+     "topography (docs/surfaces.md)"},
+    {"step_height", Q(TT_DIM_LENGTH), "1 nm", -INF, INF, 0, NULL, "steps: height of each step (up along x)"},
+    {"step_width", Q(TT_DIM_LENGTH), "250 nm", 0, INF, POS, NULL, "steps: terrace width"},
+    {"period", Q(TT_DIM_LENGTH), "500 nm", 0, INF, POS, NULL, "grating: period along x"},
+    {"duty", Q(TT_DIM_FRACTION | TT_DIM_NONE), "50 %", 0, 1, TT_KEY_MIN_EXCL | TT_KEY_MAX_EXCL, NULL,
+     "grating: raised fraction of a period"},
+    {"height", Q(TT_DIM_LENGTH), "20 nm", -INF, INF, 0, NULL, "grating: line height"},
+    {"edge_width", Q(TT_DIM_LENGTH), "0 nm", 0, INF, 0, NULL,
+     "grating: horizontal width of each sidewall (0: vertical)"},
+    {"particle_radius", Q(TT_DIM_LENGTH), "20 nm", 0, INF, POS, NULL,
+     "particles: sphere radius (a sphere on the flat rises 2 r)"},
+    {"particle_count", TT_KEY_INT, 0, "12", 0, 100000, 0, NULL, "particles: number, placed without overlap"},
+    {"rms", Q(TT_DIM_LENGTH), "1 nm", 0, INF, 0, NULL, "rough: RMS height"},
+    {"correlation_length", Q(TT_DIM_LENGTH), "50 nm", 0, INF, POS, NULL,
+     "rough: Gaussian correlation length (ACF exp(-r^2/L^2))"},
+    {"seed", TT_KEY_INT, 0, "1", 0, 2147483647, 0, NULL, "particles, rough: random seed"},
+    {"png", TT_KEY_STRING, 0, NULL, 0, 0, TT_KEY_PATH, NULL,
+     "png: grey height map (8 or 16 bit) spanning the scan area, top row at y = 0"},
+    {"png_height_range", Q(TT_DIM_LENGTH), "10 nm", -INF, INF, 0, NULL, "png: height of white above black"},
+    {"map", TT_KEY_ENUM, 0, "uniform", 0, 0, 0, "uniform|stripes|disks|checkerboard|islands|png",
+     "material map"},
+    {"map_materials", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
+     "materials of the map, background first: \"matrix, disk\" (default: the scene's first two)"},
+    {"map_period", Q(TT_DIM_LENGTH), "250 nm", 0, INF, POS, NULL,
+     "stripes, disks, checkerboard: period of the pattern"},
+    {"map_duty", Q(TT_DIM_FRACTION | TT_DIM_NONE), "50 %", 0, 1, TT_KEY_MIN_EXCL | TT_KEY_MAX_EXCL, NULL,
+     "stripes: fraction of a period of the second material"},
+    {"map_radius", Q(TT_DIM_LENGTH), "60 nm", 0, INF, POS, NULL, "disks: disk radius"},
+    {"map_png", TT_KEY_STRING, 0, NULL, 0, 0, TT_KEY_PATH, NULL,
+     "png map: each pixel's grey level or colour names a material through its map_value"},
+};
+
+static const tt_scene_key lockin_keys[] = {
+    {"time_constant", Q(TT_DIM_TIME), "100 us", 0, INF, 0, NULL,
+     "low-pass time constant of each filter section (0: none); a 1 Hz, 128-pixel line has 3.9 ms per pixel"},
+    {"filter_order", TT_KEY_INT, 0, "2", 1, 8, 0, NULL, "low-pass sections in cascade (6 dB/octave each)"},
+    {"samples_per_period", TT_KEY_INT, 0, "32", 8, 1024, 0, NULL, "deflection samples per drive period"},
+    {"harmonics", TT_KEY_INT, 0, "1", 1, 16, 0, NULL, "highest harmonic the lock-in offers to [scan] channels (1: the fundamental only)"},
+    {"periods_per_block", TT_KEY_INT, 0, "4", 1, 1000, 0, NULL,
+     "drive periods per transform, which is also the feedback's update interval"},
+};
+
+static const tt_scene_key feedback_keys[] = {
+    {"setpoint", Q(TT_DIM_LENGTH | TT_DIM_FRACTION), "80 %", 0, INF, POS, NULL,
+     "amplitude setpoint: a length, or a percentage of the free amplitude"},
+    {"proportional_gain", Q(TT_DIM_NONE), "0", 0, 1e6, 0, NULL,
+     "z moved per amplitude error, m/m (0: integral control only)"},
+    {"integral_gain", Q(TT_DIM_FREQUENCY), "1000 Hz", 0, INF, 0, NULL,
+     "z speed per amplitude error, (m/s)/m; keep ki below the amplitude bandwidth pi f0 / Q (2.4 kHz at 300 kHz, Q 400)"},
+    {"z_range", Q(TT_DIM_LENGTH), "2 um", 0, INF, POS, NULL,
+     "travel of the z piezo, centred on the surface's zero; the height clamps at its ends"},
+};
+
+/* [scan]: the raster and what a scan records. */
+static const tt_scene_key scan_keys[] = {
+    {"size", Q(TT_DIM_LENGTH), "1 um", 0, INF, POS, NULL, "scan size along x (and y unless size_y)"},
+    {"size_y", Q(TT_DIM_LENGTH), NULL, 0, INF, POS, NULL, "scan size along y (default: size)"},
+    {"pixels", TT_KEY_INT, 0, "128", 2, 16384, 0, NULL, "pixels per line (fast axis)"},
+    {"lines", TT_KEY_INT, 0, "128", 1, 16384, 0, NULL, "lines (slow axis)"},
+    {"line_rate", Q(TT_DIM_FREQUENCY), "1 Hz", 0, INF, POS, NULL,
+     "lines per second; each line is a trace and a retrace, half the period each"},
+    {"fast_axis", TT_KEY_ENUM, 0, "x", 0, 0, 0, "x|y", "direction of the fast scan"},
+    {"retrace", TT_KEY_BOOL, 0, "yes", 0, 0, 0, NULL, "record the retrace images too"},
+    {"channels", TT_KEY_STRING, 0, "height, amplitude, phase, peak_force, indentation, dissipation", 0,
+     0, 0, NULL,
+     "what to record: height, amplitude, phase, peak_force, indentation, dissipation, topography, "
+     "harmonic2 to harmonic8 (need [lockin] harmonics >= h), harmonic2_phase to harmonic8_phase"},
+    {"profile_line", TT_KEY_INT, 0, "-1", -1, 16383, 0, NULL,
+     "line written to profile.csv (-1: the middle line)"},
+    {"settle_cycles", TT_KEY_INT, 0, "3000", 0, 1e9, 0, NULL,
+     "drive cycles the feedback settles at each line's first pixel before the trace"},
+};
+
 static const tt_scene_section sections[] = {
     {"cantilever", 0, cantilever_keys, TT_COUNT(cantilever_keys),
      "the cantilever and its drive (seed eqs. 1, 2)"},
@@ -107,32 +188,15 @@ static const tt_scene_section sections[] = {
     {"approach", 0, approach_keys, TT_COUNT(approach_keys), "tiptap approach"},
     {"trace", 0, trace_keys, TT_COUNT(trace_keys), "tiptap trace"},
     {"solver", 0, solver_keys, TT_COUNT(solver_keys), "time integration"},
-    {"surface", 0, tt_schema_surface, 0, "sample topography and material map (tiptap scan)"},
-    {"scan", 0, tt_schema_scan, 0, "raster scan (tiptap scan)"},
-    {"lockin", 0, tt_schema_lockin, 0, "lock-in demodulator (tiptap scan)"},
-    {"feedback", 0, tt_schema_feedback, 0, "PI amplitude feedback (tiptap scan)"},
+    {"surface", 0, surface_keys, TT_COUNT(surface_keys), "sample topography and material map (tiptap scan)"},
+    {"scan", 0, scan_keys, TT_COUNT(scan_keys), "raster scan (tiptap scan)"},
+    {"lockin", 0, lockin_keys, TT_COUNT(lockin_keys), "lock-in demodulator (tiptap scan)"},
+    {"feedback", 0, feedback_keys, TT_COUNT(feedback_keys), "PI amplitude feedback (tiptap scan)"},
 };
 
+/* Static and constant: nothing to initialise, safe from any thread. */
 const tt_scene_section *tt_scene_schema(size_t *count)
 {
-    /* The imaging tables' sizes live in another translation unit; fill them in once. */
-    static tt_scene_section table[TT_COUNT(sections)];
-    static int ready = 0;
-    if (!ready) {
-        for (size_t i = 0; i < TT_COUNT(sections); i++)
-            table[i] = sections[i];
-        for (size_t i = 0; i < TT_COUNT(sections); i++) {
-            if (table[i].keys == tt_schema_surface)
-                table[i].nkeys = tt_schema_surface_count;
-            else if (table[i].keys == tt_schema_scan)
-                table[i].nkeys = tt_schema_scan_count;
-            else if (table[i].keys == tt_schema_lockin)
-                table[i].nkeys = tt_schema_lockin_count;
-            else if (table[i].keys == tt_schema_feedback)
-                table[i].nkeys = tt_schema_feedback_count;
-        }
-        ready = 1;
-    }
     *count = TT_COUNT(sections);
-    return table;
+    return sections;
 }

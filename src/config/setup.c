@@ -7,7 +7,50 @@
 #include <string.h>
 
 #include "tiptap/util/error.h"
-#include "tiptap/physics/material.h"
+#include "tiptap/config/config.h"
+
+struct tt_setup {
+    tt_scene *scene;
+    tt_cantilever cantilever;
+    tt_solver solver;
+    tt_sim *sim;
+    size_t nmaterials;
+    tt_material *materials; /* in scene order */
+    tt_contact **contacts;  /* every material's, built up front */
+    long current;           /* material under the tip, -1 for none */
+};
+
+/* Read every material again and rebuild the force laws of those which; which NULL:
+ * all of them. */
+static int build_materials(tt_setup *st, const char *which)
+{
+    tt_material *m;
+    size_t n;
+    int rc = tt_config_materials(st->scene, &m, &n);
+    if (rc)
+        return rc;
+    if (st->materials && n != st->nmaterials) {
+        free(m);
+        return tt_error(TT_EINVAL, "internal: the materials changed in number");
+    }
+    if (!st->contacts && !(st->contacts = calloc(n, sizeof *st->contacts))) {
+        free(m);
+        return tt_error(TT_ENOMEM, "out of memory");
+    }
+    free(st->materials);
+    st->materials = m;
+    st->nmaterials = n;
+    for (size_t i = 0; i < n; i++) {
+        if (which && strcmp(which, m[i].name) != 0)
+            continue;
+        tt_contact *c;
+        if (tt_contact_alloc(&c, &m[i].contact))
+            return tt_scene_fail(st->scene, "material", m[i].name, NULL, "%s", tt_error_message());
+        tt_contact_free(st->contacts[i]);
+        st->contacts[i] = c;
+    }
+    return TT_OK;
+}
 
 int tt_setup_alloc(tt_setup **out, tt_scene *scene)
 {
@@ -18,24 +61,9 @@ int tt_setup_alloc(tt_setup **out, tt_scene *scene)
     st->scene = scene;
     st->current = -1;
     int rc;
-    if ((rc = tt_cantilever_from_scene(&st->cantilever, scene)) ||
-        (rc = tt_solver_from_scene(&st->solver, scene))) {
-        free(st);
-        return rc;
-    }
-    st->nmaterials = tt_material_count(scene);
-    st->names = calloc(st->nmaterials, sizeof *st->names);
-    st->contacts = calloc(st->nmaterials, sizeof *st->contacts);
-    st->Qi = calloc(st->nmaterials, sizeof *st->Qi);
-    if (!st->names || !st->contacts || !st->Qi) {
-        tt_setup_free(st);
-        return tt_error(TT_ENOMEM, "out of memory");
-    }
-    for (size_t i = 0; i < st->nmaterials; i++) {
-        st->names[i] = tt_material_name(scene, i);
-        st->Qi[i] = NAN;
-    }
-    if ((rc = tt_sim_alloc(&st->sim, &st->cantilever, &st->solver))) {
+    if ((rc = tt_config_cantilever(scene, &st->cantilever)) ||
+        (rc = tt_solver_from_scene(&st->solver, scene)) || (rc = build_materials(st, NULL)) ||
+        (rc = tt_sim_alloc(&st->sim, &st->cantilever, &st->solver))) {
         tt_setup_free(st);
         return rc;
     }
@@ -47,13 +75,27 @@ void tt_setup_free(tt_setup *st)
 {
     if (!st)
         return;
-    for (size_t i = 0; i < st->nmaterials; i++)
-        tt_contact_free(st->contacts ? st->contacts[i] : NULL);
+    for (size_t i = 0; i < st->nmaterials && st->contacts; i++)
+        tt_contact_free(st->contacts[i]);
     free(st->contacts);
-    free(st->names);
-    free(st->Qi);
+    free(st->materials);
     tt_sim_free(st->sim);
     free(st);
+}
+
+tt_sim *tt_setup_sim(const tt_setup *st) { return st->sim; }
+const tt_cantilever *tt_setup_cantilever(const tt_setup *st) { return &st->cantilever; }
+const tt_solver *tt_setup_solver(const tt_setup *st) { return &st->solver; }
+size_t tt_setup_materials(const tt_setup *st) { return st->nmaterials; }
+
+const tt_material *tt_setup_material(const tt_setup *st, size_t i)
+{
+    return i < st->nmaterials ? &st->materials[i] : NULL;
+}
+
+const tt_contact *tt_setup_contact(const tt_setup *st, size_t i)
+{
+    return i < st->nmaterials ? st->contacts[i] : NULL;
 }
 
 int tt_setup_find_material(const tt_setup *st, const char *name, const char *key_section,
@@ -64,7 +106,7 @@ int tt_setup_find_material(const tt_setup *st, const char *name, const char *key
         return TT_OK;
     }
     for (size_t i = 0; i < st->nmaterials; i++)
-        if (strcmp(st->names[i], name) == 0) {
+        if (strcmp(st->materials[i].name, name) == 0) {
             *index = i;
             return TT_OK;
         }
@@ -72,32 +114,11 @@ int tt_setup_find_material(const tt_setup *st, const char *name, const char *key
                          "no [material %s] section in the scene", name);
 }
 
-static int build_material(tt_setup *st, size_t i)
-{
-    tt_contact_params p;
-    double Qi;
-    int rc = tt_material_params(st->scene, st->names[i], &p, &Qi);
-    if (rc)
-        return rc;
-    tt_contact *c;
-    if ((rc = tt_contact_alloc(&c, &p)))
-        return tt_scene_fail(st->scene, "material", st->names[i], NULL, "%s", tt_error_message());
-    tt_contact_free(st->contacts[i]);
-    st->contacts[i] = c;
-    st->Qi[i] = Qi;
-    return TT_OK;
-}
-
 int tt_setup_use_material(tt_setup *st, size_t i)
 {
     if (i >= st->nmaterials)
         return tt_error(TT_EINVAL, "material index %zu out of range", i);
-    if (!st->contacts[i]) {
-        int rc = build_material(st, i);
-        if (rc)
-            return rc;
-    }
-    tt_sim_set_contact(st->sim, st->contacts[i], st->Qi[i]);
+    tt_sim_set_contact(st->sim, st->contacts[i], st->materials[i].Qi);
     st->current = (long)i;
     return TT_OK;
 }
@@ -151,7 +172,7 @@ int tt_setup_apply(tt_setup *st, const char *key, double value)
         return rc;
     if (strcmp(section, "cantilever") == 0) {
         tt_cantilever c;
-        if ((rc = tt_cantilever_from_scene(&c, st->scene)))
+        if ((rc = tt_config_cantilever(st->scene, &c)))
             return rc;
         if (fabs(c.T - st->cantilever.T) > 1e-15 * st->cantilever.T)
             return tt_error(TT_EINVAL, "%s: a ramp may not change the drive frequency", key);
@@ -160,14 +181,12 @@ int tt_setup_apply(tt_setup *st, const char *key, double value)
         return TT_OK;
     }
     if (strcmp(section, "material") == 0 || strcmp(section, "tip") == 0) {
-        for (size_t i = 0; i < st->nmaterials; i++)
-            if (st->contacts[i] && (section[0] == 't' || strcmp(st->names[i], name) == 0)) {
-                if ((rc = build_material(st, i)))
-                    return rc;
-                /* the old force law is gone: the sim must hold the new one */
-                if ((long)i == st->current)
-                    tt_sim_set_contact(st->sim, st->contacts[i], st->Qi[i]);
-            }
+        if ((rc = build_materials(st, section[0] == 't' ? NULL : name)))
+            return rc;
+        /* the old force law is gone: the sim must hold the new one */
+        if (st->current >= 0 &&
+            (section[0] == 't' || strcmp(st->materials[st->current].name, name) == 0))
+            tt_sim_set_contact(st->sim, st->contacts[st->current], st->materials[st->current].Qi);
         return TT_OK;
     }
     return tt_error(TT_EINVAL, "%s: only [cantilever], [tip] and [material] keys can be ramped", key);

@@ -2,7 +2,6 @@
 #include "tiptap/instrument/accuracy.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,9 +9,6 @@
 
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
-#include "tiptap/instrument/scan.h"
-#include "tiptap/instrument/scanner.h"
-#include "tiptap/config/setup.h"
 
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -71,12 +67,14 @@ typedef struct {
 } run_result;
 
 struct tt_accuracy {
-    tt_scene *scene;   /* the study's own copy; [solver] keys change per run */
     tt_accuracy_kind kind;
     tt_accuracy_params p;
-    tt_setup *setup;   /* point: cantilever and force law, built once */
-    size_t material;
-    int has_contact;
+    tt_cantilever cantilever;
+    tt_solver solver;      /* the setting of the run under way (the default's at first) */
+    tt_contact *contact;   /* point: the force law, built once */
+    double Qi;
+    tt_scan_params scan;   /* line: the segment; its own copy of the materials */
+    tt_material *materials;
     double z;          /* point: rest separation */
     long cycles;
     double A0;
@@ -104,32 +102,22 @@ static double cpu_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* Put a setting into the study's scene: the knob is a [solver] key like any other, so
- * a method needs no code here beyond its ladder row. */
-static int apply_setting(tt_scene *s, tt_method m, const char *knob, double value)
+/* A solver's accuracy knob by the name of its [solver] key: a method joins the study
+ * with its ladder row and, for a new knob, a row here. */
+static int set_knob(tt_solver *sv, const char *knob, double value)
 {
-    char buf[128];
-    int rc;
-    snprintf(buf, sizeof buf, "solver.method=%s", tt_method_name(m));
-    if ((rc = tt_scene_set(s, buf)))
-        return rc;
-    snprintf(buf, sizeof buf, "solver.%s=%.17g", knob, value);
-    return tt_scene_set(s, buf);
+    if (strcmp(knob, "tolerance") == 0)
+        sv->tolerance = value;
+    else if (strcmp(knob, "steps_per_cycle") == 0)
+        sv->steps_per_cycle = (int)value;
+    else
+        return tt_error(TT_EINVAL, "the accuracy study knows no solver knob '%s'", knob);
+    return TT_OK;
 }
 
-/* A formatted "section.key=value" through the scene, so that it is validated as a
- * user's --set would be. */
-#if defined(__GNUC__)
-__attribute__((format(printf, 2, 3)))
-#endif
-static int set_key(tt_scene *s, const char *fmt, ...)
+static double get_knob(const tt_solver *sv, const char *knob)
 {
-    char buf[256];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(buf, sizeof buf, fmt, ap);
-    va_end(ap);
-    return tt_scene_set(s, buf);
+    return strcmp(knob, "steps_per_cycle") == 0 ? (double)sv->steps_per_cycle : sv->tolerance;
 }
 
 static int add_row(tt_accuracy *A, tt_accuracy_role role, tt_method m, const char *knob,
@@ -152,16 +140,14 @@ static int add_row(tt_accuracy *A, tt_accuracy_role role, tt_method m, const cha
     return TT_OK;
 }
 
-/* The scene's own setting: its method and the value of that method's knob. */
-static int scene_setting(const tt_scene *s, const tt_accuracy_ladder *lad, size_t nlad,
-                         tt_method *m, const char **knob, double *value)
+/* The subject's own setting: its method and the value of that method's knob. */
+static int own_setting(const tt_solver *own, const tt_accuracy_ladder *lad, size_t nlad,
+                       tt_method *m, const char **knob, double *value)
 {
-    tt_solver sv;
-    int rc = tt_solver_from_scene(&sv, s);
-    if (rc)
-        return rc;
+    tt_solver sv = *own;
     *m = sv.method;
     *knob = NULL;
+    *value = NAN;
     size_t n;
     const tt_accuracy_ladder *all = tt_accuracy_ladders(&n);
     for (size_t i = 0; i < nlad && !*knob; i++)
@@ -173,10 +159,11 @@ static int scene_setting(const tt_scene *s, const tt_accuracy_ladder *lad, size_
     if (!*knob)
         return tt_error(TT_EINVAL, "the accuracy study has no ladder for method %s",
                         tt_method_name(sv.method));
-    return tt_scene_get_double(s, "solver", NULL, *knob, value);
+    *value = get_knob(&sv, *knob);
+    return TT_OK;
 }
 
-/* Rows: reference, floor, then the ladders, with the scene's setting marked on its
+/* Rows: reference, floor, then the ladders, with the subject's setting marked on its
  * ladder, or put where it falls between two values when it is not one of them. */
 static int plan(tt_accuracy *A)
 {
@@ -188,7 +175,7 @@ static int plan(tt_accuracy *A)
     const char *dknob;
     double dval;
     int rc;
-    if ((rc = scene_setting(A->scene, lad, nlad, &dm, &dknob, &dval)) ||
+    if ((rc = own_setting(&A->solver, lad, nlad, &dm, &dknob, &dval)) ||
         (rc = add_row(A, TT_ACCURACY_REFERENCE, TT_METHOD_DOPRI5, "tolerance", A->p.ref_tolerance, 0)) ||
         (rc = add_row(A, TT_ACCURACY_FLOOR, TT_METHOD_DOPRI5, "tolerance", A->p.check_tolerance, 0)))
         return rc;
@@ -228,48 +215,45 @@ static int plan(tt_accuracy *A)
     return TT_OK;
 }
 
-/* The line segment: the scene's first pixels of its middle line, with its pixel size
+/* The line segment: the scan's first pixels of its middle line, with its pixel size
  * and its time per pixel, so that a pixel sees what it would see in the full scan. */
-static int make_segment(tt_accuracy *A)
+static int make_segment(tt_accuracy *A, const tt_scan_params *scan)
 {
-    tt_raster r;
-    int rc;
-    if ((rc = tt_raster_from_scene(&r, A->scene)))
-        return rc;
+    tt_raster r = scan->raster;
     long P = A->p.line_pixels;
     if (P < 2)
         return tt_error(TT_EINVAL, "a scan line needs at least 2 pixels (got %ld)", P);
+    A->materials = malloc(scan->nmaterials * sizeof *A->materials);
+    if (!A->materials)
+        return tt_error(TT_ENOMEM, "out of memory");
+    memcpy(A->materials, scan->materials, scan->nmaterials * sizeof *A->materials);
+    A->scan = *scan;
+    A->scan.materials = A->materials;
     double frac = (double)P / (double)r.pixels;
-    double rate = r.line_rate / frac;
-    if ((rc = set_key(A->scene, "scan.pixels=%ld", P)) || (rc = set_key(A->scene, "scan.lines=1")) ||
-        (rc = set_key(A->scene, "scan.profile_line=-1")) ||
-        (rc = set_key(A->scene, "scan.channels=height")) ||
-        (rc = set_key(A->scene, "scan.line_rate=%.17g Hz", rate)))
-        return rc;
+    A->scan.raster.pixels = P;
+    A->scan.raster.lines = 1;
+    A->scan.raster.line_rate = r.line_rate / frac;
     if (r.fast_y)
-        rc = set_key(A->scene, "scan.size_y=%.17g m", r.size_y * frac);
+        A->scan.raster.size_y = r.size_y * frac;
     else
-        rc = set_key(A->scene, "scan.size=%.17g m", r.size_x * frac);
-    if (!rc)
-        rc = set_key(A->scene, r.fast_y ? "scan.size=%.17g m" : "scan.size_y=%.17g m",
-                     r.fast_y ? r.size_x : r.size_y);
+        A->scan.raster.size_x = r.size_x * frac;
+    A->scan.profile_line = -1;
+    A->scan.channels = TT_CH_HEIGHT;
     A->nprofile = (size_t)P * (r.retrace ? 2 : 1);
-    return rc;
+    return TT_OK;
 }
 
-int tt_accuracy_alloc(tt_accuracy **out, const tt_scene *scene, const tt_accuracy_params *p)
+int tt_accuracy_alloc(tt_accuracy **out, const tt_accuracy_subject *subject,
+                      const tt_accuracy_params *p)
 {
     *out = NULL;
     tt_accuracy *A = calloc(1, sizeof *A);
     if (!A)
         return tt_error(TT_ENOMEM, "out of memory");
     A->p = *p;
+    A->cantilever = subject->cantilever;
+    A->solver = subject->solver;
     int rc = TT_OK;
-    A->scene = tt_scene_copy(scene);
-    if (!A->scene) {
-        rc = tt_error(TT_ENOMEM, "out of memory");
-        goto fail;
-    }
     if (!(A->p.repeats >= 1))
         A->p.repeats = 1;
     if (!(A->p.ref_tolerance > 0 && A->p.check_tolerance > A->p.ref_tolerance)) {
@@ -278,41 +262,30 @@ int tt_accuracy_alloc(tt_accuracy **out, const tt_scene *scene, const tt_accurac
     }
     A->kind = p->kind;
     if (A->kind == TT_ACCURACY_AUTO)
-        A->kind = (!isfinite(p->point) && tt_scene_has_section(scene, "scan", NULL)) ? TT_ACCURACY_LINE
-                                                                                    : TT_ACCURACY_POINT;
-    tt_cantilever c;
-    if ((rc = tt_cantilever_from_scene(&c, A->scene)))
-        goto fail;
-    A->A0 = c.A0;
+        A->kind = (!isfinite(p->point) && subject->has_scan) ? TT_ACCURACY_LINE : TT_ACCURACY_POINT;
+    const tt_cantilever *c = &subject->cantilever;
+    A->A0 = c->A0;
     if (A->kind == TT_ACCURACY_LINE) {
-        if ((rc = make_segment(A)))
+        if (!subject->has_scan) {
+            rc = tt_error(TT_EINVAL, "a scan line study needs a scan");
+            goto fail;
+        }
+        if ((rc = make_segment(A, &subject->scan)))
             goto fail;
     } else {
-        A->cycles = p->cycles > 0 ? p->cycles : (long)ceil(c.Q * log(1e8) / M_PI);
+        A->cycles = p->cycles > 0 ? p->cycles : (long)ceil(c->Q * log(1e8) / M_PI);
         if (A->cycles < 10)
             A->cycles = 10;
         A->z = p->point;
-        if (!isfinite(A->z)) {
-            long npts = 0;
-            if (tt_scene_has_section(scene, "approach", NULL) &&
-                (rc = tt_scene_get_int(A->scene, "approach", NULL, "points", &npts)))
-                goto fail;
-            if (npts == 1) {
-                if ((rc = tt_scene_get_double(A->scene, "approach", NULL, "from", &A->z)))
-                    goto fail;
-            } else {
-                A->z = 0.8 * c.A0;
-            }
+        if (!isfinite(A->z))
+            A->z = isfinite(subject->approach_point) ? subject->approach_point : 0.8 * c->A0;
+        A->Qi = subject->material.Qi;
+        if (tt_contact_alloc(&A->contact, &subject->material.contact)) {
+            char why[512];
+            snprintf(why, sizeof why, "%s", tt_error_message());
+            rc = tt_error(TT_EINVAL, "[material %s]: %s", subject->material.name, why);
+            goto fail;
         }
-        if ((rc = tt_setup_alloc(&A->setup, A->scene)))
-            goto fail;
-        A->has_contact = A->setup->nmaterials > 0;
-        if (A->has_contact &&
-            ((rc = tt_setup_find_material(A->setup,
-                                          tt_scene_get_string(A->scene, "approach", NULL, "material"),
-                                          "approach", "material", &A->material)) ||
-             (rc = tt_setup_use_material(A->setup, A->material))))
-            goto fail;
     }
     if ((rc = plan(A)))
         goto fail;
@@ -328,8 +301,8 @@ void tt_accuracy_free(tt_accuracy *A)
 {
     if (!A)
         return;
-    tt_setup_free(A->setup);
-    tt_scene_free(A->scene);
+    tt_contact_free(A->contact);
+    free(A->materials);
     free(A->ref.profile);
     free(A->rows);
     free(A);
@@ -339,14 +312,11 @@ void tt_accuracy_free(tt_accuracy *A)
  * setting; only the integration is timed. */
 static int run_point(tt_accuracy *A, run_result *res)
 {
-    tt_solver sv;
     tt_sim *sim = NULL;
     int rc;
-    if ((rc = tt_solver_from_scene(&sv, A->scene)) ||
-        (rc = tt_sim_alloc(&sim, &A->setup->cantilever, &sv)))
+    if ((rc = tt_sim_alloc(&sim, &A->cantilever, &A->solver)))
         return rc;
-    if (A->has_contact)
-        tt_sim_set_contact(sim, A->setup->contacts[A->material], A->setup->Qi[A->material]);
+    tt_sim_set_contact(sim, A->contact, A->Qi);
     tt_sim_set_sample(sim, A->z, 0);
     tt_sim_reset_free(sim);
     long steps = 0;
@@ -382,7 +352,8 @@ static int run_point(tt_accuracy *A, run_result *res)
 static int run_line(tt_accuracy *A, run_result *res)
 {
     tt_scan *scan = NULL;
-    int rc = tt_scan_alloc(&scan, A->scene);
+    A->scan.solver = A->solver;
+    int rc = tt_scan_alloc(&scan, &A->scan);
     if (rc)
         return rc;
     double t0 = now(), c0 = cpu_now();
@@ -410,7 +381,8 @@ static int run_line(tt_accuracy *A, run_result *res)
 
 static int run_setting(tt_accuracy *A, const tt_accuracy_row *row, run_result *res)
 {
-    int rc = apply_setting(A->scene, row->method, row->knob, row->value);
+    A->solver.method = row->method;
+    int rc = set_knob(&A->solver, row->knob, row->value);
     if (rc)
         return rc;
     return A->kind == TT_ACCURACY_LINE ? run_line(A, res) : run_point(A, res);
@@ -439,7 +411,7 @@ static void compare(tt_accuracy *A, tt_accuracy_row *row, const run_result *res)
         return;
     }
     const tt_cycle *c = &res->last, *r = &A->ref.last;
-    const tt_cantilever *cl = &A->setup->cantilever;
+    const tt_cantilever *cl = &A->cantilever;
     double dphi = remainder(c->phase - r->phase, 2 * M_PI);
     row->err[0] = rel(c->amplitude, r->amplitude, r->amplitude, A->A0);
     row->err[1] = fabs(dphi) * 180 / M_PI;

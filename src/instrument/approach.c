@@ -16,26 +16,6 @@ struct tt_approach {
     double dz_cycle;       /* sample travel per cycle, m (signed) */
 };
 
-int tt_approach_params_from_scene(tt_approach_params *p, const tt_scene *s)
-{
-    int rc;
-    const char *mode = tt_scene_get_string(s, "approach", NULL, "mode");
-    p->mode = (mode && strcmp(mode, "ramp") == 0) ? TT_APPROACH_RAMP : TT_APPROACH_STEADY;
-    const char *steady = tt_scene_get_string(s, "approach", NULL, "steady");
-    p->steady = (steady && strcmp(steady, "settle") == 0) ? TT_STEADY_SETTLE : TT_STEADY_SHOOTING;
-    if ((rc = tt_scene_get_double(s, "approach", NULL, "from", &p->from)) ||
-        (rc = tt_scene_get_double(s, "approach", NULL, "to", &p->to)) ||
-        (rc = tt_scene_get_int(s, "approach", NULL, "points", &p->points)) ||
-        (rc = tt_scene_get_bool(s, "approach", NULL, "retract", &p->retract)) ||
-        (rc = tt_scene_get_double(s, "approach", NULL, "speed", &p->speed)) ||
-        (rc = tt_scene_get_int(s, "approach", NULL, "max_cycles", &p->max_cycles)) ||
-        (rc = tt_scene_get_double(s, "approach", NULL, "settle_tolerance", &p->settle_tolerance)))
-        return rc;
-    if (p->points > 1 && p->from == p->to)
-        return tt_scene_fail(s, "approach", NULL, "to", "equals 'from'; an approach needs a range");
-    return TT_OK;
-}
-
 int tt_approach_alloc(tt_approach **out, tt_sim *sim, const tt_approach_params *p)
 {
     *out = NULL;

@@ -9,11 +9,6 @@
 
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
-#include "tiptap/instrument/feedback.h"
-#include "tiptap/instrument/lockin.h"
-#include "tiptap/instrument/scanner.h"
-#include "tiptap/config/setup.h"
-#include "tiptap/instrument/surface.h"
 
 static const struct {
     const char *name, *unit;
@@ -81,14 +76,18 @@ int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t l
 
 /* One thread's workspace: its own simulation, lock-in and sample buffer. */
 typedef struct {
-    tt_setup *setup;
+    tt_sim *sim;
     tt_lockin *lockin;
     tt_sample *samples;
     double *y;
 } worker;
 
 struct tt_scan {
-    tt_scene *scene;
+    tt_cantilever cantilever;
+    tt_solver solver;
+    size_t nmaterials;
+    tt_contact **contacts; /* every material's force law, shared by the threads */
+    double *Qi;
     tt_raster raster;
     tt_surface *surface;
     int uniform, flat;
@@ -111,84 +110,68 @@ struct tt_scan {
     char message[1024];
 };
 
-static int get_keys(tt_scan *S)
+/* Every material's force law, built before any line runs. */
+static int build_contacts(tt_scan *S, const tt_material *m, size_t n)
 {
-    tt_scene *sc = S->scene;
-    int rc;
-    char why[256];
-    if ((rc = tt_raster_from_scene(&S->raster, sc)))
-        return rc;
-    const char *ch = tt_scene_get_string(sc, "scan", NULL, "channels");
-    if (tt_scan_channels_parse(ch ? ch : "height", &S->channels, why, sizeof why) != 0)
-        return tt_scene_fail(sc, "scan", NULL, "channels", "%s", why);
-    if ((rc = tt_scene_get_int(sc, "scan", NULL, "settle_cycles", &S->settle_cycles)) ||
-        (rc = tt_scene_get_int(sc, "scan", NULL, "profile_line", &S->profile_line)))
-        return rc;
-    if (S->profile_line < 0)
-        S->profile_line = S->raster.lines / 2;
-    if (S->profile_line >= S->raster.lines)
-        return tt_scene_fail(sc, "scan", NULL, "profile_line", "%ld is past the last line (%ld)",
-                             S->profile_line, S->raster.lines - 1);
-    /* lock-in */
-    long spp, order, harm, ppb;
-    if ((rc = tt_scene_get_double(sc, "lockin", NULL, "time_constant", &S->lockin.time_constant)) ||
-        (rc = tt_scene_get_int(sc, "lockin", NULL, "filter_order", &order)) ||
-        (rc = tt_scene_get_int(sc, "lockin", NULL, "samples_per_period", &spp)) ||
-        (rc = tt_scene_get_int(sc, "lockin", NULL, "harmonics", &harm)) ||
-        (rc = tt_scene_get_int(sc, "lockin", NULL, "periods_per_block", &ppb)))
-        return rc;
-    S->lockin.samples_per_period = (int)spp;
-    S->lockin.filter_order = (int)order;
-    S->lockin.periods_per_block = (int)ppb;
-    if (2 * harm >= spp)
-        return tt_scene_fail(sc, "lockin", NULL, "harmonics",
-                             "%ld harmonics need more than %ld samples per period "
-                             "([lockin] samples_per_period is %ld)",
-                             harm, 2 * harm, spp);
-    /* [lockin] harmonics is what the lock-in offers; it demodulates only up to the
-     * highest harmonic a channel records, since nothing else reads the rest. */
-    S->lockin.harmonics = 1;
-    for (int c = 0; c < TT_CH_COUNT; c++)
-        if ((S->channels & (1u << c)) && tt_scan_channel_harmonic(c) > S->lockin.harmonics)
-            S->lockin.harmonics = tt_scan_channel_harmonic(c);
-    if (S->lockin.harmonics > harm)
-        return tt_scene_fail(sc, "scan", NULL, "channels",
-                             "harmonic%d needs [lockin] harmonics = %d or more (it is %ld)",
-                             S->lockin.harmonics, S->lockin.harmonics, harm);
-    /* feedback */
-    tt_dim dim;
-    if ((rc = tt_scene_get_quantity(sc, "feedback", NULL, "setpoint", &S->setpoint, &dim)) ||
-        (rc = tt_scene_get_double(sc, "feedback", NULL, "proportional_gain", &S->kp)) ||
-        (rc = tt_scene_get_double(sc, "feedback", NULL, "integral_gain", &S->ki)) ||
-        (rc = tt_scene_get_double(sc, "feedback", NULL, "z_range", &S->z_range)))
-        return rc;
-    tt_cantilever c;
-    if ((rc = tt_cantilever_from_scene(&c, sc)))
-        return rc;
-    S->A0 = c.A0;
-    S->lockin.drive_frequency = c.fd;
-    if (dim == TT_DIM_FRACTION) {
-        if (!(S->setpoint > 0 && S->setpoint < 1))
-            return tt_scene_fail(sc, "feedback", NULL, "setpoint",
-                                 "a percentage must lie between 0 and 100 %% (exclusive)");
-        S->setpoint *= c.A0;
-    } else if (!(S->setpoint > 0 && S->setpoint < c.A0)) {
-        return tt_scene_fail(sc, "feedback", NULL, "setpoint",
-                             "must lie between 0 and the free amplitude (%g nm)", c.A0 * 1e9);
+    S->nmaterials = n;
+    S->contacts = calloc(n, sizeof *S->contacts);
+    S->Qi = calloc(n, sizeof *S->Qi);
+    if (!S->contacts || !S->Qi)
+        return tt_error(TT_ENOMEM, "out of memory");
+    for (size_t i = 0; i < n; i++) {
+        S->Qi[i] = m[i].Qi;
+        if (tt_contact_alloc(&S->contacts[i], &m[i].contact)) {
+            char why[512];
+            snprintf(why, sizeof why, "%s", tt_error_message());
+            return tt_error(TT_EINVAL, "[material %s]: %s", m[i].name, why);
+        }
     }
     return TT_OK;
 }
 
-int tt_scan_alloc(tt_scan **out, tt_scene *scene)
+/* Copy the parameters; the lock-in demodulates only up to the highest harmonic a
+ * channel records, since nothing else reads the rest. */
+static int take_params(tt_scan *S, const tt_scan_params *p)
+{
+    S->cantilever = p->cantilever;
+    S->solver = p->solver;
+    S->raster = p->raster;
+    S->channels = p->channels;
+    S->settle_cycles = p->settle_cycles;
+    S->profile_line = p->profile_line < 0 ? S->raster.lines / 2 : p->profile_line;
+    if (S->profile_line >= S->raster.lines)
+        return tt_error(TT_EINVAL, "[scan] profile_line: %ld is past the last line (%ld)",
+                        S->profile_line, S->raster.lines - 1);
+    S->lockin = p->lockin;
+    S->lockin.drive_frequency = p->cantilever.fd;
+    S->lockin.harmonics = 1;
+    for (int c = 0; c < TT_CH_COUNT; c++)
+        if ((S->channels & (1u << c)) && tt_scan_channel_harmonic(c) > S->lockin.harmonics)
+            S->lockin.harmonics = tt_scan_channel_harmonic(c);
+    if (S->lockin.harmonics > p->lockin.harmonics)
+        return tt_error(TT_EINVAL, "[scan] channels: harmonic%d needs [lockin] harmonics = %d or more (it is %d)",
+                        S->lockin.harmonics, S->lockin.harmonics, p->lockin.harmonics);
+    S->setpoint = p->feedback.setpoint;
+    S->kp = p->feedback.kp;
+    S->ki = p->feedback.ki;
+    S->z_range = p->feedback.z_range;
+    S->A0 = p->cantilever.A0;
+    if (p->nmaterials < 1)
+        return tt_error(TT_EINVAL, "a scan needs at least one material");
+    return TT_OK;
+}
+
+int tt_scan_alloc(tt_scan **out, const tt_scan_params *p)
 {
     *out = NULL;
     tt_scan *S = calloc(1, sizeof *S);
     if (!S)
         return tt_error(TT_ENOMEM, "out of memory");
-    S->scene = scene;
     int rc;
-    if ((rc = get_keys(S)) ||
-        (rc = tt_surface_alloc(&S->surface, scene, S->raster.size_x, S->raster.size_y))) {
+    if ((rc = take_params(S, p)) ||
+        (rc = tt_surface_alloc(&S->surface, &p->surface, p->materials, p->nmaterials,
+                               S->raster.size_x, S->raster.size_y)) ||
+        (rc = build_contacts(S, p->materials, p->nmaterials))) {
         tt_scan_free(S);
         return rc;
     }
@@ -225,12 +208,16 @@ void tt_scan_free(tt_scan *S)
             free(S->img[r][c]);
     free(S->line_done);
     tt_surface_free(S->surface);
+    for (size_t i = 0; i < S->nmaterials && S->contacts; i++)
+        tt_contact_free(S->contacts[i]);
+    free(S->contacts);
+    free(S->Qi);
     free(S);
 }
 
 static void worker_free(worker *W)
 {
-    tt_setup_free(W->setup);
+    tt_sim_free(W->sim);
     tt_lockin_free(W->lockin);
     free(W->samples);
     free(W->y);
@@ -240,7 +227,8 @@ static int worker_alloc(tt_scan *S, worker *W)
 {
     memset(W, 0, sizeof *W);
     int rc;
-    if ((rc = tt_setup_alloc(&W->setup, S->scene)) || (rc = tt_lockin_alloc(&W->lockin, &S->lockin)))
+    if ((rc = tt_sim_alloc(&W->sim, &S->cantilever, &S->solver)) ||
+        (rc = tt_lockin_alloc(&W->lockin, &S->lockin)))
         return rc;
     size_t n = (size_t)S->lockin.samples_per_period * (size_t)S->lockin.periods_per_block;
     W->samples = calloc(n, sizeof *W->samples);
@@ -269,21 +257,19 @@ static double lag(double X, double Y)
 static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *worst, int *clamped)
 {
     const tt_raster *R = &S->raster;
-    tt_setup *st = W->setup;
-    tt_sim *sim = st->sim;
-    const tt_cantilever *c = &st->cantilever;
+    tt_sim *sim = W->sim;
+    const tt_cantilever *c = &S->cantilever;
     const double T = c->T;
     const int P = S->lockin.periods_per_block, N = S->lockin.samples_per_period;
     const long nc = tt_raster_cycles_per_direction(R, T);
     const double h_ref = 0; /* heights are reported against the surface's own zero */
-    int rc;
+    int rc = TT_OK;
 
     double x, y;
     tt_raster_position(R, line, 0, nc, 0, &x, &y);
     double h0 = tt_surface_height(S->surface, x, y);
     size_t mat = S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
-    if ((rc = tt_setup_use_material(st, mat)))
-        return rc;
+    tt_sim_set_contact(sim, S->contacts[mat], S->Qi[mat]);
     size_t current = mat;
 
     /* Engage: the rest separation of a free tip whose amplitude the surface limits to
@@ -329,8 +315,7 @@ static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *wor
                 if (!S->uniform) {
                     size_t m = (size_t)tt_surface_material(S->surface, xa, ya);
                     if (m != current) {
-                        if ((rc = tt_setup_use_material(st, m)))
-                            break;
+                        tt_sim_set_contact(sim, S->contacts[m], S->Qi[m]);
                         current = m;
                     }
                 }

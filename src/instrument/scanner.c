@@ -2,28 +2,6 @@
 #include "tiptap/instrument/scanner.h"
 
 #include <math.h>
-#include <string.h>
-
-#include "tiptap/util/error.h"
-
-int tt_raster_from_scene(tt_raster *r, const tt_scene *s)
-{
-    int rc;
-    memset(r, 0, sizeof *r);
-    if ((rc = tt_scene_get_double(s, "scan", NULL, "size", &r->size_x)) ||
-        (rc = tt_scene_get_int(s, "scan", NULL, "pixels", &r->pixels)) ||
-        (rc = tt_scene_get_int(s, "scan", NULL, "lines", &r->lines)) ||
-        (rc = tt_scene_get_double(s, "scan", NULL, "line_rate", &r->line_rate)) ||
-        (rc = tt_scene_get_bool(s, "scan", NULL, "retrace", &r->retrace)))
-        return rc;
-    r->size_y = r->size_x;
-    if (tt_scene_has(s, "scan", NULL, "size_y") &&
-        (rc = tt_scene_get_double(s, "scan", NULL, "size_y", &r->size_y)))
-        return rc;
-    const char *fast = tt_scene_get_string(s, "scan", NULL, "fast_axis");
-    r->fast_y = fast && strcmp(fast, "y") == 0;
-    return TT_OK;
-}
 
 long tt_raster_cycles_per_direction(const tt_raster *r, double period)
 {

@@ -10,7 +10,6 @@
 #include <string.h>
 
 #include "tiptap/util/error.h"
-#include "tiptap/physics/material.h"
 
 typedef enum { S_FLAT, S_STEPS, S_GRATING, S_PARTICLES, S_ROUGH, S_PNG } shape;
 typedef enum { M_UNIFORM, M_STRIPES, M_DISKS, M_CHECKER, M_ISLANDS, M_PNG } mapkind;
@@ -122,12 +121,12 @@ static int decode_png(FILE *f, png_fault *e, unsigned char **data, png_uint_32 *
  * 65535), without gamma conversion: as RGB (want_rgb) or as grey, where a colour pixel is
  * refused. A transparent pixel is refused: there is no height or material behind it.
  * Errors name the file, the section and the key. */
-static int read_png(const tt_scene *sc, const char *key, const char *path, int want_rgb,
+static int read_png(const char *key, const char *path, int want_rgb,
                     unsigned short **pix, int *w, int *h, int *maxval)
 {
     FILE *f = fopen(path, "rb");
     if (!f)
-        return tt_scene_fail(sc, "surface", NULL, key, "%s: cannot read as PNG: %s", path,
+        return tt_error(TT_EINVAL, "[surface] %s: %s: cannot read as PNG: %s", key, path,
                              strerror(errno));
     png_fault e = {""};
     unsigned char *data = NULL;
@@ -136,7 +135,7 @@ static int read_png(const tt_scene *sc, const char *key, const char *path, int w
     int bad = decode_png(f, &e, &data, &W, &H, &nch, &depth);
     fclose(f);
     if (bad)
-        return tt_scene_fail(sc, "surface", NULL, key, "%s: cannot read as PNG: %s", path, e.msg);
+        return tt_error(TT_EINVAL, "[surface] %s: %s: cannot read as PNG: %s", key, path, e.msg);
     size_t n = (size_t)W * H, ch = want_rgb ? 3 : 1;
     unsigned max = depth == 16 ? 65535 : 255;
     int alpha = nch == 2 || nch == 4, rc = TT_OK;
@@ -153,13 +152,11 @@ static int read_png(const tt_scene *sc, const char *key, const char *path, int w
         }
         unsigned r = s[0], g = nch >= 3 ? s[1] : s[0], b = nch >= 3 ? s[2] : s[0];
         if (alpha && s[nch - 1] != max)
-            rc = tt_scene_fail(sc, "surface", NULL, key,
-                               "%s: pixel (%zu, %zu) is transparent (alpha %u of %u); a map must "
-                               "be opaque", path, k % W, k / W, s[nch - 1], max);
+            rc = tt_error(TT_EINVAL, "[surface] %s: %s: pixel (%zu, %zu) is transparent (alpha %u of %u); a map must "
+                               "be opaque", key, path, k % W, k / W, s[nch - 1], max);
         else if (!want_rgb && (r != g || g != b))
-            rc = tt_scene_fail(sc, "surface", NULL, key,
-                               "%s: pixel (%zu, %zu) has colour (%u, %u, %u); a height map is grey",
-                               path, k % W, k / W, r, g, b);
+            rc = tt_error(TT_EINVAL, "[surface] %s: %s: pixel (%zu, %zu) has colour (%u, %u, %u); a height map is grey",
+                               key, path, k % W, k / W, r, g, b);
         else if (want_rgb) {
             (*pix)[3 * k] = (unsigned short)r;
             (*pix)[3 * k + 1] = (unsigned short)g;
@@ -198,34 +195,12 @@ static double rng_gauss(unsigned long long *s)
     return sqrt(-2 * log(u + 1e-300)) * cos(2 * M_PI * v);
 }
 
-static int material_index(const tt_scene *sc, const char *name, size_t len, int *out)
-{
-    for (size_t i = 0; i < tt_material_count(sc); i++) {
-        const char *m = tt_material_name(sc, i);
-        if (strlen(m) == len && strncmp(m, name, len) == 0) {
-            *out = (int)i;
-            return TT_OK;
-        }
-    }
-    return tt_scene_fail(sc, "surface", NULL, "map_materials", "no [material %.*s] in the scene", (int)len,
-                         name);
-}
-
-static int get_d(const tt_scene *sc, const char *key, double *v)
-{
-    return tt_scene_get_double(sc, "surface", NULL, key, v);
-}
-
 /* ---- topography ---- */
 
-static int build_particles(tt_surface *S, const tt_scene *sc)
+static int build_particles(tt_surface *S, const tt_surface_params *p)
 {
-    long n, seed;
-    int rc;
-    if ((rc = get_d(sc, "particle_radius", &S->pr)) ||
-        (rc = tt_scene_get_int(sc, "surface", NULL, "particle_count", &n)) ||
-        (rc = tt_scene_get_int(sc, "surface", NULL, "seed", &seed)))
-        return rc;
+    long n = p->particle_count, seed = p->seed;
+    S->pr = p->particle_radius;
     S->px = malloc(((size_t)n + 1) * sizeof *S->px);
     S->py = malloc(((size_t)n + 1) * sizeof *S->py);
     if (!S->px || !S->py)
@@ -244,9 +219,10 @@ static int build_particles(tt_surface *S, const tt_scene *sc)
         }
     }
     if (S->np < n)
-        return tt_scene_fail(sc, "surface", NULL, "particle_count",
-                             "%ld spheres of radius %g nm do not fit in the scan area without overlap",
-                             n, r * 1e9);
+        return tt_error(TT_EINVAL,
+                        "[surface] particle_count: %ld spheres of radius %g nm do not fit in the "
+                        "scan area without overlap",
+                        n, r * 1e9);
     /* bin the centres in cells 2 r wide: a look-up checks only its own and the
      * neighbouring cells */
     S->ncx = (int)ceil(S->sx / (2 * r)) + 1;
@@ -300,14 +276,10 @@ static double particle_at(const tt_surface *S, double x, double y)
     return best;
 }
 
-static int build_rough(tt_surface *S, const tt_scene *sc)
+static int build_rough(tt_surface *S, const tt_surface_params *sp)
 {
-    double rms, L;
-    long seed;
-    int rc;
-    if ((rc = get_d(sc, "rms", &rms)) || (rc = get_d(sc, "correlation_length", &L)) ||
-        (rc = tt_scene_get_int(sc, "surface", NULL, "seed", &seed)))
-        return rc;
+    double rms = sp->rms, L = sp->correlation_length;
+    long seed = sp->seed;
     /* a periodic grid fine enough to resolve the correlation length */
     int n = 256;
     while (n < 2048 && fmax(S->sx, S->sy) / n > L / 4)
@@ -352,16 +324,12 @@ static int build_rough(tt_surface *S, const tt_scene *sc)
     return TT_OK;
 }
 
-static int build_png_height(tt_surface *S, const tt_scene *sc)
+static int build_png_height(tt_surface *S, const tt_surface_params *p)
 {
-    char path[4096];
-    double range;
+    double range = p->png_height_range;
     int rc, maxv;
     unsigned short *pix = NULL;
-    if ((rc = tt_scene_get_path(sc, "surface", NULL, "png", path, sizeof path)) ||
-        (rc = get_d(sc, "png_height_range", &range)))
-        return rc;
-    if ((rc = read_png(sc, "png", path, 0, &pix, &S->gw, &S->gh, &maxv)))
+    if ((rc = read_png("png", p->png, 0, &pix, &S->gw, &S->gh, &maxv)))
         return rc;
     S->grid = fftw_alloc_real((size_t)S->gw * S->gh);
     if (!S->grid) {
@@ -460,60 +428,46 @@ int tt_surface_flat(const tt_surface *S) { return S->type == S_FLAT; }
 
 /* ---- material map ---- */
 
-/* A map_value as the pixel it names in a map of maxval (255 or 65535), packed r, g, b:
- * a grey level is taken at the map's own depth, a colour #rrggbb scaled to it. */
-static int parse_map_value(const char *v, unsigned maxval, unsigned long long *key)
+/* A material's map_value as the pixel it names in a map of maxval (255 or 65535),
+ * packed r, g, b: a grey level is taken at the map's own depth, a colour #rrggbb scaled
+ * to it. -1 when the grey level is beyond the map's depth. */
+static int map_key(const tt_material *m, unsigned maxval, unsigned long long *key)
 {
-    unsigned r, g, b;
-    char *end;
-    if (v[0] == '#' && strlen(v) == 7 && sscanf(v + 1, "%2x%2x%2x", &r, &g, &b) == 3) {
-        unsigned k = maxval / 255;
-        *key = (unsigned long long)r * k << 32 | (unsigned long long)g * k << 16 | b * k;
-        return 0;
+    if (m->map_grey >= 0) {
+        unsigned long long l = (unsigned long long)m->map_grey;
+        *key = l << 32 | l << 16 | l;
+        return m->map_grey <= (long)maxval ? 0 : -1;
     }
-    long l = strtol(v, &end, 10);
-    if (end != v && *end == '\0' && l >= 0 && l <= (long)maxval) {
-        *key = (unsigned long long)l << 32 | (unsigned long long)l << 16 | (unsigned long long)l;
-        return 0;
-    }
-    return -1;
+    unsigned long long k = maxval / 255, c = (unsigned long long)m->map_rgb;
+    *key = (c >> 16 & 255) * k << 32 | (c >> 8 & 255) * k << 16 | (c & 255) * k;
+    return 0;
 }
 
-static int build_png_map(tt_surface *S, const tt_scene *sc)
+static int build_png_map(tt_surface *S, const tt_surface_params *p, const tt_material *mat,
+                         size_t nm)
 {
-    char path[4096];
     int rc, maxv;
     unsigned short *pix = NULL;
-    size_t nm = tt_material_count(sc);
-    unsigned long long *rgb = malloc((nm ? nm : 1) * sizeof *rgb), none = ~0ULL;
-    if (!rgb)
-        return tt_error(TT_ENOMEM, "out of memory");
-    for (size_t i = 0; i < nm; i++) {
-        const char *name = tt_material_name(sc, i);
-        const char *v = tt_scene_get_string(sc, "material", name, "map_value");
-        rgb[i] = none;
-        if (v && parse_map_value(v, 65535, &rgb[i]) != 0) {
-            free(rgb);
-            return tt_scene_fail(sc, "material", name, "map_value",
-                                 "'%s' is neither a grey level 0-65535 nor a colour #rrggbb", v);
+    const char *path = p->map_png;
+    if ((rc = read_png("map_png", path, 1, &pix, &S->mw, &S->mh, &maxv)))
+        return rc;
+    unsigned long long *key = malloc((nm ? nm : 1) * sizeof *key), none = ~0ULL;
+    for (size_t i = 0; key && i < nm && !rc; i++) {
+        key[i] = none;
+        if (mat[i].map_grey >= 0 || mat[i].map_rgb >= 0) {
+            if (map_key(&mat[i], (unsigned)maxv, &key[i]) != 0)
+                rc = tt_error(TT_EINVAL, "[material %s] map_value: %ld is above %d, the largest "
+                              "level of the %d-bit map %s", mat[i].name, mat[i].map_grey, maxv,
+                              maxv == 255 ? 8 : 16, path);
         }
     }
-    if ((rc = tt_scene_get_path(sc, "surface", NULL, "map_png", path, sizeof path)) ||
-        (rc = read_png(sc, "map_png", path, 1, &pix, &S->mw, &S->mh, &maxv))) {
-        free(rgb);
-        return rc;
-    }
-    /* the levels at the map's own depth: 8-bit maps take grey levels up to 255 */
-    for (size_t i = 0; i < nm && !rc; i++) {
-        const char *name = tt_material_name(sc, i);
-        const char *v = tt_scene_get_string(sc, "material", name, "map_value");
-        if (v && parse_map_value(v, (unsigned)maxv, &rgb[i]) != 0)
-            rc = tt_scene_fail(sc, "material", name, "map_value", "%s is above %d, the largest "
-                               "level of the %d-bit map %s", v, maxv, maxv == 255 ? 8 : 16, path);
-    }
-    S->mgrid = rc ? NULL : malloc((size_t)S->mw * S->mh * sizeof *S->mgrid);
+    S->mgrid = rc || !key ? NULL : malloc((size_t)S->mw * S->mh * sizeof *S->mgrid);
     if (!S->mgrid) {
-        free(rgb);
+        free(key);
+        free(pix);
+        return rc ? rc : tt_error(TT_ENOMEM, "out of memory");
+    }
+    if (!S->mgrid) {
         free(pix);
         return rc ? rc : tt_error(TT_ENOMEM, "out of memory");
     }
@@ -522,26 +476,27 @@ static int build_png_map(tt_surface *S, const tt_scene *sc)
                                (unsigned long long)pix[3 * k + 1] << 16 | pix[3 * k + 2];
         int found = -1;
         for (size_t i = 0; i < nm; i++)
-            if (rgb[i] == c)
+            if (key[i] == c)
                 found = (int)i;
         if (found < 0 && maxv == 255)
-            rc = tt_scene_fail(sc, "surface", NULL, "map_png",
-                               "%s: pixel (%zu, %zu) has colour #%02x%02x%02x, which no [material] "
-                               "map_value names", path, k % (size_t)S->mw, k / (size_t)S->mw,
-                               pix[3 * k], pix[3 * k + 1], pix[3 * k + 2]);
+            rc = tt_error(TT_EINVAL, "[surface] map_png: %s: pixel (%zu, %zu) has colour "
+                          "#%02x%02x%02x, which no [material] map_value names", path,
+                          k % (size_t)S->mw, k / (size_t)S->mw, pix[3 * k], pix[3 * k + 1],
+                          pix[3 * k + 2]);
         else if (found < 0)
-            rc = tt_scene_fail(sc, "surface", NULL, "map_png",
-                               "%s: pixel (%zu, %zu) has 16-bit level (%u, %u, %u), which no [material] "
-                               "map_value names", path, k % (size_t)S->mw, k / (size_t)S->mw,
-                               pix[3 * k], pix[3 * k + 1], pix[3 * k + 2]);
+            rc = tt_error(TT_EINVAL, "[surface] map_png: %s: pixel (%zu, %zu) has 16-bit level "
+                          "(%u, %u, %u), which no [material] map_value names", path,
+                          k % (size_t)S->mw, k / (size_t)S->mw, pix[3 * k], pix[3 * k + 1],
+                          pix[3 * k + 2]);
         S->mgrid[k] = found;
     }
-    free(rgb);
+    free(key);
     free(pix);
     return rc;
 }
 
-int tt_surface_alloc(tt_surface **out, const tt_scene *sc, double size_x, double size_y)
+int tt_surface_alloc(tt_surface **out, const tt_surface_params *p, const tt_material *materials,
+                     size_t nmaterials, double size_x, double size_y)
 {
     *out = NULL;
     tt_surface *S = calloc(1, sizeof *S);
@@ -549,84 +504,41 @@ int tt_surface_alloc(tt_surface **out, const tt_scene *sc, double size_x, double
         return tt_error(TT_ENOMEM, "out of memory");
     S->sx = size_x;
     S->sy = size_y;
+    S->type = (shape)p->type;
+    S->map = (mapkind)p->map;
     int rc = TT_OK;
-    static const char *types[] = {"flat", "steps", "grating", "particles", "rough", "png"};
-    static const char *maps[] = {"uniform", "stripes", "disks", "checkerboard", "islands", "png"};
-    const char *t = tt_scene_get_string(sc, "surface", NULL, "type");
-    const char *m = tt_scene_get_string(sc, "surface", NULL, "map");
-    for (int i = 0; i < 6; i++) {
-        if (t && strcmp(t, types[i]) == 0)
-            S->type = (shape)i;
-        if (m && strcmp(m, maps[i]) == 0)
-            S->map = (mapkind)i;
-    }
     switch (S->type) {
     case S_STEPS:
-        if (!(rc = get_d(sc, "step_height", &S->step_h)))
-            rc = get_d(sc, "step_width", &S->step_w);
+        S->step_h = p->step_height;
+        S->step_w = p->step_width;
         break;
     case S_GRATING:
-        if (!(rc = get_d(sc, "period", &S->period)) && !(rc = get_d(sc, "duty", &S->duty)) &&
-            !(rc = get_d(sc, "height", &S->height)) && !(rc = get_d(sc, "edge_width", &S->edge)) &&
-            2 * S->edge > S->period * fmin(S->duty, 1 - S->duty) * 2)
-            rc = tt_scene_fail(sc, "surface", NULL, "edge_width",
-                               "%g nm is wider than the line or the gap allows", S->edge * 1e9);
+        S->period = p->period;
+        S->duty = p->duty;
+        S->height = p->height;
+        S->edge = p->edge_width;
         break;
     case S_PARTICLES:
-        rc = build_particles(S, sc);
+        rc = build_particles(S, p);
         break;
     case S_ROUGH:
-        rc = build_rough(S, sc);
+        rc = build_rough(S, p);
         break;
     case S_PNG:
-        rc = build_png_height(S, sc);
+        rc = build_png_height(S, p);
         break;
     default:
         break;
     }
-    if (rc == TT_OK && S->map != M_UNIFORM && S->map != M_PNG) {
-        const char *list = tt_scene_get_string(sc, "surface", NULL, "map_materials");
-        if (list) {
-            const char *p = list;
-            int k = 0;
-            while (*p && rc == TT_OK) {
-                while (*p == ' ' || *p == ',')
-                    p++;
-                const char *e = p;
-                while (*e && *e != ',' && *e != ' ')
-                    e++;
-                if (e == p)
-                    break;
-                if (k >= 2) {
-                    rc = tt_scene_fail(sc, "surface", NULL, "map_materials",
-                                       "names more than two materials; this map takes a background and one other");
-                    break;
-                }
-                rc = material_index(sc, p, (size_t)(e - p), &S->mat[k++]);
-                p = e;
-            }
-            if (rc == TT_OK && k < 2)
-                rc = tt_scene_fail(sc, "surface", NULL, "map_materials",
-                                   "needs two materials: the background, then the other");
-        } else if (tt_material_count(sc) < 2) {
-            rc = tt_scene_fail(sc, "surface", NULL, "map",
-                               "a %s map needs two [material NAME] sections", maps[S->map]);
-        } else {
-            S->mat[0] = 0;
-            S->mat[1] = 1;
-        }
-        if (rc == TT_OK && !(rc = get_d(sc, "map_period", &S->map_period)) &&
-            !(rc = get_d(sc, "map_duty", &S->map_duty)))
-            rc = get_d(sc, "map_radius", &S->map_radius);
-        if (rc == TT_OK && S->map == M_DISKS && 2 * S->map_radius >= S->map_period)
-            rc = tt_scene_fail(sc, "surface", NULL, "map_radius",
-                               "disks of radius %g nm overlap at period %g nm", S->map_radius * 1e9,
-                               S->map_period * 1e9);
-        if (rc == TT_OK && S->map == M_ISLANDS && S->type != S_PARTICLES)
-            rc = tt_scene_fail(sc, "surface", NULL, "map", "islands need type = particles");
+    if (S->map != M_UNIFORM && S->map != M_PNG) {
+        S->mat[0] = p->materials[0];
+        S->mat[1] = p->materials[1];
+        S->map_period = p->map_period;
+        S->map_duty = p->map_duty;
+        S->map_radius = p->map_radius;
     }
     if (rc == TT_OK && S->map == M_PNG)
-        rc = build_png_map(S, sc);
+        rc = build_png_map(S, p, materials, nmaterials);
     if (rc) {
         tt_surface_free(S);
         return rc;

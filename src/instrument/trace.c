@@ -3,6 +3,7 @@
 #include "tiptap/instrument/trace.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "tiptap/physics/material.h"
@@ -32,8 +33,11 @@ int tt_trace_alloc(tt_trace **out, tt_setup *st, const tt_trace_params *p)
     if ((rc = tt_setup_find_material(st, p->material, "trace", "material", &mat)) ||
         (rc = tt_setup_use_material(st, mat)))
         return rc;
-    if (p->ramp && tt_setup_apply(st, p->ramp, p->ramp_from))
-        return tt_scene_fail(st->scene, "trace", NULL, "ramp", "%s", tt_error_message());
+    if (p->ramp && tt_setup_apply(st, p->ramp, p->ramp_from)) {
+        char why[1024];
+        snprintf(why, sizeof why, "%s", tt_error_message());
+        return tt_error(TT_EINVAL, "[trace] ramp: %s", why);
+    }
     tt_trace *t = calloc(1, sizeof *t);
     size_t n = (size_t)p->samples_per_cycle;
     if (!t || !(t->raw = calloc(n, sizeof *t->raw)) || !(t->out = calloc(n, sizeof *t->out))) {
@@ -52,8 +56,8 @@ void tt_trace_free(tt_trace *t)
     if (!t)
         return;
     /* the sim outlives the trace: it must not write into freed samples */
-    if (t->st && t->st->sim)
-        tt_sim_set_sampling(t->st->sim, 0, NULL);
+    if (t->st)
+        tt_sim_set_sampling(tt_setup_sim(t->st), 0, NULL);
     free(t->raw);
     free(t->out);
     free(t);
@@ -65,7 +69,7 @@ int tt_trace_done(const tt_trace *t) { return t->row >= t->p.cycles; }
 /* From the free steady state, settle_cycles at the first separation, unrecorded. */
 static int settle(tt_trace *t)
 {
-    tt_sim *sim = t->st->sim;
+    tt_sim *sim = tt_setup_sim(t->st);
     tt_cycle cy;
     int rc = TT_OK;
     tt_sim_reset_free(sim);
@@ -75,7 +79,7 @@ static int settle(tt_trace *t)
     if (rc)
         return rc;
     tt_sim_set_sampling(sim, (int)t->p.samples_per_cycle, t->raw);
-    t->sdot = (t->p.separation_end - t->p.separation) / ((double)t->p.cycles * t->st->cantilever.T);
+    t->sdot = (t->p.separation_end - t->p.separation) / ((double)t->p.cycles * tt_setup_cantilever(t->st)->T);
     return TT_OK;
 }
 
@@ -92,17 +96,13 @@ static double ramp_value(const tt_trace_params *p, long i)
  * K and R are read after each cycle since a ramp may change them. */
 static void fill_samples(tt_trace *t)
 {
-    tt_contact_params cp;
-    double Qi, K = 0, R = 1;
-    if (tt_material_params(t->st->scene, t->st->names[t->mat], &cp, &Qi) == TT_OK) {
-        K = cp.K;
-        R = cp.R;
-    }
+    const tt_contact_params *cp = &tt_setup_material(t->st, t->mat)->contact;
+    double K = cp->K, R = cp->R;
     for (long k = 0; k < t->p.samples_per_cycle; k++) {
         const tt_sample *s = &t->raw[k];
         tt_trace_sample *o = &t->out[k];
         double a = 0;
-        o->force = tt_sim_force(t->st->sim, s, &a);
+        o->force = tt_sim_force(tt_setup_sim(t->st), s, &a);
         o->t = s->t;
         o->base = s->z;
         o->tip = s->d;
@@ -131,8 +131,8 @@ int tt_trace_iterate(tt_trace *t, tt_trace_row *row)
             return rc;
     }
     /* the sample moves at sdot through the recorded cycles (seed figure 4b) */
-    tt_sim_set_sample(t->st->sim, t->p.separation + t->sdot * (double)i * t->st->cantilever.T, t->sdot);
-    if ((rc = tt_sim_cycle(t->st->sim, &row->summary)))
+    tt_sim_set_sample(tt_setup_sim(t->st), t->p.separation + t->sdot * (double)i * tt_setup_cantilever(t->st)->T, t->sdot);
+    if ((rc = tt_sim_cycle(tt_setup_sim(t->st), &row->summary)))
         return rc;
     fill_samples(t);
     row->nsamples = (size_t)t->p.samples_per_cycle;

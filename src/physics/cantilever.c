@@ -56,23 +56,3 @@ void tt_cantilever_response(const tt_cantilever *c, double w, double *amp, doubl
     double forcing = c->drive == TT_DRIVE_BASE ? c->m * w * w * c->a_d : c->F0;
     *amp = gain * forcing;
 }
-
-int tt_cantilever_from_scene(tt_cantilever *c, const tt_scene *s)
-{
-    double k, f0, Q, A0, fd;
-    int rc;
-    if ((rc = tt_scene_get_double(s, "cantilever", NULL, "spring_constant", &k)) ||
-        (rc = tt_scene_get_double(s, "cantilever", NULL, "resonance_frequency", &f0)) ||
-        (rc = tt_scene_get_double(s, "cantilever", NULL, "quality_factor", &Q)) ||
-        (rc = tt_scene_get_double(s, "cantilever", NULL, "free_amplitude", &A0)))
-        return rc;
-    fd = f0;
-    if (tt_scene_has(s, "cantilever", NULL, "drive_frequency") &&
-        (rc = tt_scene_get_double(s, "cantilever", NULL, "drive_frequency", &fd)))
-        return rc;
-    const char *drive = tt_scene_get_string(s, "cantilever", NULL, "drive");
-    tt_drive d = (drive && strcmp(drive, "force") == 0) ? TT_DRIVE_FORCE : TT_DRIVE_BASE;
-    if (tt_cantilever_init(c, k, f0, Q, A0, fd, d) != TT_OK)
-        return tt_scene_fail(s, "cantilever", NULL, NULL, "%s", tt_error_message());
-    return TT_OK;
-}

@@ -118,13 +118,19 @@ int tt_scene_parse_value(const tt_scene *s, const char *section, const char *key
                          const char *text, double *out);
 
 /* Report a problem with a key the way the loader does, with the file that set the
- * key (or the scene's origin if it was defaulted), and return TT_EINVAL. */
+ * key (or the scene's origin if it was defaulted), and return TT_EINVAL. s NULL: no
+ * file, "[section] key: what" (for tt_scene_locate to complete). */
 int tt_scene_fail(const tt_scene *s, const char *section, const char *name, const char *key,
                   const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 5, 6)))
 #endif
     ;
+
+/* A module's error "[section] key: what" (or "[section NAME]: what"), the last one
+ * reported (error.h), told again with the file that set that key in front, as
+ * tt_scene_fail would have written it; rc is returned. Other messages stay as they are. */
+int tt_scene_locate(const tt_scene *s, int rc);
 
 /* Write the effective scene (every key of every section in use, defaults included)
  * as INI that tiptap reads back to the same scene. sections: NULL for all, or a

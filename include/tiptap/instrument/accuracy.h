@@ -1,14 +1,14 @@
 /* tiptap: the work-precision study of the solvers: how accurate each method is at
  * each setting of its accuracy knob, and what that costs in run time.
  *
- * The study judges one of two things, chosen from the scene:
+ * The study judges one of two things, chosen from its subject:
  *  - a steady point (TT_ACCURACY_POINT): the cantilever starts in its free steady
  *    oscillation at one rest separation and runs a fixed number of cycles; the last
  *    cycle's amplitude, phase, mean deflection, peak force and tip-sample dissipation
  *    are the observables;
- *  - a scan line (TT_ACCURACY_LINE, scenes with a [scan] section): a short segment of
- *    one line, with the scene's pixel size and time per pixel; the observable is the
- *    height profile (trace, and retrace if the scene records it).
+ *  - a scan line (TT_ACCURACY_LINE, subjects with a scan): a short segment of one
+ *    line, with the scan's pixel size and time per pixel; the observable is the
+ *    height profile (trace, and retrace if the scan records it).
  * Every setting of every ladder starts from the same state and runs the same cycles,
  * so the differences are integration errors alone. Errors are measured against a
  * reference run (dopri5 at ref_tolerance); the reference's own error is bounded by
@@ -20,13 +20,13 @@
  *
  * Usage:
  *   tt_accuracy_params_default(&p);
- *   tt_accuracy_alloc(&a, scene, &p);
+ *   tt_accuracy_alloc(&a, &subject, &p);   (or tt_config_accuracy_alloc from a scene)
  *   while (!tt_accuracy_done(a)) { tt_accuracy_iterate(a, &row); ... }
  *   tt_accuracy_cheapest(a, -1, 1e-4); ...
  *   tt_accuracy_free(a);
  *
- * Ownership: tt_accuracy_alloc borrows nothing: it works on its own copy of the scene
- * (the caller's scene is unchanged and may be freed). The ladders given in the
+ * Ownership: tt_accuracy_alloc borrows nothing of the subject: it keeps its own copy
+ * (the scan's materials included). The ladders given in the
  * parameters must outlive the study. Rows, observables and reference data belong to
  * the study and live until tt_accuracy_free.
  */
@@ -35,8 +35,9 @@
 
 #include <stddef.h>
 
+#include "tiptap/instrument/scan.h"
+#include "tiptap/physics/material.h"
 #include "tiptap/solver/integrator.h"
-#include "tiptap/config/scene.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -56,9 +57,9 @@ const tt_accuracy_ladder *tt_accuracy_ladders(size_t *count);
 typedef enum { TT_ACCURACY_AUTO = 0, TT_ACCURACY_POINT = 1, TT_ACCURACY_LINE = 2 } tt_accuracy_kind;
 
 typedef struct {
-    tt_accuracy_kind kind;  /* AUTO: a line when the scene has [scan], else a point */
-    double point;           /* point: rest separation, m; NAN: the scene's [approach] point
-                             * when it has exactly one, else 0.8 times the free amplitude */
+    tt_accuracy_kind kind;  /* AUTO: a line when the subject has a scan, else a point */
+    double point;           /* point: rest separation, m; NAN: the subject's approach
+                             * point when it has one, else 0.8 times the free amplitude */
     long cycles;            /* point: cycles from the free state; 0: Q ln(1e8) / pi, when
                              * the free transient has decayed to 1e-8 */
     long line_pixels;       /* line: pixels of the segment (default 8) */
@@ -86,7 +87,7 @@ typedef enum {
 
 typedef struct {
     tt_accuracy_role role;
-    int is_default;          /* the scene's own [solver] setting (added if not on a ladder) */
+    int is_default;          /* the subject's own solver setting (added if not on a ladder) */
     tt_method method;
     const char *knob;        /* static or the ladder's */
     double value;
@@ -108,11 +109,23 @@ typedef struct {
     const char *label;       /* axis label */
 } tt_accuracy_observable;
 
+/* What the study judges: a cantilever with its own solver setting (the default row),
+ * one material under the tip for a point, and the scan whose segment is a line. */
+typedef struct {
+    tt_cantilever cantilever;
+    tt_solver solver;
+    tt_material material;    /* point: the sample under the tip */
+    int has_scan;            /* whether scan is given (AUTO then judges a line) */
+    tt_scan_params scan;     /* line: its materials are copied by tt_accuracy_alloc */
+    double approach_point;   /* the rest separation of a one-point approach, m; NAN: none */
+} tt_accuracy_subject;
+
 typedef struct tt_accuracy tt_accuracy;
 
-/* TT_EINVAL naming the key for a bad scene; the [approach] material (else the first)
- * is the point's sample. */
-int tt_accuracy_alloc(tt_accuracy **out, const tt_scene *scene, const tt_accuracy_params *p);
+/* TT_EINVAL with a message for a bad subject (a material whose force law cannot be
+ * made, a ladder with an unknown knob). */
+int tt_accuracy_alloc(tt_accuracy **out, const tt_accuracy_subject *subject,
+                      const tt_accuracy_params *p);
 void tt_accuracy_free(tt_accuracy *a);
 
 tt_accuracy_kind tt_accuracy_kind_of(const tt_accuracy *a);
@@ -137,7 +150,7 @@ const tt_accuracy_row *tt_accuracy_row_at(const tt_accuracy *a, size_t i);
  * ladder meets the target (one lucky setting does not count); for method -1, the
  * fastest of the methods' choices (by the clock of the parameters). NULL if none. */
 const tt_accuracy_row *tt_accuracy_cheapest(const tt_accuracy *a, int method, double target);
-/* The scene's own setting. */
+/* The subject's own setting. */
 const tt_accuracy_row *tt_accuracy_default_row(const tt_accuracy *a);
 
 /* What was judged. */

@@ -18,7 +18,6 @@
 
 #include "tiptap/solver/integrator.h"
 #include "tiptap/solver/shooting.h"
-#include "tiptap/config/scene.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -39,8 +38,6 @@ typedef struct {
     double settle_tolerance;
     tt_approach_steady steady; /* steady mode */
 } tt_approach_params;
-
-int tt_approach_params_from_scene(tt_approach_params *p, const tt_scene *scene);
 
 typedef struct {
     double z;        /* rest separation, m */

@@ -17,6 +17,15 @@
 extern "C" {
 #endif
 
+/* What the scene sets: the setpoint in metres, the gains, and the z piezo's range,
+ * centred on the surface's zero. */
+typedef struct {
+    double setpoint;   /* m */
+    double kp;         /* dimensionless */
+    double ki;         /* 1/s */
+    double z_range;    /* m */
+} tt_feedback_params;
+
 typedef struct {
     double setpoint;   /* m */
     double kp;         /* dimensionless */

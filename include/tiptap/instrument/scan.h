@@ -12,15 +12,25 @@
  * is the continuity of a real raster: a line does not inherit the previous line's
  * retrace state (the same place, one line away), only its feedback's height there.
  *
- * Ownership: tt_scan_alloc borrows the scene (it must outlive the scan); the scan
- * owns its surface, images and per-thread workspaces, freed by tt_scan_free.
+ * Every material's force law is built when the scan is made, used by a pixel or not,
+ * so a material that cannot be built is refused before any line runs.
+ *
+ * Ownership: tt_scan_alloc copies what it needs from the parameters (the materials
+ * included); the scan owns its surface, force laws, images and per-thread workspaces,
+ * freed by tt_scan_free.
  */
 #ifndef TIPTAP_SCAN_H
 #define TIPTAP_SCAN_H
 
 #include <stddef.h>
 
-#include "tiptap/config/scene.h"
+#include "tiptap/instrument/feedback.h"
+#include "tiptap/instrument/lockin.h"
+#include "tiptap/instrument/scanner.h"
+#include "tiptap/instrument/surface.h"
+#include "tiptap/physics/cantilever.h"
+#include "tiptap/physics/material.h"
+#include "tiptap/solver/integrator.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -54,9 +64,28 @@ int tt_scan_channel_harmonic(int i);
 /* Parse "height, phase" into a channel mask; -1 with a message naming the channel. */
 int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t len);
 
+/* Everything a scan needs, in SI units. */
+typedef struct {
+    tt_cantilever cantilever;
+    tt_solver solver;
+    const tt_material *materials; /* the sample's materials, indexed by the surface's map */
+    size_t nmaterials;
+    tt_raster raster;
+    tt_surface_params surface;
+    tt_lockin_params lockin;      /* harmonics: as many as the lock-in offers (the scan
+                                   * demodulates up to the highest its channels need);
+                                   * drive_frequency: ignored, the cantilever's */
+    tt_feedback_params feedback;
+    unsigned channels;            /* TT_CH_* mask */
+    long settle_cycles;           /* cycles the feedback settles at each line's first pixel */
+    long profile_line;            /* the line of the CSV profile; -1: the middle one */
+} tt_scan_params;
+
 typedef struct tt_scan tt_scan;
 
-int tt_scan_alloc(tt_scan **out, tt_scene *scene);
+/* Fails naming the section and the key (tt_scene_locate adds the file) when the
+ * surface or a material's force law cannot be made or the parameters disagree. */
+int tt_scan_alloc(tt_scan **out, const tt_scan_params *p);
 void tt_scan_free(tt_scan *s);
 
 /* Run all lines on up to threads threads (0: all cores). progress, if not NULL, is

@@ -11,8 +11,6 @@
 #ifndef TIPTAP_SCANNER_H
 #define TIPTAP_SCANNER_H
 
-#include "tiptap/config/scene.h"
-
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -24,8 +22,6 @@ typedef struct {
     int fast_y;             /* 1: the fast axis is y */
     int retrace;            /* 1: record the retrace too */
 } tt_raster;
-
-int tt_raster_from_scene(tt_raster *r, const tt_scene *scene);
 
 /* Drive cycles one way along a line. */
 long tt_raster_cycles_per_direction(const tt_raster *r, double period);

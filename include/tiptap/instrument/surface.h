@@ -1,9 +1,11 @@
-/* tiptap: sample topography and material map ([surface] section).
+/* tiptap: sample topography and material map.
  *
  * Heights in metres along the axis pointing out of the sample towards the tip (a bump
  * is positive); x, y in metres in the scan frame, (0, 0) the top-left corner of the
- * scan area. Materials are indices into the scene's [material NAME] sections in order
- * of appearance (tt_scene_named).
+ * scan area. Materials are indices into the scan's material list.
+ *
+ * Errors name the section and the key, "[surface] key: what is wrong"; the caller that
+ * knows the scene file adds it (tt_scene_locate).
  *
  * Ownership: tt_surface_alloc returns an object the caller frees with
  * tt_surface_free; it is read-only after allocation and may be shared between threads.
@@ -11,17 +13,49 @@
 #ifndef TIPTAP_SURFACE_H
 #define TIPTAP_SURFACE_H
 
-#include "tiptap/config/scene.h"
+#include <stddef.h>
+
+#include "tiptap/physics/material.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
+typedef enum {
+    TT_SURFACE_FLAT, TT_SURFACE_STEPS, TT_SURFACE_GRATING, TT_SURFACE_PARTICLES,
+    TT_SURFACE_ROUGH, TT_SURFACE_PNG
+} tt_surface_type;
+
+typedef enum {
+    TT_MAP_UNIFORM, TT_MAP_STRIPES, TT_MAP_DISKS, TT_MAP_CHECKERBOARD, TT_MAP_ISLANDS, TT_MAP_PNG
+} tt_surface_map;
+
+/* The [surface] section in SI units; only the fields of the chosen type and map are
+ * read. Paths are resolved (absolute or relative to the working folder). */
+typedef struct {
+    tt_surface_type type;
+    double step_height, step_width;             /* steps */
+    double period, duty, height, edge_width;    /* grating */
+    double particle_radius;                     /* particles */
+    long particle_count;
+    double rms, correlation_length;             /* rough */
+    long seed;                                  /* particles, rough */
+    char png[4096];                             /* png: grey height map */
+    double png_height_range;
+    tt_surface_map map;
+    int materials[2];                           /* two-material maps: background, other */
+    double map_period, map_duty, map_radius;
+    char map_png[4096];                         /* png map; colours: tt_material map_rgb */
+} tt_surface_params;
+
 typedef struct tt_surface tt_surface;
 
-/* Build from the scene's [surface] section; size_x, size_y: the scan area (m), which
- * tiled shapes and PNG maps cover. Errors name the file, section and key. */
-int tt_surface_alloc(tt_surface **out, const tt_scene *scene, double size_x, double size_y);
+/* size_x, size_y: the scan area (m), which tiled shapes and PNG maps cover; the
+ * materials (their map_rgb) are those a PNG map may name. Fails naming the key when the
+ * surface cannot be made (particles that do not fit, an unreadable PNG, a map colour
+ * no material names). */
+int tt_surface_alloc(tt_surface **out, const tt_surface_params *p, const tt_material *materials,
+                     size_t nmaterials, double size_x, double size_y);
 void tt_surface_free(tt_surface *s);
 
 double tt_surface_height(const tt_surface *s, double x, double y);

@@ -14,8 +14,6 @@
 #ifndef TIPTAP_CANTILEVER_H
 #define TIPTAP_CANTILEVER_H
 
-#include "tiptap/config/scene.h"
-
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -43,9 +41,6 @@ typedef struct {
 /* Fill the derived constants; TT_EINVAL with a message on non-physical input. */
 int tt_cantilever_init(tt_cantilever *c, double k, double f0, double Q, double A0, double fd,
                        tt_drive drive);
-
-/* From the scene's [cantilever] section (errors name file, section and key). */
-int tt_cantilever_from_scene(tt_cantilever *c, const tt_scene *scene);
 
 /* Steady free response of the deflection at angular frequency w to the configured
  * drive strength: amplitude (m) and lag (rad), from the transfer function. */

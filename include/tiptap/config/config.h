@@ -1,0 +1,83 @@
+/* tiptap: the configuration layer: a scene read into the typed parameters of the
+ * modules that run it.
+ *
+ * Each function reads every key of its sections once, converts units, and checks every
+ * rule on a single key and between keys; errors are one line, "file: [section] key:
+ * what is wrong". The modules themselves never see the scene. tt_config_scan reads and
+ * checks every material of the scene, used by a pixel or not, so that a scan is
+ * refused before anything runs or any file is written.
+ *
+ * Ownership: tt_config_materials and tt_config_scan allocate the material list
+ * (tt_config_scan: p->materials); the caller frees it with free() (tt_config_scan_free
+ * for a scan's parameters). Everything else is plain values.
+ */
+#ifndef TIPTAP_CONFIG_H
+#define TIPTAP_CONFIG_H
+
+#include <stddef.h>
+
+#include "tiptap/config/scene.h"
+#include "tiptap/instrument/accuracy.h"
+#include "tiptap/instrument/approach.h"
+#include "tiptap/instrument/scan.h"
+#include "tiptap/instrument/scanner.h"
+#include "tiptap/instrument/surface.h"
+#include "tiptap/physics/cantilever.h"
+#include "tiptap/physics/material.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* [cantilever], its derived constants filled (tt_cantilever_init). */
+int tt_config_cantilever(const tt_scene *s, tt_cantilever *c);
+
+/* [tip]. */
+int tt_config_tip(const tt_scene *s, tt_tip *tip);
+
+/* Every [material NAME] in order of appearance, each paired with the [tip]; a scene
+ * without any has one, "sample", with the schema's defaults. *out is allocated. */
+int tt_config_materials(const tt_scene *s, tt_material **out, size_t *n);
+
+/* The material that [section] material names (the first when it names none), as an
+ * index into the list of tt_config_materials. */
+int tt_config_material_index(const tt_scene *s, const char *section, const tt_material *m,
+                             size_t n, size_t *index);
+
+/* [scan] raster. */
+int tt_config_raster(const tt_scene *s, tt_raster *r);
+
+/* [surface], its map resolved against the materials' names and colours. */
+int tt_config_surface(const tt_scene *s, const tt_material *m, size_t n, tt_surface_params *p);
+
+/* [lockin] (harmonics: as many as the lock-in offers). */
+int tt_config_lockin(const tt_scene *s, tt_lockin_params *p);
+
+/* [feedback], the setpoint in metres (a percentage is of the cantilever's free
+ * amplitude A0, m). */
+int tt_config_feedback(const tt_scene *s, double A0, tt_feedback_params *p);
+
+/* Everything a scan reads: [cantilever], [solver], [tip], every [material], [scan],
+ * [surface], [lockin], [feedback]. */
+int tt_config_scan(const tt_scene *s, tt_scan_params *p);
+void tt_config_scan_free(tt_scan_params *p);
+
+/* [approach]. */
+int tt_config_approach(const tt_scene *s, tt_approach_params *p);
+
+/* What the accuracy study judges: the cantilever and [solver], the [approach]
+ * material and point, and the scan when the scene has [scan]. Free with
+ * tt_config_accuracy_free. */
+int tt_config_accuracy(const tt_scene *s, tt_accuracy_subject *subject);
+void tt_config_accuracy_free(tt_accuracy_subject *subject);
+
+/* Runs made straight from a scene: read, check, and make the object; the errors of
+ * the module name the scene file too (tt_scene_locate). */
+int tt_config_scan_alloc(tt_scan **out, const tt_scene *s);
+int tt_config_surface_alloc(tt_surface **out, const tt_scene *s, double size_x, double size_y);
+int tt_config_accuracy_alloc(tt_accuracy **out, const tt_scene *s, const tt_accuracy_params *p);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,163 @@
+/* The configuration layer's physics: [cantilever], [tip] and every [material NAME]
+ * (see include/tiptap/config/config.h). */
+#include "tiptap/config/config.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tiptap/util/error.h"
+
+int tt_config_cantilever(const tt_scene *s, tt_cantilever *c)
+{
+    double k, f0, Q, A0, fd;
+    int rc;
+    if ((rc = tt_scene_get_double(s, "cantilever", NULL, "spring_constant", &k)) ||
+        (rc = tt_scene_get_double(s, "cantilever", NULL, "resonance_frequency", &f0)) ||
+        (rc = tt_scene_get_double(s, "cantilever", NULL, "quality_factor", &Q)) ||
+        (rc = tt_scene_get_double(s, "cantilever", NULL, "free_amplitude", &A0)))
+        return rc;
+    fd = f0;
+    if (tt_scene_has(s, "cantilever", NULL, "drive_frequency") &&
+        (rc = tt_scene_get_double(s, "cantilever", NULL, "drive_frequency", &fd)))
+        return rc;
+    const char *drive = tt_scene_get_string(s, "cantilever", NULL, "drive");
+    tt_drive d = (drive && strcmp(drive, "force") == 0) ? TT_DRIVE_FORCE : TT_DRIVE_BASE;
+    if (tt_cantilever_init(c, k, f0, Q, A0, fd, d) != TT_OK)
+        return tt_scene_fail(s, "cantilever", NULL, NULL, "%s", tt_error_message());
+    return TT_OK;
+}
+
+int tt_config_tip(const tt_scene *s, tt_tip *tip)
+{
+    int rc;
+    if ((rc = tt_scene_get_double(s, "tip", NULL, "radius", &tip->radius)) ||
+        (rc = tt_scene_get_double(s, "tip", NULL, "youngs_modulus", &tip->youngs_modulus)) ||
+        (rc = tt_scene_get_double(s, "tip", NULL, "poisson_ratio", &tip->poisson_ratio)))
+        return rc;
+    return TT_OK;
+}
+
+/* A colour #rrggbb as 0xrrggbb, or a grey level 0-65535 (matched at the map's own
+ * depth once the map is read: 16-bit maps are not converted to 8 bits). */
+static int parse_map_value(const char *v, int *rgb, long *grey)
+{
+    unsigned r, g, b;
+    char *end;
+    if (v[0] == '#' && strlen(v) == 7 && sscanf(v + 1, "%2x%2x%2x", &r, &g, &b) == 3) {
+        *rgb = (int)(r << 16 | g << 8 | b);
+        return 0;
+    }
+    long l = strtol(v, &end, 10);
+    if (end != v && *end == '\0' && l >= 0 && l <= 65535) {
+        *grey = l;
+        return 0;
+    }
+    return -1;
+}
+
+/* The contact law's model and its lambda: given (Maugis needs it within 1e-4 to 1e4)
+ * or derived from xi0 by Burnham et al. eq. 3 (the same range). */
+static int read_model(const tt_scene *s, const char *name, tt_contact_params *p)
+{
+    int rc;
+    p->lambda = NAN;
+    int given = tt_scene_has(s, "material", name, "lambda");
+    if (given && (rc = tt_scene_get_double(s, "material", name, "lambda", &p->lambda)))
+        return rc;
+    const char *model = tt_scene_get_string(s, "material", name, "model");
+    tt_contact_model m = TT_CONTACT_MAUGIS;
+    if (model && tt_contact_model_parse(model, &m) != 0)
+        return tt_scene_fail(s, "material", name, "model", "unknown model '%s'", model);
+    p->model = m;
+    if (p->model != TT_CONTACT_MAUGIS || !(p->w > 0))
+        return TT_OK;
+    if (given && isfinite(p->lambda) && (p->lambda < 1e-4 || p->lambda > 1e4))
+        return tt_scene_fail(s, "material", name, "lambda",
+                             "%g is outside 1e-4 to 1e4; use model = dmt or jkr for the limits",
+                             p->lambda);
+    double derived = tt_material_lambda(p);
+    if (!given && !(derived >= 1e-4 && derived <= 1e4))
+        return tt_scene_fail(s, "material", name, "interatomic_distance",
+                             "gives lambda = %.3g (Burnham et al. eq. 3), outside 1e-4 to 1e4; "
+                             "use model = dmt or jkr for the limits",
+                             derived);
+    return TT_OK;
+}
+
+static int read_material(const tt_scene *s, const tt_tip *tip, const char *name, tt_material *m)
+{
+    int rc;
+    tt_contact_params *p = &m->contact;
+    memset(m, 0, sizeof *m);
+    snprintf(m->name, sizeof m->name, "%s", name);
+    if ((rc = tt_scene_get_double(s, "material", name, "adhesion_energy", &p->w)) ||
+        (rc = tt_scene_get_double(s, "material", name, "interatomic_distance", &p->xi0)))
+        return rc;
+    if (tt_scene_has(s, "material", name, "reduced_modulus")) {
+        if (tt_scene_has(s, "material", name, "youngs_modulus"))
+            return tt_scene_fail(s, "material", name, "reduced_modulus",
+                                 "given together with youngs_modulus; give one of them");
+        if ((rc = tt_scene_get_double(s, "material", name, "reduced_modulus", &p->K)))
+            return rc;
+    } else {
+        double Es, nus;
+        if ((rc = tt_scene_get_double(s, "material", name, "youngs_modulus", &Es)) ||
+            (rc = tt_scene_get_double(s, "material", name, "poisson_ratio", &nus)))
+            return rc;
+        p->K = tt_material_reduced_modulus(tip, Es, nus);
+    }
+    p->R = tip->radius;
+    if ((rc = read_model(s, name, p)))
+        return rc;
+    m->Qi = NAN;
+    if (tt_scene_has(s, "material", name, "interaction_quality_factor") &&
+        (rc = tt_scene_get_double(s, "material", name, "interaction_quality_factor", &m->Qi)))
+        return rc;
+    m->map_rgb = -1;
+    m->map_grey = -1;
+    const char *v = tt_scene_get_string(s, "material", name, "map_value");
+    if (v && parse_map_value(v, &m->map_rgb, &m->map_grey) != 0)
+        return tt_scene_fail(s, "material", name, "map_value",
+                             "'%s' is neither a grey level 0-65535 nor a colour #rrggbb", v);
+    return TT_OK;
+}
+
+int tt_config_materials(const tt_scene *s, tt_material **out, size_t *n)
+{
+    *out = NULL;
+    *n = 0;
+    tt_tip tip;
+    int rc = tt_config_tip(s, &tip);
+    if (rc)
+        return rc;
+    size_t count = tt_scene_count_named(s, "material");
+    tt_material *m = calloc(count ? count : 1, sizeof *m);
+    if (!m)
+        return tt_error(TT_ENOMEM, "out of memory");
+    for (size_t i = 0; i < (count ? count : 1) && rc == TT_OK; i++)
+        rc = read_material(s, &tip, count ? tt_scene_named(s, "material", i) : "sample", &m[i]);
+    if (rc) {
+        free(m);
+        return rc;
+    }
+    *out = m;
+    *n = count ? count : 1;
+    return TT_OK;
+}
+
+int tt_config_material_index(const tt_scene *s, const char *section, const tt_material *m,
+                             size_t n, size_t *index)
+{
+    const char *name = tt_scene_get_string(s, section, NULL, "material");
+    *index = 0;
+    if (!name)
+        return TT_OK;
+    for (size_t i = 0; i < n; i++)
+        if (strcmp(m[i].name, name) == 0) {
+            *index = i;
+            return TT_OK;
+        }
+    return tt_scene_fail(s, section, NULL, "material", "no [material %s] section in the scene", name);
+}

@@ -1,0 +1,277 @@
+/* The configuration layer's imaging sections: [scan], [surface], [lockin], [feedback]
+ * (see include/tiptap/config/config.h). */
+#include "tiptap/config/config.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tiptap/util/error.h"
+
+int tt_config_raster(const tt_scene *s, tt_raster *r)
+{
+    int rc;
+    memset(r, 0, sizeof *r);
+    if ((rc = tt_scene_get_double(s, "scan", NULL, "size", &r->size_x)) ||
+        (rc = tt_scene_get_int(s, "scan", NULL, "pixels", &r->pixels)) ||
+        (rc = tt_scene_get_int(s, "scan", NULL, "lines", &r->lines)) ||
+        (rc = tt_scene_get_double(s, "scan", NULL, "line_rate", &r->line_rate)) ||
+        (rc = tt_scene_get_bool(s, "scan", NULL, "retrace", &r->retrace)))
+        return rc;
+    r->size_y = r->size_x;
+    if (tt_scene_has(s, "scan", NULL, "size_y") &&
+        (rc = tt_scene_get_double(s, "scan", NULL, "size_y", &r->size_y)))
+        return rc;
+    const char *fast = tt_scene_get_string(s, "scan", NULL, "fast_axis");
+    r->fast_y = fast && strcmp(fast, "y") == 0;
+    return TT_OK;
+}
+
+static int get_d(const tt_scene *s, const char *key, double *v)
+{
+    return tt_scene_get_double(s, "surface", NULL, key, v);
+}
+
+static int read_shape(const tt_scene *s, tt_surface_params *p)
+{
+    int rc = TT_OK;
+    switch (p->type) {
+    case TT_SURFACE_STEPS:
+        if (!(rc = get_d(s, "step_height", &p->step_height)))
+            rc = get_d(s, "step_width", &p->step_width);
+        return rc;
+    case TT_SURFACE_GRATING:
+        if (!(rc = get_d(s, "period", &p->period)) && !(rc = get_d(s, "duty", &p->duty)) &&
+            !(rc = get_d(s, "height", &p->height)) && !(rc = get_d(s, "edge_width", &p->edge_width)) &&
+            2 * p->edge_width > p->period * fmin(p->duty, 1 - p->duty) * 2)
+            rc = tt_scene_fail(s, "surface", NULL, "edge_width",
+                               "%g nm is wider than the line or the gap allows", p->edge_width * 1e9);
+        return rc;
+    case TT_SURFACE_PARTICLES:
+        if ((rc = get_d(s, "particle_radius", &p->particle_radius)) ||
+            (rc = tt_scene_get_int(s, "surface", NULL, "particle_count", &p->particle_count)))
+            return rc;
+        return tt_scene_get_int(s, "surface", NULL, "seed", &p->seed);
+    case TT_SURFACE_ROUGH:
+        if ((rc = get_d(s, "rms", &p->rms)) || (rc = get_d(s, "correlation_length", &p->correlation_length)))
+            return rc;
+        return tt_scene_get_int(s, "surface", NULL, "seed", &p->seed);
+    case TT_SURFACE_PNG:
+        if ((rc = tt_scene_get_path(s, "surface", NULL, "png", p->png, sizeof p->png)))
+            return rc;
+        return get_d(s, "png_height_range", &p->png_height_range);
+    default:
+        return TT_OK;
+    }
+}
+
+/* map_materials: the background, then the other, by name. */
+static int read_map_materials(const tt_scene *s, const char *list, const tt_material *m, size_t n,
+                              tt_surface_params *p)
+{
+    const char *q = list;
+    int k = 0;
+    while (*q) {
+        while (*q == ' ' || *q == ',')
+            q++;
+        const char *e = q;
+        while (*e && *e != ',' && *e != ' ')
+            e++;
+        if (e == q)
+            break;
+        if (k >= 2)
+            return tt_scene_fail(s, "surface", NULL, "map_materials",
+                                 "names more than two materials; this map takes a background and one other");
+        size_t i = 0;
+        while (i < n && !(strlen(m[i].name) == (size_t)(e - q) && strncmp(m[i].name, q, (size_t)(e - q)) == 0))
+            i++;
+        if (i == n)
+            return tt_scene_fail(s, "surface", NULL, "map_materials", "no [material %.*s] in the scene",
+                                 (int)(e - q), q);
+        p->materials[k++] = (int)i;
+        q = e;
+    }
+    if (k < 2)
+        return tt_scene_fail(s, "surface", NULL, "map_materials",
+                             "needs two materials: the background, then the other");
+    return TT_OK;
+}
+
+static const char *const surface_types[] = {"flat", "steps", "grating", "particles", "rough", "png"};
+static const char *const surface_maps[] = {"uniform", "stripes", "disks", "checkerboard", "islands", "png"};
+
+/* A two-material map: which materials, its period, duty and disk radius. */
+static int read_two_material_map(const tt_scene *s, const tt_material *m, size_t n,
+                                 tt_surface_params *p)
+{
+    int rc;
+    const char *list = tt_scene_get_string(s, "surface", NULL, "map_materials");
+    if (list)
+        rc = read_map_materials(s, list, m, n, p);
+    else if (n < 2)
+        rc = tt_scene_fail(s, "surface", NULL, "map", "a %s map needs two [material NAME] sections",
+                           surface_maps[p->map]);
+    else {
+        p->materials[0] = 0;
+        p->materials[1] = 1;
+        rc = TT_OK;
+    }
+    if (rc || (rc = get_d(s, "map_period", &p->map_period)) || (rc = get_d(s, "map_duty", &p->map_duty)) ||
+        (rc = get_d(s, "map_radius", &p->map_radius)))
+        return rc;
+    if (p->map == TT_MAP_DISKS && 2 * p->map_radius >= p->map_period)
+        return tt_scene_fail(s, "surface", NULL, "map_radius", "disks of radius %g nm overlap at period %g nm",
+                             p->map_radius * 1e9, p->map_period * 1e9);
+    if (p->map == TT_MAP_ISLANDS && p->type != TT_SURFACE_PARTICLES)
+        return tt_scene_fail(s, "surface", NULL, "map", "islands need type = particles");
+    return TT_OK;
+}
+
+int tt_config_surface(const tt_scene *s, const tt_material *m, size_t n, tt_surface_params *p)
+{
+    memset(p, 0, sizeof *p);
+    const char *t = tt_scene_get_string(s, "surface", NULL, "type");
+    const char *mp = tt_scene_get_string(s, "surface", NULL, "map");
+    for (int i = 0; i < 6; i++) {
+        if (t && strcmp(t, surface_types[i]) == 0)
+            p->type = (tt_surface_type)i;
+        if (mp && strcmp(mp, surface_maps[i]) == 0)
+            p->map = (tt_surface_map)i;
+    }
+    int rc = read_shape(s, p);
+    if (rc)
+        return rc;
+    if (p->map == TT_MAP_PNG)
+        return tt_scene_get_path(s, "surface", NULL, "map_png", p->map_png, sizeof p->map_png);
+    if (p->map != TT_MAP_UNIFORM)
+        return read_two_material_map(s, m, n, p);
+    return TT_OK;
+}
+
+int tt_config_lockin(const tt_scene *s, tt_lockin_params *p)
+{
+    long spp, order, harm, ppb;
+    int rc;
+    memset(p, 0, sizeof *p);
+    if ((rc = tt_scene_get_double(s, "lockin", NULL, "time_constant", &p->time_constant)) ||
+        (rc = tt_scene_get_int(s, "lockin", NULL, "filter_order", &order)) ||
+        (rc = tt_scene_get_int(s, "lockin", NULL, "samples_per_period", &spp)) ||
+        (rc = tt_scene_get_int(s, "lockin", NULL, "harmonics", &harm)) ||
+        (rc = tt_scene_get_int(s, "lockin", NULL, "periods_per_block", &ppb)))
+        return rc;
+    if (2 * harm >= spp)
+        return tt_scene_fail(s, "lockin", NULL, "harmonics",
+                             "%ld harmonics need more than %ld samples per period "
+                             "([lockin] samples_per_period is %ld)",
+                             harm, 2 * harm, spp);
+    p->samples_per_period = (int)spp;
+    p->filter_order = (int)order;
+    p->periods_per_block = (int)ppb;
+    p->harmonics = (int)harm;
+    return TT_OK;
+}
+
+int tt_config_feedback(const tt_scene *s, double A0, tt_feedback_params *p)
+{
+    tt_dim dim;
+    int rc;
+    if ((rc = tt_scene_get_quantity(s, "feedback", NULL, "setpoint", &p->setpoint, &dim)) ||
+        (rc = tt_scene_get_double(s, "feedback", NULL, "proportional_gain", &p->kp)) ||
+        (rc = tt_scene_get_double(s, "feedback", NULL, "integral_gain", &p->ki)) ||
+        (rc = tt_scene_get_double(s, "feedback", NULL, "z_range", &p->z_range)))
+        return rc;
+    if (dim == TT_DIM_FRACTION) {
+        if (!(p->setpoint > 0 && p->setpoint < 1))
+            return tt_scene_fail(s, "feedback", NULL, "setpoint",
+                                 "a percentage must lie between 0 and 100 %% (exclusive)");
+        p->setpoint *= A0;
+    } else if (!(p->setpoint > 0 && p->setpoint < A0)) {
+        return tt_scene_fail(s, "feedback", NULL, "setpoint",
+                             "must lie between 0 and the free amplitude (%g nm)", A0 * 1e9);
+    }
+    return TT_OK;
+}
+
+/* [scan] channels, settle_cycles, profile_line, and what the channels need of the
+ * raster and the lock-in. */
+static int read_scan_keys(const tt_scene *s, tt_scan_params *p)
+{
+    char why[256];
+    int rc;
+    const char *ch = tt_scene_get_string(s, "scan", NULL, "channels");
+    if (tt_scan_channels_parse(ch ? ch : "height", &p->channels, why, sizeof why) != 0)
+        return tt_scene_fail(s, "scan", NULL, "channels", "%s", why);
+    if ((rc = tt_scene_get_int(s, "scan", NULL, "settle_cycles", &p->settle_cycles)) ||
+        (rc = tt_scene_get_int(s, "scan", NULL, "profile_line", &p->profile_line)))
+        return rc;
+    if (p->profile_line >= p->raster.lines)
+        return tt_scene_fail(s, "scan", NULL, "profile_line", "%ld is past the last line (%ld)",
+                             p->profile_line, p->raster.lines - 1);
+    int need = 1;
+    for (int c = 0; c < TT_CH_COUNT; c++)
+        if ((p->channels & (1u << c)) && tt_scan_channel_harmonic(c) > need)
+            need = tt_scan_channel_harmonic(c);
+    if (need > p->lockin.harmonics)
+        return tt_scene_fail(s, "scan", NULL, "channels",
+                             "harmonic%d needs [lockin] harmonics = %d or more (it is %d)", need, need,
+                             p->lockin.harmonics);
+    return TT_OK;
+}
+
+int tt_config_scan(const tt_scene *s, tt_scan_params *p)
+{
+    memset(p, 0, sizeof *p);
+    tt_material *m = NULL;
+    size_t n = 0;
+    int rc;
+    if ((rc = tt_config_cantilever(s, &p->cantilever)) || (rc = tt_solver_from_scene(&p->solver, s)) ||
+        (rc = tt_config_materials(s, &m, &n)))
+        return rc;
+    p->materials = m;
+    p->nmaterials = n;
+    if ((rc = tt_config_raster(s, &p->raster)) || (rc = tt_config_lockin(s, &p->lockin)) ||
+        (rc = read_scan_keys(s, p)) ||
+        (rc = tt_config_feedback(s, p->cantilever.A0, &p->feedback)) ||
+        (rc = tt_config_surface(s, m, n, &p->surface))) {
+        tt_config_scan_free(p);
+        return rc;
+    }
+    p->lockin.drive_frequency = p->cantilever.fd;
+    return TT_OK;
+}
+
+void tt_config_scan_free(tt_scan_params *p)
+{
+    free((void *)p->materials);
+    p->materials = NULL;
+    p->nmaterials = 0;
+}
+
+int tt_config_scan_alloc(tt_scan **out, const tt_scene *s)
+{
+    tt_scan_params p;
+    *out = NULL;
+    int rc = tt_config_scan(s, &p);
+    if (rc)
+        return rc;
+    rc = tt_scene_locate(s, tt_scan_alloc(out, &p));
+    tt_config_scan_free(&p);
+    return rc;
+}
+
+int tt_config_surface_alloc(tt_surface **out, const tt_scene *s, double size_x, double size_y)
+{
+    tt_material *m = NULL;
+    size_t n = 0;
+    tt_surface_params p;
+    *out = NULL;
+    int rc;
+    if ((rc = tt_config_materials(s, &m, &n)) || (rc = tt_config_surface(s, m, n, &p)) ||
+        (rc = tt_scene_locate(s, tt_surface_alloc(out, &p, m, n, size_x, size_y)))) {
+        free(m);
+        return rc;
+    }
+    free(m);
+    return TT_OK;
+}
