@@ -69,7 +69,7 @@ static double display_scale(int ch, const char **unit, tt_colormap *cmap)
     }
 }
 
-static int write_outputs(const tt_scan *scan, const tt_cantilever *c, const char *dir)
+int cli_scan_write_outputs(const tt_scan *scan, const tt_cantilever *c, const char *dir)
 {
     char path[4096], title[128];
     long xres = tt_scan_xres(scan), yres = tt_scan_yres(scan);
@@ -202,7 +202,7 @@ int cmd_scan(int argc, char **argv)
     if (tt_scan_lines_done(scan) > 0) {
         char saved[1024];
         snprintf(saved, sizeof saved, "%s", tt_error_message());
-        int wrc = write_outputs(scan, &params.cantilever, dir);
+        int wrc = cli_scan_write_outputs(scan, &params.cantilever, dir);
         if (wrc && !rc)
             rc = wrc;
         else if (rc)

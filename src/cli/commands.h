@@ -6,6 +6,8 @@
 #include <stdio.h>
 
 #include "tiptap/config/scene.h"
+#include "tiptap/instrument/scan.h"
+#include "tiptap/physics/cantilever.h"
 
 int cmd_contact(int argc, char **argv);
 int cmd_keys(int argc, char **argv);
@@ -14,6 +16,11 @@ int cmd_trace(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_scan(int argc, char **argv);
 int cmd_accuracy(int argc, char **argv);
+int cmd_sweep(int argc, char **argv);
+
+/* Write a finished scan's images (GSF and PNG per channel and direction) and profile
+ * into dir, as tiptap scan does (cmd_scan.c). */
+int cli_scan_write_outputs(const tt_scan *scan, const tt_cantilever *c, const char *dir);
 
 /* Exit codes: 0 success, 1 bad input or failure, 2 usage, 130 interrupted (Ctrl-C);
  * 143 stopped by SIGTERM (main turns CLI_INTERRUPTED into 128 + the signal). */

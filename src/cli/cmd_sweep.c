@@ -1,0 +1,246 @@
+/* tiptap sweep: steady points, setpoint points, approach curves or scans over a grid
+ * of scene keys, on every core and (in builds with MPI) over MPI ranks. */
+#include <getopt.h>
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "commands.h"
+#include "sweep.h"
+#include "tiptap/io/plot.h"
+#include "tiptap/util/cancel.h"
+#include "tiptap/util/error.h"
+
+static void help(void)
+{
+    printf("Usage: tiptap sweep SCENE... --vary KEY=VALUES [--vary ...] [--run KIND] [-o sweep.csv]\n"
+           "                     [-j N] [--plot FILE] [--contrast KEY] [--set S.K=V]... [-q]\n"
+           "Run every combination of the varied keys and write one table.\n\n"
+           "      --vary KEY=VALUES  vary a scene key (section.key, material.NAME.key) over\n"
+           "                     a list '10 nm,20 nm', a range FROM:TO:N '10nm:30nm:5' (N values,\n"
+           "                     ends included) or 'log:FROM:TO:N'; several make a grid, the first\n"
+           "                     varying slowest\n"
+           "      --run KIND     steady: the steady oscillation at [approach] from (default);\n"
+           "                     setpoint: the steady point whose amplitude is [feedback] setpoint\n"
+           "                     (a secant search over the rest separation); approach: the\n"
+           "                     [approach] curve; scan: a scan into one folder per combination\n"
+           "  -o, --output FILE  CSV, one row per point (per material for scans): combination,\n"
+           "                     the varied keys in SI units (unit in brackets), then z_nm,\n"
+           "                     amplitude_nm, phase_deg, mean_deflection_nm, peak_force_nN,\n"
+           "                     max_indentation_nm, contact_fraction, dissipated_aJ, drive_work_aJ,\n"
+           "                     energy_residual (the error estimate), regime (free, attractive:\n"
+           "                     phase lag above 90 deg, repulsive), direction, settled, cycles,\n"
+           "                     found (newton or settled). Scans: folder, lines_done,\n"
+           "                     error_estimate, material, pixels, height and phase mean and\n"
+           "                     standard deviation, and their contrast to the first material.\n"
+           "                     Scan folders go under FILE without its extension.\n"
+           "  -j, --threads N    combinations computed in parallel (default: all cores); a scan\n"
+           "                     runs one combination at a time on N threads instead\n"
+           "      --plot FILE    PNG against the last varied key (approach: against z), one line\n"
+           "                     per combination of the others\n"
+           "      --contrast KEY plot the differences to KEY's first value instead: apparent\n"
+           "                     height (the first value's rest separation minus this one's),\n"
+           "                     phase and dissipation\n"
+           CLI_HELP_SET
+           "  -q, --quiet        no progress or summary on stderr\n\n"
+           "Every combination is checked before the first runs. Finished combinations are\n"
+           "kept in FILE.partial as they finish; a stopped sweep run again with the same\n"
+           "command resumes there and ends with the same table. The table is the same,\n"
+           "byte for byte, for any -j and, under 'mpirun -np N tiptap sweep ...' in builds\n"
+           "with MPI, for any number of ranks (rank 0 writes it).\n");
+}
+
+static int parse_kind(const char *s, sweep_kind *k)
+{
+    static const char *names[] = {"steady", "setpoint", "approach", "scan"};
+    for (int i = 0; i < 4; i++)
+        if (strcmp(s, names[i]) == 0) {
+            *k = (sweep_kind)i;
+            return 0;
+        }
+    return -1;
+}
+
+/* The index of a varied key, or -1. */
+static long find_key(const tt_sweep *g, const char *key)
+{
+    for (size_t k = 0; key && k < tt_sweep_keys(g); k++)
+        if (strcmp(tt_sweep_key(g, k), key) == 0)
+            return (long)k;
+    return -1;
+}
+
+#ifndef TT_HAVE_MPI
+/* Ranks under mpirun: Open MPI, MPICH and PMIx all say how many. */
+static long launched_ranks(void)
+{
+    static const char *vars[] = {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"};
+    for (size_t i = 0; i < sizeof vars / sizeof vars[0]; i++)
+        if (getenv(vars[i]))
+            return strtol(getenv(vars[i]), NULL, 10);
+    return 1;
+}
+#endif
+
+/* What a journal must match: the run, the header, the grid and the whole base scene. */
+static unsigned long long fingerprint(const tt_scene *scene, const sweep_job *job, const char *header)
+{
+    unsigned long long h = 1469598103934665603ULL;
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    if (f) {
+        fprintf(f, "run %d\n%s", (int)job->kind, header);
+        tt_scene_write(scene, f, NULL);
+        fclose(f);
+    }
+    for (size_t i = 0; buf && i < len; i++)
+        h = (h ^ (unsigned char)buf[i]) * 1099511628211ULL;
+    free(buf);
+    return tt_sweep_hash(job->grid, h);
+}
+
+/* The grid from the --vary list, every combination checked, before anything runs. */
+static int build_grid(tt_scene *scene, char **vary, int nvary, sweep_job *job, const char *contrast)
+{
+    tt_sweep *g = NULL;
+    int rc = tt_sweep_alloc(&g, scene);
+    for (int i = 0; i < nvary && !rc; i++)
+        rc = tt_sweep_vary(g, vary[i]);
+    job->grid = g;
+    if (!rc && contrast && find_key(g, contrast) < 0)
+        rc = tt_error(TT_EINVAL, "--contrast %s: not a varied key", contrast);
+    for (size_t i = 0; i < tt_sweep_count(g) && !rc; i++)
+        rc = sweep_check(job, i);
+    return rc;
+}
+
+static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, const cli_args *a,
+                      int threads, const char *contrast)
+{
+    int rank = 0, size = 1, mpi = 0, rc;
+#ifdef TT_HAVE_MPI
+    mpi = sweep_mpi_start(&rank, &size);
+#else
+    if (launched_ranks() > 1) {
+        fprintf(stderr, "tiptap sweep: started by mpirun, but this tiptap was built without MPI "
+                        "(cmake -DTT_MPI=ON with Open MPI installed)\n");
+        return CLI_FAIL;
+    }
+#endif
+    char dir[4096], header[8192];
+    snprintf(dir, sizeof dir, "%s", a->output);
+    char *dot = strrchr(dir, '.');
+    if (dot && !strchr(dot, '/'))
+        *dot = '\0';
+    if (!threads)
+        threads = omp_get_max_threads();
+    sweep_job job = {NULL, kind, dir, threads};
+    double t0 = cli_now();
+    sweep_results r = {0};
+    rc = build_grid(scene, vary, nvary, &job, contrast);
+    sweep_header(&job, header, sizeof header);
+    size_t n = job.grid ? tt_sweep_count(job.grid) : 0;
+    int progress = !a->quiet && rank == 0 && cli_progress_enabled();
+    if (!rc && rank == 0)
+        rc = sweep_results_open(&r, n, a->output, fingerprint(scene, &job, header));
+    else if (!rc && !(r.text = calloc(n, sizeof *r.text)))
+        rc = tt_error(TT_ENOMEM, "out of memory");
+    r.n = n;
+    size_t resumed = r.done;
+    if (!rc && !a->quiet && rank == 0 && resumed)
+        fprintf(stderr, "sweep: resuming %s: %zu of %zu combinations already done\n", r.journal_path,
+                resumed, n);
+    cli_catch_interrupt();
+#ifdef TT_HAVE_MPI
+    if (mpi)
+        rc = sweep_mpi_agree(rc);
+    if (!rc)
+        rc = mpi ? sweep_mpi_run(&job, &r, kind == SWEEP_SCAN ? 1 : threads, progress)
+                 : sweep_run_threads(&job, &r, kind == SWEEP_SCAN ? 1 : threads, progress);
+#else
+    if (!rc)
+        rc = sweep_run_threads(&job, &r, kind == SWEEP_SCAN ? 1 : threads, progress);
+#endif
+    if (rank == 0 && rc == TT_EINTR)
+        rc = tt_error(TT_EINTR, "interrupted: %zu of %zu combinations kept in %s; the same command "
+                                "resumes there", r.done, n, r.journal_path);
+    if (rank == 0 && !rc)
+        rc = sweep_results_write(&r, a->output, header);
+    if (rank == 0 && !rc && a->plot)
+        rc = sweep_plot(&job, &r, a->plot, find_key(job.grid, contrast));
+    double wall = cli_now() - t0;
+    if (rank == 0 && !rc && !a->quiet)
+        fprintf(stderr, "combinations = %zu (%zu resumed)\nranks = %d\nthreads = %d\nrun_time_s = %.3f\n"
+                        "combinations_per_s = %.4g\n", n, resumed, size, threads, wall,
+                wall > 0 ? (double)(n - resumed) / wall : 0.0);
+    if (rc && rank == 0)
+        cli_fail(rc, NULL);
+    sweep_results_free(&r);
+    tt_sweep_free((tt_sweep *)job.grid);
+#ifdef TT_HAVE_MPI
+    if (mpi)
+        sweep_mpi_stop();
+#endif
+    (void)size;
+    (void)mpi;
+    return rc == TT_OK ? CLI_OK : rc == TT_EINTR ? CLI_INTERRUPTED : CLI_FAIL;
+}
+
+int cmd_sweep(int argc, char **argv)
+{
+    static const struct option opts[] = {{"vary", required_argument, NULL, 'V'},
+                                         {"run", required_argument, NULL, 'R'},
+                                         {"threads", required_argument, NULL, 'j'},
+                                         {"contrast", required_argument, NULL, 'C'},
+                                         {NULL, 0, NULL, 0}};
+    static const cli_spec spec = {"sweep", CLI_OPT_OUTPUT | CLI_OPT_PLOT | CLI_OPT_SET | CLI_OPT_QUIET,
+                                  opts, "j:", help};
+    cli_args args = {.output = "sweep.csv"};
+    char **vary = calloc((size_t)argc + 1, sizeof *vary);
+    const char *contrast = NULL;
+    int nvary = 0, threads = 0, c;
+    sweep_kind kind = SWEEP_STEADY;
+    if (!vary)
+        return cli_fail(TT_ENOMEM, "out of memory");
+    while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) {
+        char *end;
+        long j;
+        switch (c) {
+        case 'V': vary[nvary++] = optarg; break;
+        case 'C': contrast = optarg; break;
+        case 'R':
+            if (parse_kind(optarg, &kind) == 0)
+                break;
+            fprintf(stderr, "tiptap sweep: --run: '%s' is not steady, setpoint, approach or scan\n", optarg);
+            cli_args_free(&args);
+            free(vary);
+            return CLI_USAGE;
+        case 'j':
+            j = strtol(optarg, &end, 10);
+            if (*end == '\0' && j >= 1 && j <= 4096) {
+                threads = (int)j;
+                break;
+            }
+            fprintf(stderr, "tiptap sweep: -j: '%s' is not a number of threads from 1 to 4096\n", optarg);
+            cli_args_free(&args);
+            free(vary);
+            return CLI_USAGE;
+        }
+    }
+    if (c == CLI_EXIT) {
+        free(vary);
+        return args.exit;
+    }
+    int code;
+    tt_scene *scene = cli_args_scene(&spec, &args, argc, argv, &code);
+    if (!scene) {
+        free(vary);
+        return code;
+    }
+    code = sweep_main(scene, vary, nvary, kind, &args, threads, contrast);
+    free(vary);
+    tt_scene_free(scene);
+    return code;
+}

@@ -1,0 +1,212 @@
+/* tiptap sweep: finished combinations, their journal, and the threads that compute
+ * them (see sweep.h). */
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "commands.h"
+#include "sweep.h"
+#include "tiptap/io/outfile.h"
+#include "tiptap/util/cancel.h"
+#include "tiptap/util/error.h"
+
+static const char magic[] = "tiptap-sweep-journal";
+
+/* The records of a journal's bytes: "@INDEX BYTES\n" then the text. A record cut short
+ * by a kill is dropped; the length of the good part is returned. */
+static size_t load_records(sweep_results *r, const char *buf, size_t len, size_t start)
+{
+    size_t pos = start;
+    while (pos < len) {
+        size_t i, bytes;
+        int used = 0;
+        if (sscanf(buf + pos, "@%zu %zu\n%n", &i, &bytes, &used) != 2 || used == 0 || i >= r->n ||
+            bytes > len - pos - (size_t)used)
+            break;
+        char *t = malloc(bytes + 1);
+        if (!t)
+            break;
+        memcpy(t, buf + pos + used, bytes);
+        t[bytes] = '\0';
+        if (r->text[i])
+            free(r->text[i]);
+        else
+            r->done++;
+        r->text[i] = t;
+        pos += (size_t)used + bytes;
+    }
+    return pos;
+}
+
+/* Resume an existing journal of the same sweep; 1 when there was none. */
+static int resume(sweep_results *r, unsigned long long hash)
+{
+    FILE *f = fopen(r->journal_path, "r+b");
+    if (!f)
+        return 1;
+    char *buf = NULL;
+    size_t len = 0, cap = 0, got;
+    char chunk[65536];
+    while ((got = fread(chunk, 1, sizeof chunk, f)) > 0) {
+        if (len + got + 1 > cap) {
+            char *nb = realloc(buf, cap = 2 * (len + got + 1));
+            if (!nb) {
+                free(buf);
+                fclose(f);
+                return tt_error(TT_ENOMEM, "out of memory");
+            }
+            buf = nb;
+        }
+        memcpy(buf + len, chunk, got);
+        len += got;
+        buf[len] = '\0';
+    }
+    unsigned long long h = 0;
+    size_t n = 0;
+    int used = 0;
+    if (!buf || sscanf(buf, "tiptap-sweep-journal %llx %zu\n%n", &h, &n, &used) != 2 || used == 0 ||
+        h != hash || n != r->n) {
+        free(buf);
+        fclose(f);
+        return tt_error(TT_EINVAL, "%s: the journal of another sweep (other scene, keys or run); "
+                                   "remove it to start this one afresh", r->journal_path);
+    }
+    size_t good = load_records(r, buf, len, (size_t)used);
+    free(buf);
+    if (ftruncate(fileno(f), (off_t)good) != 0 || fseek(f, 0, SEEK_END) != 0) {
+        fclose(f);
+        return tt_error(TT_EIO, "%s: cannot continue the journal", r->journal_path);
+    }
+    r->journal = f;
+    return TT_OK;
+}
+
+int sweep_results_open(sweep_results *r, size_t n, const char *out, unsigned long long hash)
+{
+    memset(r, 0, sizeof *r);
+    r->n = n;
+    r->text = calloc(n, sizeof *r->text);
+    size_t pl = strlen(out) + sizeof ".partial";
+    r->journal_path = malloc(pl);
+    if (!r->text || !r->journal_path)
+        return tt_error(TT_ENOMEM, "out of memory");
+    snprintf(r->journal_path, pl, "%s.partial", out);
+    int rc = resume(r, hash);
+    if (rc != 1)
+        return rc;
+    if (!(r->journal = fopen(r->journal_path, "wb")))
+        return tt_error(TT_EIO, "%s: cannot write the journal", r->journal_path);
+    fprintf(r->journal, "%s %016llx %zu\n", magic, hash, n);
+    return fflush(r->journal) == 0 ? TT_OK : tt_error(TT_EIO, "%s: cannot write", r->journal_path);
+}
+
+int sweep_results_record(sweep_results *r, size_t i, char *text)
+{
+    if (r->text[i])
+        free(r->text[i]);
+    else
+        r->done++;
+    r->text[i] = text;
+    size_t len = strlen(text);
+    /* flushed record by record: a killed sweep keeps every combination it finished */
+    if (r->journal && (fprintf(r->journal, "@%zu %zu\n", i, len) < 0 || fwrite(text, 1, len, r->journal) != len ||
+                       fflush(r->journal) != 0))
+        return tt_error(TT_EIO, "%s: cannot write", r->journal_path);
+    return TT_OK;
+}
+
+int sweep_results_write(sweep_results *r, const char *out, const char *header)
+{
+    tt_outfile *of;
+    int rc = tt_outfile_open(&of, out);
+    if (rc)
+        return rc;
+    FILE *f = tt_outfile_stream(of);
+    fputs(header, f);
+    for (size_t i = 0; i < r->n; i++)
+        if (r->text[i])
+            fputs(r->text[i], f);
+    if ((rc = tt_outfile_close(of, 1)))
+        return rc;
+    if (r->journal) {
+        fclose(r->journal);
+        r->journal = NULL;
+        remove(r->journal_path);
+    }
+    return TT_OK;
+}
+
+void sweep_results_free(sweep_results *r)
+{
+    if (r->journal)
+        fclose(r->journal);
+    for (size_t i = 0; r->text && i < r->n; i++)
+        free(r->text[i]);
+    free(r->text);
+    free(r->journal_path);
+    memset(r, 0, sizeof *r);
+}
+
+int sweep_run_list(const sweep_job *job, const size_t *todo, size_t m, int threads,
+                   int (*deliver)(void *user, size_t i, char *text), void *user)
+{
+    int err = TT_OK, stop = 0;
+    char saved[1024] = "";
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (long j = 0; j < (long)m; j++) {
+        int halt;
+#pragma omp atomic read
+        halt = stop;
+        if (halt || tt_cancel_requested())
+            continue;
+        char *t = NULL;
+        int rc = sweep_compute(job, todo[j], &t);
+#pragma omp critical(tt_sweep_deliver)
+        {
+            if (!rc && !stop)
+                rc = deliver(user, todo[j], t);
+            else
+                free(t);
+            if (rc && !err) {
+                err = rc;
+                snprintf(saved, sizeof saved, "%s", tt_error_message());
+#pragma omp atomic write
+                stop = 1;
+            }
+        }
+    }
+    if (tt_cancel_requested() && (!err || err == TT_EINTR))
+        return tt_error(TT_EINTR, "interrupted");
+    return err ? tt_error(err, "%s", saved) : TT_OK;
+}
+
+typedef struct {
+    sweep_results *r;
+    int progress;
+} local;
+
+static int record_local(void *user, size_t i, char *text)
+{
+    local *l = user;
+    int rc = sweep_results_record(l->r, i, text);
+    if (l->progress)
+        fprintf(stderr, "\rsweep: %zu/%zu combinations", l->r->done, l->r->n);
+    return rc;
+}
+
+int sweep_run_threads(const sweep_job *job, sweep_results *r, int threads, int progress)
+{
+    size_t *todo = malloc((r->n ? r->n : 1) * sizeof *todo), m = 0;
+    if (!todo)
+        return tt_error(TT_ENOMEM, "out of memory");
+    for (size_t i = 0; i < r->n; i++)
+        if (!r->text[i])
+            todo[m++] = i;
+    local l = {r, progress};
+    int rc = sweep_run_list(job, todo, m, threads, record_local, &l);
+    if (progress)
+        fprintf(stderr, "\n");
+    free(todo);
+    return rc;
+}
