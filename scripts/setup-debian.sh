@@ -2,7 +2,8 @@
 # Installs what tiptap needs to build and test on Debian 12 (run as root).
 set -euo pipefail
 packages=(build-essential cmake pkg-config libgsl-dev libfftw3-dev libpng-dev
-          libcairo2-dev libcmocka-dev fonts-dejavu-core)
+          libcairo2-dev libcmocka-dev fonts-dejavu-core
+          openmpi-bin libopenmpi-dev) # MPI: CI runs 'mpirun -np 2 tiptap sweep' (tests/cli_sweep.sh)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -39,12 +39,12 @@ static size_t load_records(sweep_results *r, const char *buf, size_t len, size_t
     return pos;
 }
 
-/* Resume an existing journal of the same sweep; 1 when there was none. */
+/* Resume an existing journal of the same sweep; -1 when there was none. */
 static int resume(sweep_results *r, unsigned long long hash)
 {
     FILE *f = fopen(r->journal_path, "r+b");
     if (!f)
-        return 1;
+        return -1;
     char *buf = NULL;
     size_t len = 0, cap = 0, got;
     char chunk[65536];
@@ -93,7 +93,7 @@ int sweep_results_open(sweep_results *r, size_t n, const char *out, unsigned lon
         return tt_error(TT_ENOMEM, "out of memory");
     snprintf(r->journal_path, pl, "%s.partial", out);
     int rc = resume(r, hash);
-    if (rc != 1)
+    if (rc != -1)
         return rc;
     if (!(r->journal = fopen(r->journal_path, "wb")))
         return tt_error(TT_EIO, "%s: cannot write the journal", r->journal_path);
