@@ -36,9 +36,9 @@ awk -F, 'NR > 1 && $2 == "disk" { d = $5 - $4; if (d < 0) d = -d; if (d > 1.5) b
   [ "$(cut -d, -f2 "$tmp/log.csv" | tr '\n' ' ')" = "cantilever.free_amplitude[m] 1e-08 1e-07 1e-06 " ] &&
   ok "log range" || bad "log range: $(cut -d, -f2 "$tmp/log.csv" | tr '\n' ' ')"
 
-# setpoint points: the amplitude is the setpoint (50 and 80 % of 20 nm) to 1e-4 of A0
+# setpoint points: the amplitude is the setpoint (50 and 80 % of 20 nm) to 1e-3 of A0
 "$tiptap" sweep "$blend" --vary "feedback.setpoint=50%,80%" --set approach.material=disk --run setpoint -q \
-  -o "$tmp/sp.csv" && awk -F, 'NR > 1 { d = $5 - $3; if (d < 0) d = -d; if (d > 2e-3) bad = 1; n++ }
+  -o "$tmp/sp.csv" && awk -F, 'NR > 1 { d = $5 - $3; if (d < 0) d = -d; if (d > 0.02) bad = 1; n++ }
   END {exit bad || n != 2}' "$tmp/sp.csv" && ok "setpoint points hold the setpoint" ||
   bad "setpoint: $(cat "$tmp/sp.csv")"
 

@@ -40,8 +40,9 @@ static void help(void)
            "      --plot FILE    PNG against the last varied key (approach: against z), one line\n"
            "                     per combination of the others\n"
            "      --contrast KEY plot the differences to KEY's first value instead: apparent\n"
-           "                     height (the first value's rest separation minus this one's),\n"
-           "                     phase and dissipation\n"
+           "                     height (with --run setpoint: this value's rest separation minus\n"
+           "                     the first's: the feedback retracts the sample where the setpoint\n"
+           "                     needs a larger gap), phase and dissipation\n"
            CLI_HELP_SET
            "  -q, --quiet        no progress or summary on stderr\n\n"
            "Every combination is checked before the first runs. Finished combinations are\n"

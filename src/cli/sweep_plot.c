@@ -101,9 +101,9 @@ static int plot_points(const sweep_job *job, const sweep_results *r, tt_figure *
                         for (size_t q = 0; q < nref; q++)
                             if (tt_sweep_level(g, ref[q], x) == tt_sweep_level(g, idx[j], x))
                                 y0 = field(r->text[ref[q]], cols[p]);
-                        /* apparent height: the reference needs y0 as rest separation,
-                         * this material ys; the feedback moves the sample by the difference */
-                        ys[j] = (p == 0 && job->kind == SWEEP_SETPOINT) ? y0 - ys[j] : ys[j] - y0;
+                        /* apparent height: where the setpoint needs a larger rest
+                         * separation the feedback retracts the sample, as over a bump */
+                        ys[j] -= y0;
                     }
                 }
                 tt_figure_line(f, p, xs, ys, m, p == 0 ? label : NULL, (unsigned)(s * (nc - 1) + c) % 8 + 1);

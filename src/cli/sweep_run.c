@@ -168,17 +168,18 @@ static int steady_at(combo *c, double z, tt_approach_point *pt)
     return rc;
 }
 
-/* The rest separation where the steady amplitude equals the setpoint: secant steps
+/* The rest separation where the steady amplitude equals the setpoint (to 1e-3 of A0,
+ * below what an image resolves): secant steps
  * from the guess A(z) = z (the repulsive branch's slope, Burnham et al. fig. 1), kept
  * inside a bracket once one is found (regula falsi, Illinois). */
 static int setpoint_point(combo *c, double target, tt_approach_point *pt)
 {
-    double A0 = tt_setup_cantilever(c->st)->A0, tol = 1e-4 * A0;
+    double A0 = tt_setup_cantilever(c->st)->A0, tol = 1e-3 * A0;
     double zl = NAN, fl = NAN, zh = NAN, fh = NAN, z = target;
     tt_approach_point best = {0};
     double bestf = INFINITY;
     int side = 0;
-    for (int it = 0; it < 30; it++) {
+    for (int it = 0; it < 16; it++) {
         int rc = steady_at(c, z, pt);
         if (rc)
             return rc;
@@ -369,14 +370,25 @@ int sweep_check(const sweep_job *job, size_t i)
         tt_scene_free(scene);
         return rc;
     }
-    combo c;
-    int rc = combo_open(job, i, &c);
+    /* the configuration layer only, which checks every key and rule, without building
+     * force tables (a third of a steady point's cost) */
+    tt_scene *scene = NULL;
+    tt_cantilever cant;
+    tt_solver solver;
+    tt_material *mats = NULL;
+    tt_approach_params ap;
+    tt_feedback_params fp;
+    size_t nm = 0, mat = 0;
+    int rc = tt_sweep_scene(job->grid, i, &scene);
     if (rc)
         return rc;
-    tt_feedback_params fp;
-    if (job->kind == SWEEP_SETPOINT &&
-        (rc = tt_config_feedback(c.scene, tt_setup_cantilever(c.st)->A0, &fp)))
+    if ((rc = tt_config_cantilever(scene, &cant)) || (rc = tt_solver_from_scene(&solver, scene)) ||
+        (rc = tt_config_materials(scene, &mats, &nm)) ||
+        (rc = tt_config_material_index(scene, "approach", mats, nm, &mat)) ||
+        (rc = tt_config_approach(scene, &ap)) ||
+        (job->kind == SWEEP_SETPOINT && (rc = tt_config_feedback(scene, cant.A0, &fp))))
         rc = name_combination(job, i, rc);
-    combo_close(&c);
+    free(mats);
+    tt_scene_free(scene);
     return rc;
 }

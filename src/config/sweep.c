@@ -15,6 +15,7 @@ typedef struct {
     size_t n;               /* values */
     char **text;            /* as set in the scene */
     double *si;             /* SI values, NAN for text */
+    int files;              /* the values are scene files to read, not values of a key */
 } axis;
 
 struct tt_sweep {
@@ -158,9 +159,9 @@ static int add_range(axis *a, const tt_scene_key *k, const char *spec, int logsc
         if (k->kind == TT_KEY_INT)
             snprintf(buf, sizeof buf, "%ld", lround(v));
         else if (dim == TT_DIM_FRACTION)
-            snprintf(buf, sizeof buf, "%.17g %%", v * 100);
+            snprintf(buf, sizeof buf, "%.15g %%", v * 100);
         else
-            snprintf(buf, sizeof buf, "%.17g%s%s", v, dim == TT_DIM_NONE ? "" : " ", tt_units_symbol(dim));
+            snprintf(buf, sizeof buf, "%.15g%s%s", v, dim == TT_DIM_NONE ? "" : " ", tt_units_symbol(dim));
         char *t = trimmed(buf, strlen(buf));
         rc = t ? add_value(a, t, k->kind == TT_KEY_INT ? (double)lround(v) : v)
                : tt_error(TT_ENOMEM, "out of memory");
@@ -204,7 +205,11 @@ int tt_sweep_vary(tt_sweep *sw, const char *spec)
     axis a = {0};
     if (!(a.key = trimmed(spec, (size_t)(eq - spec))))
         return tt_error(TT_ENOMEM, "out of memory");
-    const tt_scene_key *k = schema_key(a.key);
+    /* "scene": whole scene files read over the base, for what no single key says
+     * (a cantilever is its stiffness, frequency and Q together) */
+    a.files = strcmp(a.key, "scene") == 0;
+    static const tt_scene_key file_key = {"scene", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL, "scene files"};
+    const tt_scene_key *k = a.files ? &file_key : schema_key(a.key);
     int rc = TT_OK;
     for (size_t i = 0; i < sw->naxes && !rc; i++)
         if (strcmp(sw->axes[i].key, a.key) == 0)
@@ -276,28 +281,45 @@ void tt_sweep_label(const tt_sweep *sw, size_t i, char *buf, size_t len)
     }
 }
 
+/* rc with the combination named in front of the message; the scene is freed. */
+static int combination_error(const tt_sweep *sw, size_t i, tt_scene *s, int rc)
+{
+    char label[512], msg[1024];
+    tt_sweep_label(sw, i, label, sizeof label);
+    snprintf(msg, sizeof msg, "%s", tt_error_message());
+    tt_scene_free(s);
+    return tt_error(rc, "combination %zu (%s): %s", i + 1, label, msg);
+}
+
+/* Set key axis k of combination i as --set would. */
+static int set_key(const tt_sweep *sw, size_t i, size_t k, tt_scene *s)
+{
+    const char *key = sw->axes[k].key, *value = tt_sweep_text(sw, i, k);
+    size_t len = strlen(key) + strlen(value) + 2;
+    char *set = malloc(len);
+    if (!set)
+        return tt_error(TT_ENOMEM, "out of memory");
+    snprintf(set, len, "%s=%s", key, value);
+    int rc = tt_scene_set(s, set);
+    free(set);
+    return rc;
+}
+
 int tt_sweep_scene(const tt_sweep *sw, size_t i, tt_scene **out)
 {
     tt_scene *s = tt_scene_copy(sw->base);
     if (!s)
         return tt_error(TT_ENOMEM, "out of memory");
+    /* scene files first, so that the varied keys override what they set */
     for (size_t k = 0; k < sw->naxes; k++) {
-        const axis *a = &sw->axes[k];
-        size_t len = strlen(a->key) + strlen(tt_sweep_text(sw, i, k)) + 2;
-        char *set = malloc(len);
-        int rc = set ? TT_OK : tt_error(TT_ENOMEM, "out of memory");
-        if (set) {
-            snprintf(set, len, "%s=%s", a->key, tt_sweep_text(sw, i, k));
-            rc = tt_scene_set(s, set);
-            free(set);
-        }
-        if (rc) {
-            char label[512], msg[1024];
-            tt_sweep_label(sw, i, label, sizeof label);
-            snprintf(msg, sizeof msg, "%s", tt_error_message());
-            tt_scene_free(s);
-            return tt_error(rc, "combination %zu (%s): %s", i + 1, label, msg);
-        }
+        int rc = sw->axes[k].files ? tt_scene_load(s, tt_sweep_text(sw, i, k)) : TT_OK;
+        if (rc)
+            return combination_error(sw, i, s, rc);
+    }
+    for (size_t k = 0; k < sw->naxes; k++) {
+        int rc = sw->axes[k].files ? TT_OK : set_key(sw, i, k, s);
+        if (rc)
+            return combination_error(sw, i, s, rc);
     }
     *out = s;
     return TT_OK;

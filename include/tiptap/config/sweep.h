@@ -5,6 +5,8 @@
  *   a list      "10 nm,20 nm,30 nm"   (any key: numbers with units, names, choices),
  *   a range     "10nm:30nm:5"         (FROM:TO:N, N values evenly spaced, ends included),
  *   a log range "log:1nm:100nm:3"     (N values evenly spaced in the logarithm).
+ * The key "scene" instead reads each of a list of scene files over the base (before
+ * the varied keys are set), for what no single key says: "scene=soft.ini,stiff.ini".
  * Several keys make the full grid; the combinations are numbered like nested loops,
  * the first key varying slowest. Combination i's scene is the base scene with its
  * values set, exactly as --set would set them, so every value is checked by the scene.
