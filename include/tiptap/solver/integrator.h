@@ -2,7 +2,7 @@
  *
  * A tt_sim advances the cantilever of tt_cantilever against one material's force law
  * (tt_contact) through whole drive cycles. The contact state is part of the state and
- * flips only at located events (jump-in, pull-off; PHYSICS.md), never inside a step.
+ * flips only at located events (jump-in, pull-off; docs/physics.md), never inside a step.
  * Time is kept as (cycle index, time within the cycle), so the drive phase never
  * drifts however long the run. Each cycle yields the observables of tt_cycle, computed
  * as integrals carried along by the same integrator (so they are as accurate as the
