@@ -8,6 +8,7 @@
 
 #include "tiptap/util/error.h"
 #include "tiptap/physics/material.h"
+#include "tiptap/config/solver_scene.h"
 
 int tt_setup_alloc(tt_setup **out, tt_scene *scene)
 {

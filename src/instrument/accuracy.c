@@ -13,6 +13,7 @@
 #include "tiptap/instrument/scan.h"
 #include "tiptap/instrument/scanner.h"
 #include "tiptap/config/setup.h"
+#include "tiptap/config/solver_scene.h"
 
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
 
