@@ -1,4 +1,4 @@
-/* Contact mechanics against its analytic limits (seed eqs. 4-8, PHYSICS.md). */
+/* Contact mechanics against its analytic limits (Burnham et al. eqs. 4-8, docs/physics.md). */
 #include "tt_test.h"
 #include "tiptap/physics/contact.h"
 #include "tiptap/util/error.h"
@@ -57,7 +57,7 @@ static void eq8_is_the_exact_small_A_limit(void **st)
     (void)st;
     /* up to lambda = 100: beyond, the printed form's -2 + ... cancels to nothing */
     for (double l = 1e-3; l <= 1.0001e2; l *= 10) {
-        /* eq. 8 as printed in the seed */
+        /* eq. 8 as printed in Burnham et al. */
         double r = sqrt(4 * pow(l, 4) * pow(M_PI - 2, 2) + 9 * M_PI * l) - 2 * l * l * (M_PI - 2);
         double P8 = -2 + 8 * l * (M_PI - 2) / (9 * M_PI) * r;
         double D8 = -8 / (9 * M_PI) * r;
@@ -105,7 +105,7 @@ static void load_continuous_at_the_junction(void **st)
         tt_contact *c = norm(TT_CONTACT_MAUGIS, lams[i]);
         const tt_contact_summary *s = tt_contact_summary_of(c);
         double D0 = s->Delta0;
-        /* van der Waals side equals P0 at Delta0 (eq. 10 with PHYSICS.md's sign) */
+        /* van der Waals side equals P0 at Delta0 (eq. 10 with docs/physics.md's sign) */
         assert_close(tt_contact_load(c, D0, 0, NULL, NULL), s->P0, 1e-12 * fabs(s->P0) + 1e-15);
         assert_close(tt_contact_load(c, D0 - 1e-9, 0, NULL, NULL), s->P0, 1e-6 * fabs(s->P0) + 1e-12);
         /* below the fold the contact branch meets it there too */

@@ -17,7 +17,7 @@
 #define X_HI 20.0
 #define NSCAN 2001
 
-/* Eq. 7 as printed in the seed, at m = 1 + e^x (so that m^2 - 1 keeps its digits). */
+/* Eq. 7 as printed in Burnham et al., at m = 1 + e^x (so that m^2 - 1 keeps its digits). */
 static void eq7(double lam, double x, double *A, double *D, double *P)
 {
     double e = exp(x), m = 1 + e, t = sqrt(e * (2 + e)), at = atan(t);

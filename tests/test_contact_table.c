@@ -1,5 +1,5 @@
 /* The precomputed table against direct evaluation of eq. 7 across lambda 1e-3 to 1e3 and
- * finely across the onset of the fold, and the physical summary of the seed's figure-4a
+ * finely across the onset of the fold, and the physical summary of Burnham et al.'s figure-4a
  * contact. */
 #include "tt_test.h"
 #include "tiptap/physics/contact.h"
@@ -103,7 +103,7 @@ static void seed_figure_4a_summary(void **st)
     double lam = 2.06 / 0.265e-9 * cbrt(0.01 * 100e-9 / (M_PI * 1e22));
     assert_close(s->lambda, lam, 1e-12 * lam);
     assert_close(s->force_scale, M_PI * 0.1 * 100e-9, 1e-20);
-    /* the Hamaker constant by continuity is of the order of 1e-19 J (PHYSICS.md) */
+    /* the Hamaker constant by continuity is of the order of 1e-19 J (docs/physics.md) */
     assert_between(s->hamaker, 0.5e-19, 5e-19);
     double xin = 0.265e-9 / s->depth_scale;
     double H = 6 * fabs(s->P0) * s->force_scale * pow(fabs(s->Delta0) + xin, 2) *

@@ -1,5 +1,5 @@
 /* Convergence as the step shrinks: amplitude, phase and the contact-event times of a
- * tapping cantilever converge at the method's order (PHYSICS.md). */
+ * tapping cantilever converge at the method's order (docs/physics.md). */
 #include "tt_test.h"
 #include "tt_laws.h"
 #include "tiptap/physics/contact.h"

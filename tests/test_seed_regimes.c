@@ -1,4 +1,4 @@
-/* The seed's experiments: capture by adhesion on the figure-4a cantilever, and tapping
+/* Burnham et al.'s experiments: capture by adhesion on the figure-4a cantilever, and tapping
  * in water without adhesion (figure 4b). */
 #include "tt_test.h"
 #include "tiptap/instrument/approach.h"
@@ -36,7 +36,7 @@ static void capture_by_adhesion(void **st)
     assert_close(pt[0].cycle.amplitude, 150e-9, 1e-3 * 150e-9);
     assert_close(pt[0].cycle.phase * 180 / M_PI, 90, 0.5);
     assert_close(pt[0].cycle.contact_fraction, 0, 0);
-    /* tapping: the amplitude is limited by the separation (the seed's regime 2) */
+    /* tapping: the amplitude is limited by the separation (Burnham et al.'s regime 2) */
     int tapping = 0;
     for (size_t i = 0; i < 37; i++)
         if (pt[i].cycle.contact_fraction > 0 && pt[i].cycle.contact_fraction < 0.5 && pt[i].z > 20e-9) {
@@ -87,7 +87,7 @@ static void tapping_in_water_without_adhesion(void **st)
         /* without adhesion all the loss is interaction damping, and it balances */
         assert_true(c.e_ts > 0);
         assert_close(c.e_drive, c.e_damp + c.e_ts, 1e-5 * c.e_drive);
-        /* pressing harder pushes the deflection towards anti-phase (the seed: pi/2 to pi) */
+        /* pressing harder pushes the deflection towards anti-phase (Burnham et al.: pi/2 to pi) */
         assert_true(c.phase > prev_phase);
         prev_phase = c.phase;
     }

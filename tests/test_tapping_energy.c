@@ -1,4 +1,4 @@
-/* Energy balance of steady tapping (PHYSICS.md "Checks that hold exactly"): drive work =
+/* Energy balance of steady tapping (docs/physics.md "Checks that hold exactly"): drive work =
  * cantilever damping + tip-sample loss; a conservative contact loses nothing; with
  * hysteresis and no interaction damping the loss per tap is the loop's area. */
 #include "tt_test.h"

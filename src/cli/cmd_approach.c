@@ -17,7 +17,7 @@ static void help(void)
 {
     printf("Usage: tiptap approach SCENE... [--set section.key=value]... [-o approach.csv]\n"
            "                        [--plot approach.png] [-q]\n"
-           "Approach curve of the scene's [approach] section (seed figures 1 and 4).\n\n"
+           "Approach curve of the scene's [approach] section (Burnham et al.'s figures 1 and 4).\n\n"
            "  -o, --output FILE  CSV, one row per point: z_nm, amplitude_nm, phase_deg,\n"
            "                     mean_deflection_nm, peak_force_nN, max_indentation_nm,\n"
            "                     contact_fraction, dissipated_aJ, branch, settled, cycles,\n"

@@ -1,4 +1,4 @@
-/* tiptap contact: a contact-mechanics curve (seed figure 3) and its summary. */
+/* tiptap contact: a contact-mechanics curve (Burnham et al.'s figure 3) and its summary. */
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
@@ -17,8 +17,8 @@ static void help(void)
            "                      [--plot curve.png]\n"
            "       tiptap contact SCENE... [--set section.key=value]... [--material NAME]\n"
            "                      [-o curve.csv] [--plot curve.png]\n"
-           "The normalised load-penetration curve of the Maugis-Dugdale contact (seed eq. 7)\n"
-           "or one of its limits, in the seed's units (eq. 3: load / pi w R, penetration /\n"
+           "The normalised load-penetration curve of the Maugis-Dugdale contact (Burnham et al. eq. 7)\n"
+           "or one of its limits, in Burnham et al.'s units (eq. 3: load / pi w R, penetration /\n"
            "(pi^2 w^2 R / K^2)^(1/3), contact radius / (pi w R^2 / K)^(1/3)).\n\n"
            "  -l, --lambda L     Maugis parameter (1e-4 to 1e4)\n"
            "  -m, --model M      maugis (default), hertz, dmt or jkr\n"
@@ -76,11 +76,11 @@ static int plot(const char *path, const tt_contact *c, double xi0n, int referenc
     int st[N];
     const tt_contact_summary *s = tt_contact_summary_of(c);
     char title[160];
-    snprintf(title, sizeof title, "Contact mechanics (seed figure 3): %s",
+    snprintf(title, sizeof title, "Contact mechanics (Burnham et al.'s figure 3): %s",
              s->adhesive ? "Maugis-Dugdale" : "Hertz");
     char lt[32];
     if (s->adhesive)
-        snprintf(title, sizeof title, "Contact mechanics (seed figure 3), lambda = %s",
+        snprintf(title, sizeof title, "Contact mechanics (Burnham et al.'s figure 3), lambda = %s",
                  lambda_text(s->lambda, "%.4g", lt, sizeof lt));
     tt_figure *f = tt_figure_alloc(1, title);
     if (!f)

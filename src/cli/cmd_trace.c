@@ -1,5 +1,5 @@
 /* tiptap trace: a time series of the tapping cantilever, with an optional ramp of one
- * scene key over the run (seed figures 4b to 8). */
+ * scene key over the run (Burnham et al.'s figures 4b to 8). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -15,10 +15,10 @@ static void help(void)
 {
     printf("Usage: tiptap trace SCENE... [--set section.key=value]... [-o trace.csv]\n"
            "                     [--plot trace.png] [-q]\n"
-           "Time series of the scene's [trace] section (seed figures 4b, 5 to 8).\n\n"
+           "Time series of the scene's [trace] section (Burnham et al.'s figures 4b, 5 to 8).\n\n"
            "  -o, --output FILE  CSV, samples_per_cycle rows per cycle: t_us, base_nm, tip_nm,\n"
            "                     sample_nm, deflection_nm, force_nN, contact_radius_nm,\n"
-           "                     pressure_GPa (Hertzian K a / pi R, as in the seed), contact,\n"
+           "                     pressure_GPa (Hertzian K a / pi R, as in Burnham et al.), contact,\n"
            "                     and the ramped key's value when [trace] ramp is set\n"
            "      --plot FILE    PNG: positions and deflection; force and pressure\n"
            CLI_HELP_SET

@@ -24,7 +24,7 @@ static const tt_scene_key cantilever_keys[] = {
     {"drive_frequency", Q(TT_DIM_FREQUENCY), NULL, 0, INF, POS, NULL,
      "drive frequency (default: the resonance frequency)"},
     {"drive", TT_KEY_ENUM, 0, "base", 0, 0, 0, "base|force",
-     "base: the base moves, as in the seed (eq. 2); force: a force on the tip"},
+     "base: the base moves, as in Burnham et al. (eq. 2); force: a force on the tip"},
 };
 
 static const tt_scene_key tip_keys[] = {
@@ -181,10 +181,10 @@ static const tt_scene_key scan_keys[] = {
 
 static const tt_scene_section sections[] = {
     {"cantilever", 0, cantilever_keys, TT_COUNT(cantilever_keys),
-     "the cantilever and its drive (seed eqs. 1, 2)"},
+     "the cantilever and its drive (Burnham et al. eqs. 1, 2)"},
     {"tip", 0, tip_keys, TT_COUNT(tip_keys), "the tip"},
     {"material", 1, material_keys, TT_COUNT(material_keys),
-     "a sample material and its contact with the tip (seed eqs. 3-10)"},
+     "a sample material and its contact with the tip (Burnham et al. eqs. 3-10)"},
     {"approach", 0, approach_keys, TT_COUNT(approach_keys), "tiptap approach"},
     {"trace", 0, trace_keys, TT_COUNT(trace_keys), "tiptap trace"},
     {"solver", 0, solver_keys, TT_COUNT(solver_keys), "time integration"},

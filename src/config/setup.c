@@ -51,6 +51,7 @@ static int build_materials(tt_setup *st, const char *which)
     }
     return TT_OK;
 }
+#include "tiptap/config/solver_scene.h"
 
 int tt_setup_alloc(tt_setup **out, tt_scene *scene)
 {

@@ -3,6 +3,7 @@
 #include "tiptap/instrument/scan.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>

@@ -130,7 +130,7 @@ int tt_trace_iterate(tt_trace *t, tt_trace_row *row)
         if ((rc = tt_setup_apply(t->st, t->p.ramp, row->ramp_value)))
             return rc;
     }
-    /* the sample moves at sdot through the recorded cycles (seed figure 4b) */
+    /* the sample moves at sdot through the recorded cycles (Burnham et al.'s figure 4b) */
     tt_sim_set_sample(tt_setup_sim(t->st), t->p.separation + t->sdot * (double)i * tt_setup_cantilever(t->st)->T, t->sdot);
     if ((rc = tt_sim_cycle(tt_setup_sim(t->st), &row->summary)))
         return rc;

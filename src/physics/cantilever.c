@@ -1,4 +1,4 @@
-/* Cantilever constants and the free transfer function (seed eqs. 1, 2). */
+/* Cantilever constants and the free transfer function (Burnham et al. eqs. 1, 2). */
 #include "tiptap/physics/cantilever.h"
 
 #include <math.h>

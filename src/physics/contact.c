@@ -1,6 +1,6 @@
-/* Tip-sample contact mechanics (seed section 2.2; see include/tiptap/physics/contact.h).
+/* Tip-sample contact mechanics (Burnham et al. section 2.2; see include/tiptap/physics/contact.h).
  *
- * Every adhesive model is a parametric curve (A, Delta, P)(p) in the seed's normalised
+ * Every adhesive model is a parametric curve (A, Delta, P)(p) in Burnham et al.'s normalised
  * units (eq. 3), with Delta increasing in p along the displacement-controlled stable
  * branch. That branch is tabulated once against s = sqrt(Delta - Delta_min), in which
  * the fold's square root is smooth: uniformly in s on [S_A, S1] (most contacts, no
@@ -69,7 +69,7 @@ struct tt_contact {
 /* ---------------------------------------------------------------- curves ---- */
 
 /* Maugis-Dugdale eq. 7 at t = sqrt(m^2 - 1): for fixed m its first line is a quadratic
- * in A (PHYSICS.md). A, Delta, P and their derivatives in t. */
+ * in A (docs/physics.md). A, Delta, P and their derivatives in t. */
 static void maugis_t(double lam, double t, double *A, double *D, double *P, double *dA, double *dD,
                      double *dP)
 {
@@ -134,7 +134,7 @@ static void curve_at(curve_kind k, double lam, double p, double *A, double *D, d
     }
 }
 
-/* The A -> 0 end of the curve (P0, Delta0): eq. 8 for Maugis, in PHYSICS.md's exact form. */
+/* The A -> 0 end of the curve (P0, Delta0): eq. 8 for Maugis, in docs/physics.md's exact form. */
 static void curve_end(curve_kind k, double lam, double *P0, double *D0)
 {
     if (k == CURVE_MAUGIS) {
@@ -347,7 +347,7 @@ static void branch(const struct tt_contact *c, double D, double *P, double *dPdD
         *U = herm(g, g->U, g->dU, r, NULL);
 }
 
-/* Van der Waals branch (eq. 10 with PHYSICS.md's sign): P = P0 (Delta0 - xi)^2 /
+/* Van der Waals branch (eq. 10 with docs/physics.md's sign): P = P0 (Delta0 - xi)^2 /
  * (Delta - xi)^2, U = -P0 (Delta0 - xi)^2 / (Delta - xi) (zero far away); continued
  * linearly past a cap halfway to its pole, which only overshooting stages reach. */
 static void vdw(const struct tt_contact *c, double D, double *P, double *dPdD, double *U)
@@ -550,7 +550,7 @@ int tt_contact_alloc(tt_contact **out, const tt_contact_params *p)
         return tt_error(TT_ENOMEM, "out of memory");
     c->p = *p;
     if (p->w == 0 || p->model == TT_CONTACT_HERTZ) {
-        /* No adhesion: Hertz in physical units exactly (PHYSICS.md: w = 0 is singular) */
+        /* No adhesion: Hertz in physical units exactly (docs/physics.md: w = 0 is singular) */
         c->hertz = 1;
         c->sum.adhesive = 0;
         c->sum.lambda = 0;

@@ -18,6 +18,7 @@
 
 #include "tiptap/config/scene.h"
 #include "tiptap/instrument/accuracy.h"
+#include "tiptap/config/solver_scene.h"
 #include "tiptap/instrument/approach.h"
 #include "tiptap/instrument/scan.h"
 #include "tiptap/instrument/scanner.h"

@@ -48,7 +48,7 @@ int tt_setup_use_material(tt_setup *st, size_t i);
 
 /* Set a number-valued key ("cantilever.spring_constant",
  * "material.glass.adhesion_energy") to an SI value and rebuild what depends on it
- * (used for ramps, seed figures 5 to 8). */
+ * (used for ramps, Burnham et al.'s figures 5 to 8). */
 int tt_setup_apply(tt_setup *st, const char *key, double value);
 
 /* Parse a ramp key and value text as the schema reads that key. */

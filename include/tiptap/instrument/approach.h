@@ -1,10 +1,10 @@
-/* tiptap: approach curves (seed figures 1, 4): amplitude, phase and the rest against
+/* tiptap: approach curves (Burnham et al.'s figures 1, 4): amplitude, phase and the rest against
  * the rest separation between the undeflected tip and the sample.
  *
  * steady mode: at each separation the steady oscillation is found by shooting, or the
  * cantilever runs until amplitude and phase settle, starting from the previous point's state (so the branch followed depends on
  * the history, as on an instrument), optionally followed by the retract branch.
- * ramp mode: the sample moves continuously at a given speed, as in the seed's figure 4;
+ * ramp mode: the sample moves continuously at a given speed, as in Burnham et al.'s figure 4;
  * each row is the cycle running at that moment.
  *
  * Usage: tt_approach_alloc(&a, sim, &params); while (!tt_approach_done(a))

@@ -1,4 +1,4 @@
-/* tiptap: closed-loop imaging (seed section 3.2.4; DESIGN.md's data flow).
+/* tiptap: closed-loop imaging (Burnham et al. section 3.2.4; docs/architecture.md).
  *
  * A scan moves the sample under the tapping tip line by line. Each drive cycle the
  * tip sits over the surface point the raster has reached (height and material

@@ -1,4 +1,4 @@
-/* tiptap: time traces of the tapping cantilever (seed figures 4b to 8): the tip, base
+/* tiptap: time traces of the tapping cantilever (Burnham et al.'s figures 4b to 8): the tip, base
  * and sample positions and the tip-sample force sampled through each drive cycle,
  * optionally while the sample moves from one rest separation to another and while one
  * scene key (the adhesion energy, the spring constant) ramps linearly over the run.

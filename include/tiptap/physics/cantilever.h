@@ -1,10 +1,10 @@
-/* tiptap: the point-mass cantilever and its drive (seed eqs. 1, 2; PHYSICS.md).
+/* tiptap: the point-mass cantilever and its drive (Burnham et al. eqs. 1, 2; docs/physics.md).
  *
  * Tip position d, base z, sample surface s on one axis pointing into the sample.
  *   m* d'' + c (d' - z') + k (d - z) = -P(d - s) - c_i (d' - s') [in contact] + F(t)
- * with m* = k / w0^2 and c = m* w0 / Q (the standard quality factor; the seed's
+ * with m* = k / w0^2 and c = m* w0 / Q (the standard quality factor; Burnham et al.'s
  * 2/sqrt(2 + 4 Q^2) differs by under 0.1 % for Q >= 10).
- * Base drive (the seed's): z = a_d cos(w t), F = 0. Force drive: z = 0,
+ * Base drive (Burnham et al.'s): z = a_d cos(w t), F = 0. Force drive: z = 0,
  * F = F0 cos(w t). The drive strength is derived from the free amplitude A0 of the
  * deflection y = d - z at the drive frequency, so both drives give the same free
  * oscillation y = A0 cos(w t - phi0), phi0 = the lag, 90 degrees at resonance.

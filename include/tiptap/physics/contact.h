@@ -1,9 +1,9 @@
-/* tiptap: tip-sample contact mechanics (seed section 2.2, ../shared/PHYSICS.md).
+/* tiptap: tip-sample contact mechanics (Burnham et al. section 2.2, docs/physics.md).
  *
  * A tt_contact holds one material's force law: the Maugis-Dugdale curve (eq. 7) or one
  * of its limits (Hertz eq. 4, DMT eq. 5, JKR eq. 6), precomputed once into a table on
  * the stable branch with a Hertz tail, joined to the van der Waals branch (eq. 10 with
- * the sign fixed in PHYSICS.md) at (P0, Delta0), and the jump-in / pull-off points of
+ * the sign fixed in docs/physics.md) at (P0, Delta0), and the jump-in / pull-off points of
  * the hysteresis loop. With w = 0 it is Hertz in physical units exactly: no table, no
  * van der Waals branch, no hysteresis.
  *

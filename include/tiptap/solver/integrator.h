@@ -2,11 +2,13 @@
  *
  * A tt_sim advances the cantilever of tt_cantilever against one material's force law
  * (tt_contact) through whole drive cycles. The contact state is part of the state and
- * flips only at located events (jump-in, pull-off; PHYSICS.md), never inside a step.
+ * flips only at located events (jump-in, pull-off; docs/physics.md), never inside a step.
  * Time is kept as (cycle index, time within the cycle), so the drive phase never
  * drifts however long the run. Each cycle yields the observables of tt_cycle, computed
  * as integrals carried along by the same integrator (so they are as accurate as the
  * motion), and an energy-balance residual that estimates the run's integration error.
+ *
+ * The settings come from a scene by tt_solver_from_scene (tiptap/config/solver_scene.h).
  *
  * Usage (initialise, iterate, test):
  *   tt_sim_alloc(&sim, &cantilever, &solver);
@@ -23,7 +25,6 @@
 
 #include "tiptap/physics/cantilever.h"
 #include "tiptap/physics/contact.h"
-#include "tiptap/config/scene.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -39,7 +40,6 @@ typedef struct {
 
 /* Defaults: dopri5, tolerance 1e-8, rk4 at 512 steps per cycle. */
 void tt_solver_default(tt_solver *s);
-int tt_solver_from_scene(tt_solver *s, const tt_scene *scene);
 const char *tt_method_name(tt_method m);
 
 /* What one drive cycle did. Energies in J per cycle. */

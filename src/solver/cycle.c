@@ -1,0 +1,123 @@
+/* One drive cycle: the loop that advances the method's steps (stepper.h) to the cycle's
+ * end, takes each step in full or up to a contact event, and turns the per-cycle
+ * integrals into the observables of tt_cycle with the energy-balance residual. */
+#include <string.h>
+
+#include "stepper.h"
+#include "tiptap/util/error.h"
+
+void tt_step_accept(tt_sim *S)
+{
+    tt_observe(S, 1);
+    memcpy(S->y, S->y1, sizeof S->y);
+    memcpy(S->fsal, S->k[6], sizeof S->fsal);
+    S->fsal_ok = !S->step_flight; /* a flight step computes no derivative at its end */
+    if (S->type->accept)
+        S->type->accept(S);
+    S->tau = S->step_tau + S->step_h;
+    S->steps++;
+}
+
+static int check_finite(tt_sim *S)
+{
+    if (!isfinite(S->y[Y_D]) || !isfinite(S->y[Y_V]))
+        return tt_error(TT_ENUM,
+                        "the solution became NaN or infinite at t = %.9g s (cycle %ld); "
+                        "tighten [solver] tolerance or raise steps_per_cycle",
+                        tt_sim_time(S) + S->tau, S->cycle);
+    return TT_OK;
+}
+
+/* Clear the per-cycle integrals and accumulators at the cycle start. */
+static void cycle_begin(tt_sim *S)
+{
+    for (int i = Y_WDRIVE; i < NY; i++)
+        S->y[i] = 0;
+    S->tau = 0;
+    S->peak_force = -INFINITY;
+    S->max_indent = -INFINITY;
+    S->y_min = INFINITY;
+    S->y_max = -INFINITY;
+    S->e_jumps = 0;
+    S->t_contact = S->t_release = NAN;
+    S->steps = S->rejected = S->events = 0;
+    S->next_sample = 0;
+    S->rk4_j = 1;
+    S->step_flight = 0;
+}
+
+/* Take the step the method computed: up to a contact event on it, or in full. */
+static int cycle_take(tt_sim *S, int outcome)
+{
+    if (outcome == TT_STEP_TRIAL) {
+        double th = tt_event_find(S);
+        if (th <= 1)
+            return tt_event_take(S, th);
+    }
+    tt_step_accept(S);
+    return TT_OK;
+}
+
+/* The observables from the per-cycle integrals: the deflection's fundamental (amplitude,
+ * phase), its mean, the energies and the energy-balance residual. */
+static void cycle_result(const tt_sim *S, double E_start, tt_cycle *out)
+{
+    const tt_cantilever *c = &S->c;
+    const double T = c->T;
+    double E_end = energy(S, T, S->y, S->contact_state);
+    double X = 2.0 / T * S->y[Y_IC], Yq = 2.0 / T * S->y[Y_IS];
+    out->amplitude = hypot(X, Yq);
+    double ph = atan2(Yq, X);
+    if (ph < -M_PI / 2)
+        ph += 2 * M_PI; /* lags run from about 0 to past 180 degrees */
+    out->phase = ph;
+    out->mean = S->y[Y_IY] / T;
+    out->y_min = S->y_min;
+    out->y_max = S->y_max;
+    out->peak_force = S->peak_force;
+    out->max_indentation = S->max_indent;
+    out->contact_fraction = S->y[Y_TC] / T;
+    out->e_drive = S->y[Y_WDRIVE];
+    out->e_damp = S->y[Y_WDAMP];
+    out->e_ts = S->y[Y_WCI] + S->e_jumps;
+    out->e_sample = S->y[Y_WS];
+    out->residual = out->e_drive - out->e_damp - out->e_ts - out->e_sample - (E_end - E_start);
+    out->residual_rel = fabs(out->residual) / (M_PI * c->c * c->wd * c->A0 * c->A0);
+    out->t_contact = S->t_contact;
+    out->t_release = S->t_release;
+    out->steps = S->steps;
+    out->rejected = S->rejected;
+    out->events = S->events;
+}
+
+int tt_sim_cycle(tt_sim *S, tt_cycle *out)
+{
+    const double T = S->c.T;
+    memset(out, 0, sizeof *out);
+    cycle_begin(S);
+    double E_start = energy(S, 0, S->y, S->contact_state);
+    tt_observe_start(S);
+    long guard = 0;
+    while (S->tau < T) {
+        if (++guard > 50000000L)
+            return tt_error(TT_ENUM, "no progress within cycle %ld", S->cycle);
+        int outcome, rc;
+        if ((rc = S->type->advance(S, T, &outcome)))
+            return rc;
+        if (outcome == TT_STEP_RETRY)
+            continue;
+        if (outcome == TT_STEP_END)
+            break;
+        if ((rc = cycle_take(S, outcome)) || (rc = check_finite(S)))
+            return rc;
+        if (S->tau > T)
+            S->tau = T;
+    }
+    cycle_result(S, E_start, out);
+    /* the next cycle starts at tau = 0 with the sample carried on */
+    S->cycle++;
+    S->s0 += S->sdot * T;
+    S->tau = 0;
+    S->ext_tau -= T; /* radau's last polynomial, in the new cycle's time */
+    return TT_OK;
+}

@@ -1,0 +1,106 @@
+/* Contact events: jump-in and pull-off located on the step's dense output (Illinois
+ * search), the step redone up to the event, and the contact state flipped there with its
+ * energy jump. */
+#include <string.h>
+
+#include "stepper.h"
+#include "tiptap/util/error.h"
+
+/* Illinois root finder on [a, b] with fa, fb of opposite signs; which = 0 for
+ * penetration minus thr, 1 for the relative velocity. Returns the end of the final
+ * bracket on b's side, so that the switch happens just past the root. */
+double tt_event_root(const tt_sim *S, int which, double thr, double a, double b, double fa,
+                     double fb)
+{
+    int side = 0;
+    for (int it = 0; it < 100 && b - a > 1e-14; it++) {
+        double m = (a * fb - b * fa) / (fb - fa);
+        if (!(m > a && m < b))
+            m = 0.5 * (a + b);
+        double fm = which ? tt_event_vel(S, m) : tt_event_delta(S, m, thr);
+        if (fm == 0)
+            return m;
+        if ((fm > 0) == (fb > 0)) {
+            b = m;
+            fb = fm;
+            if (side == 1)
+                fa *= 0.5;
+            side = 1;
+        } else {
+            a = m;
+            fa = fm;
+            if (side == -1)
+                fb *= 0.5;
+            side = -1;
+        }
+    }
+    return b;
+}
+
+/* Where in the current step (fraction, > 1 = none) the contact state must flip:
+ * out of contact when the penetration rises to jumpin, in contact when it falls to
+ * jumpout. A turning point inside the step is checked too, so that a brief touch
+ * between step ends is not missed. */
+double tt_event_find(const tt_sim *S)
+{
+    if (!S->contact)
+        return 2;
+    int in = S->contact_state;
+    double thr = in ? S->jumpout : S->jumpin;
+    if (!isfinite(thr))
+        return 2;
+    /* sign convention: event when sgn * g crosses from > 0 to <= 0 */
+    double sgn = in ? 1.0 : -1.0;
+    double g0 = sgn * tt_event_delta(S, 0, thr);
+    if (g0 <= -S->margin)
+        return 0; /* already past by more than the margin: switch now */
+    double g1 = sgn * tt_event_delta(S, 1, thr);
+    if (g0 > 0 && g1 <= 0)
+        return tt_event_root(S, 0, thr, 0, 1, tt_event_delta(S, 0, thr), tt_event_delta(S, 1, thr));
+    /* A turning point of the penetration inside the step: out of contact a maximum,
+     * in contact a minimum. */
+    double v0 = tt_event_vel(S, 0), v1 = tt_event_vel(S, 1);
+    if (g0 > 0 && ((!in && v0 > 0 && v1 < 0) || (in && v0 < 0 && v1 > 0))) {
+        double tm = tt_event_root(S, 1, 0, 0, 1, v0, v1);
+        double gm = sgn * tt_event_delta(S, tm, thr);
+        if (gm <= 0)
+            return tt_event_root(S, 0, thr, 0, tm, tt_event_delta(S, 0, thr),
+                                 tt_event_delta(S, tm, thr));
+    }
+    if (g1 <= -S->margin)
+        return 1; /* ended past the threshold by more than the margin: switch at the end */
+    return 2;
+}
+
+/* Redo the current step up to fraction th, take it, and flip the contact state. */
+int tt_event_take(tt_sim *S, double th)
+{
+    double h = S->step_h;
+    tt_observe(S, th);
+    if (th > 0) {
+        if (S->type->redo) {
+            int rc = S->type->redo(S, th * h);
+            if (rc)
+                return rc;
+        } else {
+            (void)S->type->apply(S, th * h);
+        }
+        memcpy(S->y, S->y1, sizeof S->y);
+        S->tau = S->step_tau + S->step_h;
+        S->steps++;
+    }
+    /* Energy jumps by U_old - U_new at the switch: the hysteresis loss (Burnham et al.;
+     * docs/physics.md). */
+    double U_old = energy(S, S->tau, S->y, S->contact_state);
+    S->contact_state = !S->contact_state;
+    double U_new = energy(S, S->tau, S->y, S->contact_state);
+    S->e_jumps += U_old - U_new;
+    if (S->contact_state && !isfinite(S->t_contact))
+        S->t_contact = S->tau;
+    if (!S->contact_state)
+        S->t_release = S->tau;
+    tt_sim_invalidate(S);
+    S->events++;
+    S->step_h = h; /* keep the step length the controller chose */
+    return TT_OK;
+}

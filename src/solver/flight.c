@@ -1,0 +1,410 @@
+/* The free flight: exact exponential steps out of contact and away from the surface,
+ * taken for dopri5 (docs/dynamics.md, "The free flight"), with their dense output and
+ * the hand-over back to dopri5 near jump-in. */
+#include <string.h>
+
+#include "stepper.h"
+
+/* Gauss-Legendre nodes on [0, 1] (the collocation points of the forcing and the
+ * quadrature of the per-cycle integrals) and their weights. */
+static const double FL_C[FL_N] = {
+    0.5 - 0.4662347571015760, 0.5 - 0.3306046932331323, 0.5 - 0.1193095930415985,
+    0.5 + 0.1193095930415985, 0.5 + 0.3306046932331323, 0.5 + 0.4662347571015760};
+static const double FL_W[FL_N] = {0.0856622461895852, 0.1803807865240693, 0.2339569672863455,
+                                  0.2339569672863455, 0.1803807865240693, 0.0856622461895852};
+
+/* The node-value to monomial map: the inverse of the Vandermonde matrix V[j][k] = c_j^k,
+ * by Gauss-Jordan (well conditioned at degree 5 on [0, 1]). */
+static void flight_vandermonde(tt_sim *S)
+{
+    double V[FL_N][2 * FL_N];
+    for (int j = 0; j < FL_N; j++)
+        for (int k = 0; k < FL_N; k++) {
+            V[j][k] = pow(FL_C[j], k);
+            V[j][FL_N + k] = j == k;
+        }
+    for (int col = 0; col < FL_N; col++) {
+        int p = col;
+        for (int r = col + 1; r < FL_N; r++)
+            if (fabs(V[r][col]) > fabs(V[p][col]))
+                p = r;
+        for (int k = 0; k < 2 * FL_N; k++) {
+            double t = V[col][k];
+            V[col][k] = V[p][k];
+            V[p][k] = t;
+        }
+        double piv = V[col][col];
+        for (int k = 0; k < 2 * FL_N; k++)
+            V[col][k] /= piv;
+        for (int r = 0; r < FL_N; r++)
+            if (r != col) {
+                double f = V[r][col];
+                for (int k = 0; k < 2 * FL_N; k++)
+                    V[r][k] -= f * V[col][k];
+            }
+    }
+    for (int k = 0; k < FL_N; k++)
+        for (int j = 0; j < FL_N; j++)
+            S->fl_vinv[k][j] = V[k][FL_N + j];
+}
+
+/* The free flight's constants for the current cantilever. Out of contact Burnham et al.
+ * eq. 2 is m d'' + c d' + k d = k z + c z' + F - P_vdw(d - s): its drive part has the
+ * steady solution d_p = Re(D e^(i w t)), D = (k a + F0 + i c w a) / (k - m w^2 + i c w),
+ * and x = d - d_p obeys a damped oscillator forced by -P / m alone. */
+void tt_flight_setup(tt_sim *S)
+{
+    const tt_cantilever *c = &S->c;
+    double zeta = 0.5 * c->c / (c->m * c->w0);
+    S->fl_ok = S->solver.method == TT_METHOD_DOPRI5 && zeta < 0.8 && !S->track_extremes;
+    S->fl_sig = 0.5 * c->c / c->m;
+    S->fl_w02 = c->k / c->m;
+    S->fl_wdm = sqrt(fmax(S->fl_w02 - S->fl_sig * S->fl_sig, 0.0));
+    double a = c->drive == TT_DRIVE_BASE ? c->a_d : 0.0, F0 = c->drive == TT_DRIVE_BASE ? 0.0 : c->F0;
+    double nr = c->k * a + F0, ni = c->c * c->wd * a;
+    double dr = c->k - c->m * c->wd * c->wd, di = c->c * c->wd, den = dr * dr + di * di;
+    S->fl_Dr = (nr * dr + ni * di) / den;
+    S->fl_Di = (ni * dr - nr * di) / den;
+    /* at most one turning point of the drive or the free motion per step (T/8), which the
+     * hand-over check relies on */
+    S->fl_h0 = fmin(c->T, 2 * M_PI / c->w0) / 8;
+    S->fl_nrung = 0;
+    for (int r = 0; r < FL_RUNGS; r++) {
+        S->fl_lad[r].ok = 0;
+        S->fl_hr[r] = S->fl_h0 * pow(2.0, -0.25 * r);
+        if (c->w0 * S->fl_hr[r] >= 0.1)
+            S->fl_nrung = r + 1;
+    }
+    if (S->fl_nrung < 4)
+        S->fl_ok = 0;
+    S->fl_rung = 0;
+    S->fl_skip = 0;
+    S->fl_wait = 0;
+    S->fl_scr.ok = 0;
+    flight_vandermonde(S);
+}
+
+void tt_flight_reset(tt_sim *S)
+{
+    S->fl_rung = 0;
+    S->fl_skip = 0;
+    S->fl_wait = 0;
+    S->fl_rej = 0;
+}
+
+static void fl_fill(const tt_sim *S, fl_cache *F, double h)
+{
+    for (int j = 0; j <= FL_N; j++) {
+        double tau = (j < FL_N ? FL_C[j] : 1.0) * h;
+        F->e[j] = exp(-S->fl_sig * tau);
+        F->cd[j] = cos(S->fl_wdm * tau);
+        F->sd[j] = sin(S->fl_wdm * tau);
+        F->cw[j] = cos(S->c.wd * tau);
+        F->sw[j] = sin(S->c.wd * tau);
+    }
+    F->h = h;
+    F->ok = 1;
+}
+
+/* The flight's force term -P(d - s) / m on the out-of-contact branch. */
+static inline double fl_force(const tt_sim *S, double delta)
+{
+    return S->contact ? -tt_contact_load(S->contact, delta, 0, NULL, NULL) * S->inv_m : 0.0;
+}
+
+/* The polynomial particular solution of x_thth + 2 sig h x_th + w0^2 h^2 x = h^2 p(theta)
+ * for p = sum a_k theta^k, by back substitution from the top degree; it loses about
+ * (w0 h)^-10 of rounding relative to the forcing's displacement, which the ladder's
+ * floor w0 h >= 0.1 keeps far below any tolerance. */
+static void flight_particular(const tt_sim *S, double h, const double *a, double *b)
+{
+    double h2 = h * h, s2 = 2 * S->fl_sig * h, iw = 1.0 / (S->fl_w02 * h2);
+    double b1 = 0, b2 = 0;
+    for (int k = FL_N - 1; k >= 0; k--) {
+        double bk = (h2 * a[k] - (k + 1) * s2 * b1 - (k + 2) * (k + 1) * b2) * iw;
+        b[k] = bk;
+        b2 = b1;
+        b1 = bk;
+    }
+}
+
+/* x and x' at a node j of the cache F from the current step's q and r0. */
+static inline void fl_node(const tt_sim *S, const fl_cache *F, int j, double th, double h, double *x,
+                           double *xd)
+{
+    const double *b = S->fl_b;
+    double q = b[FL_N - 1], qd = 0;
+    for (int k = FL_N - 2; k >= 0; k--) {
+        qd = qd * th + q;
+        q = q * th + b[k];
+    }
+    double A = S->fl_r0, B = (S->fl_r0d + S->fl_sig * A) / S->fl_wdm;
+    double e = F->e[j], cs = F->cd[j], sn = F->sd[j];
+    *x = q + e * (A * cs + B * sn);
+    *xd = qd / h + e * (S->fl_r0d * cs - (S->fl_sig * B + S->fl_wdm * A) * sn);
+}
+
+/* The per-cycle integrals over the step by the nodes' Gauss-Legendre rule, from the
+ * drive (cw, sw), the motion d = dp + x, v = dpd + x' and the forcing N at the nodes:
+ * exact to about 1e-13 of a step's share for integrands up to twice the drive frequency
+ * at h = T/8. */
+static inline void flight_quadrature(tt_sim *S, double h, const double *cw, const double *sw,
+                                     const double *dp, const double *dpd, const double *xj,
+                                     const double *xdj, const double *N)
+{
+    const tt_cantilever *c = &S->c;
+    const double w = c->wd, *y0 = S->y;
+    double *y1 = S->y1;
+    double q[NY] = {0};
+    for (int j = 0; j < FL_N; j++) {
+        double d = dp[j] + xj[j], v = dpd[j] + xdj[j];
+        double z, zd, Fd;
+        if (c->drive == TT_DRIVE_BASE) {
+            z = c->a_d * cw[j];
+            zd = -c->a_d * w * sw[j];
+            Fd = 0;
+        } else {
+            z = zd = 0;
+            Fd = c->F0 * cw[j];
+        }
+        double y = d - z, spring = c->k * y, damp = c->c * (v - zd), W = FL_W[j];
+        q[Y_WDRIVE] += W * (Fd * v - (spring + damp) * zd);
+        q[Y_WDAMP] += W * damp * (v - zd);
+        q[Y_WS] += W * (-N[j] * c->m) * S->sdot;
+        q[Y_IC] += W * y * cw[j];
+        q[Y_IS] += W * y * sw[j];
+        q[Y_IY] += W * y;
+    }
+    for (int i = Y_WDRIVE; i < NY; i++)
+        y1[i] = y0[i] + h * q[i];
+}
+
+/* Keep the step for its dense output and the hand-over check: the penetration and its
+ * rate at the start, the nodes and the end. */
+static inline void flight_keep(tt_sim *S, double h, const double *dp, const double *dpd,
+                               const double *sj, const double *xj, const double *xdj)
+{
+    const double t0 = S->tau, *y0 = S->y, *y1 = S->y1;
+    S->fl_pen[0] = y0[Y_D] - (S->s0 + S->sdot * t0);
+    S->fl_vel[0] = y0[Y_V] - S->sdot;
+    for (int j = 0; j < FL_N; j++) {
+        S->fl_pen[j + 1] = dp[j] + xj[j] - sj[j];
+        S->fl_vel[j + 1] = dpd[j] + xdj[j] - S->sdot;
+    }
+    S->fl_pen[FL_N + 1] = y1[Y_D] - sj[FL_N];
+    S->fl_vel[FL_N + 1] = y1[Y_V] - S->sdot;
+    memcpy(S->y0, y0, sizeof S->y0);
+    S->step_tau = t0;
+    S->step_h = h;
+    S->step_flight = 1;
+}
+
+/* One exponential step of length h from (tau, y) out of contact, into y1 with the
+ * per-cycle integrals, filling the dense data. d = d_p + x with x advanced exactly for
+ * the linear part (the damped oscillator's propagator) and the van der Waals force
+ * interpolated at six Gauss-Legendre nodes by a degree-5 polynomial (collocation,
+ * solved by Picard iteration, which contracts by about (dP/ddelta / k) (w0 h)^2, tiny
+ * out of contact). The error estimate is the interpolation's miss at the step end,
+ * mapped to the velocity it moves over the step (h |dN|), relative to the tolerance of
+ * dopri5's estimate. Returns it (<= 1 accepts), or -1 if the iteration did not
+ * converge. */
+static double flight_step(tt_sim *S, double h, const fl_cache *F)
+{
+    const tt_cantilever *c = &S->c;
+    const double t0 = S->tau, w = c->wd, *y0 = S->y;
+    const double Dr = S->fl_Dr, Di = S->fl_Di;
+    const double sc = 1.0 / (S->solver.tolerance * c->A0 * w);
+    double s0w, c0w;
+    phase_sincos(w * t0, &s0w, &c0w);
+    double cw[FL_N + 1], sw[FL_N + 1], dp[FL_N + 1], dpd[FL_N + 1], sj[FL_N + 1];
+    for (int j = 0; j <= FL_N; j++) {
+        cw[j] = c0w * F->cw[j] - s0w * F->sw[j];
+        sw[j] = s0w * F->cw[j] + c0w * F->sw[j];
+        dp[j] = Dr * cw[j] - Di * sw[j];
+        dpd[j] = -w * (Dr * sw[j] + Di * cw[j]);
+        sj[j] = S->s0 + S->sdot * (t0 + (j < FL_N ? FL_C[j] : 1.0) * h);
+    }
+    const double x0 = y0[Y_D] - (Dr * c0w - Di * s0w), x0d = y0[Y_V] + w * (Dr * s0w + Di * c0w);
+    double N[FL_N], a[FL_N], xj[FL_N], xdj[FL_N];
+    double N0 = fl_force(S, y0[Y_D] - (S->s0 + S->sdot * t0));
+    for (int j = 0; j < FL_N; j++)
+        N[j] = N0;
+    /* Picard iteration. After the first round the next change of the forcing is bounded
+     * by its slope |dP/ddelta| / m at the node nearest the surface (the largest, the
+     * force rising towards it) times the change of x, which spares the second round of
+     * force evaluations when that is small enough. (Kept inline here: as a function of
+     * its own it compiled to a fifth more instructions.) */
+    int conv = 0;
+    double L = -1, xprev[FL_N];
+    for (int it = 0; it < 5 && !conv; it++) {
+        for (int k = 0; k < FL_N; k++) {
+            double acc = 0;
+            for (int j = 0; j < FL_N; j++)
+                acc += S->fl_vinv[k][j] * N[j];
+            a[k] = acc;
+        }
+        flight_particular(S, h, a, S->fl_b);
+        S->fl_r0 = x0 - S->fl_b[0];
+        S->fl_r0d = x0d - S->fl_b[1] / h;
+        double dx = 0;
+        for (int j = 0; j < FL_N; j++) {
+            fl_node(S, F, j, FL_C[j], h, &xj[j], &xdj[j]);
+            if (it > 0)
+                dx = fmax(dx, fabs(xj[j] - xprev[j]));
+            xprev[j] = xj[j];
+        }
+        /* the last change moves the velocity by about h chg: converged when that is a
+         * hundredth of the tolerance */
+        if (it > 0 && L >= 0 && h * (2 * L * dx) * sc < 0.01)
+        {
+            conv = 1;
+            break;
+        }
+        double chg = 0;
+        int jn = 0;
+        for (int j = 0; j < FL_N; j++) {
+            double pen = dp[j] + xj[j] - sj[j];
+            double Nn = fl_force(S, pen);
+            chg = fmax(chg, fabs(Nn - N[j]));
+            N[j] = Nn;
+            if (pen > dp[jn] + xj[jn] - sj[jn])
+                jn = j;
+        }
+        conv = h * chg * sc < 0.01;
+        if (!conv && it == 0 && S->contact) {
+            double dPdd = 0;
+            (void)tt_contact_load(S->contact, dp[jn] + xj[jn] - sj[jn], 0, &dPdd, NULL);
+            L = fabs(dPdd) * S->inv_m;
+        }
+    }
+    if (!conv)
+        return -1;
+    double xe, xed;
+    fl_node(S, F, FL_N, 1.0, h, &xe, &xed);
+    double *y1 = S->y1;
+    y1[Y_D] = dp[FL_N] + xe;
+    y1[Y_V] = dpd[FL_N] + xed;
+    double pe = 0;
+    for (int k = 0; k < FL_N; k++)
+        pe += a[k];
+    double err = h * fabs(fl_force(S, y1[Y_D] - sj[FL_N]) - pe) * sc;
+    flight_quadrature(S, h, cw, sw, dp, dpd, xj, xdj, N);
+    flight_keep(S, h, dp, dpd, sj, xj, xdj);
+    return isfinite(err) ? err : INFINITY;
+}
+
+/* Dense output of a flight step: the exact propagator at any fraction th. */
+void tt_flight_dense(const tt_sim *S, double th, double *d, double *v)
+{
+    if (th == 0 || th == 1) {
+        const double *y = th == 0 ? S->y0 : S->y1;
+        *d = y[Y_D];
+        *v = y[Y_V];
+        return;
+    }
+    fl_cache F;
+    double h = S->step_h, tau = th * h;
+    F.e[0] = exp(-S->fl_sig * tau);
+    /* the damped rotation's angle is below 2 pi (steps of at most 1/8 of a free period),
+     * where the drive's own sine and cosine serve, at a third of the library's cost */
+    phase_sincos(S->fl_wdm * tau, &F.sd[0], &F.cd[0]);
+    double x, xd, sn, cs;
+    fl_node(S, &F, 0, th, h, &x, &xd);
+    phase_sincos(S->c.wd * (S->step_tau + tau), &sn, &cs);
+    *d = S->fl_Dr * cs - S->fl_Di * sn + x;
+    *v = -S->c.wd * (S->fl_Dr * sn + S->fl_Di * cs) + xd;
+}
+
+/* Whether the current flight step comes within fl_margin of jump-in: at its start, nodes
+ * or end, or at a maximum of the penetration between them (located on the exact dense
+ * output), so that a brief approach between the step's points is not missed. */
+static int flight_near(const tt_sim *S)
+{
+    if (!S->contact || !isfinite(S->jumpin))
+        return 0;
+    double thr = S->jumpin - S->fl_margin;
+    for (int j = 0; j < FL_N + 2; j++)
+        if (S->fl_pen[j] >= thr)
+            return 1;
+    for (int j = 0; j < FL_N + 1; j++)
+        if (S->fl_vel[j] > 0 && S->fl_vel[j + 1] < 0) {
+            double a = j == 0 ? 0.0 : FL_C[j - 1], b = j == FL_N ? 1.0 : FL_C[j];
+            double tm = tt_event_root(S, 1, 0, a, b, S->fl_vel[j], S->fl_vel[j + 1]);
+            if (tt_event_delta(S, tm, thr) >= 0)
+                return 1;
+        }
+    return 0;
+}
+
+/* The propagator for a step of length hf on rung r, or for the cycle's last (shorter)
+ * step. */
+static const fl_cache *flight_cache(tt_sim *S, int r, double hf, int lastf)
+{
+    if (lastf) {
+        if (!(S->fl_scr.ok && S->fl_scr.h == hf))
+            fl_fill(S, &S->fl_scr, hf);
+        return &S->fl_scr;
+    }
+    if (!S->fl_lad[r].ok)
+        fl_fill(S, &S->fl_lad[r], hf);
+    return &S->fl_lad[r];
+}
+
+/* The rung after a flight step of rung r with error err. The estimate is O(h^7): one
+ * rung (2^(1/4)) per factor 5. */
+static int flight_next_rung(const tt_sim *S, int r, double err, int lastf)
+{
+    int nr = r;
+    if (err > 1)
+        nr = r + 1 + (int)(log(err) * (4.0 / 7.0 / M_LN2));
+    else if (!lastf && !S->fl_rej && err < 0.2)
+        /* grow by 0.9 err^(-1/7), at most two rungs (a factor 1.41): an approaching tip's
+         * error grows fast from step to step */
+        nr = r - (err < 0.04 ? 2 : 1);
+    return nr;
+}
+
+int tt_flight_advance(tt_sim *S, double T)
+{
+    const double hmin = T * 1e-13;
+    if (S->fl_wait && S->y[Y_V] - S->sdot < 0)
+        S->fl_wait = 0;
+    if (S->fl_ok && !S->contact_state && S->fl_skip == 0 && !S->fl_wait &&
+        S->y[Y_D] - (S->s0 + S->sdot * S->tau) < S->jumpin - S->fl_margin) {
+        int r = S->fl_rung;
+        double hf = S->fl_hr[r];
+        int lastf = 0;
+        if (S->tau + hf >= T - hmin) {
+            hf = T - S->tau;
+            lastf = 1;
+        }
+        const fl_cache *F = flight_cache(S, r, hf, lastf);
+        if (S->c.w0 * hf >= 0.1) {
+            double err = flight_step(S, hf, F);
+            if (err < 0 || flight_near(S)) {
+                S->fl_wait = 1; /* the approach: no more tries until it recedes */
+            } else {
+                int nr = flight_next_rung(S, r, err, lastf);
+                S->fl_rej = err > 1;
+                if (nr < 0)
+                    nr = 0;
+                if (err > 1) {
+                    S->rejected++;
+                    if (nr >= S->fl_nrung) {
+                        S->fl_rung = S->fl_nrung - 1;
+                        S->fl_skip = 4; /* too short to pay: dopri5 for a while */
+                    } else {
+                        S->fl_rung = nr;
+                    }
+                    return TT_STEP_RETRY;
+                }
+                if (!lastf)
+                    S->fl_rung = nr;
+                return TT_STEP_TAKEN;
+            }
+        }
+    }
+    if (S->fl_skip > 0)
+        S->fl_skip--;
+    return -1;
+}

@@ -1,0 +1,138 @@
+/* The cycle's observables outside the state vector, read off each step's dense output:
+ * the recorded samples, the deflection's extremes, the peak force and indentation. */
+#include <string.h>
+
+#include "stepper.h"
+
+/* Tip-sample force on the current branch at a state. */
+static double ts_force(const tt_sim *S, double tau, double d, double v, int contact, double *delta)
+{
+    double dl = d - (S->s0 + S->sdot * tau);
+    *delta = dl;
+    if (!S->contact)
+        return 0;
+    double P = tt_contact_load(S->contact, dl, contact, NULL, NULL);
+    return P + (contact ? S->ci * (v - S->sdot) : 0.0);
+}
+
+/* Samples at k T / n inside (t0, t0 + th h]; k = 0 is taken at the cycle start. */
+static void observe_samples(tt_sim *S, double th)
+{
+    double h = S->step_h, t0 = S->step_tau;
+    const tt_cantilever *c = &S->c;
+    while (S->next_sample < S->nsamp) {
+        double ts = c->T * S->next_sample / S->nsamp;
+        if (ts > t0 + th * h * (1 + 1e-12))
+            break;
+        double f = h > 0 ? (ts - t0) / h : 0;
+        if (f < 0)
+            f = 0;
+        tt_sample *smp = &S->samples[S->next_sample++];
+        double z, zd, Fd, cw, sw;
+        drive_at(S, ts, &z, &zd, &Fd, &cw, &sw);
+        tt_step_dense(S, f, &smp->d, &smp->v);
+        smp->t = tt_sim_time(S) + ts;
+        smp->z = z;
+        smp->s = S->s0 + S->sdot * ts;
+        smp->contact = S->contact_state;
+    }
+}
+
+/* In contact the force (load plus interaction damping) may peak anywhere in the step:
+ * sample it at quarter steps of [0, th] and refine an interior maximum by a parabola. */
+static void observe_contact_peak(tt_sim *S, double th)
+{
+    double h = S->step_h, t0 = S->step_tau;
+    double d, v, delta;
+    double f[5], tq[5];
+    int best = 0;
+    for (int q = 0; q < 5; q++) {
+        tq[q] = th * q / 4.0;
+        tt_step_dense(S, tq[q], &d, &v);
+        f[q] = ts_force(S, t0 + tq[q] * h, d, v, 1, &delta);
+        if (f[q] > f[best])
+            best = q;
+    }
+    double fmax = f[best];
+    if (best > 0 && best < 4) {
+        double den = f[best - 1] - 2 * f[best] + f[best + 1];
+        if (den < 0) {
+            double off = 0.5 * (f[best - 1] - f[best + 1]) / den; /* in quarter steps */
+            if (fabs(off) <= 1) {
+                tt_step_dense(S, tq[best] + off * th / 4.0, &d, &v);
+                double fr = ts_force(S, t0 + (tq[best] + off * th / 4.0) * h, d, v, 1, &delta);
+                if (fr > fmax)
+                    fmax = fr;
+            }
+        }
+    }
+    if (fmax > S->peak_force)
+        S->peak_force = fmax;
+}
+
+/* Bookkeeping for the part [0, th] of the current step: samples, extremes, peak force. */
+void tt_observe(tt_sim *S, double th)
+{
+    double h = S->step_h, t0 = S->step_tau;
+    observe_samples(S, th);
+    /* deflection extremes (on request: they cost a drive evaluation) and force at the
+     * (sub)step end */
+    double d, v, delta;
+    tt_step_dense(S, th, &d, &v);
+    if (S->track_extremes) {
+        double z, zd, Fd, cw, sw;
+        drive_at(S, t0 + th * h, &z, &zd, &Fd, &cw, &sw);
+        double y = d - z;
+        if (y < S->y_min)
+            S->y_min = y;
+        if (y > S->y_max)
+            S->y_max = y;
+    }
+    double F = ts_force(S, t0 + th * h, d, v, S->contact_state, &delta);
+    if (F > S->peak_force)
+        S->peak_force = F;
+    if (delta > S->max_indent)
+        S->max_indent = delta;
+    /* a maximum of the penetration inside: locate it for the indentation */
+    double v0 = tt_event_vel(S, 0), v1 = tt_event_vel(S, th);
+    if (v0 > 0 && v1 < 0) {
+        double tm = tt_event_root(S, 1, 0, 0, th, v0, v1);
+        tt_step_dense(S, tm, &d, &v);
+        F = ts_force(S, t0 + tm * h, d, v, S->contact_state, &delta);
+        if (F > S->peak_force)
+            S->peak_force = F;
+        if (delta > S->max_indent)
+            S->max_indent = delta;
+    }
+    /* A flight step's ends are too far apart to stand for the far turning point, where an
+     * attraction is weakest and the force greatest: locate a minimum of the penetration. */
+    if (S->step_flight && v0 < 0 && v1 > 0) {
+        double tm = tt_event_root(S, 1, 0, 0, th, v0, v1);
+        tt_step_dense(S, tm, &d, &v);
+        F = ts_force(S, t0 + tm * h, d, v, S->contact_state, &delta);
+        if (F > S->peak_force)
+            S->peak_force = F;
+    }
+    if (S->contact_state && th > 0)
+        observe_contact_peak(S, th);
+}
+
+/* The sample at k = 0 is the cycle-start state: a step of length 0 whose dense output,
+ * for every step type, is that state. */
+void tt_observe_start(tt_sim *S)
+{
+    if (S->nsamp <= 0)
+        return;
+    S->step_tau = 0;
+    S->step_h = 0;
+    memcpy(S->y0, S->y, sizeof S->y0);
+    memcpy(S->y1, S->y, sizeof S->y1);
+    ensure_fsal(S);
+    memcpy(S->k[0], S->fsal, sizeof S->k[0]);
+    memcpy(S->k[6], S->fsal, sizeof S->k[6]);
+    for (int i = 0; i < 2; i++) {
+        S->rcont[0][i] = S->y[i];
+        S->rcont[1][i] = S->rcont[2][i] = S->rcont[3][i] = S->rcont[4][i] = 0;
+    }
+    tt_observe(S, 0);
+}

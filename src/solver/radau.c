@@ -1,0 +1,331 @@
+/* The Radau IIA step type (3 stages, order 5, L-stable) for stiff or heavily damped
+ * contacts: simplified Newton with a 3x3 LU, RADAU5's error estimate and the
+ * collocation polynomial as dense output. */
+#include <float.h>
+#include <string.h>
+
+#include "stepper.h"
+#include "tiptap/util/error.h"
+
+/* Hairer & Wanner, Solving ODEs II, IV.5 and IV.8. */
+#define RS6 2.449489742783178098197284
+static const double RC[3] = {(4.0 - RS6) / 10.0, (4.0 + RS6) / 10.0, 1.0};
+static const double RA[3][3] = {
+    {(88.0 - 7.0 * RS6) / 360.0, (296.0 - 169.0 * RS6) / 1800.0, (-2.0 + 3.0 * RS6) / 225.0},
+    {(296.0 + 169.0 * RS6) / 1800.0, (88.0 + 7.0 * RS6) / 360.0, (-2.0 - 3.0 * RS6) / 225.0},
+    {(16.0 - RS6) / 36.0, (16.0 + RS6) / 36.0, 1.0 / 9.0}};
+/* error estimate of RADAU5: gamma0 = 1 / (the real eigenvalue of A^-1), and the weights
+ * of the stage increments */
+static const double RG0 = 0.2748888295956773677478286;
+static const double RE[3] = {-(13.0 + 7.0 * RS6) / 3.0, (-13.0 + 7.0 * RS6) / 3.0, -1.0 / 3.0};
+enum { NEWTON_MAX = 7 };
+
+/* One step's fixed data: its start, the Jacobian there, the error scales, the drive at
+ * the stage times, and the Newton matrix's LU factors (ok = 0: singular). */
+typedef struct {
+    double t, h, d0, v0, tol, scd, scv, Jd, Jv;
+    int cs, ok, piv[3];
+    double M[3][3];
+    drive_val dv[3];
+} radau_ctx;
+
+/* A radau collocation polynomial of d and v in Newton form on the nodes 0, c1, c2, 1. */
+static inline void radau_poly(const double (*p)[2], double th, double *d, double *v)
+{
+    double out[2];
+    for (int i = 0; i < 2; i++)
+        out[i] = p[0][i] + th * (p[1][i] + (th - RC[0]) * (p[2][i] + (th - RC[1]) * p[3][i]));
+    *d = out[0];
+    *v = out[1];
+}
+
+/* LU factorisation of a 3x3 matrix with partial pivoting, in place; 0 if singular. */
+static int lu3(double M[3][3], int piv[3])
+{
+    for (int c = 0; c < 3; c++) {
+        int p = c;
+        for (int r = c + 1; r < 3; r++)
+            if (fabs(M[r][c]) > fabs(M[p][c]))
+                p = r;
+        piv[c] = p;
+        if (!(fabs(M[p][c]) > 0) || !isfinite(M[p][c]))
+            return 0;
+        if (p != c)
+            for (int j = 0; j < 3; j++) {
+                double tmp = M[c][j];
+                M[c][j] = M[p][j];
+                M[p][j] = tmp;
+            }
+        for (int r = c + 1; r < 3; r++) {
+            M[r][c] /= M[c][c];
+            for (int j = c + 1; j < 3; j++)
+                M[r][j] -= M[r][c] * M[c][j];
+        }
+    }
+    return 1;
+}
+
+/* Solve with lu3's factors: all row swaps first (the multipliers were swapped with
+ * their rows), then the two triangular solves. */
+static void lu3_solve(const double M[3][3], const int piv[3], double b[3])
+{
+    for (int c = 0; c < 3; c++)
+        if (piv[c] != c) {
+            double tmp = b[c];
+            b[c] = b[piv[c]];
+            b[piv[c]] = tmp;
+        }
+    for (int c = 0; c < 3; c++)
+        for (int r = c + 1; r < 3; r++)
+            b[r] -= M[r][c] * b[c];
+    for (int r = 2; r >= 0; r--) {
+        for (int j = r + 1; j < 3; j++)
+            b[r] -= M[r][j] * b[j];
+        b[r] /= M[r][r];
+    }
+}
+
+/* The acceleration alone: all that radau's Newton iteration needs. */
+static double accel(const tt_sim *S, double tau, const drive_val *dv, double d, double v,
+                    int contact)
+{
+    const tt_cantilever *c = &S->c;
+    double s = S->s0 + S->sdot * tau;
+    double P = S->contact ? tt_contact_load(S->contact, d - s, contact, NULL, NULL) : 0.0;
+    double Fi = contact ? S->ci * (v - S->sdot) : 0.0;
+    return (-c->c * (v - dv->zd) - c->k * (d - dv->z) - P - Fi + dv->F) * S->inv_m;
+}
+
+/* The step's fixed data. Jacobian of (d' = v, v' = f) at the step start: df/dd = -(k +
+ * dP/ddelta) / m, df/dv = -(c + c_i) / m. Position increments follow linearly from the
+ * velocity ones (d' = v), so Newton needs only M = I - h Jv A - h^2 Jd A^2 for the three
+ * velocity increments. */
+static void radau_setup(const tt_sim *S, double h, radau_ctx *R)
+{
+    const double *y0 = S->y;
+    R->t = S->tau;
+    R->h = h;
+    R->d0 = y0[Y_D];
+    R->v0 = y0[Y_V];
+    R->cs = S->contact_state;
+    R->tol = S->radau_tol;
+    R->scd = R->tol * S->c.A0;
+    R->scv = R->scd * S->c.wd;
+    const double t = R->t;
+    double dPdd = 0;
+    if (S->contact)
+        (void)tt_contact_load(S->contact, R->d0 - (S->s0 + S->sdot * t), R->cs, &dPdd, NULL);
+    R->Jd = -(S->c.k + dPdd) * S->inv_m;
+    R->Jv = -(S->c.c + (R->cs ? S->ci : 0.0)) * S->inv_m;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double a2 = RA[i][0] * RA[0][j] + RA[i][1] * RA[1][j] + RA[i][2] * RA[2][j];
+            R->M[i][j] = (i == j) - h * R->Jv * RA[i][j] - h * h * R->Jd * a2;
+        }
+    R->ok = lu3(R->M, R->piv);
+    for (int i = 0; i < 3; i++)
+        drive_at(S, t + RC[i] * h, &R->dv[i].z, &R->dv[i].zd, &R->dv[i].F, &R->dv[i].cw,
+                 &R->dv[i].sw);
+}
+
+/* Simplified Newton on the velocity increments zv, from the last accepted step's
+ * polynomial extrapolated; stops when the estimated remaining error, eta |dz|, is a
+ * small fraction of the tolerance (Hairer's fnewt). Sets newton_it (0: failed). */
+static int radau_newton(tt_sim *S, const radau_ctx *R, double zv[3])
+{
+    const double t = R->t, h = R->h, d0 = R->d0, v0 = R->v0, tol = R->tol;
+    const double scd = R->scd, scv = R->scv;
+    const int cs = R->cs;
+    double zd[3];
+    if (S->ext_ok)
+        for (int i = 0; i < 3; i++) {
+            double de, ve;
+            radau_poly((const double (*)[2])S->ext, (t + RC[i] * h - S->ext_tau) / S->ext_h, &de, &ve);
+            zv[i] = ve - v0;
+        }
+    const double fnewt = fmax(10 * DBL_EPSILON / tol, fmin(0.03, sqrt(tol)));
+    double eta = pow(fmax(S->newton_eta, DBL_EPSILON), 0.8), prev = 1;
+    int conv = 0, it;
+    for (it = 1; R->ok && it <= NEWTON_MAX; it++) {
+        double a[3], g[3];
+        for (int i = 0; i < 3; i++)
+            zd[i] = h * (RA[i][0] * (v0 + zv[0]) + RA[i][1] * (v0 + zv[1]) + RA[i][2] * (v0 + zv[2]));
+        for (int j = 0; j < 3; j++)
+            a[j] = accel(S, t + RC[j] * h, &R->dv[j], d0 + zd[j], v0 + zv[j], cs);
+        for (int i = 0; i < 3; i++)
+            g[i] = h * (RA[i][0] * a[0] + RA[i][1] * a[1] + RA[i][2] * a[2]) - zv[i];
+        lu3_solve(R->M, R->piv, g);
+        double nrm = 0;
+        for (int i = 0; i < 3; i++) {
+            double dd = h * (RA[i][0] * g[0] + RA[i][1] * g[1] + RA[i][2] * g[2]);
+            nrm = fmax(nrm, fmax(fabs(g[i]) / scv, fabs(dd) / scd));
+        }
+        if (!isfinite(nrm))
+            break;
+        if (it > 1) {
+            double theta = nrm / prev;
+            if (theta >= 0.99)
+                break; /* diverging */
+            eta = theta / (1 - theta);
+            if (eta * nrm * pow(theta, NEWTON_MAX - it) > fnewt)
+                break; /* would not converge in the iterations left */
+        }
+        prev = fmax(nrm, DBL_EPSILON);
+        for (int i = 0; i < 3; i++)
+            zv[i] += g[i];
+        if (eta * nrm <= fnewt) {
+            conv = 1;
+            break;
+        }
+    }
+    S->newton_it = conv ? it : 0;
+    if (conv)
+        S->newton_eta = eta;
+    return conv;
+}
+
+/* The step's end and dense data from the stages' increments zd (position), zv
+ * (velocity): the full right-hand side at the stages (quadrature integrands included),
+ * and the collocation polynomial through y0 and the three stages. */
+static void radau_finish(tt_sim *S, const radau_ctx *R, const double *y0, const double zd[3],
+                         const double zv[3])
+{
+    double (*k)[NY] = S->k;
+    const double h = R->h;
+    double Yst[NY];
+    memcpy(Yst, y0, sizeof Yst);
+    for (int j = 0; j < 3; j++) {
+        Yst[Y_D] = R->d0 + zd[j];
+        Yst[Y_V] = R->v0 + zv[j];
+        rhs_with(S, R->t + RC[j] * h, &R->dv[j], Yst, R->cs, k[1 + j]);
+    }
+    /* stiffly accurate: the end is the last stage (not y0 + h b.f, which would amplify
+     * the Newton error of the stiff part by h |J|) */
+    S->y1[Y_D] = R->d0 + zd[2];
+    S->y1[Y_V] = R->v0 + zv[2];
+    for (int q = Y_WDRIVE; q < NY; q++)
+        S->y1[q] = y0[q] + h * (RA[2][0] * k[1][q] + RA[2][1] * k[2][q] + RA[2][2] * k[3][q]);
+    memcpy(k[6], k[3], sizeof k[6]);
+    for (int i = 0; i < 2; i++) {
+        double z1 = i ? zv[0] : zd[0], z2 = i ? zv[1] : zd[1], z3 = i ? zv[2] : zd[2];
+        double f01 = z1 / RC[0], f12 = (z2 - z1) / (RC[1] - RC[0]), f23 = (z3 - z2) / (1 - RC[1]);
+        double f012 = (f12 - f01) / RC[1], f123 = (f23 - f12) / (1 - RC[0]);
+        S->rcont[0][i] = y0[i];
+        S->rcont[1][i] = f01;
+        S->rcont[2][i] = f012;
+        S->rcont[3][i] = f123 - f012;
+        S->rcont[4][i] = 0;
+    }
+}
+
+/* RADAU5's error estimate (I - h g0 J)^-1 (g0 h f0 + g0 sum e_i Z_i) on d and v. */
+static double radau_error(const tt_sim *S, const radau_ctx *R, const double zd[3],
+                          const double zv[3], int first)
+{
+    const double h = R->h, Jd = R->Jd, Jv = R->Jv, scd = R->scd, scv = R->scv;
+    const double hg = h * RG0, det = (1 - hg * Jv) - hg * hg * Jd;
+    double rd = hg * S->k[0][Y_D] + RG0 * (RE[0] * zd[0] + RE[1] * zd[1] + RE[2] * zd[2]);
+    double rv = hg * S->k[0][Y_V] + RG0 * (RE[0] * zv[0] + RE[1] * zv[1] + RE[2] * zv[2]);
+    double ed = ((1 - hg * Jv) * rd + hg * rv) / det, ev = (hg * Jd * rd + rv) / det;
+    double err = fmax(fabs(ed) / scd, fabs(ev) / scv);
+    if (err >= 1 && (first || S->last_rejected)) {
+        /* Hairer's second estimate, with f at y0 + err: keeps stiff components from
+         * inflating the first estimate after a discontinuity */
+        drive_val d0v;
+        drive_at(S, R->t, &d0v.z, &d0v.zd, &d0v.F, &d0v.cw, &d0v.sw);
+        double a1 = accel(S, R->t, &d0v, R->d0 + ed, R->v0 + ev, R->cs);
+        rd = hg * (R->v0 + ev) + RG0 * (RE[0] * zd[0] + RE[1] * zd[1] + RE[2] * zd[2]);
+        rv = hg * a1 + RG0 * (RE[0] * zv[0] + RE[1] * zv[1] + RE[2] * zv[2]);
+        ed = ((1 - hg * Jv) * rd + hg * rv) / det;
+        ev = (hg * Jd * rd + rv) / det;
+        err = fmax(fabs(ed) / scd, fabs(ev) / scv);
+    }
+    return isfinite(err) ? err : INFINITY;
+}
+
+/* Radau IIA, 3 stages, order 5, is L-stable, so a stiff or heavily damped contact
+ * limits its step only through accuracy. Simplified Newton on the motion (d, v) with
+ * the step start's Jacobian; the quadrature components do not feed back, so they follow
+ * from the converged stages with the weights b (the last row of A). Returns the scaled
+ * error (RADAU5's embedded estimate; <= 1 accepts), or INFINITY with newton_it = 0. */
+static double radau_step(tt_sim *S, double h)
+{
+    const double *y0 = S->y;
+    const int first = !S->ext_ok;
+    ensure_fsal(S);
+    memcpy(S->k[0], S->fsal, sizeof S->k[0]);
+    memcpy(S->y0, y0, sizeof S->y0);
+    S->step_tau = S->tau;
+    S->step_h = h;
+    S->step_flight = 0;
+    radau_ctx R;
+    radau_setup(S, h, &R);
+    double zv[3] = {0, 0, 0}, zd[3];
+    int conv = radau_newton(S, &R, zv);
+    /* the converged stages */
+    for (int i = 0; i < 3; i++)
+        zd[i] = h * (RA[i][0] * (R.v0 + zv[0]) + RA[i][1] * (R.v0 + zv[1]) + RA[i][2] * (R.v0 + zv[2]));
+    radau_finish(S, &R, y0, zd, zv);
+    if (!conv)
+        return INFINITY;
+    return radau_error(S, &R, zd, zv, first);
+}
+
+/* Hairer's safety factor, smaller after a slow Newton iteration; the estimate is
+ * O(h^4). */
+static double radau_factor(const tt_sim *S, double err)
+{
+    if (!S->newton_it)
+        return 0.5; /* Newton failed: the step was too long for the Jacobian */
+    double safe = fmin(0.9, 0.9 * (1 + 2 * NEWTON_MAX) / (S->newton_it + 2 * NEWTON_MAX));
+    return err > 0 ? safe * pow(err, -0.25) : 5.0;
+}
+
+static int radau_advance(tt_sim *S, double T, int *outcome)
+{
+    return tt_step_adaptive(S, T, &tt_step_radau, outcome);
+}
+
+/* The step's polynomial: the next step's Newton start. */
+static void radau_accept(tt_sim *S)
+{
+    memcpy(S->ext, S->rcont, sizeof S->ext);
+    S->ext_tau = S->step_tau;
+    S->ext_h = S->step_h;
+    S->ext_ok = 1;
+}
+
+static int radau_redo(tt_sim *S, double h)
+{
+    /* the step's own polynomial gives the redo's Newton iteration its start */
+    radau_accept(S);
+    (void)radau_step(S, h);
+    if (!S->newton_it)
+        return tt_error(TT_ENUM,
+                        "radau: Newton iteration failed at a contact event at t = %.9g s "
+                        "(cycle %ld); tighten [solver] tolerance",
+                        tt_sim_time(S) + S->step_tau, S->cycle);
+    return TT_OK;
+}
+
+static void radau_dense(const tt_sim *S, double th, double *d, double *v)
+{
+    radau_poly(S->rcont, th, d, v);
+}
+
+static void radau_reset(tt_sim *S)
+{
+    S->h = S->c.T / 64;
+    S->last_rejected = 0;
+}
+
+const tt_step_type tt_step_radau = {
+    .name = "radau",
+    .advance = radau_advance,
+    .apply = radau_step,
+    .factor = radau_factor,
+    .redo = radau_redo,
+    .dense = radau_dense,
+    .accept = radau_accept,
+    .reset = radau_reset,
+};

@@ -1,0 +1,127 @@
+/* The classic fixed-step RK4 step type on a grid of steps_per_cycle steps per drive
+ * cycle, with cubic Hermite dense output and a refusal of steps too coarse for the
+ * contact's stiffness. */
+#include <string.h>
+
+#include "stepper.h"
+#include "tiptap/util/error.h"
+
+/* One classic RK4 step. */
+static void rk4_step(tt_sim *S, double h)
+{
+    double (*k)[NY] = S->k, yt[NY];
+    const double *y0 = S->y;
+    double t = S->tau;
+    int cs = S->contact_state;
+    ensure_fsal(S);
+    memcpy(k[0], S->fsal, sizeof k[0]);
+    memcpy(yt, y0, sizeof yt); /* the stages read only (d, v) */
+    double smid = S->s0 + S->sdot * (t + 0.5 * h), send = S->s0 + S->sdot * (t + h);
+    for (int i = 0; i < 2; i++)
+        yt[i] = y0[i] + 0.5 * h * k[0][i];
+    double dmax = yt[Y_D] - smid;
+    tt_sim_rhs(S, t + 0.5 * h, yt, cs, k[1]);
+    for (int i = 0; i < 2; i++)
+        yt[i] = y0[i] + 0.5 * h * k[1][i];
+    dmax = fmax(dmax, yt[Y_D] - smid);
+    tt_sim_rhs(S, t + 0.5 * h, yt, cs, k[2]);
+    for (int i = 0; i < 2; i++)
+        yt[i] = y0[i] + h * k[2][i];
+    dmax = fmax(dmax, yt[Y_D] - send);
+    tt_sim_rhs(S, t + h, yt, cs, k[3]);
+    for (int i = 0; i < NY; i++)
+        S->y1[i] = y0[i] + h / 6.0 * (k[0][i] + 2 * k[1][i] + 2 * k[2][i] + k[3][i]);
+    /* A step that enters a stiff contact (from its soft onset, where the stiffness at the
+     * start says nothing) shows it in its stages: they overshoot deep into it. */
+    S->rk4_dmax = fmax(dmax, S->y1[Y_D] - send);
+    /* The derivative at the end serves the cubic Hermite dense output and, unless the
+     * state changes there, the next step's first stage. */
+    tt_sim_rhs(S, t + h, S->y1, cs, k[6]);
+    memcpy(S->y0, y0, sizeof S->y0);
+    S->step_tau = t;
+    S->step_h = h;
+    S->step_flight = 0;
+}
+
+/* rk4 is stable for oscillation only while h * sqrt(k_contact / m) < 2.8; past that it
+ * returns wrong numbers, so refuse with the cause. The stiffness is the current branch's
+ * at penetration delta: out of contact too, since a branch may already push back there
+ * (Hertz without adhesion has one force law for both states). */
+static int rk4_check_stiffness(tt_sim *S, double h, double delta)
+{
+    if (!S->contact)
+        return TT_OK;
+    double dPdd = 0;
+    (void)tt_contact_load(S->contact, delta, S->contact_state, &dPdd, NULL);
+    double keff = S->c.k + (dPdd > 0 ? dPdd : 0);
+    double ci = S->contact_state ? S->ci : 0.0; /* interaction damping acts in contact only */
+    double wc = sqrt(keff / S->c.m), wi = ci / S->c.m; /* the damping's rate, 1/s */
+    if (h * wc > 2.5 || h * wi > 2.5)
+        return tt_error(TT_ENUM,
+                        "rk4 step too large for the contact: contact stiffness %.3g N/m (%.0f times "
+                        "the cantilever's)%s needs at least %.0f steps per cycle; raise [solver] "
+                        "steps_per_cycle or use method = dopri5 (or radau, implicit, for a contact "
+                        "this stiff)",
+                        keff, keff / S->c.k, wi > wc ? " and its damping" : "",
+                        ceil(S->c.T * fmax(wc, wi) / 2.5));
+    return TT_OK;
+}
+
+/* The step to the next grid time j T / N, computed from the index, never accumulated;
+ * an event may have left the tip a hair short of it, or on it. */
+static int rk4_advance(tt_sim *S, double T, int *outcome)
+{
+    const double hgrid = T / S->solver.steps_per_cycle;
+    const double hmin = T * 1e-13;
+    double tnext = S->rk4_j >= S->solver.steps_per_cycle ? T : S->rk4_j * hgrid;
+    double h = tnext - S->tau;
+    if (h <= hmin) {
+        S->rk4_j++;
+        if (tnext >= T) {
+            S->tau = T;
+            *outcome = TT_STEP_END;
+        } else {
+            *outcome = TT_STEP_RETRY;
+        }
+        return TT_OK;
+    }
+    int rc = rk4_check_stiffness(S, h, S->y[Y_D] - (S->s0 + S->sdot * S->tau));
+    if (rc)
+        return rc;
+    rk4_step(S, h);
+    /* ... and at the deepest stage, before an unstable step is taken */
+    if ((rc = rk4_check_stiffness(S, h, S->rk4_dmax)))
+        return rc;
+    *outcome = TT_STEP_TRIAL;
+    return TT_OK;
+}
+
+static double rk4_apply(tt_sim *S, double h)
+{
+    rk4_step(S, h);
+    return 0;
+}
+
+/* Cubic Hermite: d from (d, v) at both ends, v from (v, a) at both ends. */
+static void rk4_dense(const tt_sim *S, double th, double *d, double *v)
+{
+    double h = S->step_h;
+    double t2 = th * th, t3 = t2 * th;
+    double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + th, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
+    *d = h00 * S->y0[Y_D] + h10 * h * S->y0[Y_V] + h01 * S->y1[Y_D] + h11 * h * S->y1[Y_V];
+    *v = h00 * S->y0[Y_V] + h10 * h * S->k[0][Y_V] + h01 * S->y1[Y_V] + h11 * h * S->k[6][Y_V];
+}
+
+/* A step taken in full reaches its grid point. */
+static void rk4_accept(tt_sim *S) { S->rk4_j++; }
+
+const tt_step_type tt_step_rk4 = {
+    .name = "rk4",
+    .advance = rk4_advance,
+    .apply = rk4_apply,
+    .factor = NULL,
+    .redo = NULL,
+    .dense = rk4_dense,
+    .accept = rk4_accept,
+    .reset = NULL,
+};

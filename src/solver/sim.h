@@ -1,0 +1,214 @@
+/* The sim's private state and the equation of motion (Burnham et al. eq. 2) that every
+ * stepper integrates: the right-hand side, the drive and the energy. Private to libtiptap.
+ *
+ * The state vector carries the motion (d, v) and, as extra components integrated by
+ * the same steps, the per-cycle integrals that give the observables: the Fourier
+ * sums of the deflection, the energies, the contact time. */
+#ifndef TIPTAP_SOLVER_SIM_H
+#define TIPTAP_SOLVER_SIM_H
+
+#include <math.h>
+
+#include "tiptap/solver/integrator.h"
+
+enum {
+    Y_D,      /* tip position */
+    Y_V,      /* tip velocity */
+    Y_WDRIVE, /* drive work */
+    Y_WDAMP,  /* cantilever damping loss */
+    Y_WCI,    /* interaction damping loss */
+    Y_WS,     /* work on a moving sample */
+    Y_IC,     /* integral of y cos(w t) */
+    Y_IS,     /* integral of y sin(w t) */
+    Y_IY,     /* integral of y */
+    Y_TC,     /* time in contact */
+    NY
+};
+
+/* Free flight (flight.c): Gauss-Legendre nodes per step and rungs of the step ladder. */
+enum { FL_N = 6, FL_RUNGS = 12 };
+
+/* The free oscillator's propagator and the drive's rotation at the nodes and the end
+ * (index FL_N) of a flight step of length h. */
+typedef struct {
+    double h;
+    double e[FL_N + 1], cd[FL_N + 1], sd[FL_N + 1]; /* exp(-sig tau), cos, sin(wdm tau) */
+    double cw[FL_N + 1], sw[FL_N + 1];              /* cos, sin(w tau) */
+    int ok;
+} fl_cache;
+
+typedef struct tt_step_type tt_step_type;
+
+struct tt_sim {
+    tt_cantilever c;
+    tt_solver solver;
+    const tt_step_type *type; /* the method's steps (stepper.h) */
+    const tt_contact *contact;
+    double ci;           /* interaction damping coefficient, kg/s */
+    double inv_m;        /* 1 / m*: the right-hand side multiplies rather than divides */
+    double jumpin, jumpout, margin;
+    /* sample: s(tau) = s0 + sdot tau within the current cycle */
+    double s0, sdot;
+    /* state */
+    long cycle;          /* completed cycles */
+    double tau;          /* time within the cycle, s */
+    double y[NY];
+    int contact_state;
+    double h;            /* dopri5, radau: next step size */
+    int rk4_j;           /* rk4: index of the next grid point in the cycle */
+    /* first-same-as-last derivative at (tau, y), valid while fsal_ok */
+    double fsal[NY];
+    int fsal_ok;
+    /* the current step, for dense output */
+    double step_tau, step_h;
+    double y0[NY], y1[NY], k[7][NY];
+    double rcont[5][2];  /* dense output of d and v: dopri5's, or radau's collocation
+                          * polynomial in Newton form */
+    /* radau: the last accepted step's collocation polynomial, extrapolated for the
+     * Newton starting values (valid while ext_ok), and the Newton iteration's memory */
+    double ext[4][2], ext_tau, ext_h;
+    int ext_ok;
+    double radau_tol;    /* the tolerance radau's O(h^4) estimate is held to */
+    double radau_hmax;   /* radau's longest step, for the quadratures (INFINITY otherwise) */
+    double newton_eta;   /* contraction estimate theta / (1 - theta) of the last step */
+    int newton_it;       /* Newton iterations of the last step (0: it failed) */
+    int last_rejected;
+    double rk4_dmax;     /* rk4: deepest penetration among the step's stages and end */
+    /* sampling */
+    int nsamp;
+    tt_sample *samples;
+    int next_sample;
+    int track_extremes;
+    /* per-cycle accumulators outside the state vector */
+    double peak_force, max_indent, y_min, y_max, e_jumps, t_contact, t_release;
+    long steps, rejected, events;
+    /* free flight: exponential steps out of contact (dopri5 only; see flight.c) */
+    int fl_ok;           /* this sim may fly: dopri5, underdamped, no extremes tracked */
+    int step_flight;     /* the current step is a flight step: dense output from fl_* */
+    int fl_rung;         /* ladder rung of the flight's next step */
+    int fl_nrung;        /* rungs usable (w0 h >= 0.1; see flight_particular) */
+    int fl_skip;         /* dopri5 steps to take before the flight is tried again */
+    int fl_wait;         /* handed over near the surface: dopri5 until the tip recedes */
+    int fl_rej;          /* the last flight attempt was rejected: do not lengthen the next */
+    double fl_h0;        /* the ladder's longest step, min(T, 2 pi / w0) / 8 */
+    double fl_sig, fl_wdm, fl_w02; /* decay rate c / 2m, damped frequency, k / m */
+    double fl_hr[FL_RUNGS]; /* the rungs' step lengths, fl_h0 2^(-r/4) */
+    double fl_Dr, fl_Di; /* steady drive response d_p = Dr cos(w t) - Di sin(w t) */
+    double fl_margin;    /* hand over to dopri5 within this penetration of jump-in */
+    double fl_vinv[FL_N][FL_N]; /* node values to monomial coefficients in theta */
+    fl_cache fl_lad[FL_RUNGS], fl_scr; /* propagators per ladder rung, and a scratch one */
+    /* the current flight step: q(theta) = sum b_k theta^k and the homogeneous part's
+     * initial offset r0 and its time derivative */
+    double fl_b[FL_N], fl_r0, fl_r0d;
+    double fl_pen[FL_N + 2], fl_vel[FL_N + 2]; /* penetration and its rate at 0, nodes, 1 */
+};
+
+/* The state was changed from outside the steps (sim.c). */
+void tt_sim_invalidate(tt_sim *S);
+
+/* sin and cos of a drive phase in [0, 2 pi] and a little beyond, to within 2 ulp:
+ * quadrant reduction with a two-part pi/2 and Taylor polynomials on [-pi/4, pi/4].
+ * The library's sincos is a third of the run time otherwise, and the phase here is
+ * always small, so its general argument reduction is not needed. */
+static inline void phase_sincos(double x, double *sn, double *cs)
+{
+    static const double pio2_hi = 1.57079632679489655800e+00, pio2_lo = 6.12323399573676603587e-17;
+    /* round to the nearest quadrant inline: nearbyint is a library call without SSE4.1 */
+    double u = x * (2.0 / M_PI) + 0.5;
+    long qi = (long)u;
+    if (u < (double)qi)
+        qi--; /* truncation rounds a negative u up */
+    double q = (double)qi;
+    double r = (x - q * pio2_hi) - q * pio2_lo;
+    double r2 = r * r;
+    double s = r * (1 + r2 * (-1.0 / 6 + r2 * (1.0 / 120 + r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 +
+               r2 * (-1.0 / 39916800 + r2 * (1.0 / 6227020800 + r2 * (-1.0 / 1307674368000))))))));
+    double c = 1 + r2 * (-0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 + r2 * (1.0 / 40320 +
+               r2 * (-1.0 / 3628800 + r2 * (1.0 / 479001600 + r2 * (-1.0 / 87178291200 +
+               r2 * (1.0 / 20922789888000))))))));
+    switch (qi & 3) {
+    case 0: *sn = s; *cs = c; break;
+    case 1: *sn = c; *cs = -s; break;
+    case 2: *sn = -s; *cs = -c; break;
+    default: *sn = -c; *cs = s; break;
+    }
+}
+
+/* Base position and velocity, drive force. */
+static inline void drive_at(const tt_sim *S, double tau, double *z, double *zd, double *F,
+                            double *cw, double *sw)
+{
+    const tt_cantilever *c = &S->c;
+    double sn, cs;
+    phase_sincos(c->wd * tau, &sn, &cs);
+    *cw = cs;
+    *sw = sn;
+    if (c->drive == TT_DRIVE_BASE) {
+        *z = c->a_d * cs;
+        *zd = -c->a_d * c->wd * sn;
+        *F = 0;
+    } else {
+        *z = 0;
+        *zd = 0;
+        *F = c->F0 * cs;
+    }
+}
+
+/* The drive at one time: radau's Newton iteration reuses it at its stage times. */
+typedef struct {
+    double z, zd, F, cw, sw;
+} drive_val;
+
+/* The right-hand side: Burnham et al. eq. 2 plus the per-cycle integrals. The contact
+ * state is fixed for the whole step (docs/physics.md: never flip it inside the
+ * right-hand side; events flip it). */
+static inline void rhs_with(const tt_sim *S, double tau, const drive_val *dv, const double *Y,
+                            int contact, double *Fo)
+{
+    const tt_cantilever *c = &S->c;
+    double z = dv->z, zd = dv->zd, Fd = dv->F, cw = dv->cw, sw = dv->sw;
+    double d = Y[Y_D], v = Y[Y_V];
+    double s = S->s0 + S->sdot * tau;
+    double delta = d - s, deltad = v - S->sdot;
+    double P = S->contact ? tt_contact_load(S->contact, delta, contact, NULL, NULL) : 0.0;
+    double Fi = contact ? S->ci * deltad : 0.0;
+    double spring = c->k * (d - z), damp = c->c * (v - zd);
+    double y = d - z;
+    Fo[Y_D] = v;
+    Fo[Y_V] = (-damp - spring - P - Fi + Fd) * S->inv_m;
+    Fo[Y_WDRIVE] = Fd * v - (spring + damp) * zd;
+    Fo[Y_WDAMP] = damp * (v - zd);
+    Fo[Y_WCI] = Fi * deltad;
+    Fo[Y_WS] = (P + Fi) * S->sdot;
+    Fo[Y_IC] = y * cw;
+    Fo[Y_IS] = y * sw;
+    Fo[Y_IY] = y;
+    Fo[Y_TC] = contact ? 1.0 : 0.0;
+}
+
+/* The right-hand side with the drive evaluated at tau (sim.c; out of line: the explicit
+ * steps call it several times each). */
+void tt_sim_rhs(const tt_sim *S, double tau, const double *Y, int contact, double *Fo);
+
+/* The derivative at the current state, for a step's first stage: kept from the last
+ * step's end (first same as last) unless the state changed since. */
+static inline void ensure_fsal(tt_sim *S)
+{
+    if (!S->fsal_ok) {
+        tt_sim_rhs(S, S->tau, S->y, S->contact_state, S->fsal);
+        S->fsal_ok = 1;
+    }
+}
+
+/* Mechanical energy of the tip system on the current branch: kinetic + spring +
+ * tip-sample potential. */
+static inline double energy(const tt_sim *S, double tau, const double *Y, int contact)
+{
+    double z, zd, Fd, cw, sw;
+    drive_at(S, tau, &z, &zd, &Fd, &cw, &sw);
+    double d = Y[Y_D], v = Y[Y_V];
+    double U = S->contact ? tt_contact_energy(S->contact, d - (S->s0 + S->sdot * tau), contact) : 0;
+    return 0.5 * S->c.m * v * v + 0.5 * S->c.k * (d - z) * (d - z) + U;
+}
+
+#endif
