@@ -7,6 +7,7 @@
 #include "sweep.h"
 #include "tiptap/config/config.h"
 #include "tiptap/config/setup.h"
+#include "tiptap/config/solver_scene.h"
 #include "tiptap/instrument/approach.h"
 #include "tiptap/instrument/scan.h"
 #include "tiptap/io/outfile.h"
