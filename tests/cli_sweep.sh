@@ -36,6 +36,15 @@ awk -F, 'NR > 1 && $2 == "disk" { d = $5 - $4; if (d < 0) d = -d; if (d > 1.5) b
   [ "$(cut -d, -f2 "$tmp/log.csv" | tr '\n' ' ')" = "cantilever.free_amplitude[m] 1e-08 1e-07 1e-06 " ] &&
   ok "log range" || bad "log range: $(cut -d, -f2 "$tmp/log.csv" | tr '\n' ' ')"
 
+# whole scene files as one varied key: each file's cantilever, and the keys set after it
+printf '[cantilever]\nspring_constant = 2 N/m\nfree_amplitude = 5 nm\n' >"$tmp/soft.ini"
+printf '[cantilever]\nspring_constant = 200 N/m\n' >"$tmp/stiff.ini"
+(cd "$tmp" && "$tiptap" sweep "$blend" --vary scene=soft.ini,stiff.ini --vary "cantilever.free_amplitude=10nm" \
+  --set approach.material=disk -q -o files.csv) &&
+  awk -F, 'NR > 1 { print $2, $3, ($5 > 9 && $5 < 11) }' "$tmp/files.csv" | tr '\n' ' ' |
+  grep -qx 'soft.ini 1e-08 1 stiff.ini 1e-08 1 ' && ok "scene files as a varied key, keys set after them" ||
+  bad "scene files: $(cat "$tmp/files.csv")"
+
 # setpoint points: the amplitude is the setpoint (50 and 80 % of 20 nm) to 1e-3 of A0
 "$tiptap" sweep "$blend" --vary "feedback.setpoint=50%,80%" --set approach.material=disk --run setpoint -q \
   -o "$tmp/sp.csv" && awk -F, 'NR > 1 { d = $5 - $3; if (d < 0) d = -d; if (d > 0.02) bad = 1; n++ }
