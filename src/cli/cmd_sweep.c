@@ -34,7 +34,8 @@ static void help(void)
            "                     found (newton or settled). Scans: folder, lines_done,\n"
            "                     error_estimate, material, pixels, height and phase mean and\n"
            "                     standard deviation, and their contrast to the first material.\n"
-           "                     Scan folders go under FILE without its extension.\n"
+           "                     Scan folders go under FILE without its extension (FILE.d\n"
+           "                     if it has none).\n"
            "  -j, --threads N    combinations computed in parallel (default: all cores); a scan\n"
            "                     runs one combination at a time on N threads instead\n"
            "      --plot FILE    PNG against the last varied key (approach: against z), one line\n"
@@ -133,15 +134,19 @@ static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, 
     char dir[4096], header[8192];
     snprintf(dir, sizeof dir, "%s", a->output);
     char *dot = strrchr(dir, '.');
-    if (dot && !strchr(dot, '/'))
+    if (dot && !strchr(dot, '/') && dot != dir)
         *dot = '\0';
+    else /* no extension: the folder cannot take the table's own name */
+        strncat(dir, ".d", sizeof dir - strlen(dir) - 1);
     if (!threads)
         threads = omp_get_max_threads();
     sweep_job job = {NULL, kind, dir, threads};
     double t0 = cli_now();
     sweep_results r = {0};
     rc = build_grid(scene, vary, nvary, &job, contrast);
-    sweep_header(&job, header, sizeof header);
+    header[0] = '\0';
+    if (job.grid)
+        sweep_header(&job, header, sizeof header);
     size_t n = job.grid ? tt_sweep_count(job.grid) : 0;
     int progress = !a->quiet && rank == 0 && cli_progress_enabled();
     if (!rc && rank == 0)
