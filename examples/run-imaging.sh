@@ -9,3 +9,7 @@ for s in gain-low gain-right gain-high line-rate-fast; do
   $t scan scans/standard.ini surfaces/grating.ini examples/feedback-tuning/common.ini \
      examples/feedback-tuning/$s.ini -o examples/feedback-tuning/$s
 done
+for s in tip tilt drift piezo creep; do
+  $t scan scans/standard.ini examples/instrument/common.ini examples/instrument/$s.ini \
+     -o examples/instrument/$s
+done

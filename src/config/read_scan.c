@@ -233,7 +233,8 @@ int tt_config_scan(const tt_scene *s, tt_scan_params *p)
     if ((rc = tt_config_raster(s, &p->raster)) || (rc = tt_config_lockin(s, &p->lockin)) ||
         (rc = read_scan_keys(s, p)) ||
         (rc = tt_config_feedback(s, p->cantilever.A0, &p->feedback)) ||
-        (rc = tt_config_surface(s, m, n, &p->surface))) {
+        (rc = tt_config_surface(s, m, n, &p->surface)) ||
+        (rc = tt_config_tip_shape(s, &p->tip)) || (rc = tt_config_instrument(s, &p->instrument))) {
         tt_config_scan_free(p);
         return rc;
     }

@@ -32,6 +32,12 @@ static const tt_scene_key tip_keys[] = {
     {"youngs_modulus", Q(TT_DIM_PRESSURE), "169 GPa", 0, INF, POS, NULL,
      "tip Young's modulus (silicon: 169 GPa)"},
     {"poisson_ratio", Q(TT_DIM_NONE), "0.27", -1, 0.5, 0, NULL, "tip Poisson ratio"},
+    {"shape", TT_KEY_ENUM, 0, "point", 0, 0, 0, "point|sphere|cone",
+     "tiptap scan: the shape that meets the topography: point: the apex alone; sphere: the apex "
+     "sphere of radius R_tip; cone: that sphere on a cone of half_angle (docs/surfaces.md); "
+     "contact mechanics keeps R_tip"},
+    {"half_angle", Q(TT_DIM_ANGLE), "20 deg", 0, M_PI / 2, TT_KEY_MIN_EXCL | TT_KEY_MAX_EXCL, NULL,
+     "cone: half-angle of the cone, tangent to the apex sphere"},
 };
 
 static const tt_scene_key material_keys[] = {
@@ -179,6 +185,25 @@ static const tt_scene_key scan_keys[] = {
      "drive cycles the feedback settles at each line's first pixel before the trace"},
 };
 
+/* [instrument]: the imperfections of a real instrument (tiptap scan), each off by default. */
+static const tt_scene_key instrument_keys[] = {
+    {"tilt_x", Q(TT_DIM_NONE | TT_DIM_FRACTION), "0", -10, 10, 0, NULL,
+     "sample tilt: slope dz/dx of the sample plane (1 % = 10 nm per um)"},
+    {"tilt_y", Q(TT_DIM_NONE | TT_DIM_FRACTION), "0", -10, 10, 0, NULL, "sample tilt: slope dz/dy"},
+    {"drift_x", Q(TT_DIM_VELOCITY), "0 m/s", -INF, INF, 0, NULL,
+     "thermal drift of the sample along x (the image of a feature moves by +drift_x t)"},
+    {"drift_y", Q(TT_DIM_VELOCITY), "0 m/s", -INF, INF, 0, NULL, "thermal drift of the sample along y"},
+    {"drift_z", Q(TT_DIM_VELOCITY), "0 m/s", -INF, INF, 0, NULL,
+     "thermal drift of the sample towards the tip (the height image rises by drift_z t)"},
+    {"piezo_resonance", Q(TT_DIM_FREQUENCY), "0 Hz", 0, INF, 0, NULL,
+     "z piezo: resonance of its second-order response to the feedback's command (0: ideal)"},
+    {"piezo_damping", Q(TT_DIM_NONE), "0.3", 0, 100, POS, NULL, "z piezo: damping ratio zeta"},
+    {"creep", Q(TT_DIM_NONE | TT_DIM_FRACTION), "0", 0, 1, 0, NULL,
+     "z piezo creep gamma: after a move dz it creeps gamma dz log10(1 + t / creep_time) (0: none)"},
+    {"creep_time", Q(TT_DIM_TIME), "10 ms", 0, INF, POS, NULL,
+     "z piezo creep: time t0 after a move from which the creep grows as log10(t)"},
+};
+
 static const tt_scene_section sections[] = {
     {"cantilever", 0, cantilever_keys, TT_COUNT(cantilever_keys),
      "the cantilever and its drive (Burnham et al. eqs. 1, 2)"},
@@ -192,6 +217,8 @@ static const tt_scene_section sections[] = {
     {"scan", 0, scan_keys, TT_COUNT(scan_keys), "raster scan (tiptap scan)"},
     {"lockin", 0, lockin_keys, TT_COUNT(lockin_keys), "lock-in demodulator (tiptap scan)"},
     {"feedback", 0, feedback_keys, TT_COUNT(feedback_keys), "PI amplitude feedback (tiptap scan)"},
+    {"instrument", 0, instrument_keys, TT_COUNT(instrument_keys),
+     "the instrument's imperfections: tilt, drift, z piezo dynamics and creep (tiptap scan)"},
 };
 
 /* Static and constant: nothing to initialise, safe from any thread. */

@@ -91,6 +91,9 @@ struct tt_scan {
     double *Qi;
     tt_raster raster;
     tt_surface *surface;
+    tt_dilation *dilation; /* the surface as the tip's shape images it; NULL: the apex */
+    tt_instrument_params inst;
+    int plain;             /* a point tip on an ideal instrument: the heights as they are */
     int uniform, flat;
     unsigned channels;
     long settle_cycles;
@@ -157,9 +160,29 @@ static int take_params(tt_scan *S, const tt_scan_params *p)
     S->ki = p->feedback.ki;
     S->z_range = p->feedback.z_range;
     S->A0 = p->cantilever.A0;
+    S->inst = p->instrument;
+    const tt_instrument_params *in = &p->instrument;
+    S->plain = p->tip.kind == TT_TIP_POINT && in->tilt_x == 0 && in->tilt_y == 0 &&
+               in->drift_x == 0 && in->drift_y == 0 && in->drift_z == 0 &&
+               tt_piezo_ideal(&in->piezo);
     if (p->nmaterials < 1)
         return tt_error(TT_EINVAL, "a scan needs at least one material");
     return TT_OK;
+}
+
+/* The dilated surface over the scan area and as far as drift carries the sample, on a
+ * grid (where one is needed) a quarter of the finest of the pixel pitch, the line pitch
+ * and the tip radius. */
+static int make_dilation(tt_scan *S, const tt_tip_shape *tip)
+{
+    const tt_raster *R = &S->raster;
+    double t = (double)R->lines / R->line_rate;
+    double mx = fabs(S->inst.drift_x) * t, my = fabs(S->inst.drift_y) * t;
+    double fast = (R->fast_y ? R->size_y : R->size_x) / (double)R->pixels;
+    double slow = (R->fast_y ? R->size_x : R->size_y) / (double)R->lines;
+    double dx = fmin(fmin(fast, slow), tip->radius) / 4;
+    return tt_dilation_alloc(&S->dilation, S->surface, tip, -mx, -my, R->size_x + mx,
+                             R->size_y + my, dx);
 }
 
 int tt_scan_alloc(tt_scan **out, const tt_scan_params *p)
@@ -178,6 +201,10 @@ int tt_scan_alloc(tt_scan **out, const tt_scan_params *p)
     }
     S->uniform = tt_surface_uniform(S->surface);
     S->flat = tt_surface_flat(S->surface);
+    if (p->tip.kind != TT_TIP_POINT && !S->flat && (rc = make_dilation(S, &p->tip))) {
+        tt_scan_free(S);
+        return rc;
+    }
     size_t n = (size_t)S->raster.pixels * (size_t)S->raster.lines;
     for (int r = 0; r < (S->raster.retrace ? 2 : 1); r++)
         for (int c = 0; c < TT_CH_COUNT; c++) {
@@ -208,6 +235,7 @@ void tt_scan_free(tt_scan *S)
         for (int c = 0; c < TT_CH_COUNT; c++)
             free(S->img[r][c]);
     free(S->line_done);
+    tt_dilation_free(S->dilation);
     tt_surface_free(S->surface);
     for (size_t i = 0; i < S->nmaterials && S->contacts; i++)
         tt_contact_free(S->contacts[i]);
@@ -254,6 +282,29 @@ static double lag(double X, double Y)
     return ph < -M_PI / 2 ? ph + 2 * M_PI : ph;
 }
 
+/* The instrument's clock (tt_instrument_params) at the start of cycle k of phase 0
+ * (settling: the line's start), 1 (trace) or 2 (retrace). */
+static double clock_at(const tt_scan *S, long line, int phase, long nc, long k)
+{
+    double half = 0.5 / S->raster.line_rate, t = (double)line / S->raster.line_rate;
+    if (phase == 0)
+        return t;
+    return t + (phase == 2 ? half : 0) + half * (double)k / (double)nc;
+}
+
+/* The sample under raster position (x, y) at time t: *x, *y become the surface's point
+ * there (drift); returns the height the apex meets (dilated, tilted, drifted in z) and
+ * the true height in *topo. */
+static double sample_at(const tt_scan *S, double *x, double *y, double t, double *topo)
+{
+    const tt_instrument_params *in = &S->inst;
+    *x -= in->drift_x * t;
+    *y -= in->drift_y * t;
+    *topo = S->flat ? 0 : tt_surface_height(S->surface, *x, *y);
+    double h = S->dilation ? tt_dilation_height(S->dilation, *x, *y) : *topo;
+    return h + in->tilt_x * *x + in->tilt_y * *y + in->drift_z * t;
+}
+
 /* Scan one line: engage at its first pixel, then trace and retrace. */
 static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *worst, int *clamped)
 {
@@ -266,9 +317,12 @@ static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *wor
     const double h_ref = 0; /* heights are reported against the surface's own zero */
     int rc = TT_OK;
 
-    double x, y;
+    double x, y, h0, topo;
     tt_raster_position(R, line, 0, nc, 0, &x, &y);
-    double h0 = tt_surface_height(S->surface, x, y);
+    if (S->plain)
+        h0 = tt_surface_height(S->surface, x, y);
+    else
+        h0 = sample_at(S, &x, &y, clock_at(S, line, 0, nc, 0), &topo);
     size_t mat = S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
     tt_sim_set_contact(sim, S->contacts[mat], S->Qi[mat]);
     size_t current = mat;
@@ -280,6 +334,11 @@ static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *wor
     tt_feedback_init(&fb, S->setpoint, S->kp, S->ki, h_ref - 0.5 * S->z_range,
                      h_ref + 0.5 * S->z_range, h0);
     double z_from = fb.z, z_to = fb.z;
+    /* the piezo rests at the engage height; creep follows the whole line */
+    tt_piezo pz;
+    int piezo = !tt_piezo_ideal(&S->inst.piezo);
+    tt_piezo_init(&pz, &S->inst.piezo, fb.z, (double)S->settle_cycles * T + 1 / R->line_rate);
+    double z_act = fb.z;
     tt_sim_reset_free(sim);
     tt_sim_set_sampling(sim, N, W->samples);
     tt_lockin_reset(W->lockin, c->A0, c->phi0);
@@ -311,8 +370,16 @@ static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *wor
                     tt_raster_position(R, line, dir, nc, k, &xa, &ya);
                     tt_raster_position(R, line, dir, nc, k + 1, &xb, &yb);
                 }
-                double ha = S->flat ? 0 : tt_surface_height(S->surface, xa, ya);
-                double hb = S->flat ? 0 : tt_surface_height(S->surface, xb, yb);
+                double ha, hb;
+                if (S->plain) {
+                    ha = S->flat ? 0 : tt_surface_height(S->surface, xa, ya);
+                    hb = S->flat ? 0 : tt_surface_height(S->surface, xb, yb);
+                    topo = ha;
+                } else {
+                    double tb = clock_at(S, line, phase, nc, phase ? k + 1 : 0);
+                    ha = sample_at(S, &xa, &ya, clock_at(S, line, phase, nc, k), &topo);
+                    hb = sample_at(S, &xb, &yb, tb, &(double){0});
+                }
                 if (!S->uniform) {
                     size_t m = (size_t)tt_surface_material(S->surface, xa, ya);
                     if (m != current) {
@@ -324,7 +391,14 @@ static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *wor
                  * the block after an update, so the sample never jumps. */
                 double za = z_from + (z_to - z_from) * (double)j / P;
                 double zb = z_from + (z_to - z_from) * (double)(j + 1) / P;
-                double sa = s_ref - ha + za, sb = s_ref - hb + zb;
+                /* the sample follows the piezo's actual height; the height channel
+                 * records the command, as an instrument's does */
+                double pa = za, pb = zb;
+                if (piezo) {
+                    pa = z_act;
+                    pb = z_act = tt_piezo_advance(&pz, zb, T);
+                }
+                double sa = s_ref - ha + pa, sb = s_ref - hb + pb;
                 tt_sim_set_sample(sim, sa, (sb - sa) / T);
                 tt_cycle cy;
                 if ((rc = tt_sim_cycle(sim, &cy)))
@@ -340,7 +414,7 @@ static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *wor
                     a->sum[3] += cy.peak_force;
                     a->sum[4] += cy.max_indentation;
                     a->sum[5] += cy.e_ts;
-                    a->sum[6] += ha;
+                    a->sum[6] += topo;
                     a->sum[0] += za;
                     a->n++;
                 }
@@ -467,6 +541,7 @@ long tt_scan_profile_line(const tt_scan *S) { return S->profile_line; }
 long tt_scan_cycles(const tt_scan *S) { return S->cycles; }
 double tt_scan_error_estimate(const tt_scan *S) { return S->worst_residual; }
 int tt_scan_clamped(const tt_scan *S) { return S->clamped; }
+const tt_dilation *tt_scan_dilation(const tt_scan *S) { return S->dilation; }
 
 const double *tt_scan_image(const tt_scan *S, int channel, int retrace)
 {

@@ -426,6 +426,31 @@ int tt_surface_material(const tt_surface *S, double x, double y)
 int tt_surface_uniform(const tt_surface *S) { return S->map == M_UNIFORM; }
 int tt_surface_flat(const tt_surface *S) { return S->type == S_FLAT; }
 
+/* The straight pieces of steps and gratings, as tt_surface_height draws them. */
+int tt_surface_pieces(const tt_surface *S, double x0, double x1, tt_surface_piece_fn fn,
+                      void *user)
+{
+    if (S->type == S_STEPS) {
+        double w = S->step_w;
+        for (double n = floor(x0 / w); n <= floor(x1 / w); n++)
+            fn(user, n * w, n * S->step_h, (n + 1) * w, n * S->step_h);
+        return 1;
+    }
+    if (S->type != S_GRATING)
+        return 0;
+    double p = S->period, top = S->duty * p, e = S->edge, H = S->height;
+    for (double n = floor(x0 / p); n <= floor(x1 / p); n++) {
+        double o = n * p;
+        if (e > 0)
+            fn(user, o, 0, o + e, H);
+        fn(user, o + e, H, o + top, H);
+        if (e > 0)
+            fn(user, o + top, H, o + top + e, 0);
+        fn(user, o + top + e, 0, o + p, 0);
+    }
+    return 1;
+}
+
 /* ---- material map ---- */
 
 /* A material's map_value as the pixel it names in a map of maxval (255 or 65535),

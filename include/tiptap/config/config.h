@@ -58,8 +58,14 @@ int tt_config_lockin(const tt_scene *s, tt_lockin_params *p);
  * amplitude A0, m). */
 int tt_config_feedback(const tt_scene *s, double A0, tt_feedback_params *p);
 
+/* [tip] shape and half_angle, with the [tip] radius (tiptap scan). */
+int tt_config_tip_shape(const tt_scene *s, tt_tip_shape *t);
+
+/* [instrument]: tilt, drift, the z piezo's dynamics and creep (all zero by default). */
+int tt_config_instrument(const tt_scene *s, tt_instrument_params *p);
+
 /* Everything a scan reads: [cantilever], [solver], [tip], every [material], [scan],
- * [surface], [lockin], [feedback]. */
+ * [surface], [lockin], [feedback], [instrument]. */
 int tt_config_scan(const tt_scene *s, tt_scan_params *p);
 void tt_config_scan_free(tt_scan_params *p);
 

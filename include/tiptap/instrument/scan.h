@@ -26,8 +26,10 @@
 
 #include "tiptap/instrument/feedback.h"
 #include "tiptap/instrument/lockin.h"
+#include "tiptap/instrument/piezo.h"
 #include "tiptap/instrument/scanner.h"
 #include "tiptap/instrument/surface.h"
+#include "tiptap/instrument/tip.h"
 #include "tiptap/physics/cantilever.h"
 #include "tiptap/physics/material.h"
 #include "tiptap/solver/integrator.h"
@@ -44,7 +46,8 @@ enum {
     TT_CH_PEAK_FORCE = 1 << 3,  /* greatest tip-sample force per cycle, N */
     TT_CH_INDENTATION = 1 << 4, /* greatest penetration per cycle, m */
     TT_CH_DISSIPATION = 1 << 5, /* tip-sample energy lost per cycle, J */
-    TT_CH_TOPOGRAPHY = 1 << 6,  /* the true surface height under the tip, m (reference) */
+    TT_CH_TOPOGRAPHY = 1 << 6,  /* the true surface height under the tip's axis, m
+                                 * (reference: no dilation, tilt or z drift) */
     /* Higher harmonics of the deflection, h = 2 to TT_CH_HARMONIC_MAX: channel index
      * TT_CH_HARMONIC_INDEX + h - 2 is "harmonicH", the lock-in amplitude of harmonic h
      * (m), and TT_CH_HARMONIC_PHASE_INDEX + h - 2 is "harmonicH_phase", its lag behind
@@ -64,6 +67,18 @@ int tt_scan_channel_harmonic(int i);
 /* Parse "height, phase" into a channel mask; -1 with a message naming the channel. */
 int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t len);
 
+/* The instrument's imperfections ([instrument]); all zero: an ideal instrument. Time t
+ * is the instrument's clock: line n starts at n / line_rate, its trace takes the first
+ * half of the line's period and its retrace the second (a line's settling takes none).
+ * The sample at raster position (x, y) and time t is the point (x - drift_x t,
+ * y - drift_y t) of the surface, raised by tilt_x x + tilt_y y + drift_z t in that
+ * point's coordinates. The piezo starts each line at rest, since lines are independent. */
+typedef struct {
+    double tilt_x, tilt_y;            /* slopes dz/dx, dz/dy */
+    double drift_x, drift_y, drift_z; /* m/s */
+    tt_piezo_params piezo;
+} tt_instrument_params;
+
 /* Everything a scan needs, in SI units. */
 typedef struct {
     tt_cantilever cantilever;
@@ -79,6 +94,8 @@ typedef struct {
     unsigned channels;            /* TT_CH_* mask */
     long settle_cycles;           /* cycles the feedback settles at each line's first pixel */
     long profile_line;            /* the line of the CSV profile; -1: the middle one */
+    tt_tip_shape tip;             /* what meets the topography (TT_TIP_POINT: the apex) */
+    tt_instrument_params instrument;
 } tt_scan_params;
 
 typedef struct tt_scan tt_scan;
@@ -119,6 +136,9 @@ long tt_scan_cycles(const tt_scan *s);
 double tt_scan_error_estimate(const tt_scan *s);
 /* Whether the z piezo hit its range limits during the scan. */
 int tt_scan_clamped(const tt_scan *s);
+/* The tip's dilation of the surface, made when the scan is (NULL for a point tip or a
+ * flat surface). */
+const tt_dilation *tt_scan_dilation(const tt_scan *s);
 
 #ifdef __cplusplus
 }

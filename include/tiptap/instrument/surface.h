@@ -65,6 +65,15 @@ int tt_surface_uniform(const tt_surface *s);
 /* 1 when the topography is flat everywhere. */
 int tt_surface_flat(const tt_surface *s);
 
+/* Surfaces that vary along x only and are made of straight pieces (steps, grating):
+ * calls fn(user, xa, ha, xb, hb) for each piece of the profile, from (xa, ha) to
+ * (xb, hb) with xa < xb, that overlaps [x0, x1], and returns 1. A vertical sidewall is
+ * no piece: the ends of the pieces beside it stand for it. Returns 0, calling nothing,
+ * for the other surfaces. The tip's dilation uses it to be exact (tip.h). */
+typedef void (*tt_surface_piece_fn)(void *user, double xa, double ha, double xb, double hb);
+int tt_surface_pieces(const tt_surface *s, double x0, double x1, tt_surface_piece_fn fn,
+                      void *user);
+
 #ifdef __cplusplus
 }
 #endif

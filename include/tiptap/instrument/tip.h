@@ -1,0 +1,74 @@
+/* tiptap: the tip's shape and the surface it images (the surface dilated by the tip).
+ *
+ * A real tip touches a sample not only at its apex: it rests where the gap over its
+ * whole surface is smallest. With the tip's surface t(u, v) above its apex (t(0, 0) = 0)
+ * and the sample's height h, the apex sits at the dilated height
+ *   h_app(x, y) = max over (u, v) of h(x + u, y + v) - t(u, v),
+ * so walls and particles image broadened by the tip's flanks. The contact mechanics
+ * keeps the apex sphere (Burnham et al. eq. 7 with R = the [tip] radius): the shape
+ * changes where the tip touches, not how it presses.
+ *
+ * Shapes: point (no dilation: the apex alone, today's behaviour), sphere (the apex
+ * sphere of radius R alone, a blunt probe), cone (the apex sphere on a cone of
+ * half-angle theta, tangent to it at rho = R cos theta, as real tips are).
+ *
+ * Surfaces that vary along x only and are made of straight pieces (steps, grating) are
+ * dilated exactly at every look-up; the others on a grid computed once (see
+ * tt_dilation_alloc and docs/surfaces.md for its spacing and error).
+ *
+ * Ownership: tt_dilation_alloc returns an object the caller frees with
+ * tt_dilation_free; it reads the surface while it is made and keeps a pointer to it
+ * (the surface must outlive it); read-only afterwards, it may be shared between threads.
+ */
+#ifndef TIPTAP_TIP_H
+#define TIPTAP_TIP_H
+
+#include "tiptap/instrument/surface.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum { TT_TIP_POINT, TT_TIP_SPHERE, TT_TIP_CONE } tt_tip_kind;
+
+typedef struct {
+    tt_tip_kind kind;
+    double radius;     /* m: the apex sphere (the [tip] radius) */
+    double half_angle; /* rad: the cone's half-angle, 0 < theta < pi / 2 (cone only) */
+} tt_tip_shape;
+
+/* Height of the tip's surface above its apex at a lateral distance rho >= 0 from its
+ * axis; INFINITY where the tip has no surface (a sphere tip beyond R, a point tip
+ * beyond its axis). */
+double tt_tip_shape_height(const tt_tip_shape *t, double rho);
+
+/* The largest rho at which the tip's surface rises no more than dh above the apex:
+ * features lower than h(x, y) - dh further away cannot touch it. */
+double tt_tip_shape_reach(const tt_tip_shape *t, double dh);
+
+/* The lateral distance from the axis at which the tip's flank has slope s >= 0
+ * (dt/drho = s); INFINITY where no point of it is that steep (a cone steeper than
+ * its flank). */
+double tt_tip_shape_slope_at(const tt_tip_shape *t, double s);
+
+typedef struct tt_dilation tt_dilation;
+
+/* The surface s as the tip t images it over the rectangle [x0, x1] x [y0, y1] (m),
+ * which look-ups stay within; spacing (m): the grid step where a grid is used (the
+ * grid has at most 4096 nodes a side: the step grows for larger areas). Fails for a
+ * point tip (nothing to dilate) or out of memory. */
+int tt_dilation_alloc(tt_dilation **out, const tt_surface *s, const tt_tip_shape *t, double x0,
+                      double y0, double x1, double y1, double spacing);
+void tt_dilation_free(tt_dilation *d);
+
+/* The apex height h_app(x, y) (m). */
+double tt_dilation_height(const tt_dilation *d, double x, double y);
+
+/* The grid: its step (m) and nodes; 0 and 0 when the dilation is exact (steps, grating). */
+double tt_dilation_spacing(const tt_dilation *d);
+long tt_dilation_nodes(const tt_dilation *d);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,265 @@
+/* The tip's shape and the surface dilated by it (see include/tiptap/instrument/tip.h,
+ * docs/surfaces.md). */
+#include "tiptap/instrument/tip.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "tiptap/util/error.h"
+
+/* Grids larger than this a side coarsen their step instead (128 MiB of heights). */
+#define TT_DILATION_MAX_SIDE 4096
+
+double tt_tip_shape_height(const tt_tip_shape *t, double rho)
+{
+    double R = t->radius;
+    rho = fabs(rho);
+    switch (t->kind) {
+    case TT_TIP_SPHERE:
+        /* R - sqrt(R^2 - rho^2), written without the cancellation near the apex */
+        return rho <= R ? rho * rho / (R + sqrt((R - rho) * (R + rho))) : INFINITY;
+    case TT_TIP_CONE: {
+        double rt = R * cos(t->half_angle);
+        if (rho <= rt)
+            return rho * rho / (R + sqrt((R - rho) * (R + rho)));
+        return R * (1 - sin(t->half_angle)) + (rho - rt) / tan(t->half_angle);
+    }
+    default:
+        return rho == 0 ? 0 : INFINITY;
+    }
+}
+
+double tt_tip_shape_reach(const tt_tip_shape *t, double dh)
+{
+    double R = t->radius;
+    if (!(dh > 0) || t->kind == TT_TIP_POINT)
+        return 0;
+    if (t->kind == TT_TIP_SPHERE)
+        return dh >= R ? R : sqrt(dh * (2 * R - dh));
+    double tc = R * (1 - sin(t->half_angle)); /* where the sphere meets the cone */
+    if (dh <= tc)
+        return sqrt(dh * (2 * R - dh));
+    return R * cos(t->half_angle) + (dh - tc) * tan(t->half_angle);
+}
+
+double tt_tip_shape_slope_at(const tt_tip_shape *t, double s)
+{
+    double R = t->radius;
+    if (t->kind == TT_TIP_POINT)
+        return 0;
+    if (t->kind == TT_TIP_CONE && s >= 1 / tan(t->half_angle))
+        return INFINITY; /* the cone's flank is the steepest part of the tip */
+    /* on the sphere, slope rho / sqrt(R^2 - rho^2) = s */
+    return isinf(s) ? R : R * s / sqrt(1 + s * s);
+}
+
+struct tt_dilation {
+    const tt_surface *surface;
+    tt_tip_shape tip;
+    int exact;
+    double reach; /* exact: the half-width of the window of pieces a look-up reads */
+    double x0, y0, dx;
+    long nx, ny;
+    double *grid; /* nx * ny apex heights, row j at y0 + j dx */
+};
+
+/* ---- exact: profiles along x made of straight pieces ---- */
+
+typedef struct {
+    const tt_tip_shape *tip;
+    double x, best;
+    double lo, hi; /* range of the heights met */
+} piece_ctx;
+
+/* The highest apex over one straight piece: h - t along the piece is concave (the tip
+ * is convex), so its maximum is where the tip's slope equals the piece's, or the end
+ * of the piece nearest to it. */
+static void apex_over_piece(void *user, double xa, double ha, double xb, double hb)
+{
+    piece_ctx *c = user;
+    double s = (hb - ha) / (xb - xa);
+    double u = copysign(tt_tip_shape_slope_at(c->tip, fabs(s)), s);
+    double lo = xa - c->x, hi = xb - c->x;
+    u = u < lo ? lo : u > hi ? hi : u;
+    double v = ha + s * (c->x + u - xa) - tt_tip_shape_height(c->tip, u);
+    if (v > c->best)
+        c->best = v;
+}
+
+static void height_range(void *user, double xa, double ha, double xb, double hb)
+{
+    piece_ctx *c = user;
+    (void)xa;
+    (void)xb;
+    c->lo = fmin(c->lo, fmin(ha, hb));
+    c->hi = fmax(c->hi, fmax(ha, hb));
+}
+
+/* The window a look-up must read: features further than the reach of the surface's
+ * height range cannot touch the tip. Steps rise without end, so the range is that of
+ * the window itself, grown twice; a staircase steeper than the cone stops there. */
+static void exact_reach(tt_dilation *D, double x0, double x1)
+{
+    double m = 0;
+    for (int pass = 0; pass < 3; pass++) {
+        piece_ctx c = {&D->tip, 0, 0, INFINITY, -INFINITY};
+        tt_surface_pieces(D->surface, x0 - m, x1 + m, height_range, &c);
+        m = fmin(tt_tip_shape_reach(&D->tip, c.hi - c.lo), 2 * (x1 - x0) + D->tip.radius);
+    }
+    D->reach = m;
+}
+
+/* ---- grid: every other surface ---- */
+
+typedef struct {
+    long a, b;  /* node offset */
+    double t;   /* the tip's height there */
+} offset;
+
+static int by_height(const void *p, const void *q)
+{
+    double a = ((const offset *)p)->t, b = ((const offset *)q)->t;
+    return (a > b) - (a < b);
+}
+
+/* The surface's heights on the region's nodes widened by m nodes on every side. */
+static double *sample(const tt_dilation *D, long m, double *lo, double *hi)
+{
+    long w = D->nx + 2 * m, h = D->ny + 2 * m;
+    double *g = malloc((size_t)w * (size_t)h * sizeof *g);
+    if (!g)
+        return NULL;
+#pragma omp parallel for
+    for (long j = 0; j < h; j++)
+        for (long i = 0; i < w; i++)
+            g[j * w + i] = tt_surface_height(D->surface, D->x0 + (double)(i - m) * D->dx,
+                                             D->y0 + (double)(j - m) * D->dx);
+    *lo = INFINITY;
+    *hi = -INFINITY;
+    for (long k = 0; k < w * h; k++) {
+        *lo = fmin(*lo, g[k]);
+        *hi = fmax(*hi, g[k]);
+    }
+    return g;
+}
+
+/* The tip's nodes that can touch, lowest first, so a node's search stops at the first
+ * offset whose tip height leaves no room above the best apex found. */
+static offset *offsets(const tt_dilation *D, long m, double range, long *n)
+{
+    offset *o = malloc((size_t)(2 * m + 1) * (size_t)(2 * m + 1) * sizeof *o);
+    if (!o)
+        return NULL;
+    *n = 0;
+    for (long b = -m; b <= m; b++)
+        for (long a = -m; a <= m; a++) {
+            double t = tt_tip_shape_height(&D->tip, D->dx * hypot((double)a, (double)b));
+            if (t <= range)
+                o[(*n)++] = (offset){a, b, t};
+        }
+    qsort(o, (size_t)*n, sizeof *o, by_height);
+    return o;
+}
+
+static int build_grid(tt_dilation *D)
+{
+    double lo, hi;
+    double *g = sample(D, 0, &lo, &hi);
+    long m = 0;
+    /* the margin: the reach of the height range, grown until the range it sees holds */
+    for (int pass = 0; g && pass < 3; pass++) {
+        long need = (long)ceil(tt_tip_shape_reach(&D->tip, hi - lo) / D->dx);
+        if (need <= m)
+            break;
+        m = need < TT_DILATION_MAX_SIDE ? need : TT_DILATION_MAX_SIDE;
+        free(g);
+        g = sample(D, m, &lo, &hi);
+    }
+    long n = 0;
+    offset *o = g ? offsets(D, m, hi - lo, &n) : NULL;
+    D->grid = o ? malloc((size_t)D->nx * (size_t)D->ny * sizeof *D->grid) : NULL;
+    if (!D->grid) {
+        free(g);
+        free(o);
+        return tt_error(TT_ENOMEM, "out of memory for the tip's dilation grid");
+    }
+    long w = D->nx + 2 * m;
+#pragma omp parallel for
+    for (long j = 0; j < D->ny; j++)
+        for (long i = 0; i < D->nx; i++) {
+            const double *c = g + (j + m) * w + (i + m);
+            double best = -INFINITY;
+            for (long k = 0; k < n && hi - o[k].t > best; k++) {
+                double v = c[o[k].b * w + o[k].a] - o[k].t;
+                if (v > best)
+                    best = v;
+            }
+            D->grid[j * D->nx + i] = best;
+        }
+    free(g);
+    free(o);
+    return TT_OK;
+}
+
+int tt_dilation_alloc(tt_dilation **out, const tt_surface *s, const tt_tip_shape *t, double x0,
+                      double y0, double x1, double y1, double spacing)
+{
+    *out = NULL;
+    if (t->kind == TT_TIP_POINT)
+        return tt_error(TT_EINVAL, "[tip] shape: a point tip dilates nothing");
+    tt_dilation *D = calloc(1, sizeof *D);
+    if (!D)
+        return tt_error(TT_ENOMEM, "out of memory");
+    D->surface = s;
+    D->tip = *t;
+    D->x0 = x0;
+    D->y0 = y0;
+    piece_ctx probe = {t, 0, 0, 0, 0};
+    D->exact = tt_surface_pieces(s, x0, x0, height_range, &probe);
+    if (D->exact) {
+        exact_reach(D, x0, x1);
+        *out = D;
+        return TT_OK;
+    }
+    double side = fmax(x1 - x0, y1 - y0);
+    D->dx = fmax(spacing, side / (TT_DILATION_MAX_SIDE - 1));
+    D->nx = (long)ceil((x1 - x0) / D->dx) + 1;
+    D->ny = (long)ceil((y1 - y0) / D->dx) + 1;
+    int rc = build_grid(D);
+    if (rc) {
+        tt_dilation_free(D);
+        return rc;
+    }
+    *out = D;
+    return TT_OK;
+}
+
+void tt_dilation_free(tt_dilation *D)
+{
+    if (!D)
+        return;
+    free(D->grid);
+    free(D);
+}
+
+double tt_dilation_height(const tt_dilation *D, double x, double y)
+{
+    if (D->exact) {
+        piece_ctx c = {&D->tip, x, -INFINITY, 0, 0};
+        tt_surface_pieces(D->surface, x - D->reach, x + D->reach, apex_over_piece, &c);
+        return c.best;
+    }
+    /* bilinear between the nodes, clamped to the region */
+    double u = (x - D->x0) / D->dx, v = (y - D->y0) / D->dx;
+    u = u < 0 ? 0 : u > (double)(D->nx - 1) ? (double)(D->nx - 1) : u;
+    v = v < 0 ? 0 : v > (double)(D->ny - 1) ? (double)(D->ny - 1) : v;
+    long i = (long)u, j = (long)v;
+    long i1 = i + 1 < D->nx ? i + 1 : i, j1 = j + 1 < D->ny ? j + 1 : j;
+    double fu = u - (double)i, fv = v - (double)j;
+    const double *g = D->grid;
+    return (1 - fu) * (1 - fv) * g[j * D->nx + i] + fu * (1 - fv) * g[j * D->nx + i1] +
+           (1 - fu) * fv * g[j1 * D->nx + i] + fu * fv * g[j1 * D->nx + i1];
+}
+
+double tt_dilation_spacing(const tt_dilation *D) { return D->exact ? 0 : D->dx; }
+long tt_dilation_nodes(const tt_dilation *D) { return D->exact ? 0 : D->nx * D->ny; }
