@@ -247,6 +247,25 @@ static int check_line_rate(const tt_scene *s, const tt_scan_params *p)
     return TT_OK;
 }
 
+/* A sphere narrower than a pixel falls between the lines or within one pixel: the
+ * image cannot show it (and a radius of picometres sized a grid of gigabytes). */
+static int check_particles(const tt_scene *s, const tt_scan_params *p)
+{
+    if (p->surface.type != TT_SURFACE_PARTICLES)
+        return TT_OK;
+    const tt_raster *r = &p->raster;
+    double px = (r->fast_y ? r->size_y : r->size_x) / (double)r->pixels;
+    double ln = (r->fast_y ? r->size_x : r->size_y) / (double)r->lines;
+    double pitch = fmax(px, ln);
+    if (!(2 * p->surface.particle_radius >= pitch))
+        return tt_scene_fail(s, "surface", NULL, "particle_radius",
+                             "spheres of %g nm across are narrower than a pixel of the image "
+                             "(%g nm); it cannot resolve them: the radius must be at least %g nm, "
+                             "or scan a smaller [scan] size or more pixels and lines",
+                             2 * p->surface.particle_radius * 1e9, pitch * 1e9, pitch / 2 * 1e9);
+    return TT_OK;
+}
+
 size_t tt_config_scan_unused(const tt_scan_params *p, size_t *idx, size_t max)
 {
     size_t k = 0;
@@ -278,7 +297,7 @@ int tt_config_scan(const tt_scene *s, tt_scan_params *p)
     if ((rc = tt_config_raster(s, &p->raster)) || (rc = check_line_rate(s, p)) ||
         (rc = tt_config_lockin(s, &p->lockin)) || (rc = read_scan_keys(s, p)) ||
         (rc = tt_config_feedback(s, p->cantilever.A0, &p->feedback)) ||
-        (rc = tt_config_surface(s, m, n, &p->surface))) {
+        (rc = tt_config_surface(s, m, n, &p->surface)) || (rc = check_particles(s, p))) {
         tt_config_scan_free(p);
         return rc;
     }
