@@ -35,6 +35,9 @@ static void help(void)
            "deflection's harmonic h, m; needs [lockin] harmonics >= h), harmonic2_phase ...\n"
            "harmonic8_phase (its lag behind cos(h w t), deg). Ctrl-C (or SIGTERM) abandons the\n"
            "lines under way and writes the finished lines (the others are NaN, shown grey).\n"
+           "stderr starts with an estimate of the cycles, time and memory; a scan needing\n"
+           "more memory than the machine has is refused, and so is a second scan into a\n"
+           "folder in use (DIR/.tiptap.lock).\n"
            "stderr ends with the run time, the real-time factor (instrument time / run time)\n"
            "and the error estimate: the largest energy-balance residual of a cycle relative\n"
            "to the free oscillation's drive work per cycle.\n");
