@@ -157,11 +157,12 @@ static int check_cost(const tt_scan_params *p, int threads, int quiet)
     double bytes = e.bytes + e.thread_bytes * n, avail = cli_memory_available();
     if (bytes > avail) {
         double image = (double)p->raster.pixels * (double)p->raster.lines * sizeof(double);
-        fprintf(stderr, "tiptap scan: %ld x %ld pixels need about %s of memory (%.0f images of "
+        double nimg = e.bytes / image - 1;
+        fprintf(stderr, "tiptap scan: %ld x %ld pixels need about %s of memory (%.0f image%s of "
                         "%s each), more than the %s available; scan fewer pixels, lines or "
                         "channels\n",
-                p->raster.pixels, p->raster.lines, cli_bytes(bytes, need, sizeof need),
-                e.bytes / image - 1, cli_bytes(image, img, sizeof img),
+                p->raster.pixels, p->raster.lines, cli_bytes(bytes, need, sizeof need), nimg,
+                nimg > 1.5 ? "s" : "", cli_bytes(image, img, sizeof img),
                 cli_bytes(avail, have, sizeof have));
         return TT_ENOMEM;
     }
