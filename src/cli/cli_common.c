@@ -1,8 +1,13 @@
 /* Helpers shared by the subcommands: errors, scene loading, progress, interrupts. */
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
+#include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -168,4 +173,111 @@ double cli_now(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+const char *cli_duration(double s, char *buf, size_t len)
+{
+    if (s < 90)
+        snprintf(buf, len, "%.2g s", s);
+    else if (s < 5400)
+        snprintf(buf, len, "%.0f min", s / 60);
+    else if (s < 2 * 86400)
+        snprintf(buf, len, "%.1f h", s / 3600);
+    else
+        snprintf(buf, len, "%.3g days", s / 86400);
+    return buf;
+}
+
+const char *cli_bytes(double b, char *buf, size_t len)
+{
+    if (b < 1e6)
+        snprintf(buf, len, "%.0f kB", b / 1e3);
+    else if (b < 1e9)
+        snprintf(buf, len, "%.0f MB", b / 1e6);
+    else
+        snprintf(buf, len, "%.1f GB", b / 1e9);
+    return buf;
+}
+
+double cli_memory_available(void)
+{
+    double avail = -1;
+    FILE *f = fopen("/proc/meminfo", "r");
+    if (f) {
+        char line[256];
+        unsigned long long kb;
+        while (fgets(line, sizeof line, f))
+            if (sscanf(line, "MemAvailable: %llu kB", &kb) == 1)
+                avail = (double)kb * 1024;
+        fclose(f);
+    }
+    if (avail < 0) {
+        long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+        avail = pages > 0 && size > 0 ? (double)pages * (double)size : INFINITY;
+    }
+    const int limits[] = {RLIMIT_AS, RLIMIT_DATA};
+    for (size_t i = 0; i < sizeof limits / sizeof limits[0]; i++) {
+        struct rlimit rl;
+        if (getrlimit(limits[i], &rl) == 0 && rl.rlim_cur != RLIM_INFINITY &&
+            (double)rl.rlim_cur < avail)
+            avail = (double)rl.rlim_cur;
+    }
+    return avail;
+}
+
+void cli_report_estimate(const char *cmd, double cycles, double seconds, int upper_bound,
+                         int threads, double f0, double fd, int quiet)
+{
+    char t[32];
+    double wall = seconds / (threads > 0 ? threads : 1);
+    if (!quiet)
+        fprintf(stderr, "%s: %s%.3g drive cycles, %s%s by estimate%s\n", cmd,
+                upper_bound ? "at most " : "", cycles, upper_bound ? "at most " : "about ",
+                cli_duration(wall, t, sizeof t), threads > 1 ? " on all threads" : "");
+    if (wall > 60) {
+        fprintf(stderr, "tiptap %s: warning: this run takes %s%s by estimate", cmd,
+                upper_bound ? "up to " : "about ", cli_duration(wall, t, sizeof t));
+        /* an adaptive step resolves the resonance: each drive cycle costs f0 / fd
+         * resonance periods */
+        if (f0 > 2 * fd)
+            fprintf(stderr, "; the drive at %.4g kHz is %.0f times below the %.4g kHz resonance, "
+                            "so each drive cycle costs %.0f cycles of it",
+                    fd * 1e-3, f0 / fd, f0 * 1e-3, f0 / fd);
+        fputc('\n', stderr);
+    }
+}
+
+int cli_lock_folder(const char *cmd, const char *dir)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/.tiptap.lock", dir);
+    int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        fprintf(stderr, "tiptap %s: %s: cannot open: %s\n", cmd, path, strerror(errno));
+        return -1;
+    }
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+        int err = errno;
+        char buf[32] = "";
+        ssize_t n = pread(fd, buf, sizeof buf - 1, 0);
+        buf[n > 0 ? n : 0] = '\0';
+        long pid = strtol(buf, NULL, 10);
+        close(fd);
+        if (err == EWOULDBLOCK && pid > 0)
+            fprintf(stderr, "tiptap %s: %s is in use by another tiptap %s (pid %ld)\n", cmd, dir,
+                    cmd, pid);
+        else if (err == EWOULDBLOCK)
+            fprintf(stderr, "tiptap %s: %s is in use by another tiptap run\n", cmd, dir);
+        else
+            fprintf(stderr, "tiptap %s: %s: cannot lock: %s\n", cmd, path, strerror(err));
+        return -1;
+    }
+    char buf[32];
+    int n = snprintf(buf, sizeof buf, "%ld\n", (long)getpid());
+    if (ftruncate(fd, 0) != 0 || pwrite(fd, buf, (size_t)n, 0) != n) {
+        fprintf(stderr, "tiptap %s: %s: cannot write: %s\n", cmd, path, strerror(errno));
+        close(fd);
+        return -1;
+    }
+    return fd;
 }

@@ -156,8 +156,15 @@ int cmd_approach(int argc, char **argv)
     if ((rc = tt_setup_alloc(&st, scene)) || (rc = tt_config_approach(scene, &p)) ||
         (rc = tt_config_material_index(scene, "approach", tt_setup_material(st, 0),
                                        tt_setup_materials(st), &mat)) ||
-        (rc = tt_setup_use_material(st, mat)) || (rc = tt_approach_alloc(&ap, tt_setup_sim(st), &p)) ||
-        (rc = tt_outfile_open(&of, out)))
+        (rc = tt_setup_use_material(st, mat)) || (rc = tt_approach_alloc(&ap, tt_setup_sim(st), &p)))
+        goto done;
+    {
+        tt_estimate e;
+        const tt_cantilever *cl = tt_setup_cantilever(st);
+        tt_config_approach_estimate(cl, tt_setup_solver(st), &p, &e);
+        cli_report_estimate("approach", e.cycles, e.seconds, e.upper_bound, 1, cl->f0, cl->fd, quiet);
+    }
+    if ((rc = tt_outfile_open(&of, out)))
         goto done;
     pts = calloc(tt_approach_rows(ap), sizeof *pts);
     if (!pts) {

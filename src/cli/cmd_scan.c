@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "commands.h"
 #include "tiptap/util/cancel.h"
@@ -34,6 +35,9 @@ static void help(void)
            "deflection's harmonic h, m; needs [lockin] harmonics >= h), harmonic2_phase ...\n"
            "harmonic8_phase (its lag behind cos(h w t), deg). Ctrl-C (or SIGTERM) abandons the\n"
            "lines under way and writes the finished lines (the others are NaN, shown grey).\n"
+           "stderr starts with an estimate of the cycles, time and memory; a scan needing\n"
+           "more memory than the machine has is refused, and so is a second scan into a\n"
+           "folder in use (DIR/.tiptap.lock).\n"
            "stderr ends with the run time, the real-time factor (instrument time / run time)\n"
            "and the error estimate: the largest energy-balance residual of a cycle relative\n"
            "to the free oscillation's drive work per cycle.\n");
@@ -138,6 +142,56 @@ int cli_scan_write_outputs(const tt_scan *scan, const tt_cantilever *c, const ch
     return tt_outfile_close(of, 1);
 }
 
+/* The scan's cost before it starts: its first line on stderr tells the cycles and the
+ * time by estimate; a scan that needs more memory than the machine has is refused
+ * (a 16384 x 16384 scan of 12 images holds 25 GB) rather than left to the OOM killer. */
+static int check_cost(const tt_scan_params *p, int threads, int quiet)
+{
+    tt_estimate e;
+    char need[32], have[32], img[32];
+    tt_config_scan_estimate(p, &e);
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    int n = threads > 0 ? threads : cores > 0 ? (int)cores : 1;
+    if (n > p->raster.lines)
+        n = (int)p->raster.lines;
+    double bytes = e.bytes + e.thread_bytes * n, avail = cli_memory_available();
+    if (bytes > avail) {
+        double image = (double)p->raster.pixels * (double)p->raster.lines * sizeof(double);
+        double nimg = e.bytes / image - 1;
+        fprintf(stderr, "tiptap scan: %ld x %ld pixels need about %s of memory (%.0f image%s of "
+                        "%s each), more than the %s available; scan fewer pixels, lines or "
+                        "channels\n",
+                p->raster.pixels, p->raster.lines, cli_bytes(bytes, need, sizeof need), nimg,
+                nimg > 1.5 ? "s" : "", cli_bytes(image, img, sizeof img),
+                cli_bytes(avail, have, sizeof have));
+        return TT_ENOMEM;
+    }
+    char t[32];
+    if (!quiet)
+        fprintf(stderr, "scan: %ld x %ld pixels, %.3g drive cycles, about %s by estimate on %d "
+                        "thread%s, %s of memory\n",
+                p->raster.pixels, p->raster.lines, e.cycles, cli_duration(e.seconds / n, t, sizeof t),
+                n, n > 1 ? "s" : "", cli_bytes(bytes, need, sizeof need));
+    cli_report_estimate("scan", e.cycles, e.seconds, e.upper_bound, n, p->cantilever.f0,
+                        p->cantilever.fd, 1);
+    return TT_OK;
+}
+
+/* A material that the surface map never puts under the tip is most likely a typo. */
+static void warn_unused(const tt_scan_params *p)
+{
+    size_t idx[8];
+    size_t n = tt_config_scan_unused(p, idx, 8);
+    for (size_t i = 0; i < n && i < 8; i++)
+        fprintf(stderr, "tiptap scan: warning: [material %s] is not used: %s\n",
+                p->materials[idx[i]].name,
+                p->surface.map == TT_MAP_UNIFORM ? "a uniform map scans the first material only"
+                : p->surface.map == TT_MAP_PNG   ? "it has no map_value, so no pixel of map_png names it"
+                                                 : "[surface] map_materials names two others");
+    if (n > 8)
+        fprintf(stderr, "tiptap scan: warning: and %zu more materials are not used\n", n - 8);
+}
+
 int cmd_scan(int argc, char **argv)
 {
     static const struct option opts[] = {{"threads", required_argument, NULL, 'j'}, {NULL, 0, NULL, 0}};
@@ -173,19 +227,31 @@ int cmd_scan(int argc, char **argv)
     tt_scan_params params;
     char path[4096];
     tt_outfile *of = NULL;
-    int rc;
+    int rc, reported = 0, lock = -1;
     /* Every key, every material and the surface are checked, and the force laws built,
      * before the folder is made: a refused scan leaves no folder and touches none. */
     if ((rc = tt_config_scan(scene, &params)))
         goto done;
+    if ((rc = check_cost(&params, threads, quiet))) {
+        tt_config_scan_free(&params);
+        reported = 1;
+        goto done;
+    }
+    warn_unused(&params);
     rc = tt_scene_locate(scene, tt_scan_alloc(&scan, &params));
     tt_config_scan_free(&params);
     if (rc)
         goto done;
     /* Then the folder and the effective scene: a bad output folder fails at once, not
-     * after an hour of scanning. */
+     * after an hour of scanning. The folder is locked for the run: two scans into one
+     * folder would mix their images and scene.ini. */
     if ((rc = tt_mkdirs(dir)))
         goto done;
+    if ((lock = cli_lock_folder("scan", dir)) < 0) {
+        rc = TT_EINVAL;
+        reported = 1;
+        goto done;
+    }
     snprintf(path, sizeof path, "%s/scene.ini", dir);
     if ((rc = tt_outfile_open(&of, path)))
         goto done;
@@ -222,8 +288,10 @@ int cmd_scan(int argc, char **argv)
             fprintf(stderr, "warning: the z piezo reached the end of its range ([feedback] z_range)\n");
     }
 done:
-    if (rc)
+    if (rc && !reported)
         cli_fail(rc, NULL);
+    if (lock >= 0)
+        close(lock);
     tt_scan_free(scan);
     tt_scene_free(scene);
     return rc == TT_OK ? CLI_OK : rc == TT_EINTR ? CLI_INTERRUPTED : CLI_FAIL;

@@ -1,14 +1,18 @@
 /* tiptap trace: a time series of the tapping cantilever, with an optional ramp of one
  * scene key over the run (Burnham et al.'s figures 4b to 8). */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "commands.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
+#include "tiptap/io/decimate.h"
 #include "tiptap/io/outfile.h"
 #include "tiptap/io/plot.h"
+#include "tiptap/config/config.h"
 #include "tiptap/config/read_trace.h"
+#include "tiptap/config/setup.h"
 #include "tiptap/instrument/trace.h"
 
 static void help(void)
@@ -30,63 +34,37 @@ static void help(void)
            "for the exact solution).\n");
 }
 
-typedef struct {
-    double *t, *z, *d, *s, *y, *F, *p;
-    size_t n, cap;
-} series;
+/* The plot holds at most PLOT_BUDGET points a line: a figure 1000 pixels wide shows no
+ * more, and 1e8 cycles would otherwise fill the memory (tt_decimate keeps each
+ * bucket's extremes, so envelopes and contact peaks stay in the picture). */
+#define PLOT_BUDGET 100000
 
-/* One sample in the plot's units. */
-static int series_push(series *S, const tt_trace_sample *x)
+/* One sample in the plot's units: t, base, tip, sample, deflection, force, pressure. */
+static int series_push(tt_decimate *S, const tt_trace_sample *x)
 {
-    if (S->n == S->cap) {
-        size_t cap = S->cap ? 2 * S->cap : 4096;
-        double **arr[] = {&S->t, &S->z, &S->d, &S->s, &S->y, &S->F, &S->p};
-        for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) {
-            double *nw = realloc(*arr[i], cap * sizeof **arr[i]);
-            if (!nw)
-                return tt_error(TT_ENOMEM, "out of memory");
-            *arr[i] = nw;
-        }
-        S->cap = cap;
-    }
-    S->t[S->n] = x->t * 1e6;
-    S->z[S->n] = x->base * 1e9;
-    S->d[S->n] = x->tip * 1e9;
-    S->s[S->n] = x->sample * 1e9;
-    S->y[S->n] = (x->tip - x->base) * 1e9;
-    S->F[S->n] = x->force * 1e9;
-    S->p[S->n] = x->pressure * 1e-9;
-    S->n++;
-    return TT_OK;
+    const double v[7] = {x->t * 1e6, x->base * 1e9, x->tip * 1e9, x->sample * 1e9,
+                         (x->tip - x->base) * 1e9, x->force * 1e9, x->pressure * 1e-9};
+    return tt_decimate_push(S, v);
 }
 
-static void series_free(series *S)
+static int plot(const char *path, const tt_decimate *D, const char *ramp)
 {
-    free(S->t);
-    free(S->z);
-    free(S->d);
-    free(S->s);
-    free(S->y);
-    free(S->F);
-    free(S->p);
-}
-
-static int plot(const char *path, const series *S, const char *ramp)
-{
+    const double *t = tt_decimate_line(D, 0);
+    size_t n = tt_decimate_count(D);
     char title[256];
     snprintf(title, sizeof title, "Trace%s%s", ramp ? ": ramp of " : "", ramp ? ramp : "");
     tt_figure *f = tt_figure_alloc(2, title);
     if (!f)
         return tt_error(TT_ENOMEM, "out of memory");
     tt_figure_axes(f, 0, "time (us)", "position (nm)");
-    tt_figure_line(f, 0, S->t, S->z, S->n, "base", 1);
-    tt_figure_line(f, 0, S->t, S->d, S->n, "tip", 2);
-    tt_figure_line(f, 0, S->t, S->s, S->n, "sample surface", 3 | TT_PLOT_DASHED);
-    tt_figure_line(f, 0, S->t, S->y, S->n, "deflection (tip - base)", 4);
+    tt_figure_line(f, 0, t, tt_decimate_line(D, 1), n, "base", 1);
+    tt_figure_line(f, 0, t, tt_decimate_line(D, 2), n, "tip", 2);
+    tt_figure_line(f, 0, t, tt_decimate_line(D, 3), n, "sample surface", 3 | TT_PLOT_DASHED);
+    tt_figure_line(f, 0, t, tt_decimate_line(D, 4), n, "deflection (tip - base)", 4);
     tt_figure_axes(f, 1, "time (us)", "tip-sample force (nN)");
     tt_figure_axis_right(f, 1, "Hertzian pressure K a / pi R (GPa)");
-    tt_figure_line(f, 1, S->t, S->F, S->n, "force", 1);
-    tt_figure_line(f, 1, S->t, S->p, S->n, "pressure", 2 | TT_PLOT_RIGHT);
+    tt_figure_line(f, 1, t, tt_decimate_line(D, 5), n, "force", 1);
+    tt_figure_line(f, 1, t, tt_decimate_line(D, 6), n, "pressure", 2 | TT_PLOT_RIGHT);
     int rc = tt_figure_write_png(f, path, 1000, 800);
     tt_figure_free(f);
     return rc;
@@ -121,11 +99,22 @@ int cmd_trace(int argc, char **argv)
     tt_trace *tr = NULL;
     tt_outfile *of = NULL;
     tt_trace_params p;
-    series S = {0};
+    tt_decimate *S = NULL;
     long done_cycles = 0;
     int rc;
     if ((rc = tt_setup_alloc(&st, scene)) || (rc = tt_config_trace(scene, &p)) ||
-        (rc = tt_trace_alloc(&tr, st, &p)) || (rc = tt_outfile_open(&of, out)))
+        (rc = tt_trace_alloc(&tr, st, &p)))
+        goto done;
+    {
+        tt_estimate e;
+        const tt_cantilever *cl = tt_setup_cantilever(st);
+        tt_config_trace_estimate(cl, tt_setup_solver(st), &p, &e);
+        cli_report_estimate("trace", e.cycles, e.seconds, e.upper_bound, 1, cl->f0, cl->fd, quiet);
+    }
+    if ((rc = tt_outfile_open(&of, out)))
+        goto done;
+    if (plotpath && (rc = tt_decimate_alloc(&S, 7, (double)tt_trace_rows(tr) * (double)p.samples_per_cycle,
+                                           PLOT_BUDGET)))
         goto done;
     FILE *f = tt_outfile_stream(of);
     fprintf(f, "t_us,base_nm,tip_nm,sample_nm,deflection_nm,force_nN,contact_radius_nm,pressure_GPa,"
@@ -145,7 +134,7 @@ int cmd_trace(int argc, char **argv)
             worst = row.summary.residual_rel;
         write_row(f, &row, p.ramp != NULL);
         for (size_t k = 0; plotpath && k < row.nsamples && rc == TT_OK; k++)
-            rc = series_push(&S, &row.samples[k]);
+            rc = series_push(S, &row.samples[k]);
         if (rc)
             break;
         done_cycles++;
@@ -155,15 +144,25 @@ int cmd_trace(int argc, char **argv)
     }
     if (progress)
         fprintf(stderr, "\n");
-    /* Keep what finished, also when interrupted or when the solver failed later on. */
+    /* Keep the cycles finished when interrupted; a run that failed (the solver, a ramp
+     * value) keeps no file: a partial CSV would read as complete. */
     {
-        int crc = tt_outfile_close(of, done_cycles > 0);
+        int keep = done_cycles > 0 && (rc == TT_OK || rc == TT_EINTR);
+        int crc = tt_outfile_close(of, keep);
         of = NULL;
         if (!rc)
             rc = crc;
+        else if (!keep) {
+            char why[1024];
+            snprintf(why, sizeof why, "%s", tt_error_message());
+            tt_error(rc, "%s; %s not written (%ld cycles had finished; a failed trace keeps no "
+                         "partial file)", why, out, done_cycles);
+        }
     }
-    if (plotpath && S.n > 0) {
-        int prc = plot(plotpath, &S, p.ramp);
+    if (!rc || rc == TT_EINTR)
+        (void)(S && tt_decimate_finish(S));
+    if (plotpath && S && tt_decimate_count(S) > 0 && (rc == TT_OK || rc == TT_EINTR)) {
+        int prc = plot(plotpath, S, p.ramp);
         if (!rc)
             rc = prc;
     }
@@ -176,7 +175,7 @@ done:
         tt_outfile_close(of, 0);
     if (rc)
         cli_fail(rc, NULL);
-    series_free(&S);
+    tt_decimate_free(S);
     tt_trace_free(tr);
     tt_setup_free(st);
     tt_scene_free(scene);

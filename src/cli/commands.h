@@ -101,4 +101,24 @@ void cli_catch_interrupt(void);
 /* Wall-clock seconds from a monotonic clock. */
 double cli_now(void);
 
+/* A duration for people: "40 s", "12 min", "3.1 h", "2.5 days". */
+const char *cli_duration(double seconds, char *buf, size_t len);
+const char *cli_bytes(double bytes, char *buf, size_t len);
+
+/* Bytes this process can still allocate: the smaller of the memory available
+ * (/proc/meminfo MemAvailable, else the physical memory) and its address-space and
+ * data limits (ulimit -v, -d). */
+double cli_memory_available(void);
+
+/* The estimate of a run (cycles, time on threads threads) on stderr unless quiet, and a
+ * warning naming the drive's distance below the resonance when it exceeds a minute,
+ * quiet or not. */
+void cli_report_estimate(const char *cmd, double cycles, double seconds, int upper_bound,
+                         int threads, double f0, double fd, int quiet);
+
+/* Hold DIR/.tiptap.lock (flock) for the rest of the process: a second run into DIR is
+ * refused at once, naming the pid of the first. Returns the descriptor, or -1 after
+ * printing why. */
+int cli_lock_folder(const char *cmd, const char *dir);
+
 #endif

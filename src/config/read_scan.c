@@ -219,6 +219,70 @@ static int read_scan_keys(const tt_scene *s, tt_scan_params *p)
     return TT_OK;
 }
 
+/* The most drive cycles one way along a line: a raster slower than this would run for
+ * days a line (and beyond about 1e18 the count overflows). */
+#define TT_MAX_CYCLES_PER_DIRECTION 1e9
+
+/* The raster runs whole drive cycles, at least one a pixel each way: a line rate that
+ * asks for fewer (or absurdly many) would silently run at another rate. */
+static int check_line_rate(const tt_scene *s, const tt_scan_params *p)
+{
+    const tt_raster *r = &p->raster;
+    double fd = p->cantilever.fd;
+    double cycles = fd / (2 * r->line_rate); /* each way along a line */
+    double fastest = fd / (2 * (double)r->pixels);
+    double slowest = fd / (2 * TT_MAX_CYCLES_PER_DIRECTION);
+    if (!(cycles >= (double)r->pixels - 0.5))
+        return tt_scene_fail(s, "scan", NULL, "line_rate",
+                             "%g Hz is faster than the raster can run: a line of %ld pixels "
+                             "needs at least one drive cycle a pixel each way, at %g kHz a line "
+                             "rate of at most %g Hz (it would be %.3g cycles a pixel)",
+                             r->line_rate, r->pixels, fd * 1e-3, fastest,
+                             cycles / (double)r->pixels);
+    if (!(cycles <= TT_MAX_CYCLES_PER_DIRECTION))
+        return tt_scene_fail(s, "scan", NULL, "line_rate",
+                             "%g Hz is slower than the raster can run: %.3g drive cycles each way "
+                             "along a line, at most %g; at %g kHz a line rate of at least %g Hz",
+                             r->line_rate, cycles, TT_MAX_CYCLES_PER_DIRECTION, fd * 1e-3, slowest);
+    return TT_OK;
+}
+
+/* A sphere narrower than a pixel falls between the lines or within one pixel: the
+ * image cannot show it (and a radius of picometres sized a grid of gigabytes). */
+static int check_particles(const tt_scene *s, const tt_scan_params *p)
+{
+    if (p->surface.type != TT_SURFACE_PARTICLES)
+        return TT_OK;
+    const tt_raster *r = &p->raster;
+    double px = (r->fast_y ? r->size_y : r->size_x) / (double)r->pixels;
+    double ln = (r->fast_y ? r->size_x : r->size_y) / (double)r->lines;
+    double pitch = fmax(px, ln);
+    if (!(2 * p->surface.particle_radius >= pitch))
+        return tt_scene_fail(s, "surface", NULL, "particle_radius",
+                             "spheres of %g nm across are narrower than a pixel of the image "
+                             "(%g nm); it cannot resolve them: the radius must be at least %g nm, "
+                             "or scan a smaller [scan] size or more pixels and lines",
+                             2 * p->surface.particle_radius * 1e9, pitch * 1e9, pitch / 2 * 1e9);
+    return TT_OK;
+}
+
+size_t tt_config_scan_unused(const tt_scan_params *p, size_t *idx, size_t max)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < p->nmaterials; i++) {
+        const tt_material *m = &p->materials[i];
+        int used;
+        switch (p->surface.map) {
+        case TT_MAP_UNIFORM: used = i == 0; break;
+        case TT_MAP_PNG: used = m->map_grey >= 0 || m->map_rgb >= 0; break;
+        default: used = (int)i == p->surface.materials[0] || (int)i == p->surface.materials[1];
+        }
+        if (!used && k++ < max)
+            idx[k - 1] = i;
+    }
+    return k;
+}
+
 int tt_config_scan(const tt_scene *s, tt_scan_params *p)
 {
     memset(p, 0, sizeof *p);
@@ -230,10 +294,10 @@ int tt_config_scan(const tt_scene *s, tt_scan_params *p)
         return rc;
     p->materials = m;
     p->nmaterials = n;
-    if ((rc = tt_config_raster(s, &p->raster)) || (rc = tt_config_lockin(s, &p->lockin)) ||
-        (rc = read_scan_keys(s, p)) ||
+    if ((rc = tt_config_raster(s, &p->raster)) || (rc = check_line_rate(s, p)) ||
+        (rc = tt_config_lockin(s, &p->lockin)) || (rc = read_scan_keys(s, p)) ||
         (rc = tt_config_feedback(s, p->cantilever.A0, &p->feedback)) ||
-        (rc = tt_config_surface(s, m, n, &p->surface)) ||
+        (rc = tt_config_surface(s, m, n, &p->surface)) || (rc = check_particles(s, p)) ||
         (rc = tt_config_tip_shape(s, &p->tip)) || (rc = tt_config_instrument(s, &p->instrument))) {
         tt_config_scan_free(p);
         return rc;

@@ -671,6 +671,36 @@ int tt_scene_load_string(tt_scene *s, const char *text, const char *origin)
     return load_text(s, text, strlen(text), origin);
 }
 
+/* A --set into a named section the scene lacks would make a new one that nothing uses
+ * (material.silicone.KEY when the scene has [material silicon]): refused with the names
+ * it has. A scene without any has the default material, "sample". Unnamed sections
+ * ([approach], [trace], ...) are made by a --set as by a file. */
+static int check_set_names(const tt_scene *s, const char *shown, const char *section,
+                           const char *name)
+{
+    const tt_scene_section *sec = find_section(section);
+    if (!sec || !sec->named || !name || find_use(s, section, name))
+        return TT_OK;
+    size_t n = tt_scene_count_named(s, section);
+    if (n == 0 && strcmp(section, "material") == 0 && strcmp(name, "sample") == 0)
+        return TT_OK;
+    char have[512] = "", nm[160];
+    size_t used = 0;
+    for (size_t i = 0; i < n && used + 8 < sizeof have; i++) {
+        tt_ini_escape(tt_scene_named(s, section, i), nm, sizeof nm);
+        int w = snprintf(have + used, sizeof have - used, "%s%s", i ? ", " : "", nm);
+        if (w < 0 || (size_t)w >= sizeof have - used) {
+            snprintf(have + used, sizeof have - used, ", ...");
+            break;
+        }
+        used += (size_t)w;
+    }
+    tt_ini_escape(name, nm, sizeof nm);
+    return tt_error(TT_EINVAL, "--set %s: no [%s %s] in the scene; it has: %s", shown, section, nm,
+                    n ? have : strcmp(section, "material") == 0 ? "none but the default, sample"
+                                                                : "none");
+}
+
 int tt_scene_set(tt_scene *s, const char *assignment)
 {
     char shown[160];
@@ -715,7 +745,7 @@ int tt_scene_set(tt_scene *s, const char *assignment)
             rc = tt_error(TT_EINVAL, "--set %s: empty %s; expected section.key=value or "
                           "section.name.key=value", shown,
                           !section[0] ? "section" : !key[0] ? "key" : "name");
-        else
+        else if (!(rc = check_set_names(s, shown, section, name)))
             rc = put(s, "--set", 0, section, name, key, val);
     }
     free(val);

@@ -23,6 +23,7 @@
 #include "tiptap/instrument/scan.h"
 #include "tiptap/instrument/scanner.h"
 #include "tiptap/instrument/surface.h"
+#include "tiptap/instrument/trace.h"
 #include "tiptap/physics/cantilever.h"
 #include "tiptap/physics/material.h"
 
@@ -83,6 +84,31 @@ void tt_config_accuracy_free(tt_accuracy_subject *subject);
 int tt_config_scan_alloc(tt_scan **out, const tt_scene *s);
 int tt_config_surface_alloc(tt_surface **out, const tt_scene *s, double size_x, double size_y);
 int tt_config_accuracy_alloc(tt_accuracy **out, const tt_scene *s, const tt_accuracy_params *p);
+
+/* What a run will cost, told before it starts: the drive cycles it simulates, the wall
+ * time on one thread (an order of magnitude from the solver and f0 / fd: an adaptive
+ * step resolves the resonance, so a drive far below it costs f0 / fd times more a
+ * cycle), and the memory it holds. */
+typedef struct {
+    double cycles;        /* drive cycles to simulate */
+    double cycle_seconds; /* wall time of one, one thread */
+    double seconds;       /* of the whole run, one thread */
+    int upper_bound;      /* 1: cycles and seconds are the most it can take (settling) */
+    double bytes;         /* memory held for the run (scan: images and previews) */
+    double thread_bytes;  /* and per thread */
+} tt_estimate;
+
+double tt_config_cycle_seconds(const tt_cantilever *c, const tt_solver *s);
+void tt_config_scan_estimate(const tt_scan_params *p, tt_estimate *e);
+void tt_config_trace_estimate(const tt_cantilever *c, const tt_solver *s, const tt_trace_params *p,
+                              tt_estimate *e);
+void tt_config_approach_estimate(const tt_cantilever *c, const tt_solver *s,
+                                 const tt_approach_params *p, tt_estimate *e);
+
+/* The materials of a scan that its surface map never puts under the tip (uniform: all
+ * but the first; two-material maps: all but the two named; PNG maps: those without a
+ * map_value). Fills idx with up to max indices; returns how many there are. */
+size_t tt_config_scan_unused(const tt_scan_params *p, size_t *idx, size_t max);
 
 #ifdef __cplusplus
 }

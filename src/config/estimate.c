@@ -1,0 +1,83 @@
+/* The configuration layer's estimates of what a run will cost before it starts
+ * (see include/tiptap/config/config.h). */
+#include "tiptap/config/config.h"
+
+#include <math.h>
+#include <string.h>
+
+/* Wall time of one resonance period with dopri5 at tolerance 1e-8 on one core,
+ * lock-in sampling included (tiptap bench: about 70,000 cycles/s of the standard scene,
+ * 24 steps a cycle; a scan's sampling adds some). An order of magnitude, not a promise. */
+#define PERIOD_SECONDS 2e-5
+/* rk4: one fixed step (tiptap bench: 512 steps a cycle at about 8,400 cycles/s). */
+#define RK4_STEP_SECONDS 2.5e-7
+
+double tt_config_cycle_seconds(const tt_cantilever *c, const tt_solver *s)
+{
+    if (s->method == TT_METHOD_RK4)
+        return RK4_STEP_SECONDS * (double)s->steps_per_cycle;
+    /* An adaptive step resolves the resonance: a drive far below it spans f0 / fd
+     * periods of the free oscillation, each needing its steps. A step's error goes as
+     * its length to the fifth power, so the step count as tolerance^(-1/5). */
+    double periods = c->f0 > c->fd ? c->f0 / c->fd : 1;
+    double tol = s->tolerance > 0 ? s->tolerance : 1e-8;
+    double per = PERIOD_SECONDS * pow(1e-8 / tol, 0.2);
+    if (s->method == TT_METHOD_RADAU)
+        per *= 2.5; /* tiptap bench: radau at 1e-8 runs at about 0.4 of dopri5's rate */
+    return per * periods;
+}
+
+static void finish(tt_estimate *e, const tt_cantilever *c, const tt_solver *s)
+{
+    e->cycle_seconds = tt_config_cycle_seconds(c, s);
+    e->seconds = e->cycles * e->cycle_seconds;
+}
+
+void tt_config_scan_estimate(const tt_scan_params *p, tt_estimate *e)
+{
+    memset(e, 0, sizeof *e);
+    const tt_raster *r = &p->raster;
+    double P = p->lockin.periods_per_block > 0 ? p->lockin.periods_per_block : 1;
+    double nc = fmax((double)r->pixels, round(p->cantilever.fd / (2 * r->line_rate)));
+    double settle = ceil((double)p->settle_cycles / P) * P;
+    double dirs = r->retrace ? 2 : 1;
+    e->cycles = (double)r->lines * (settle + dirs * ceil(nc / P) * P);
+    finish(e, &p->cantilever, &p->solver);
+    /* Every image as doubles, one more for the previews and files being written, and
+     * each thread's pixel sums (about 40 doubles a pixel, both directions). */
+    int nch = 0;
+    for (int ch = 0; ch < TT_CH_COUNT; ch++)
+        nch += (p->channels >> ch) & 1u;
+    double image = (double)r->pixels * (double)r->lines * sizeof(double);
+    e->bytes = image * (nch * dirs + 1);
+    e->thread_bytes = (double)r->pixels * 2 * 40 * sizeof(double);
+}
+
+void tt_config_trace_estimate(const tt_cantilever *c, const tt_solver *s, const tt_trace_params *p,
+                              tt_estimate *e)
+{
+    memset(e, 0, sizeof *e);
+    e->cycles = (double)p->settle_cycles + (double)p->cycles;
+    finish(e, c, s);
+}
+
+void tt_config_approach_estimate(const tt_cantilever *c, const tt_solver *s,
+                                 const tt_approach_params *p, tt_estimate *e)
+{
+    memset(e, 0, sizeof *e);
+    double branches = p->retract ? 2 : 1;
+    if (p->mode == TT_APPROACH_RAMP) {
+        e->cycles = ceil(fabs(p->to - p->from) / (p->speed * c->T)) * branches +
+                    (double)p->max_cycles;
+    } else if (p->steady == TT_STEADY_SETTLE) {
+        e->cycles = (double)p->points * branches * (double)p->max_cycles;
+        e->upper_bound = 1;
+    } else {
+        /* shooting: a transient of about Q / 2 pi ln(1 / tolerance) cycles, then a few
+         * Newton iterations of a few cycles each (src/solver/shooting.c) */
+        double tol = p->settle_tolerance > 0 ? fmin(p->settle_tolerance, 0.1) : 0.1;
+        double per = fmin((double)p->max_cycles, 0.5 * c->Q / M_PI * log(1 / tol) + 50);
+        e->cycles = (double)p->points * branches * per;
+    }
+    finish(e, c, s);
+}
