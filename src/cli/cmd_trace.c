@@ -20,7 +20,8 @@ static void help(void)
            "                     sample_nm, deflection_nm, force_nN, contact_radius_nm,\n"
            "                     pressure_GPa (Hertzian K a / pi R, as in the seed), contact,\n"
            "                     and the ramped key's value when [trace] ramp is set\n"
-           "      --plot FILE    PNG: positions and deflection; force and pressure\n"
+           "      --plot FILE    PNG: positions and deflection; force; pressure (each cycle's\n"
+           "                     peak marked where the integrator located it)\n"
            CLI_HELP_SET
            "  -q, --quiet        no summary on stderr\n\n"
            "Positions are along the axis into the sample, the base at rest at 0; the\n"
@@ -33,7 +34,42 @@ static void help(void)
 typedef struct {
     double *t, *z, *d, *s, *y, *F, *p;
     size_t n, cap;
+    /* per cycle: time of the peak (us), located peak force (nN) and pressure (GPa) */
+    double *pt, *pF, *pp;
+    size_t np, pcap;
 } series;
+
+/* A cycle's located peak, at the middle of its contact (else the largest sample). */
+static int peak_push(series *S, const tt_trace_row *r)
+{
+    if (!(r->summary.contact_fraction > 0) || r->nsamples == 0)
+        return TT_OK;
+    if (S->np == S->pcap) {
+        size_t cap = S->pcap ? 2 * S->pcap : 256;
+        double **arr[] = {&S->pt, &S->pF, &S->pp};
+        for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) {
+            double *nw = realloc(*arr[i], cap * sizeof **arr[i]);
+            if (!nw)
+                return tt_error(TT_ENOMEM, "out of memory");
+            *arr[i] = nw;
+        }
+        S->pcap = cap;
+    }
+    const tt_cycle *c = &r->summary;
+    double t = r->samples[0].t + 0.5 * (c->t_contact + c->t_release);
+    if (!(c->t_release > c->t_contact)) {
+        size_t kmax = 0;
+        for (size_t k = 1; k < r->nsamples; k++)
+            if (r->samples[k].force > r->samples[kmax].force)
+                kmax = k;
+        t = r->samples[kmax].t;
+    }
+    S->pt[S->np] = t * 1e6;
+    S->pF[S->np] = c->peak_force * 1e9;
+    S->pp[S->np] = r->peak_pressure * 1e-9;
+    S->np++;
+    return TT_OK;
+}
 
 /* One sample in the plot's units. */
 static int series_push(series *S, const tt_trace_sample *x)
@@ -69,13 +105,16 @@ static void series_free(series *S)
     free(S->y);
     free(S->F);
     free(S->p);
+    free(S->pt);
+    free(S->pF);
+    free(S->pp);
 }
 
 static int plot(const char *path, const series *S, const char *ramp)
 {
     char title[256];
     snprintf(title, sizeof title, "Trace%s%s", ramp ? ": ramp of " : "", ramp ? ramp : "");
-    tt_figure *f = tt_figure_alloc(2, title);
+    tt_figure *f = tt_figure_alloc(3, title);
     if (!f)
         return tt_error(TT_ENOMEM, "out of memory");
     tt_figure_axes(f, 0, "time (us)", "position (nm)");
@@ -83,11 +122,15 @@ static int plot(const char *path, const series *S, const char *ramp)
     tt_figure_line(f, 0, S->t, S->d, S->n, "tip", 2);
     tt_figure_line(f, 0, S->t, S->s, S->n, "sample surface", 3 | TT_PLOT_DASHED);
     tt_figure_line(f, 0, S->t, S->y, S->n, "deflection (tip - base)", 4);
+    /* The samples are at fixed times and miss most of a short contact: each cycle's
+     * peak is marked as the integrator located it. */
     tt_figure_axes(f, 1, "time (us)", "tip-sample force (nN)");
-    tt_figure_axis_right(f, 1, "Hertzian pressure K a / pi R (GPa)");
-    tt_figure_line(f, 1, S->t, S->F, S->n, "force", 1);
-    tt_figure_line(f, 1, S->t, S->p, S->n, "pressure", 2 | TT_PLOT_RIGHT);
-    int rc = tt_figure_write_png(f, path, 1000, 800);
+    tt_figure_line(f, 1, S->t, S->F, S->n, "force (samples)", 1);
+    tt_figure_line(f, 1, S->pt, S->pF, S->np, "peak of each cycle (located)", 2 | TT_PLOT_POINTS);
+    tt_figure_axes(f, 2, "time (us)", "Hertzian pressure K a / pi R (GPa)");
+    tt_figure_line(f, 2, S->t, S->p, S->n, "pressure (samples)", 3);
+    tt_figure_line(f, 2, S->pt, S->pp, S->np, "at each cycle's greatest indentation", 2 | TT_PLOT_POINTS);
+    int rc = tt_figure_write_png(f, path, 1000, 1100);
     tt_figure_free(f);
     return rc;
 }
@@ -146,6 +189,8 @@ int cmd_trace(int argc, char **argv)
         write_row(f, &row, p.ramp != NULL);
         for (size_t k = 0; plotpath && k < row.nsamples && rc == TT_OK; k++)
             rc = series_push(&S, &row.samples[k]);
+        if (plotpath && rc == TT_OK)
+            rc = peak_push(&S, &row);
         if (rc)
             break;
         done_cycles++;
