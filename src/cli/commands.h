@@ -94,4 +94,21 @@ void cli_catch_interrupt(void);
 /* Wall-clock seconds from a monotonic clock. */
 double cli_now(void);
 
+/* Where stderr is not a terminal (a log, a batch job), a long run prints a plain
+ * progress line at most every this many seconds instead of a line kept rewritten. */
+#define CLI_PROGRESS_LOG_S 5.0
+
+/* The run's parameters as key/value metadata for the files it writes (cli_meta.c):
+ * first the given pairs, then every key of the effective scene but its approach and
+ * trace sections, as "section.key" (or "material.NAME.key", as --set spells it) = the
+ * value with its unit.
+ * The strings belong to m; cli_meta_free frees them. */
+typedef struct {
+    char **keys, **values;
+    size_t n, cap;
+} cli_meta;
+int cli_meta_scene(cli_meta *m, const tt_scene *scene, const char *const *first_keys,
+                   const char *const *first_values, size_t nfirst);
+void cli_meta_free(cli_meta *m);
+
 #endif
