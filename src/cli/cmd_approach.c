@@ -187,6 +187,7 @@ int cmd_approach(int argc, char **argv)
                "deflection_min_nm,deflection_max_nm\n");
     cli_catch_interrupt();
     int progress = !quiet && cli_progress_enabled();
+    double logged = cli_now(); /* the last plain progress line (not a terminal) */
     while (!tt_approach_done(ap)) {
         if (tt_cancel_requested()) {
             rc = tt_error(TT_EINTR, "interrupted: %s keeps the %zu rows finished", out, n);
@@ -198,6 +199,10 @@ int cmd_approach(int argc, char **argv)
         n++;
         if (progress)
             fprintf(stderr, "\rapproach: %zu/%zu points", n, tt_approach_rows(ap));
+        else if (!quiet && cli_now() - logged >= CLI_PROGRESS_LOG_S) {
+            fprintf(stderr, "approach: %zu/%zu points\n", n, tt_approach_rows(ap));
+            logged = cli_now();
+        }
     }
     if (progress)
         fprintf(stderr, "\n");

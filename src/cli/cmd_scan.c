@@ -87,13 +87,14 @@ static int write_outputs(const tt_scan *scan, const tt_scene *scene,
 {
     char path[4096], title[TT_CH_COUNT][2][128];
     long xres = tt_scan_xres(scan), yres = tt_scan_yres(scan);
-    char v[2][64];
+    char v[3][64];
     snprintf(v[0], sizeof v[0], "%s", TT_VERSION);
-    snprintf(v[1], sizeof v[1], "%ld of %ld", tt_scan_lines_done(scan), tt_scan_lines(scan));
-    const char *keys[] = {"tiptap_version", "lines_finished"};
-    const char *vals[] = {v[0], v[1]};
+    snprintf(v[1], sizeof v[1], "%ld", tt_scan_lines_done(scan));
+    snprintf(v[2], sizeof v[2], "%ld", tt_scan_lines(scan));
+    const char *keys[] = {"tiptap_version", "lines_finished", "lines_total"};
+    const char *vals[] = {v[0], v[1], v[2]};
     cli_meta meta;
-    int rc = cli_meta_scene(&meta, scene, keys, vals, 2);
+    int rc = cli_meta_scene(&meta, scene, keys, vals, 3);
     if (rc)
         return rc;
     tt_gwy_channel gch[2 * TT_CH_COUNT];

@@ -176,6 +176,7 @@ int cmd_trace(int argc, char **argv)
             p.ramp ? "," : "", p.ramp ? p.ramp : "");
     cli_catch_interrupt();
     int progress = !quiet && cli_progress_enabled();
+    double logged = cli_now(); /* the last plain progress line (not a terminal) */
     while (!tt_trace_done(tr)) {
         if (tt_cancel_requested()) {
             rc = tt_error(TT_EINTR, "interrupted: %s keeps the %ld cycles finished", out, done_cycles);
@@ -197,6 +198,10 @@ int cmd_trace(int argc, char **argv)
         /* a cycle takes a millisecond or less: a line every 64 keeps the terminal calm */
         if (progress && (done_cycles % 64 == 0 || tt_trace_done(tr)))
             fprintf(stderr, "\rtrace: %ld/%zu cycles", done_cycles, tt_trace_rows(tr));
+        else if (!quiet && !progress && cli_now() - logged >= CLI_PROGRESS_LOG_S) {
+            fprintf(stderr, "trace: %ld/%zu cycles\n", done_cycles, tt_trace_rows(tr));
+            logged = cli_now();
+        }
     }
     if (progress)
         fprintf(stderr, "\n");
