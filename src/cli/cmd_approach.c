@@ -230,6 +230,7 @@ int cmd_approach(int argc, char **argv)
             cycles += pts[i].cycles;
         }
         fprintf(stderr, "points = %zu\ncycles = %ld\nrun_time_s = %.3f\n", n, cycles, cli_now() - t0);
+        fprintf(stderr, "output = %s (%zu rows)%s%s\n", out, n, plotpath ? ", plot " : "", plotpath ? plotpath : "");
         fprintf(stderr, "error_estimate = %.3g (largest energy-balance residual of a cycle / free drive work per cycle)\n",
                 worst);
         if (p.mode == TT_APPROACH_STEADY && p.steady == TT_STEADY_SHOOTING)

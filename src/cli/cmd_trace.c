@@ -221,6 +221,9 @@ int cmd_trace(int argc, char **argv)
         fprintf(stderr, "cycles = %ld\nrun_time_s = %.3f\nerror_estimate = %.3g (largest energy-balance "
                         "residual of a cycle / free drive work per cycle)\n",
                 done_cycles, cli_now() - t0, worst);
+    if (!quiet && done_cycles > 0)
+        fprintf(stderr, "output = %s (%ld cycles x %ld samples)%s%s\n", out, done_cycles,
+                p.samples_per_cycle, plotpath && S.n > 0 ? ", plot " : "", plotpath && S.n > 0 ? plotpath : "");
 done:
     if (of)
         tt_outfile_close(of, 0);
