@@ -14,6 +14,7 @@ int cmd_trace(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_scan(int argc, char **argv);
 int cmd_accuracy(int argc, char **argv);
+int cmd_profiles(int argc, char **argv);
 
 /* Exit codes: 0 success, 1 bad input or failure, 2 usage, 130 interrupted (Ctrl-C);
  * 143 stopped by SIGTERM (main turns CLI_INTERRUPTED into 128 + the signal). */
