@@ -30,7 +30,7 @@ cd "$root"
 $t scan scans/quick.ini surfaces/polymer-blend.ini -o $o/quick-blend 2>/dev/null
 for s in steps particles rough png-map grating; do
   # particles: a smaller field, so that 4 lines still resolve the spheres
-  size=(); [ $s = particles ] && size=(--set "scan.size=100 nm")
+  size=(); [ $s = particles ] && size=(--set "scan.size=100 nm" --set surface.particle_count=3)
   $t scan scans/quick.ini surfaces/$s.ini --set scan.pixels=16 --set scan.lines=4 "${size[@]}" -o $o/quick-$s 2>/dev/null
 done
 if [ "$mode" != quick ]; then
