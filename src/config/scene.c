@@ -14,6 +14,7 @@
 
 #include "tiptap/config/ini.h"
 #include "tiptap/util/error.h"
+#include "tiptap/util/str.h"
 
 typedef struct {
     char *section; /* schema section name, "material" */
@@ -54,17 +55,6 @@ struct tt_scene {
     name_list *names;      /* per schema section */
     unsigned loads;        /* files read so far */
 };
-
-static char *dupstr(const char *s)
-{
-    if (!s)
-        return NULL;
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d)
-        memcpy(d, s, n);
-    return d;
-}
 
 static int streq(const char *a, const char *b)
 {
@@ -228,7 +218,7 @@ tt_scene *tt_scene_copy(const tt_scene *s)
     tt_scene *c = tt_scene_alloc();
     if (!c)
         return NULL;
-    c->origin = dupstr(s->origin);
+    c->origin = tt_strdup(s->origin);
     c->loads = s->loads;
     int rc = (s->origin && !c->origin) ? TT_ENOMEM : TT_OK;
     /* sections first, so that their order and origins are kept */
@@ -408,9 +398,9 @@ static int note_section(tt_scene *s, const char *section, const char *name, cons
     if (rc)
         return rc;
     section_use *u = &s->uses[s->nuses];
-    u->section = dupstr(section);
-    u->name = dupstr(name);
-    u->origin = dupstr(origin);
+    u->section = tt_strdup(section);
+    u->name = tt_strdup(name);
+    u->origin = tt_strdup(origin);
     if (!u->section || (name && !u->name) || !u->origin) {
         free(u->section);
         free(u->name);
@@ -429,7 +419,7 @@ static int store(tt_scene *s, const char *origin, unsigned load, const char *sec
                  const char *name, const char *key, const char *value)
 {
     entry *e = find_entry(s, section, name, key);
-    char *v = dupstr(value), *o = dupstr(origin);
+    char *v = tt_strdup(value), *o = tt_strdup(origin);
     if (!v || !o) {
         free(v);
         free(o);
@@ -458,7 +448,7 @@ static int store(tt_scene *s, const char *origin, unsigned load, const char *sec
         rc = index_reserve(&s->by_key, s->n, s->entries, sizeof *s->entries, entry_hash_v);
     if (!rc) {
         e = &s->entries[s->n];
-        *e = (entry){dupstr(section), dupstr(name), dupstr(key), v, o, load};
+        *e = (entry){tt_strdup(section), tt_strdup(name), tt_strdup(key), v, o, load};
         if (!e->section || (name && !e->name) || !e->key) {
             free(e->section);
             free(e->name);
@@ -616,7 +606,7 @@ static int load_text(tt_scene *s, const char *text, size_t len, const char *orig
     int rc = tt_ini_parse(text, len, origin, on_item, &c);
     if (rc)
         return rc;
-    if (!s->origin && !(s->origin = dupstr(origin)))
+    if (!s->origin && !(s->origin = tt_strdup(origin)))
         return tt_error(TT_ENOMEM, "out of memory reading the scene");
     return TT_OK;
 }
