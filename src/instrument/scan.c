@@ -341,6 +341,7 @@ static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *wor
     double z_act = fb.z;
     tt_sim_reset_free(sim);
     tt_sim_set_sampling(sim, N, W->samples);
+    tt_sim_track_peaks(sim, (S->channels & (TT_CH_PEAK_FORCE | TT_CH_INDENTATION)) != 0);
     tt_lockin_reset(W->lockin, c->A0, c->phi0);
 
     pixel_acc *pix = calloc((size_t)R->pixels * 2, sizeof *pix);

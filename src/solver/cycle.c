@@ -74,8 +74,8 @@ static void cycle_result(const tt_sim *S, double E_start, tt_cycle *out)
     out->mean = S->y[Y_IY] / T;
     out->y_min = S->y_min;
     out->y_max = S->y_max;
-    out->peak_force = S->peak_force;
-    out->max_indentation = S->max_indent;
+    out->peak_force = S->skip_peaks ? NAN : S->peak_force;
+    out->max_indentation = S->skip_peaks ? NAN : S->max_indent;
     out->contact_fraction = S->y[Y_TC] / T;
     out->e_drive = S->y[Y_WDRIVE];
     out->e_damp = S->y[Y_WDAMP];

@@ -70,24 +70,37 @@ static void observe_contact_peak(tt_sim *S, double th)
         S->peak_force = fmax;
 }
 
+static void observe_peaks(tt_sim *S, double th, double d, double v);
+
 /* Bookkeeping for the part [0, th] of the current step: samples, extremes, peak force. */
 void tt_observe(tt_sim *S, double th)
 {
-    double h = S->step_h, t0 = S->step_tau;
     observe_samples(S, th);
+    if (!S->track_extremes && S->skip_peaks)
+        return;
     /* deflection extremes (on request: they cost a drive evaluation) and force at the
      * (sub)step end */
-    double d, v, delta;
+    double d, v;
     tt_step_dense(S, th, &d, &v);
     if (S->track_extremes) {
         double z, zd, Fd, cw, sw;
-        drive_at(S, t0 + th * h, &z, &zd, &Fd, &cw, &sw);
+        drive_at(S, S->step_tau + th * S->step_h, &z, &zd, &Fd, &cw, &sw);
         double y = d - z;
         if (y < S->y_min)
             S->y_min = y;
         if (y > S->y_max)
             S->y_max = y;
     }
+    if (!S->skip_peaks)
+        observe_peaks(S, th, d, v);
+}
+
+/* The peak force and the greatest indentation over the part [0, th] of the current step
+ * whose end state is (d, v). */
+static void observe_peaks(tt_sim *S, double th, double d, double v)
+{
+    double h = S->step_h, t0 = S->step_tau;
+    double delta;
     double F = ts_force(S, t0 + th * h, d, v, S->contact_state, &delta);
     if (F > S->peak_force)
         S->peak_force = F;

@@ -119,6 +119,8 @@ void tt_sim_track_extremes(tt_sim *S, int on)
     tt_flight_setup(S);
 }
 
+void tt_sim_track_peaks(tt_sim *S, int on) { S->skip_peaks = !on; }
+
 void tt_sim_set_cantilever(tt_sim *S, const tt_cantilever *c)
 {
     /* Same drive period required: the cycle bookkeeping assumes it. */

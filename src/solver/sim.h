@@ -79,6 +79,7 @@ struct tt_sim {
     tt_sample *samples;
     int next_sample;
     int track_extremes;
+    int skip_peaks;      /* peak force and indentation not asked for (tt_sim_track_peaks) */
     /* per-cycle accumulators outside the state vector */
     double peak_force, max_indent, y_min, y_max, e_jumps, t_contact, t_release;
     long steps, rejected, events;

@@ -101,6 +101,10 @@ const tt_cantilever *tt_sim_cantilever(const tt_sim *sim);
 /* Track the deflection's extremes in each cycle (costs a little; off by default). */
 void tt_sim_track_extremes(tt_sim *sim, int on);
 
+/* Track the peak force and the greatest indentation of each cycle (on by default). Off,
+ * they read NAN: a scan that records neither skips the force evaluations they take. */
+void tt_sim_track_peaks(tt_sim *sim, int on);
+
 /* Put the cantilever in its free steady oscillation at a cycle start, out of contact. */
 void tt_sim_reset_free(tt_sim *sim);
 
