@@ -111,10 +111,11 @@ static int edge_sample(const tt_scene *scene, tt_scan_params *p, tt_material mat
  * images of trace and retrace, [retrace][pixel of both lines]. */
 typedef struct {
     double wall, cpu, inst, err_est;
+    tt_scan_error est; /* the companion's estimate, taken after the timing */
     double *img[2][2]; /* [height, phase][trace, retrace] */
 } imaging_run;
 
-static int imaging_once(const tt_scan_params *p, int threads, imaging_run *out)
+static int imaging_once(const tt_scan_params *p, int threads, int estimate, imaging_run *out)
 {
     tt_scan *scan = NULL;
     int rc = tt_scan_alloc(&scan, p);
@@ -128,6 +129,8 @@ static int imaging_once(const tt_scan_params *p, int threads, imaging_run *out)
         size_t n = (size_t)(p->raster.pixels * p->raster.lines);
         out->inst = tt_scan_instrument_time(scan);
         out->err_est = tt_scan_error_estimate(scan);
+        if (estimate)
+            rc = tt_scan_estimate_error(scan, &out->est);
         for (int c = 0; c < 2 && !rc; c++)
             for (int r = 0; r < 2 && !rc; r++) {
                 out->img[c][r] = malloc(n * sizeof(double));
@@ -165,6 +168,21 @@ static void image_error(const imaging_run *a, const imaging_run *ref, int c, siz
     *rms = sqrt(s / (double)(2 * n));
 }
 
+/* The run's own error estimate (tt_scan_estimate_error, a companion line) against the
+ * error measured against the reference, per setting: [h rms, h max, ph rms, ph max]. */
+static void print_estimates(const setting *set, size_t nset, double (*est)[4], double (*meas)[4])
+{
+    printf("\n# error estimate (a companion run of one line at a 10x tighter setting) against the "
+           "measured error\n");
+    printf("%-28s %11s %11s %11s %11s %11s %11s %11s %11s\n", "setting", "h_rms_est", "h_rms_meas",
+           "h_max_est", "h_max_meas", "ph_rms_est", "ph_rms_meas", "ph_max_est", "ph_max_meas");
+    for (size_t i = 1; i < nset; i++)
+        printf("%-28s %11.3g %11.3g %11.3g %11.3g %11.3g %11.3g %11.3g %11.3g\n", set[i].label,
+               est[i][0] * 1e12, meas[i][0] * 1e12, est[i][1] * 1e12, meas[i][1] * 1e12, est[i][2],
+               meas[i][2], est[i][3], meas[i][3]);
+    printf("# heights in pm, phases in deg; the estimate is never to be below the measured error\n");
+}
+
 /* The imaging figure: for each solver setting, the real-time factor of the edge
  * sample's lines on two threads and the speedup over one, and the height and phase
  * error against the every-cycle reference at a tight tolerance on the same lines. */
@@ -184,17 +202,18 @@ static int bench_imaging(const tt_scene *scene, const setting *set, size_t nset)
            "80 %% setpoint; errors against the reference\n",
            p.raster.lines, p.raster.pixels, p.raster.line_rate);
     printf("%-28s %8s %8s %8s %8s %8s %10s %10s %10s %10s %10s\n", "setting", "wall_j1", "wall_j2",
-           "j2/j1", "rtf_j2", "rtf_cpu", "h_max_pm", "h_rms_pm", "ph_max_deg", "ph_rms_deg", "err_est");
+           "j2/j1", "rtf_j2", "rtf_cpu", "h_max_pm", "h_rms_pm", "ph_max_deg", "ph_rms_deg", "energy_bal");
     imaging_run ref = {0};
+    double est[8][4] = {{0}}, meas[8][4] = {{0}};
     for (size_t i = 0; i < nset && !rc; i++) {
         p.solver.method = set[i].method;
         p.solver.tolerance = set[i].tol;
         p.solver.steps_per_cycle = set[i].steps;
         imaging_run r1 = {0}, r2 = {0};
         if (i > 0)
-            rc = imaging_once(&p, 1, &r1);
+            rc = imaging_once(&p, 1, 0, &r1);
         if (!rc)
-            rc = imaging_once(&p, 2, &r2);
+            rc = imaging_once(&p, 2, i > 0, &r2);
         if (!rc) {
             if (i == 0) {
                 ref = r2;
@@ -206,6 +225,12 @@ static int bench_imaging(const tt_scene *scene, const setting *set, size_t nset)
                 double hm, hr, pm, pr;
                 image_error(&r2, &ref, 0, n, &hm, &hr);
                 image_error(&r2, &ref, 1, n, &pm, &pr);
+                if (i < 8) {
+                    double e[4] = {r2.est.height_rms, r2.est.height_max, r2.est.phase_rms, r2.est.phase_max};
+                    double m[4] = {hr, hm, pr, pm};
+                    memcpy(est[i], e, sizeof e);
+                    memcpy(meas[i], m, sizeof m);
+                }
                 printf("%-28s %8.2f %8.2f %8.2f %8.3f %8.3f %10.3g %10.3g %10.3g %10.3g %10.1e\n",
                        set[i].label, r1.wall, r2.wall, r1.wall / r2.wall, r2.inst / r2.wall,
                        2 * r2.inst / r2.cpu,
@@ -222,7 +247,9 @@ static int bench_imaging(const tt_scene *scene, const setting *set, size_t nset)
     if (!rc)
         printf("# rtf_j2: instrument time / wall time on two threads (10 is the goal); rtf_cpu: the\n"
                "# same from the CPU time, what two idle cores give (a shared machine's wall time is\n"
-               "# not); err_est: the run's error estimate\n");
+               "# not); energy_bal: the energy-balance check (largest residual / free drive work)\n");
+    if (!rc)
+        print_estimates(set, nset < 8 ? nset : 8, est, meas);
     return rc;
 }
 

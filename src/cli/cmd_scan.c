@@ -274,16 +274,28 @@ int cmd_scan(int argc, char **argv)
         else if (rc)
             tt_error(rc, "%s", saved);
     }
+    double wall = cli_now() - t0;
+    tt_scan_error est;
+    int have_est = rc == TT_OK && !quiet && tt_scan_estimate_error(scan, &est) == TT_OK;
+    if (rc == TT_OK && !quiet && !have_est)
+        fprintf(stderr, "tiptap: no error estimate: %s\n", tt_error_message());
     if (!quiet) {
-        double wall = cli_now() - t0;
         fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f\ninstrument_time_s = %.3f\n"
-                        "real_time_factor = %.3f\nerror_estimate = %.3g (largest energy-balance "
-                        "residual of a cycle / free drive work per cycle)\n",
+                        "real_time_factor = %.3f\nenergy_balance = %.3g (largest energy-balance "
+                        "residual of a cycle / free drive work per cycle: a check, not the error)\n",
                 tt_scan_lines_done(scan), tt_scan_lines(scan), tt_scan_cycles(scan), wall,
                 tt_scan_instrument_time(scan),
                 tt_scan_instrument_time(scan) * (double)tt_scan_lines_done(scan) /
                     (double)tt_scan_lines(scan) / wall,
                 tt_scan_error_estimate(scan));
+        if (have_est)
+            fprintf(stderr, "error_estimate_height_m = %.2g (rms; max %.2g)\n"
+                            "error_estimate_phase_deg = %.2g (rms; max %.2g)\n"
+                            "error_estimate_amplitude_rel = %.2g (rms; max %.2g)\n"
+                            "# from a companion run of line %ld at tolerance %.3g; run_time_s "
+                            "excludes it\n",
+                    est.height_rms, est.height_max, est.phase_rms, est.phase_max, est.amplitude_rms,
+                    est.amplitude_max, est.line, est.tolerance);
         if (tt_scan_clamped(scan))
             fprintf(stderr, "warning: the z piezo reached the end of its range ([feedback] z_range)\n");
     }

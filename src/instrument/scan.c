@@ -252,11 +252,11 @@ static void worker_free(worker *W)
     free(W->y);
 }
 
-static int worker_alloc(tt_scan *S, worker *W)
+static int worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)
 {
     memset(W, 0, sizeof *W);
     int rc;
-    if ((rc = tt_sim_alloc(&W->sim, &S->cantilever, &S->solver)) ||
+    if ((rc = tt_sim_alloc(&W->sim, &S->cantilever, solver)) ||
         (rc = tt_lockin_alloc(&W->lockin, &S->lockin)))
         return rc;
     size_t n = (size_t)S->lockin.samples_per_period * (size_t)S->lockin.periods_per_block;
@@ -305,8 +305,16 @@ static double sample_at(const tt_scan *S, double *x, double *y, double t, double
     return h + in->tilt_x * *x + in->tilt_y * *y + in->drift_z * t;
 }
 
+/* Where a line's pixels go: the scan's images, or (packed) one line's worth per
+ * channel and direction. */
+typedef struct {
+    double *img[2][TT_CH_COUNT];
+    int packed;
+} line_out;
+
 /* Scan one line: engage at its first pixel, then trace and retrace. */
-static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *worst, int *clamped)
+static int scan_line(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
+                     double *worst, int *clamped)
 {
     const tt_raster *R = &S->raster;
     tt_sim *sim = W->sim;
@@ -461,8 +469,8 @@ static int scan_line(tt_scan *S, worker *W, long line, long *cycles, double *wor
                     double v = cnt ? a->sum[ch] / (double)cnt : NAN;
                     if (ch >= TT_CH_HARMONIC_PHASE_INDEX && cnt)
                         v = lag(a->sum[ch], a->quad[ch - TT_CH_HARMONIC_PHASE_INDEX]) * 180 / M_PI;
-                    if (S->img[dir][ch])
-                        S->img[dir][ch][tt_raster_index(R, line, px)] = v;
+                    if (out->img[dir][ch])
+                        out->img[dir][ch][out->packed ? px : tt_raster_index(R, line, px)] = v;
                 }
             }
     }
@@ -484,7 +492,10 @@ int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done,
         return tt_error(TT_ENOMEM, "out of memory");
     int rc = TT_OK;
     for (int i = 0; i < threads && rc == TT_OK; i++)
-        rc = worker_alloc(S, &W[i]);
+        rc = worker_alloc(S, &W[i], &S->solver);
+    line_out images;
+    memcpy(images.img, S->img, sizeof images.img);
+    images.packed = 0;
     if (rc == TT_OK) {
         S->status = TT_OK;
         long total = S->raster.lines;
@@ -499,7 +510,7 @@ int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done,
             long cycles = 0;
             double worst = 0;
             int clamped = 0;
-            int lrc = scan_line(S, w, line, &cycles, &worst, &clamped);
+            int lrc = scan_line(S, w, line, &images, &cycles, &worst, &clamped);
 #pragma omp critical(tt_scan_result)
             {
                 S->cycles += cycles;
@@ -527,6 +538,79 @@ int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done,
         worker_free(&W[i]);
     free(W);
     return rc;
+}
+
+/* One companion line on a solver setting: height, amplitude and phase of trace and
+ * retrace into buf (6 blocks of pixels: [channel][direction]). */
+static int companion_line(tt_scan *S, const tt_solver *solver, double *buf)
+{
+    worker W;
+    line_out out = {{{0}}, 1};
+    long px = S->raster.pixels, cycles = 0;
+    double worst = 0;
+    int clamped = 0;
+    for (int c = 0; c < 3; c++)
+        for (int r = 0; r < (S->raster.retrace ? 2 : 1); r++)
+            out.img[r][c] = buf + (size_t)(2 * c + r) * (size_t)px;
+    int rc = worker_alloc(S, &W, solver);
+    if (!rc)
+        rc = scan_line(S, &W, S->profile_line, &out, &cycles, &worst, &clamped);
+    worker_free(&W);
+    return rc;
+}
+
+/* The companion's setting: ten times tighter, which for dopri5 and radau cuts the
+ * images' error about tenfold (docs/accuracy.md), so the difference of the two runs is
+ * the run's own error to within about a tenth. */
+static tt_solver companion_solver(const tt_solver *s)
+{
+    tt_solver t = *s;
+    t.tolerance = s->tolerance / 10;
+    t.steps_per_cycle = 2 * s->steps_per_cycle;
+    return t;
+}
+
+int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
+{
+    memset(e, 0, sizeof *e);
+    const long px = S->raster.pixels;
+    const int dirs = S->raster.retrace ? 2 : 1;
+    double *buf = calloc((size_t)(12 * px), sizeof *buf);
+    if (!buf)
+        return tt_error(TT_ENOMEM, "out of memory");
+    tt_solver tight = companion_solver(&S->solver);
+    int rc[2] = {TT_OK, TT_OK};
+#pragma omp parallel for num_threads(2) schedule(static, 1)
+    for (int k = 0; k < 2; k++)
+        rc[k] = companion_line(S, k ? &tight : &S->solver, buf + (size_t)(6 * k * px));
+    if (rc[0] || rc[1]) {
+        free(buf);
+        return rc[0] ? rc[0] : rc[1];
+    }
+    double max[3] = {0}, sum[3] = {0};
+    const double scale[3] = {1, 1 / S->A0, 1};
+    long n = 0;
+    for (int r = 0; r < dirs; r++)
+        for (long i = 0; i < px; i++, n++)
+            for (int c = 0; c < 3; c++) {
+                double a = buf[(size_t)((2 * c + r) * px + i)], b = buf[(size_t)((6 + 2 * c + r) * px + i)];
+                double d = fabs(a - b) * scale[c];
+                if (!(d <= max[c]))
+                    max[c] = d; /* a NaN (a pixel without data) stays visible */
+                sum[c] += d * d;
+            }
+    free(buf);
+    /* the difference stands for the run's error to within a tenth; twice it covers that
+     * and the other lines, which the companion did not run */
+    e->height_max = 2 * max[0];
+    e->height_rms = 2 * sqrt(sum[0] / (double)n);
+    e->amplitude_max = 2 * max[1];
+    e->amplitude_rms = 2 * sqrt(sum[1] / (double)n);
+    e->phase_max = 2 * max[2];
+    e->phase_rms = 2 * sqrt(sum[2] / (double)n);
+    e->line = S->profile_line;
+    e->tolerance = tight.tolerance;
+    return TT_OK;
 }
 
 long tt_scan_xres(const tt_scan *S) { return S->raster.fast_y ? S->raster.lines : S->raster.pixels; }
