@@ -276,8 +276,11 @@ int cmd_scan(int argc, char **argv)
     }
     double wall = cli_now() - t0;
     tt_scan_error est;
-    int have_est = rc == TT_OK && !quiet && tt_scan_estimate_error(scan, &est) == TT_OK;
-    if (rc == TT_OK && !quiet && !have_est)
+    int erc = rc == TT_OK && !quiet ? tt_scan_estimate_error(scan, &est) : TT_EINVAL;
+    int have_est = erc == TT_OK;
+    if (erc == TT_EINTR)
+        rc = erc; /* stopped in the companion: the images are written, the exit says so */
+    else if (rc == TT_OK && !quiet && !have_est)
         fprintf(stderr, "tiptap: no error estimate: %s\n", tt_error_message());
     if (!quiet) {
         fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f\ninstrument_time_s = %.3f\n"

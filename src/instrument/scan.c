@@ -580,13 +580,18 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
         return tt_error(TT_ENOMEM, "out of memory");
     tt_solver tight = companion_solver(&S->solver);
     int rc[2] = {TT_OK, TT_OK};
+    char why[2][512]; /* a worker thread's message is its own: carried back here */
 #pragma omp parallel for num_threads(2) schedule(static, 1)
-    for (int k = 0; k < 2; k++)
+    for (int k = 0; k < 2; k++) {
         rc[k] = companion_line(S, k ? &tight : &S->solver, buf + (size_t)(6 * k * px));
-    if (rc[0] || rc[1]) {
-        free(buf);
-        return rc[0] ? rc[0] : rc[1];
+        snprintf(why[k], sizeof why[k], "%s", rc[k] ? tt_error_message() : "");
     }
+    for (int k = 0; k < 2; k++)
+        if (rc[k]) {
+            free(buf);
+            return tt_error(rc[k], "the companion line at tolerance %g: %s",
+                            k ? tight.tolerance : S->solver.tolerance, why[k]);
+        }
     double max[3] = {0}, sum[3] = {0};
     const double scale[3] = {1, 1 / S->A0, 1};
     long n = 0;
