@@ -283,6 +283,29 @@ size_t tt_config_scan_unused(const tt_scan_params *p, size_t *idx, size_t max)
     return k;
 }
 
+/* [noise] and [scan] lines_mode. */
+static int read_noise(const tt_scene *s, tt_scan_params *p)
+{
+    int rc;
+    long seed, points;
+    tt_scan_noise *n = &p->noise;
+    if ((rc = tt_scene_get_int(s, "noise", NULL, "seed", &seed)) ||
+        (rc = tt_scene_get_int(s, "noise", NULL, "points", &points)) ||
+        (rc = tt_scene_get_double(s, "noise", NULL, "temperature", &n->temperature)) ||
+        (rc = tt_scene_get_double(s, "noise", NULL, "detector", &n->detector)) ||
+        (rc = tt_scene_get_double(s, "noise", NULL, "z_piezo", &n->z_piezo)))
+        return rc;
+    n->seed = (uint64_t)seed;
+    n->points = (int)points;
+    if (n->temperature > 0 && p->solver.method == TT_METHOD_RK4 && p->solver.steps_per_cycle % n->points)
+        return tt_scene_fail(s, "noise", NULL, "points",
+                             "rk4's steps_per_cycle (%d) must be a multiple of it (%d)",
+                             p->solver.steps_per_cycle, n->points);
+    const char *mode = tt_scene_get_string(s, "scan", NULL, "lines_mode");
+    p->continuous = mode && strcmp(mode, "continuous") == 0;
+    return TT_OK;
+}
+
 int tt_config_scan(const tt_scene *s, tt_scan_params *p)
 {
     memset(p, 0, sizeof *p);
@@ -295,7 +318,7 @@ int tt_config_scan(const tt_scene *s, tt_scan_params *p)
     p->materials = m;
     p->nmaterials = n;
     if ((rc = tt_config_raster(s, &p->raster)) || (rc = check_line_rate(s, p)) ||
-        (rc = tt_config_lockin(s, &p->lockin)) || (rc = read_scan_keys(s, p)) ||
+        (rc = tt_config_lockin(s, &p->lockin)) || (rc = read_scan_keys(s, p)) || (rc = read_noise(s, p)) ||
         (rc = tt_config_feedback(s, p->cantilever.A0, &p->feedback)) ||
         (rc = tt_config_surface(s, m, n, &p->surface)) || (rc = check_particles(s, p)) ||
         (rc = tt_config_tip_shape(s, &p->tip)) || (rc = tt_config_instrument(s, &p->instrument))) {

@@ -183,6 +183,23 @@ static const tt_scene_key scan_keys[] = {
      "line written to profile.csv (-1: the middle line)"},
     {"settle_cycles", TT_KEY_INT, 0, "3000", 0, 1e9, 0, NULL,
      "drive cycles the feedback settles at each line's first pixel before the trace"},
+    {"lines_mode", TT_KEY_ENUM, 0, "independent", 0, 0, 0, "independent|continuous",
+     "independent: each line settles at its first pixel (lines in parallel); continuous: as an "
+     "instrument, each line starts where the last retrace ended (one thread)"},
+};
+
+/* [noise]: seeded noise of a scan (docs/dynamics.md). */
+static const tt_scene_key noise_keys[] = {
+    {"seed", TT_KEY_INT, 0, "1", 0, 2147483647, 0, NULL,
+     "seed of every noise; the same seed gives the same images on any number of threads"},
+    {"temperature", Q(TT_DIM_TEMPERATURE), "0 K", 0, INF, 0, NULL,
+     "temperature of the cantilever's thermal (Langevin) force, PSD 2 c kB T (0: none)"},
+    {"points", TT_KEY_INT, 0, "64", 4, 65536, 0, NULL,
+     "thermal force points per drive cycle (linear between; rk4's steps_per_cycle must be a multiple)"},
+    {"detector", Q(TT_DIM_NOISE_DENSITY), "0 m/sqrt(Hz)", 0, INF, 0, NULL,
+     "deflection detector noise density (one-sided), added to the samples the lock-in reads"},
+    {"z_piezo", Q(TT_DIM_NOISE_DENSITY), "0 m/sqrt(Hz)", 0, INF, 0, NULL,
+     "z piezo position noise density (one-sided), drawn once per drive cycle"},
 };
 
 /* [instrument]: the imperfections of a real instrument (tiptap scan), each off by default. */
@@ -219,6 +236,7 @@ static const tt_scene_section sections[] = {
     {"feedback", 0, feedback_keys, TT_COUNT(feedback_keys), "PI amplitude feedback (tiptap scan)"},
     {"instrument", 0, instrument_keys, TT_COUNT(instrument_keys),
      "the instrument's imperfections: tilt, drift, z piezo dynamics and creep (tiptap scan)"},
+    {"noise", 0, noise_keys, TT_COUNT(noise_keys), "thermal, detector and z piezo noise (tiptap scan)"},
 };
 
 /* Static and constant: nothing to initialise, safe from any thread. */

@@ -35,6 +35,9 @@ static const struct {
     {"deg", TT_DIM_ANGLE, M_PI / 180.0},
     {"°", TT_DIM_ANGLE, M_PI / 180.0},
     {"%", TT_DIM_FRACTION, 0.01},
+    {"K", TT_DIM_TEMPERATURE, 1.0},
+    {"m/sqrt(Hz)", TT_DIM_NOISE_DENSITY, 1.0},
+    {"m/rtHz", TT_DIM_NOISE_DENSITY, 1.0},
 };
 
 static const struct {
@@ -64,6 +67,8 @@ static const struct {
     {TT_DIM_VELOCITY, "m/s", "a speed such as '1 um/s'"},
     {TT_DIM_ANGLE, "rad", "an angle such as '90 deg'"},
     {TT_DIM_FRACTION, "", "a percentage such as '80 %'"},
+    {TT_DIM_TEMPERATURE, "K", "a temperature such as '300 K'"},
+    {TT_DIM_NOISE_DENSITY, "m/sqrt(Hz)", "a noise density such as '50 fm/sqrt(Hz)'"},
 };
 
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tiptap/solver/noise.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 
@@ -81,6 +82,12 @@ typedef struct {
     tt_lockin *lockin;
     tt_sample *samples;
     double *y;
+    /* continuous lines: the feedback and the z piezo's ramp where the last line ended */
+    int engaged;
+    tt_feedback fb;
+    double z_from, z_to;
+    tt_piezo pz;
+    double z_act;
 } worker;
 
 struct tt_scan {
@@ -98,6 +105,9 @@ struct tt_scan {
     unsigned channels;
     long settle_cycles;
     long profile_line;
+    tt_scan_noise noise;
+    double sd, sz;       /* per-sample detector and per-cycle z piezo noise, m rms */
+    int continuous;
     /* lock-in and feedback */
     tt_lockin_params lockin;
     double setpoint, kp, ki, z_range;
@@ -146,6 +156,11 @@ static int take_params(tt_scan *S, const tt_scan_params *p)
     if (S->profile_line >= S->raster.lines)
         return tt_error(TT_EINVAL, "[scan] profile_line: %ld is past the last line (%ld)",
                         S->profile_line, S->raster.lines - 1);
+    S->noise = p->noise;
+    S->continuous = p->continuous;
+    /* white noise of one-sided density n sampled at rate fs has variance n^2 fs / 2 */
+    S->sd = p->noise.detector * sqrt(0.5 * p->lockin.samples_per_period / p->cantilever.T);
+    S->sz = p->noise.z_piezo * sqrt(0.5 / p->cantilever.T);
     S->lockin = p->lockin;
     S->lockin.drive_frequency = p->cantilever.fd;
     S->lockin.harmonics = 1;
@@ -257,6 +272,7 @@ static int worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)
     memset(W, 0, sizeof *W);
     int rc;
     if ((rc = tt_sim_alloc(&W->sim, &S->cantilever, solver)) ||
+        (rc = tt_sim_set_thermal(W->sim, S->noise.temperature, S->noise.points)) ||
         (rc = tt_lockin_alloc(&W->lockin, &S->lockin)))
         return rc;
     size_t n = (size_t)S->lockin.samples_per_period * (size_t)S->lockin.periods_per_block;
@@ -336,29 +352,44 @@ static int scan_line(tt_scan *S, worker *W, long line, const line_out *out, long
     size_t current = mat;
 
     /* Engage: the rest separation of a free tip whose amplitude the surface limits to
-     * the setpoint is about the setpoint; the feedback then settles the rest. */
+     * the setpoint is about the setpoint; the feedback then settles the rest. Continuous
+     * lines engage once and carry on from where the last retrace ended. */
     const double s_ref = S->setpoint;
-    tt_feedback fb;
-    tt_feedback_init(&fb, S->setpoint, S->kp, S->ki, h_ref - 0.5 * S->z_range,
-                     h_ref + 0.5 * S->z_range, h0);
-    double z_from = fb.z, z_to = fb.z;
-    /* the piezo rests at the engage height; creep follows the whole line */
-    tt_piezo pz;
+    const int carry = S->continuous && W->engaged;
+    tt_feedback fb = W->fb;
+    double z_from = W->z_from, z_to = W->z_to;
+    /* the piezo rests at the engage height; creep follows the whole line (continuous
+     * lines: the scan) */
+    tt_piezo pz = W->pz;
     int piezo = !tt_piezo_ideal(&S->inst.piezo);
-    tt_piezo_init(&pz, &S->inst.piezo, fb.z, (double)S->settle_cycles * T + 1 / R->line_rate);
-    double z_act = fb.z;
-    tt_sim_reset_free(sim);
+    double z_act = W->z_act;
+    if (!carry) {
+        tt_feedback_init(&fb, S->setpoint, S->kp, S->ki, h_ref - 0.5 * S->z_range,
+                         h_ref + 0.5 * S->z_range, h0);
+        z_from = z_to = fb.z;
+        tt_piezo_init(&pz, &S->inst.piezo, fb.z,
+                      (double)S->settle_cycles * T + 1 / R->line_rate);
+        z_act = fb.z;
+        tt_sim_reset_free(sim);
+        tt_lockin_reset(W->lockin, c->A0, c->phi0);
+    }
     tt_sim_set_sampling(sim, N, W->samples);
     tt_sim_track_peaks(sim, (S->channels & (TT_CH_PEAK_FORCE | TT_CH_INDENTATION)) != 0);
-    tt_lockin_reset(W->lockin, c->A0, c->phi0);
+    /* the noise of this line: keyed by (seed, line), counted in cycles from its start */
+    tt_sim_noise_key(sim, tt_noise_key(S->noise.seed, TT_NOISE_THERMAL, line));
+    const uint64_t kd = tt_noise_key(S->noise.seed, TT_NOISE_DETECTOR, line);
+    const uint64_t kz = tt_noise_key(S->noise.seed, TT_NOISE_PIEZO, line);
+    uint64_t kl = 0;
 
     pixel_acc *pix = calloc((size_t)R->pixels * 2, sizeof *pix);
     if (!pix)
         return tt_error(TT_ENOMEM, "out of memory");
 
     /* Phase 0 settles at the first pixel; phases 1 and 2 are trace and retrace. */
-    long settle_blocks = (S->settle_cycles + P - 1) / P;
-    for (int phase = 0; phase < (R->retrace ? 3 : 2) && rc == TT_OK; phase++) {
+    long settle_blocks = carry ? 0 : (S->settle_cycles + P - 1) / P;
+    /* continuous lines retrace whether recorded or not: the next line starts there */
+    int nphase = R->retrace || S->continuous ? 3 : 2;
+    for (int phase = 0; phase < nphase && rc == TT_OK; phase++) {
         long nblocks = phase == 0 ? settle_blocks : (nc + P - 1) / P;
         int dir = phase == 2 ? 1 : 0;
         for (long b = 0; b < nblocks && rc == TT_OK; b++) {
@@ -408,6 +439,10 @@ static int scan_line(tt_scan *S, worker *W, long line, const line_out *out, long
                     pb = z_act = tt_piezo_advance(&pz, zb, T);
                 }
                 double sa = s_ref - ha + pa, sb = s_ref - hb + pb;
+                if (S->sz > 0) {
+                    sa += S->sz * tt_noise_gauss(kz, kl);
+                    sb += S->sz * tt_noise_gauss(kz, kl + 1);
+                }
                 tt_sim_set_sample(sim, sa, (sb - sa) / T);
                 tt_cycle cy;
                 if ((rc = tt_sim_cycle(sim, &cy)))
@@ -417,6 +452,10 @@ static int scan_line(tt_scan *S, worker *W, long line, const line_out *out, long
                     *worst = cy.residual_rel;
                 for (int q = 0; q < N; q++)
                     W->y[j * N + q] = W->samples[q].d - W->samples[q].z;
+                if (S->sd > 0)
+                    for (int q = 0; q < N; q++)
+                        W->y[j * N + q] += S->sd * tt_noise_gauss(kd, kl * (uint64_t)N + (uint64_t)q);
+                kl++;
                 if (phase > 0) {
                     long px = tt_raster_pixel(R, dir, nc, k);
                     pixel_acc *a = &pix[(size_t)dir * (size_t)R->pixels + (size_t)px];
@@ -460,6 +499,12 @@ static int scan_line(tt_scan *S, worker *W, long line, const line_out *out, long
         }
     }
     if (rc == TT_OK) {
+        W->engaged = 1;
+        W->fb = fb;
+        W->z_from = z_from;
+        W->z_to = z_to;
+        W->pz = pz;
+        W->z_act = z_act;
         for (int dir = 0; dir < (R->retrace ? 2 : 1); dir++)
             for (long px = 0; px < R->pixels; px++) {
                 pixel_acc *a = &pix[(size_t)dir * (size_t)R->pixels + (size_t)px];
@@ -485,8 +530,8 @@ int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done,
         threads = omp_get_max_threads();
     if (threads > S->raster.lines)
         threads = (int)S->raster.lines;
-    if (threads < 1)
-        threads = 1;
+    if (threads < 1 || S->continuous)
+        threads = 1; /* continuous lines follow one another */
     worker *W = calloc((size_t)threads, sizeof *W);
     if (!W)
         return tt_error(TT_ENOMEM, "out of memory");

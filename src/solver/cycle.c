@@ -44,6 +44,8 @@ static void cycle_begin(tt_sim *S)
     S->next_sample = 0;
     S->rk4_j = 1;
     S->step_flight = 0;
+    if (S->nz_f)
+        tt_noise_cycle(S);
 }
 
 /* Take the step the method computed: up to a contact event on it, or in full. */

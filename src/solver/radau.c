@@ -123,9 +123,12 @@ static void radau_setup(const tt_sim *S, double h, radau_ctx *R)
             R->M[i][j] = (i == j) - h * R->Jv * RA[i][j] - h * h * R->Jd * a2;
         }
     R->ok = lu3(R->M, R->piv);
-    for (int i = 0; i < 3; i++)
+    for (int i = 0; i < 3; i++) {
         drive_at(S, t + RC[i] * h, &R->dv[i].z, &R->dv[i].zd, &R->dv[i].F, &R->dv[i].cw,
                  &R->dv[i].sw);
+        if (S->nz_f)
+            R->dv[i].F += noise_force(S, t + RC[i] * h);
+    }
 }
 
 /* Simplified Newton on the velocity increments zv, from the last accepted step's
@@ -233,6 +236,8 @@ static double radau_error(const tt_sim *S, const radau_ctx *R, const double zd[3
          * inflating the first estimate after a discontinuity */
         drive_val d0v;
         drive_at(S, R->t, &d0v.z, &d0v.zd, &d0v.F, &d0v.cw, &d0v.sw);
+        if (S->nz_f)
+            d0v.F += noise_force(S, R->t);
         double a1 = accel(S, R->t, &d0v, R->d0 + ed, R->v0 + ev, R->cs);
         rd = hg * (R->v0 + ev) + RG0 * (RE[0] * zd[0] + RE[1] * zd[1] + RE[2] * zd[2]);
         rv = hg * a1 + RG0 * (RE[0] * zv[0] + RE[1] * zv[1] + RE[2] * zv[2]);

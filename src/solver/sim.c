@@ -16,6 +16,9 @@ void tt_sim_rhs(const tt_sim *S, double tau, const double *Y, int contact, doubl
 {
     drive_val dv;
     drive_at(S, tau, &dv.z, &dv.zd, &dv.F, &dv.cw, &dv.sw);
+    /* the thermal force acts as a force on the tip: its work is booked with the drive's */
+    if (S->nz_f)
+        dv.F += noise_force(S, tau);
     rhs_with(S, tau, &dv, Y, contact, Fo);
 }
 
@@ -64,7 +67,12 @@ int tt_sim_alloc(tt_sim **out, const tt_cantilever *c, const tt_solver *solver)
     return TT_OK;
 }
 
-void tt_sim_free(tt_sim *sim) { free(sim); }
+void tt_sim_free(tt_sim *sim)
+{
+    if (sim)
+        free(sim->nz_f);
+    free(sim);
+}
 
 /* The state was changed from outside the steps: the derivative at it and the last
  * step's polynomial no longer describe it. */

@@ -8,6 +8,7 @@
 #define TIPTAP_SOLVER_SIM_H
 
 #include <math.h>
+#include <stdint.h>
 
 #include "tiptap/solver/integrator.h"
 
@@ -102,7 +103,32 @@ struct tt_sim {
      * initial offset r0 and its time derivative */
     double fl_b[FL_N], fl_r0, fl_r0d;
     double fl_pen[FL_N + 2], fl_vel[FL_N + 2]; /* penetration and its rate at 0, nodes, 1 */
+    /* thermal noise (noise.c): the Langevin force at the cycle's nz_n + 1 equally spaced
+     * points, linear between them; NULL when off */
+    double *nz_f;
+    int nz_n;
+    double nz_dt, nz_sigma;
+    uint64_t nz_key;
+    long nz_cycle;       /* cycles drawn since the key was set */
 };
+
+/* Draw the thermal force's points of the cycle about to start (noise.c). */
+void tt_noise_cycle(tt_sim *S);
+/* The next of the force's points after tau, at least hmin past it (noise.c). */
+double tt_noise_next_knot(const tt_sim *S, double hmin);
+
+/* The thermal force at tau: linear between the cycle's points, so continuous. */
+static inline double noise_force(const tt_sim *S, double tau)
+{
+    double u = tau / S->nz_dt;
+    int j = (int)u;
+    if (j >= S->nz_n)
+        j = S->nz_n - 1;
+    if (j < 0)
+        j = 0;
+    double f = u - j;
+    return S->nz_f[j] + f * (S->nz_f[j + 1] - S->nz_f[j]);
+}
 
 /* The state was changed from outside the steps (sim.c). */
 void tt_sim_invalidate(tt_sim *S);

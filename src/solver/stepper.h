@@ -55,6 +55,14 @@ static inline int tt_step_adaptive(tt_sim *S, double T, const tt_step_type *type
     if (h > S->radau_hmax)
         h = S->radau_hmax;
     int last = 0;
+    if (S->nz_f) {
+        /* steps end on the thermal force's points, where its slope changes */
+        double tk = tt_noise_next_knot(S, hmin);
+        if (S->tau + h > tk - hmin) {
+            h = tk - S->tau;
+            last = 1; /* a step cut short does not shorten the next */
+        }
+    }
     if (S->tau + h >= T - hmin) {
         h = T - S->tau;
         last = 1;

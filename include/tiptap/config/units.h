@@ -26,7 +26,9 @@ typedef enum {
     TT_DIM_ENERGY = 1 << 8,         /* J, eV */
     TT_DIM_VELOCITY = 1 << 9,       /* m/s */
     TT_DIM_ANGLE = 1 << 10,         /* rad, deg (stored in radians) */
-    TT_DIM_FRACTION = 1 << 11       /* %, stored as a fraction (80 % -> 0.8) */
+    TT_DIM_FRACTION = 1 << 11,      /* %, stored as a fraction (80 % -> 0.8) */
+    TT_DIM_TEMPERATURE = 1 << 12,   /* K */
+    TT_DIM_NOISE_DENSITY = 1 << 13  /* m/sqrt(Hz): a length noise's spectral density */
 } tt_dim;
 
 /* Parse text into an SI value of one of the dimensions in the mask.

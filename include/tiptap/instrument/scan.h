@@ -6,11 +6,15 @@
  * the PI feedback moves the sample to hold the amplitude at the setpoint. Per pixel
  * it records the channels asked for, trace and retrace.
  *
- * Lines are independent: each starts from a settled state at its first pixel (the
- * feedback engaged there for [scan] settle_cycles cycles), so lines can run in
- * parallel and the images do not depend on the number of threads. What this costs
+ * By default lines are independent: each starts from a settled state at its first
+ * pixel (the feedback engaged there for [scan] settle_cycles cycles), so lines can run
+ * in parallel and the images do not depend on the number of threads. What this costs
  * is the continuity of a real raster: a line does not inherit the previous line's
- * retrace state (the same place, one line away), only its feedback's height there.
+ * retrace state (the same place, one line away). With continuous set, lines run as an
+ * instrument runs them, one after the other on one thread: only the first line
+ * settles, and each next line starts where the last retrace ended (the cantilever,
+ * the lock-in's filters, the feedback's integrator and z carried over), so an
+ * unstable loop rings differently on every line.
  *
  * Every material's force law is built when the scan is made, used by a pixel or not,
  * so a material that cannot be built is refused before any line runs.
@@ -23,6 +27,7 @@
 #define TIPTAP_SCAN_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "tiptap/instrument/feedback.h"
 #include "tiptap/instrument/lockin.h"
@@ -72,12 +77,24 @@ int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t l
  * half of the line's period and its retrace the second (a line's settling takes none).
  * The sample at raster position (x, y) and time t is the point (x - drift_x t,
  * y - drift_y t) of the surface, raised by tilt_x x + tilt_y y + drift_z t in that
- * point's coordinates. The piezo starts each line at rest, since lines are independent. */
+ * point's coordinates. The piezo starts each line at rest (continuous lines carry it on). */
 typedef struct {
     double tilt_x, tilt_y;            /* slopes dz/dx, dz/dy */
     double drift_x, drift_y, drift_z; /* m/s */
     tt_piezo_params piezo;
 } tt_instrument_params;
+/* Noise of a scan (docs/dynamics.md, "Noise"), off when every amplitude is 0. Each
+ * kind draws from its own stream keyed by (seed, line) and counted from the line's
+ * start, so images are the same on any number of threads. */
+typedef struct {
+    uint64_t seed;
+    double temperature; /* K: the cantilever's thermal force (tiptap/solver/noise.h); 0: off */
+    int points;         /* thermal force points per drive cycle */
+    double detector;    /* deflection noise density of the detector, m/sqrt(Hz) (one-sided),
+                         * added to every sample the lock-in reads */
+    double z_piezo;     /* position noise density of the z piezo, m/sqrt(Hz), drawn once per
+                         * drive cycle and linear between: moves the sample, not the height */
+} tt_scan_noise;
 
 /* Everything a scan needs, in SI units. */
 typedef struct {
@@ -96,6 +113,9 @@ typedef struct {
     long profile_line;            /* the line of the CSV profile; -1: the middle one */
     tt_tip_shape tip;             /* what meets the topography (TT_TIP_POINT: the apex) */
     tt_instrument_params instrument;
+    tt_scan_noise noise;
+    int continuous;               /* lines as an instrument runs them: each starts where
+                                   * the last retrace ended (one thread) */
 } tt_scan_params;
 
 typedef struct tt_scan tt_scan;

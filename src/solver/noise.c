@@ -1,0 +1,87 @@
+/* Seeded thermal noise of the cantilever (see include/tiptap/solver/noise.h): the
+ * counter-based generator and the per-cycle table of the Langevin force. */
+#include "tiptap/solver/noise.h"
+
+#include <stdlib.h>
+
+#include "stepper.h"
+#include "tiptap/util/error.h"
+
+/* splitmix64's finaliser: a bijection whose output bits each depend on every input bit. */
+static uint64_t mix64(uint64_t z)
+{
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+uint64_t tt_noise_key(uint64_t seed, unsigned stream, long line)
+{
+    return mix64(mix64(mix64(seed + 0x9e3779b97f4a7c15ULL) ^ (uint64_t)stream) + (uint64_t)line);
+}
+
+/* A uniform number in (0, 1) from 53 bits of the hash of (key, counter). */
+static double uniform(uint64_t key, uint64_t ctr)
+{
+    uint64_t u = mix64(key ^ mix64(ctr * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL));
+    return ((double)(u >> 11) + 0.5) * (1.0 / 9007199254740992.0);
+}
+
+double tt_noise_gauss(uint64_t key, uint64_t index)
+{
+    /* Box-Muller on two uniforms of their own counters: each index its own pair, so no
+     * value is shared between indices */
+    double u1 = uniform(key, 2 * index), u2 = uniform(key, 2 * index + 1);
+    return sqrt(-2.0 * log(u1)) * cos(2.0 * M_PI * u2);
+}
+
+int tt_sim_set_thermal(tt_sim *S, double temperature, int points)
+{
+    free(S->nz_f);
+    S->nz_f = NULL;
+    S->nz_n = 0;
+    if (!(temperature > 0)) {
+        tt_flight_setup(S);
+        return TT_OK;
+    }
+    if (points < 4)
+        return tt_error(TT_EINVAL, "[noise] points: %d is below 4", points);
+    if (S->solver.method == TT_METHOD_RK4 && S->solver.steps_per_cycle % points != 0)
+        return tt_error(TT_EINVAL,
+                        "[noise] points: rk4's steps_per_cycle (%d) must be a multiple of it (%d)",
+                        S->solver.steps_per_cycle, points);
+    S->nz_f = calloc((size_t)points + 1, sizeof *S->nz_f);
+    if (!S->nz_f)
+        return tt_error(TT_ENOMEM, "out of memory");
+    S->nz_n = points;
+    S->nz_dt = S->c.T / points;
+    /* white noise of two-sided density 2 c kB T drawn every dt: variance 2 c kB T / dt */
+    S->nz_sigma = sqrt(2.0 * S->c.c * TT_BOLTZMANN * temperature / S->nz_dt);
+    S->nz_cycle = 0;
+    tt_flight_setup(S);
+    return TT_OK;
+}
+
+void tt_sim_noise_key(tt_sim *S, uint64_t key)
+{
+    S->nz_key = key;
+    S->nz_cycle = 0;
+}
+
+void tt_noise_cycle(tt_sim *S)
+{
+    /* the cycle's points 0..n; point n is the next cycle's point 0, drawn again there */
+    uint64_t base = (uint64_t)S->nz_cycle * (uint64_t)S->nz_n;
+    for (int j = 0; j <= S->nz_n; j++)
+        S->nz_f[j] = S->nz_sigma * tt_noise_gauss(S->nz_key, base + (uint64_t)j);
+    S->nz_cycle++;
+}
+
+double tt_noise_next_knot(const tt_sim *S, double hmin)
+{
+    long j = (long)(S->tau / S->nz_dt) + 1;
+    double t = (double)j * S->c.T / S->nz_n;
+    if (t - S->tau < hmin)
+        t = (double)(j + 1) * S->c.T / S->nz_n;
+    return t;
+}
