@@ -26,6 +26,11 @@ done
 head -c 26 "$tmp/out/height_trace.gsf" | grep -q "Gwyddion Simple Field 1.0" && ok "GSF written" || bad "GSF magic"
 head -1 "$tmp/out/profile.csv" | grep -q "^position_nm,height_trace_m" && ok "profile" || bad "profile header"
 ls "$tmp/out" | grep -q "\.tmp\." && bad "temporary files left" || ok "no temporary files"
+# the profiles overlay reads the folder's profile line
+"$tiptap" profiles -q -o "$tmp/prof.png" "$tmp/out" "$tmp/out" && [ -s "$tmp/prof.png" ] && ok "profiles" ||
+  bad "profiles overlay"
+"$tiptap" profiles -q -o "$tmp/prof.png" "$tmp/nowhere" 2>/dev/null && bad "profiles of a missing folder" ||
+  ok "profiles refuses a missing folder"
 # the effective scene runs again from anywhere and gives the same height image
 (cd / && "$tiptap" scan "$tmp/out/scene.ini" -o "$tmp/again" -q) || bad "effective scene re-runs"
 cmp -s "$tmp/out/height_trace.gsf" "$tmp/again/height_trace.gsf" && ok "effective scene reproduces the image" || bad "re-run differs"

@@ -21,6 +21,7 @@ int cmd_sweep(int argc, char **argv);
 /* Write a finished scan's images (GSF and PNG per channel and direction) and profile
  * into dir, as tiptap scan does (cmd_scan.c). */
 int cli_scan_write_outputs(const tt_scan *scan, const tt_cantilever *c, const char *dir);
+int cmd_profiles(int argc, char **argv);
 
 /* Exit codes: 0 success, 1 bad input or failure, 2 usage, 130 interrupted (Ctrl-C);
  * 143 stopped by SIGTERM (main turns CLI_INTERRUPTED into 128 + the signal). */

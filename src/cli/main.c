@@ -17,6 +17,7 @@ static const struct {
     {"trace", cmd_trace, "time series of the tapping cantilever, with optional ramps"},
     {"scan", cmd_scan, "closed-loop tapping image: height, phase, force, dissipation"},
     {"sweep", cmd_sweep, "parameter grid: steady points, approach curves or scans, on every core"},
+    {"profiles", cmd_profiles, "overlay the profile lines of scans: trace, retrace, true surface"},
     {"accuracy", cmd_accuracy, "work-precision: error against run time of each solver setting"},
     {"bench", cmd_bench, "benchmark: cycles per second and accuracy on the standard scene"},
     {"keys", cmd_keys, "list every scene section and key with unit and default"},
