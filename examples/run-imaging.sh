@@ -13,3 +13,15 @@ for s in tip tilt drift piezo creep; do
   $t scan scans/standard.ini examples/instrument/common.ini examples/instrument/$s.ini \
      -o examples/instrument/$s
 done
+# the four tuning runs' profile lines in one figure
+$t profiles -q --title "feedback tuning: trace, retrace and the true surface of the profile line" \
+   -o examples/feedback-tuning/profiles.png examples/feedback-tuning/{gain-low,gain-right,gain-high,line-rate-fast}
+# the ridge of README.md there: line-rate-fast without noise, independent lines, the scan
+# ending on a wall (2 um; profile from the former example) and mid-line (2.25 um)
+off="--set noise.temperature=0K --set noise.detector=0m/sqrt(Hz) --set noise.z_piezo=0m/sqrt(Hz)"
+$t scan scans/standard.ini surfaces/grating.ini examples/feedback-tuning/common.ini \
+   examples/feedback-tuning/line-rate-fast.ini $off --set scan.lines_mode=independent -q -o /tmp/tt-mid.$$
+cp /tmp/tt-mid.$$/profile.csv examples/feedback-tuning/ridge/turnaround-mid-line/ && rm -rf /tmp/tt-mid.$$
+$t profiles -q --title "line-rate-fast without noise: turnaround on a wall (2 um) and mid-line (2.25 um)" \
+   -o examples/feedback-tuning/ridge.png examples/feedback-tuning/ridge/turnaround-on-a-wall \
+   examples/feedback-tuning/ridge/turnaround-mid-line
