@@ -14,4 +14,4 @@ run() { # name, arguments...
 }
 run standard scans/standard.ini surfaces/polymer.ini --point 16nm --repeats 7 --clock cpu
 run standard-scan scans/standard.ini surfaces/polymer.ini --clock cpu
-run fig4a examples/seed-fig4a/scene.ini --repeats 7 --clock cpu
+run fig4a examples/seed-fig4a/scene.ini --set "cantilever.free_amplitude=150 nm" --repeats 7 --clock cpu

@@ -34,4 +34,17 @@ paste -d, "$tmp/shoot.csv" "$tmp/settle.csv" | awk -F, 'NR > 1 {
 
 expect_error "misspelt steady mode" "[approach] steady" "$tiptap" approach "$scene" \
   --set approach.steady=newton -o "$tmp/x.csv"
+
+# a steady point that does not settle says why (Burnham et al.'s figure-4a cantilever at
+# 200 nm free amplitude, approached in 0.25 nm steps: a period-4 orbit at 7.25 nm)
+fig4a=$src/examples/seed-fig4a/scene.ini
+"$tiptap" approach "$fig4a" --set approach.mode=steady --set "approach.from=20 nm" \
+  --set "approach.to=7.25 nm" --set approach.points=52 --set approach.retract=no \
+  --set "cantilever.free_amplitude=200 nm" --set approach.max_cycles=1000 -o "$tmp/p4.csv" 2>"$tmp/p4.err"
+grep -q "^unsettled: z = 7.25 nm after .*: a period-4 orbit" "$tmp/p4.err" && ok "unsettled point says why" ||
+  bad "unsettled point: $(cat "$tmp/p4.err")"
+# a ramp with more rows than cycles is refused before it runs, naming the limit
+expect_error "ramp rows beyond its cycles" "[approach] points" "$tiptap" approach "$fig4a" \
+  --set "approach.from=130 nm" --set "approach.to=0 nm" --set "approach.speed=40 um/s" --set approach.points=400 \
+  -o "$tmp/r.csv"
 exit $fail

@@ -24,6 +24,19 @@ for ch in height amplitude phase peak_force indentation dissipation; do
   done
 done
 head -c 26 "$tmp/out/height_trace.gsf" | grep -q "Gwyddion Simple Field 1.0" && ok "GSF written" || bad "GSF magic"
+# the run's parameters as metadata Gwyddion shows; one .gwy with every channel
+grep -aq "^feedback.setpoint = " "$tmp/out/height_trace.gsf" && grep -aq "^scan.line_rate = 40 Hz$" "$tmp/out/height_trace.gsf" &&
+  grep -aq "^tip.radius = " "$tmp/out/height_trace.gsf" && grep -aq "^solver.method = " "$tmp/out/height_trace.gsf" &&
+  ok "GSF metadata" || bad "GSF metadata"
+head -c 4 "$tmp/out/scan.gwy" | grep -q "GWYP" && ok "scan.gwy written" || bad "scan.gwy"
+if command -v gwyddion-thumbnailer >/dev/null 2>&1; then
+  gwyddion-thumbnailer gnome2 64 "$tmp/out/scan.gwy" "$tmp/gwy.png" && [ -s "$tmp/gwy.png" ] &&
+    ok "Gwyddion loads scan.gwy" || bad "Gwyddion does not load scan.gwy"
+fi
+# stderr not a terminal: plain progress lines; the summary names the folder
+"$tiptap" scan "$tmp/s.ini" -o "$tmp/log" 2>"$tmp/log.err" || bad "scan with a log"
+grep -q "^scan: 4/4 lines" "$tmp/log.err" && ! grep -q $'\r' "$tmp/log.err" && ok "plain progress line" || bad "progress in a log"
+grep -q "^output = $tmp/log: 27 files (scan.gwy" "$tmp/log.err" && ok "summary names the output" || bad "summary output line"
 head -1 "$tmp/out/profile.csv" | grep -q "^position_nm,height_trace_m" && ok "profile" || bad "profile header"
 ls "$tmp/out" | grep -q "\.tmp\." && bad "temporary files left" || ok "no temporary files"
 # the profiles overlay reads the folder's profile line
@@ -47,7 +60,8 @@ grep -aq "^ZUnits = m$" "$tmp/harm/harmonic2_trace.gsf" && [ -s "$tmp/harm/harmo
   grep -aq "^ZUnits = deg$" "$tmp/harm/harmonic3_phase_trace.gsf" && ok "harmonic files" || bad "harmonic files"
 head -1 "$tmp/harm/profile.csv" | grep -q "^position_nm,height_trace_m,height_retrace_m,harmonic2_trace_m,harmonic2_retrace_m,harmonic3_phase_trace_deg,harmonic3_phase_retrace_deg$" &&
   ok "harmonic profile columns" || bad "harmonic profile header: $(head -1 "$tmp/harm/profile.csv")"
-cmp -s "$tmp/out/height_trace.gsf" "$tmp/harm/height_trace.gsf" && ok "harmonics leave the height alone" || bad "harmonics change the height"
+# the data only (8 x 4 float32 at the end): the metadata name the harmonics
+cmp -s <(tail -c 128 "$tmp/out/height_trace.gsf") <(tail -c 128 "$tmp/harm/height_trace.gsf") && ok "harmonics leave the height alone" || bad "harmonics change the height"
 "$tiptap" scan "$tmp/s.ini" -o "$tmp/harm2" -q --set scan.channels=harmonic2 2>"$tmp/harm2.err" && bad "harmonic2 without harmonics accepted"
 grep -q "^tiptap: --set: \[scan\] channels: harmonic2 needs \[lockin\] harmonics = 2 or more (it is 1)$" "$tmp/harm2.err" &&
   ok "harmonic2 needs [lockin] harmonics" || bad "message: $(cat "$tmp/harm2.err")"

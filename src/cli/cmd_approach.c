@@ -98,6 +98,23 @@ static int plot(const char *path, const tt_approach_point *pts, size_t n, int ra
     return rc;
 }
 
+/* Why a steady point did not settle, from the cycles run after it (approach.h). */
+static void unsettled_why(const tt_approach_point *pt, long max_cycles)
+{
+    fprintf(stderr, "unsettled: z = %.6g nm after %ld cycles (max_cycles %ld): ", pt->z * 1e9,
+            pt->cycles, max_cycles);
+    if (pt->period >= 2)
+        fprintf(stderr, "a period-%d orbit, amplitude %.4g to %.4g nm from cycle to cycle\n",
+                pt->period, pt->amp_min * 1e9, pt->amp_max * 1e9);
+    else if (pt->period == 1)
+        fprintf(stderr, "a slow transient, steady (to 1e-4 A0) in the last cycles at %.4g nm\n",
+                pt->amp_max * 1e9);
+    else
+        fprintf(stderr, "no period up to 8 cycles: amplitude %.4g to %.4g nm over the last 24 "
+                        "cycles, changing by %.3g nm per cycle on average\n",
+                pt->amp_min * 1e9, pt->amp_max * 1e9, pt->amp_change * 1e9);
+}
+
 /* How shooting fared: points by Newton, points settled instead and why, the orbits'
  * largest Floquet multiplier, and where the approach and retract branches found two
  * different stable orbits at the same separation (bistability). */
@@ -177,6 +194,7 @@ int cmd_approach(int argc, char **argv)
                "deflection_min_nm,deflection_max_nm\n");
     cli_catch_interrupt();
     int progress = !quiet && cli_progress_enabled();
+    double logged = cli_now(); /* the last plain progress line (not a terminal) */
     while (!tt_approach_done(ap)) {
         if (tt_cancel_requested()) {
             rc = tt_error(TT_EINTR, "interrupted: %s keeps the %zu rows finished", out, n);
@@ -188,6 +206,10 @@ int cmd_approach(int argc, char **argv)
         n++;
         if (progress)
             fprintf(stderr, "\rapproach: %zu/%zu points", n, tt_approach_rows(ap));
+        else if (!quiet && cli_now() - logged >= CLI_PROGRESS_LOG_S) {
+            fprintf(stderr, "approach: %zu/%zu points\n", n, tt_approach_rows(ap));
+            logged = cli_now();
+        }
     }
     if (progress)
         fprintf(stderr, "\n");
@@ -215,10 +237,14 @@ int cmd_approach(int argc, char **argv)
             cycles += pts[i].cycles;
         }
         fprintf(stderr, "points = %zu\ncycles = %ld\nrun_time_s = %.3f\n", n, cycles, cli_now() - t0);
+        fprintf(stderr, "output = %s (%zu rows)%s%s\n", out, n, plotpath ? ", plot " : "", plotpath ? plotpath : "");
         fprintf(stderr, "error_estimate = %.3g (largest energy-balance residual of a cycle / free drive work per cycle)\n",
                 worst);
         if (p.mode == TT_APPROACH_STEADY && p.steady == TT_STEADY_SHOOTING)
             shooting_summary(pts, n);
+        for (size_t i = 0; p.mode == TT_APPROACH_STEADY && i < n; i++)
+            if (!pts[i].settled)
+                unsettled_why(&pts[i], p.max_cycles);
         if (unsettled)
             fprintf(stderr, "warning: %ld points did not settle within max_cycles = %ld "
                             "(period doubling or chaos, or raise [approach] max_cycles)\n",

@@ -10,6 +10,7 @@
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 #include "tiptap/io/gsf.h"
+#include "tiptap/io/gwy.h"
 #include "tiptap/io/image.h"
 #include "tiptap/io/outfile.h"
 #include "tiptap/config/config.h"
@@ -20,7 +21,9 @@ static void help(void)
     printf("Usage: tiptap scan SCENE... -o DIR [--set section.key=value]... [--threads N] [-q]\n"
            "Closed-loop tapping image of the scene's [surface] under [scan], [lockin] and\n"
            "[feedback].\n\n"
-           "  -o, --output DIR   folder for the results (made if missing):\n"
+           "  -o, --output DIR   folder for the results (made if missing): scan.gwy (one\n"
+           "                     Gwyddion file: every channel, trace and retrace, the run's\n"
+           "                     parameters as metadata),\n"
            "                     CHANNEL_trace.gsf, CHANNEL_retrace.gsf (Gwyddion Simple Field,\n"
            "                     SI units), CHANNEL_trace.png, ... (previews with colour bar and\n"
            "                     scale bar), profile.csv (the [scan] profile_line), scene.ini\n"
@@ -43,12 +46,22 @@ static void help(void)
            "to the free oscillation's drive work per cycle.\n");
 }
 
+typedef struct {
+    double t0, last; /* start, and the last plain line's time (not a terminal) */
+    int tty;
+} progress_state;
+
 static void show_progress(void *user, long done, long total)
 {
-    double t0 = *(double *)user;
-    double el = cli_now() - t0;
-    fprintf(stderr, "\rscan: %ld/%ld lines, %.0f s elapsed, about %.0f s left   ", done, total, el,
-            el / (double)done * (double)(total - done));
+    progress_state *ps = user;
+    double now = cli_now(), el = now - ps->t0;
+    double left = el / (double)done * (double)(total - done);
+    if (ps->tty)
+        fprintf(stderr, "\rscan: %ld/%ld lines, %.0f s elapsed, about %.0f s left   ", done, total, el, left);
+    else if (now - ps->last >= CLI_PROGRESS_LOG_S || done == total) {
+        fprintf(stderr, "scan: %ld/%ld lines, %.0f s elapsed, about %.0f s left\n", done, total, el, left);
+        ps->last = now;
+    }
 }
 
 static double display_scale(int ch, const char **unit, tt_colormap *cmap)
@@ -73,42 +86,53 @@ static double display_scale(int ch, const char **unit, tt_colormap *cmap)
     }
 }
 
-int cli_scan_write_outputs(const tt_scan *scan, const tt_cantilever *c, const char *dir)
+/* Every channel, trace and retrace, with the run's parameters: GSF and PNG files, and
+ * one .gwy holding them all (scan.gwy). *written counts the files. */
+int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int *written)
 {
-    char path[4096], title[128];
+    char path[4096], title[TT_CH_COUNT][2][128];
     long xres = tt_scan_xres(scan), yres = tt_scan_yres(scan);
-    char v[8][64];
+    char v[3][64];
     snprintf(v[0], sizeof v[0], "%s", TT_VERSION);
-    snprintf(v[1], sizeof v[1], "%.6g", c->k);
-    snprintf(v[2], sizeof v[2], "%.6g", c->f0);
-    snprintf(v[3], sizeof v[3], "%.6g", c->Q);
-    snprintf(v[4], sizeof v[4], "%.6g", c->A0);
-    snprintf(v[5], sizeof v[5], "%ld", tt_scan_lines_done(scan));
-    const char *keys[] = {"tiptap_version", "cantilever_spring_constant_N_per_m",
-                          "cantilever_resonance_frequency_Hz", "cantilever_quality_factor",
-                          "cantilever_free_amplitude_m", "lines_finished"};
-    const char *vals[] = {v[0], v[1], v[2], v[3], v[4], v[5]};
-    int rc = TT_OK;
+    snprintf(v[1], sizeof v[1], "%ld", tt_scan_lines_done(scan));
+    snprintf(v[2], sizeof v[2], "%ld", tt_scan_lines(scan));
+    const char *keys[] = {"tiptap_version", "lines_finished", "lines_total"};
+    const char *vals[] = {v[0], v[1], v[2]};
+    cli_meta meta;
+    int rc = cli_meta_scene(&meta, scene, keys, vals, 3);
+    if (rc)
+        return rc;
+    tt_gwy_channel gch[2 * TT_CH_COUNT];
+    size_t ng = 0;
     for (int ch = 0; ch < TT_CH_COUNT && rc == TT_OK; ch++) {
         for (int r = 0; r < 2 && rc == TT_OK; r++) {
             const double *img = tt_scan_image(scan, ch, r);
             if (!img)
                 continue;
             const char *dirn = r ? "retrace" : "trace";
-            snprintf(title, sizeof title, "%s (%s)", tt_scan_channel_name(ch), dirn);
+            snprintf(title[ch][r], sizeof title[ch][r], "%s (%s)", tt_scan_channel_name(ch), dirn);
             tt_gsf_field g = {(size_t)xres, (size_t)yres, tt_scan_size_x(scan), tt_scan_size_y(scan),
-                              0, 0, "m", tt_scan_channel_unit(ch), title, img, keys, vals,
-                              sizeof keys / sizeof keys[0]};
+                              0, 0, "m", tt_scan_channel_unit(ch), title[ch][r], img,
+                              (const char *const *)meta.keys, (const char *const *)meta.values, meta.n};
+            gch[ng++] = (tt_gwy_channel){title[ch][r], (size_t)xres, (size_t)yres, tt_scan_size_x(scan),
+                                         tt_scan_size_y(scan), 0, 0, "m", tt_scan_channel_unit(ch), img};
             snprintf(path, sizeof path, "%s/%s_%s.gsf", dir, tt_scan_channel_name(ch), dirn);
             if ((rc = tt_gsf_write(path, &g)))
                 break;
             tt_image im = {(size_t)xres, (size_t)yres, tt_scan_size_x(scan), tt_scan_size_y(scan),
-                           img, title, NULL, 1, TT_CMAP_GOLD};
+                           img, title[ch][r], NULL, 1, TT_CMAP_GOLD};
             im.unit_scale = display_scale(ch, &im.unit, &im.cmap);
             snprintf(path, sizeof path, "%s/%s_%s.png", dir, tt_scan_channel_name(ch), dirn);
             rc = tt_image_write_png(path, &im);
+            *written += 2;
         }
     }
+    snprintf(path, sizeof path, "%s/scan.gwy", dir);
+    if (rc == TT_OK && ng > 0 &&
+        (rc = tt_gwy_write(path, gch, ng, (const char *const *)meta.keys,
+                           (const char *const *)meta.values, meta.n)) == TT_OK)
+        (*written)++;
+    cli_meta_free(&meta);
     if (rc)
         return rc;
     /* the line profile along the fast axis */
@@ -139,7 +163,9 @@ int cli_scan_write_outputs(const tt_scan *scan, const tt_cantilever *c, const ch
             }
         fputc('\n', f);
     }
-    return tt_outfile_close(of, 1);
+    rc = tt_outfile_close(of, 1);
+    *written += rc == TT_OK;
+    return rc;
 }
 
 /* The scan's cost before it starts: its first line on stderr tells the cycles and the
@@ -262,13 +288,15 @@ int cmd_scan(int argc, char **argv)
     if ((rc = tt_outfile_close(of, 1)))
         goto done;
     cli_catch_interrupt();
-    rc = tt_scan_run(scan, threads, (!quiet && cli_progress_enabled()) ? show_progress : NULL, &t0);
-    if (!quiet && cli_progress_enabled())
+    progress_state ps = {t0, t0, cli_progress_enabled()};
+    rc = tt_scan_run(scan, threads, quiet ? NULL : show_progress, &ps);
+    if (!quiet && ps.tty)
         fprintf(stderr, "\n");
+    int written = 1; /* scene.ini */
     if (tt_scan_lines_done(scan) > 0) {
         char saved[1024];
         snprintf(saved, sizeof saved, "%s", tt_error_message());
-        int wrc = cli_scan_write_outputs(scan, &params.cantilever, dir);
+        int wrc = cli_scan_write_outputs(scan, scene, dir, &written);
         if (wrc && !rc)
             rc = wrc;
         else if (rc)
@@ -299,6 +327,9 @@ int cmd_scan(int argc, char **argv)
                             "excludes it\n",
                     est.height_rms, est.height_max, est.phase_rms, est.phase_max, est.amplitude_rms,
                     est.amplitude_max, est.line, est.tolerance);
+        fprintf(stderr, "output = %s: %d files (scan.gwy: every channel, trace and retrace; "
+                        "CHANNEL_trace/retrace.gsf and .png; profile.csv; scene.ini)\n",
+                dir, written);
         if (tt_scan_clamped(scan))
             fprintf(stderr, "warning: the z piezo reached the end of its range ([feedback] z_range)\n");
     }

@@ -24,7 +24,8 @@ static void help(void)
            "                     sample_nm, deflection_nm, force_nN, contact_radius_nm,\n"
            "                     pressure_GPa (Hertzian K a / pi R, as in Burnham et al.), contact,\n"
            "                     and the ramped key's value when [trace] ramp is set\n"
-           "      --plot FILE    PNG: positions and deflection; force and pressure\n"
+           "      --plot FILE    PNG: positions and deflection; force; pressure (each cycle's\n"
+           "                     peak marked where the integrator located it)\n"
            CLI_HELP_SET
            "  -q, --quiet        no summary on stderr\n\n"
            "Positions are along the axis into the sample, the base at rest at 0; the\n"
@@ -47,13 +48,34 @@ static int series_push(tt_decimate *S, const tt_trace_sample *x)
     return tt_decimate_push(S, v);
 }
 
-static int plot(const char *path, const tt_decimate *D, const char *ramp)
+/* A cycle's located peak, at the middle of its contact (else the largest sample): time
+ * (us), peak force (nN), pressure at the greatest indentation (GPa). */
+static int peak_push(tt_decimate *P, const tt_trace_row *r)
 {
+    if (!(r->summary.contact_fraction > 0) || r->nsamples == 0)
+        return TT_OK;
+    const tt_cycle *c = &r->summary;
+    double t = r->samples[0].t + 0.5 * (c->t_contact + c->t_release);
+    if (!(c->t_release > c->t_contact)) {
+        size_t kmax = 0;
+        for (size_t k = 1; k < r->nsamples; k++)
+            if (r->samples[k].force > r->samples[kmax].force)
+                kmax = k;
+        t = r->samples[kmax].t;
+    }
+    const double v[3] = {t * 1e6, c->peak_force * 1e9, r->peak_pressure * 1e-9};
+    return tt_decimate_push(P, v);
+}
+
+static int plot(const char *path, const tt_decimate *D, const tt_decimate *P, const char *ramp)
+{
+    const double *tp = tt_decimate_line(P, 0);
+    size_t np = tt_decimate_count(P);
     const double *t = tt_decimate_line(D, 0);
     size_t n = tt_decimate_count(D);
     char title[256];
     snprintf(title, sizeof title, "Trace%s%s", ramp ? ": ramp of " : "", ramp ? ramp : "");
-    tt_figure *f = tt_figure_alloc(2, title);
+    tt_figure *f = tt_figure_alloc(3, title);
     if (!f)
         return tt_error(TT_ENOMEM, "out of memory");
     tt_figure_axes(f, 0, "time (us)", "position (nm)");
@@ -61,11 +83,16 @@ static int plot(const char *path, const tt_decimate *D, const char *ramp)
     tt_figure_line(f, 0, t, tt_decimate_line(D, 2), n, "tip", 2);
     tt_figure_line(f, 0, t, tt_decimate_line(D, 3), n, "sample surface", 3 | TT_PLOT_DASHED);
     tt_figure_line(f, 0, t, tt_decimate_line(D, 4), n, "deflection (tip - base)", 4);
+    /* The samples are at fixed times and miss most of a short contact: each cycle's
+     * peak is marked as the integrator located it. */
     tt_figure_axes(f, 1, "time (us)", "tip-sample force (nN)");
-    tt_figure_axis_right(f, 1, "Hertzian pressure K a / pi R (GPa)");
-    tt_figure_line(f, 1, t, tt_decimate_line(D, 5), n, "force", 1);
-    tt_figure_line(f, 1, t, tt_decimate_line(D, 6), n, "pressure", 2 | TT_PLOT_RIGHT);
-    int rc = tt_figure_write_png(f, path, 1000, 800);
+    tt_figure_line(f, 1, t, tt_decimate_line(D, 5), n, "force (samples)", 1);
+    tt_figure_line(f, 1, tp, tt_decimate_line(P, 1), np, "peak of each cycle (located)", 2 | TT_PLOT_POINTS);
+    tt_figure_axes(f, 2, "time (us)", "Hertzian pressure K a / pi R (GPa)");
+    tt_figure_line(f, 2, t, tt_decimate_line(D, 6), n, "pressure (samples)", 3);
+    tt_figure_line(f, 2, tp, tt_decimate_line(P, 2), np, "at each cycle's greatest indentation",
+                   2 | TT_PLOT_POINTS);
+    int rc = tt_figure_write_png(f, path, 1000, 1100);
     tt_figure_free(f);
     return rc;
 }
@@ -99,7 +126,7 @@ int cmd_trace(int argc, char **argv)
     tt_trace *tr = NULL;
     tt_outfile *of = NULL;
     tt_trace_params p;
-    tt_decimate *S = NULL;
+    tt_decimate *S = NULL, *Pk = NULL; /* samples; each cycle's located peak */
     long done_cycles = 0;
     int rc;
     if ((rc = tt_setup_alloc(&st, scene)) || (rc = tt_config_trace(scene, &p)) ||
@@ -116,12 +143,15 @@ int cmd_trace(int argc, char **argv)
     if (plotpath && (rc = tt_decimate_alloc(&S, 7, (double)tt_trace_rows(tr) * (double)p.samples_per_cycle,
                                            PLOT_BUDGET)))
         goto done;
+    if (plotpath && (rc = tt_decimate_alloc(&Pk, 3, (double)tt_trace_rows(tr), PLOT_BUDGET)))
+        goto done;
     FILE *f = tt_outfile_stream(of);
     fprintf(f, "t_us,base_nm,tip_nm,sample_nm,deflection_nm,force_nN,contact_radius_nm,pressure_GPa,"
                "contact%s%s\n",
             p.ramp ? "," : "", p.ramp ? p.ramp : "");
     cli_catch_interrupt();
     int progress = !quiet && cli_progress_enabled();
+    double logged = cli_now(); /* the last plain progress line (not a terminal) */
     while (!tt_trace_done(tr)) {
         if (tt_cancel_requested()) {
             rc = tt_error(TT_EINTR, "interrupted: %s keeps the %ld cycles finished", out, done_cycles);
@@ -135,12 +165,18 @@ int cmd_trace(int argc, char **argv)
         write_row(f, &row, p.ramp != NULL);
         for (size_t k = 0; plotpath && k < row.nsamples && rc == TT_OK; k++)
             rc = series_push(S, &row.samples[k]);
+        if (plotpath && rc == TT_OK)
+            rc = peak_push(Pk, &row);
         if (rc)
             break;
         done_cycles++;
         /* a cycle takes a millisecond or less: a line every 64 keeps the terminal calm */
         if (progress && (done_cycles % 64 == 0 || tt_trace_done(tr)))
             fprintf(stderr, "\rtrace: %ld/%zu cycles", done_cycles, tt_trace_rows(tr));
+        else if (!quiet && !progress && cli_now() - logged >= CLI_PROGRESS_LOG_S) {
+            fprintf(stderr, "trace: %ld/%zu cycles\n", done_cycles, tt_trace_rows(tr));
+            logged = cli_now();
+        }
     }
     if (progress)
         fprintf(stderr, "\n");
@@ -160,9 +196,10 @@ int cmd_trace(int argc, char **argv)
         }
     }
     if (!rc || rc == TT_EINTR)
-        (void)(S && tt_decimate_finish(S));
-    if (plotpath && S && tt_decimate_count(S) > 0 && (rc == TT_OK || rc == TT_EINTR)) {
-        int prc = plot(plotpath, S, p.ramp);
+        (void)((S && tt_decimate_finish(S)) || (Pk && tt_decimate_finish(Pk)));
+    int plotted = plotpath && S && tt_decimate_count(S) > 0 && (rc == TT_OK || rc == TT_EINTR);
+    if (plotted) {
+        int prc = plot(plotpath, S, Pk, p.ramp);
         if (!rc)
             rc = prc;
     }
@@ -170,12 +207,16 @@ int cmd_trace(int argc, char **argv)
         fprintf(stderr, "cycles = %ld\nrun_time_s = %.3f\nerror_estimate = %.3g (largest energy-balance "
                         "residual of a cycle / free drive work per cycle)\n",
                 done_cycles, cli_now() - t0, worst);
+    if (!quiet && done_cycles > 0)
+        fprintf(stderr, "output = %s (%ld cycles x %ld samples)%s%s\n", out, done_cycles,
+                p.samples_per_cycle, plotted ? ", plot " : "", plotted ? plotpath : "");
 done:
     if (of)
         tt_outfile_close(of, 0);
     if (rc)
         cli_fail(rc, NULL);
     tt_decimate_free(S);
+    tt_decimate_free(Pk);
     tt_trace_free(tr);
     tt_setup_free(st);
     tt_scene_free(scene);

@@ -18,9 +18,10 @@ int cmd_scan(int argc, char **argv);
 int cmd_accuracy(int argc, char **argv);
 int cmd_sweep(int argc, char **argv);
 
-/* Write a finished scan's images (GSF and PNG per channel and direction) and profile
- * into dir, as tiptap scan does (cmd_scan.c). */
-int cli_scan_write_outputs(const tt_scan *scan, const tt_cantilever *c, const char *dir);
+/* Write a finished scan's images (GSF and PNG per channel and direction, scan.gwy with
+ * all of them) and profile into dir, as tiptap scan does (cmd_scan.c), with the scene's
+ * keys as metadata; *written counts the files written. */
+int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int *written);
 int cmd_profiles(int argc, char **argv);
 
 /* Exit codes: 0 success, 1 bad input or failure, 2 usage, 130 interrupted (Ctrl-C);
@@ -121,5 +122,21 @@ void cli_report_estimate(const char *cmd, double cycles, double seconds, int upp
  * refused at once, naming the pid of the first. Returns the descriptor, or -1 after
  * printing why. */
 int cli_lock_folder(const char *cmd, const char *dir);
+/* Where stderr is not a terminal (a log, a batch job), a long run prints a plain
+ * progress line at most every this many seconds instead of a line kept rewritten. */
+#define CLI_PROGRESS_LOG_S 5.0
+
+/* The run's parameters as key/value metadata for the files it writes (cli_meta.c):
+ * first the given pairs, then every key of the effective scene but its approach and
+ * trace sections, as "section.key" (or "material.NAME.key", as --set spells it) = the
+ * value with its unit.
+ * The strings belong to m; cli_meta_free frees them. */
+typedef struct {
+    char **keys, **values;
+    size_t n, cap;
+} cli_meta;
+int cli_meta_scene(cli_meta *m, const tt_scene *scene, const char *const *first_keys,
+                   const char *const *first_values, size_t nfirst);
+void cli_meta_free(cli_meta *m);
 
 #endif

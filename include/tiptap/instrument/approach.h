@@ -2,10 +2,13 @@
  * the rest separation between the undeflected tip and the sample.
  *
  * steady mode: at each separation the steady oscillation is found by shooting, or the
- * cantilever runs until amplitude and phase settle, starting from the previous point's state (so the branch followed depends on
- * the history, as on an instrument), optionally followed by the retract branch.
+ * cantilever runs until amplitude and phase settle, starting from the previous point's
+ * state (so the branch followed depends on the history, as on an instrument), optionally
+ * followed by the retract branch. Between points the sample moves continuously, at most
+ * 0.1 nm per cycle, with the cantilever running (a jump would kick a captured tip loose).
  * ramp mode: the sample moves continuously at a given speed, as in Burnham et al.'s figure 4;
- * each row is the cycle running at that moment.
+ * each row is the cycle running at that moment, so there can be no more rows per
+ * branch than the ramp has cycles plus one (TT_EINVAL "[approach] points" otherwise).
  *
  * Usage: tt_approach_alloc(&a, sim, &params); while (!tt_approach_done(a))
  * { tt_approach_iterate(a, &pt); ... }; tt_approach_free(a).
@@ -46,6 +49,11 @@ typedef struct {
     long cycles;     /* cycles run for this row */
     tt_cycle cycle;  /* the last cycle's observables */
     tt_shoot_result shot; /* steady mode by shooting: how the point was found (else zero) */
+    /* steady mode, a point that did not settle: after 48 more cycles, its period in
+     * cycles (2 to 8: a period-n orbit; 1: it settled just then; 0: no period up to 8),
+     * the amplitude's range over the last 24 cycles and its mean change per cycle, m */
+    int period;
+    double amp_min, amp_max, amp_change;
 } tt_approach_point;
 
 typedef struct tt_approach tt_approach;

@@ -51,7 +51,10 @@ typedef struct {
 typedef struct {
     long cycle;                     /* recorded cycle, from 0 */
     double ramp_value;              /* the ramped key's value during the cycle (0: no ramp) */
-    tt_cycle summary;               /* the cycle's observables */
+    tt_cycle summary;               /* the cycle's observables (peak_force: the true peak,
+                                     * at the located contact, whatever the sampling) */
+    double peak_pressure;           /* Hertzian pressure at the cycle's greatest indentation,
+                                     * Pa (0: no contact) */
     size_t nsamples;
     const tt_trace_sample *samples; /* belong to the trace, valid until the next iterate */
 } tt_trace_row;
