@@ -116,4 +116,6 @@ wait $first
 [ $? -eq 143 ] && ok "first scan stopped" || bad "first scan did not stop with 143"
 "$tiptap" scan "$tmp/s.ini" -o "$tmp/shared" -q && ok "the folder is free after the run" ||
   bad "folder still locked"
+[ ! -e "$tmp/shared/.tiptap.lock" ] && ok "a finished scan leaves no lock file" ||
+  bad "lock file left behind"
 exit $fail

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <sys/file.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -272,6 +273,15 @@ int cli_lock_folder(const char *cmd, const char *dir)
             fprintf(stderr, "tiptap %s: %s: cannot lock: %s\n", cmd, path, strerror(err));
         return -1;
     }
+    /* The last run removes the file when it finishes (cli_unlock_folder): a lock taken
+     * on a file that was removed meanwhile guards nothing, so take the new one. */
+    struct stat held, named;
+    int found = stat(path, &named) == 0, gone = !found && errno == ENOENT;
+    if (fstat(fd, &held) == 0 &&
+        (gone || (found && (held.st_ino != named.st_ino || held.st_dev != named.st_dev)))) {
+        close(fd);
+        return cli_lock_folder(cmd, dir);
+    }
     char buf[32];
     int n = snprintf(buf, sizeof buf, "%ld\n", (long)getpid());
     if (ftruncate(fd, 0) != 0 || pwrite(fd, buf, (size_t)n, 0) != n) {
@@ -280,4 +290,14 @@ int cli_lock_folder(const char *cmd, const char *dir)
         return -1;
     }
     return fd;
+}
+
+void cli_unlock_folder(const char *dir, int fd)
+{
+    if (fd < 0)
+        return;
+    char path[4096];
+    snprintf(path, sizeof path, "%s/.tiptap.lock", dir);
+    unlink(path); /* while still held, so that no run locks the file being removed */
+    close(fd);
 }

@@ -336,8 +336,7 @@ int cmd_scan(int argc, char **argv)
 done:
     if (rc && !reported)
         cli_fail(rc, NULL);
-    if (lock >= 0)
-        close(lock);
+    cli_unlock_folder(dir, lock);
     tt_scan_free(scan);
     tt_scene_free(scene);
     return rc == TT_OK ? CLI_OK : rc == TT_EINTR ? CLI_INTERRUPTED : CLI_FAIL;

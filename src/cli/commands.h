@@ -122,6 +122,8 @@ void cli_report_estimate(const char *cmd, double cycles, double seconds, int upp
  * refused at once, naming the pid of the first. Returns the descriptor, or -1 after
  * printing why. */
 int cli_lock_folder(const char *cmd, const char *dir);
+/* Remove DIR/.tiptap.lock and release it: a finished run leaves no lock file behind. */
+void cli_unlock_folder(const char *dir, int fd);
 /* Where stderr is not a terminal (a log, a batch job), a long run prints a plain
  * progress line at most every this many seconds instead of a line kept rewritten. */
 #define CLI_PROGRESS_LOG_S 5.0
