@@ -36,6 +36,7 @@ typedef struct {
     tt_method method;
     double tol;
     int steps;
+    tt_tier tier;
 } setting;
 
 /* Settle the standard scene's tapping point with a solver, then time n cycles. */
@@ -209,6 +210,7 @@ static int bench_imaging(const tt_scene *scene, const setting *set, size_t nset)
         p.solver.method = set[i].method;
         p.solver.tolerance = set[i].tol;
         p.solver.steps_per_cycle = set[i].steps;
+        p.solver.tier = set[i].tier;
         imaging_run r1 = {0}, r2 = {0};
         if (i > 0)
             rc = imaging_once(&p, 1, 0, &r1);
@@ -258,14 +260,14 @@ static int bench_imaging(const tt_scene *scene, const setting *set, size_t nset)
 static int bench_steady(const tt_setup *st, const tt_approach_params *ap, long n)
 {
     static const setting settings[] = {
-        {"reference dopri5 tol 1e-12", TT_METHOD_DOPRI5, 1e-12, 512},
-        {"dopri5 tol 1e-6", TT_METHOD_DOPRI5, 1e-6, 512},
-        {"dopri5 tol 1e-7", TT_METHOD_DOPRI5, 1e-7, 512},
-        {"dopri5 tol 1e-8 (default)", TT_METHOD_DOPRI5, 1e-8, 512},
-        {"rk4 128 steps", TT_METHOD_RK4, 1e-8, 128},
-        {"rk4 512 steps", TT_METHOD_RK4, 1e-8, 512},
-        {"radau tol 1e-6", TT_METHOD_RADAU, 1e-6, 512},
-        {"radau tol 1e-8", TT_METHOD_RADAU, 1e-8, 512},
+        {"reference dopri5 tol 1e-12", TT_METHOD_DOPRI5, 1e-12, 512, TT_TIER_EVERY},
+        {"dopri5 tol 1e-6", TT_METHOD_DOPRI5, 1e-6, 512, TT_TIER_EVERY},
+        {"dopri5 tol 1e-7", TT_METHOD_DOPRI5, 1e-7, 512, TT_TIER_EVERY},
+        {"dopri5 tol 1e-8 (default)", TT_METHOD_DOPRI5, 1e-8, 512, TT_TIER_EVERY},
+        {"rk4 128 steps", TT_METHOD_RK4, 1e-8, 128, TT_TIER_EVERY},
+        {"rk4 512 steps", TT_METHOD_RK4, 1e-8, 512, TT_TIER_EVERY},
+        {"radau tol 1e-6", TT_METHOD_RADAU, 1e-6, 512, TT_TIER_EVERY},
+        {"radau tol 1e-8", TT_METHOD_RADAU, 1e-8, 512, TT_TIER_EVERY},
     };
     int rc = TT_OK;
     tt_cycle ref = {0};
@@ -335,10 +337,11 @@ int cmd_bench(int argc, char **argv)
         rc = bench_steady(st, &ap, n);
     if (!rc && imaging) {
         static const setting imaging_settings[] = {
-            {"reference dopri5 tol 1e-10", TT_METHOD_DOPRI5, 1e-10, 512},
-            {"dopri5 tol 1e-6", TT_METHOD_DOPRI5, 1e-6, 512},
-            {"dopri5 tol 1e-7", TT_METHOD_DOPRI5, 1e-7, 512},
-            {"dopri5 tol 1e-8", TT_METHOD_DOPRI5, 1e-8, 512},
+            {"reference dopri5 tol 1e-10", TT_METHOD_DOPRI5, 1e-10, 512, TT_TIER_EVERY},
+            {"dopri5 tol 1e-6", TT_METHOD_DOPRI5, 1e-6, 512, TT_TIER_EVERY},
+            {"dopri5 tol 1e-7", TT_METHOD_DOPRI5, 1e-7, 512, TT_TIER_EVERY},
+            {"dopri5 tol 1e-8", TT_METHOD_DOPRI5, 1e-8, 512, TT_TIER_EVERY},
+            {"envelope dopri5 tol 1e-8", TT_METHOD_DOPRI5, 1e-8, 512, TT_TIER_ENVELOPE},
         };
         rc = bench_imaging(scene, imaging_settings, sizeof imaging_settings / sizeof imaging_settings[0]);
     }
