@@ -45,8 +45,10 @@ int tt_envelope_alloc(tt_envelope **out, const tt_cantilever *c, int n)
         e->oscale[i] = c->A0;
     e->oscale[n + TT_ENV_PEAK] = c->k * c->A0;
     e->oscale[n + TT_ENV_INDENT] = c->A0;
-    /* the free oscillation's loss per cycle, as the energy residual is scaled */
-    e->oscale[n + TT_ENV_ETS] = M_PI * c->c * c->wd * c->A0 * c->A0;
+    /* energies against k A0^2, as an amplitude error of tolerance A0 moves the stored
+     * energy (the free loss per cycle, 2 pi / Q of it, would be Q times stricter than
+     * the integrator itself keeps the energy balance) */
+    e->oscale[n + TT_ENV_ETS] = c->k * c->A0 * c->A0;
     *out = e;
     return TT_OK;
 }
@@ -66,6 +68,11 @@ int tt_envelope_size(const tt_envelope *e) { return e->no; }
 int tt_envelope_touched(const tt_cycle *cy) { return cy->contact_fraction > 0 || cy->events > 0; }
 int tt_envelope_anchor_touched(const tt_envelope *e) { return e->touched; }
 int tt_envelope_anchor_contact(const tt_envelope *e) { return e->contact; }
+
+double tt_envelope_sample_offset(const tt_envelope *e, double s, double sdot)
+{
+    return s + 0.5 * sdot * e->T - e->sa;
+}
 
 void tt_envelope_observe(const tt_envelope *e, const tt_sample *samples, const tt_cycle *cy,
                          double *obs)

@@ -77,6 +77,8 @@ double tt_envelope_error(const tt_envelope *e, const double xa[2], const double 
 int tt_envelope_touched(const tt_cycle *cy);
 int tt_envelope_anchor_touched(const tt_envelope *e);
 int tt_envelope_anchor_contact(const tt_envelope *e);
+/* How far the sample at s moving at sdot is from the anchor's (mid-cycle), m. */
+double tt_envelope_sample_offset(const tt_envelope *e, double s, double sdot);
 
 #ifdef __cplusplus
 }
