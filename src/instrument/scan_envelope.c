@@ -214,6 +214,7 @@ typedef struct {
     long quiet, wait; /* integrated cycles without a change of contact or surface; needed */
     long redo;       /* integrate every cycle up to this one (a rolled-back stretch) */
     int prev_touch;
+    int rebuild;     /* the Jacobians must be taken anew before the model runs */
     snapshot sn;
 } controller;
 
@@ -262,12 +263,15 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
     return 1;
 }
 
-/* A cycle integrated while the model is off; the model is built on it once the cycles
- * have been quiet long enough. 1: the model is on. */
+/* A cycle integrated while the model is off. The model comes back on it at once when
+ * only a check failed (re-anchored, its Jacobians kept), and is built anew after an
+ * edge, a change of contact or a failure on the shortest stretch, once the cycles have
+ * been quiet long enough. 1: the model is on. */
 static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in *in, int edge,
                 double *obs, long *integrated, int *rc)
 {
     tt_sim *sim = L->W->sim;
+    tt_envelope *env = L->W->env;
     double x0[2];
     int c0, c1;
     tt_sim_get_state(sim, &x0[0], &x0[1], &c0);
@@ -275,29 +279,47 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
     if ((*rc = integrate(L, st, in, &cy, obs, &c1, integrated)))
         return 0;
     int touch = tt_envelope_touched(&cy);
-    int quiet = !edge && touch == c->prev_touch && c1 == c0 && st->k >= c->redo;
+    int quiet = !edge && touch == c->prev_touch && c1 == c0;
+    if (!quiet)
+        c->rebuild = 1;
+    quiet = quiet && st->k >= c->redo;
     c->quiet = quiet ? c->quiet + 1 : 0;
     c->prev_touch = touch;
-    if (c->quiet < c->wait || st->k + 1 >= L->ncyc)
+    if (!quiet || st->k + 1 >= L->ncyc)
         return 0;
     const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
-    if (tt_envelope_build(L->W->env, sim, x0, c0, in->sa, sdot, &cy, obs, integrated))
+    if (!c->rebuild && c0 == tt_envelope_anchor_contact(env) &&
+        touch == tt_envelope_anchor_touched(env)) {
+        tt_envelope_anchor(env, x0, in->sa, sdot, st->x, &cy, obs);
         return 1;
+    }
+    if (c->quiet < c->wait)
+        return 0;
+    if (tt_envelope_build(env, sim, x0, c0, in->sa, sdot, &cy, obs, integrated)) {
+        c->rebuild = 0;
+        return 1;
+    }
     c->quiet = 0;
     c->wait = c->wait * 2 < WAIT_MAX ? c->wait * 2 : WAIT_MAX;
     return 0;
 }
 
-/* A failed check: back to the stretch's start, every cycle integrated through k, and
- * the model tried again later on shorter stretches. */
+/* A failed check: back to the stretch's start. From there the model runs again on a
+ * quarter of the stretch (a rejected step, retried shorter); a failure on the shortest
+ * stretch integrates every cycle through k, and the model is built anew after a wait. */
 static void fail(const line_ctx *L, line_state *st, controller *c, long k)
 {
     snap_restore(L, &c->sn, st);
+    if (c->m > M_MIN) {
+        c->m = c->m / 4 > M_MIN ? c->m / 4 : M_MIN;
+        c->left = c->m; /* the snapshot covers the shorter stretch too */
+        return;
+    }
     c->model = 0;
     c->quiet = 0;
     c->redo = k + 1;
+    c->rebuild = 1;
     c->wait = c->wait * 2 < WAIT_MAX ? c->wait * 2 : WAIT_MAX;
-    c->m = c->m / 4 > M_MIN ? c->m / 4 : M_MIN;
 }
 
 /* The cycles of one phase. */
@@ -309,6 +331,7 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c, long *int
     c->quiet = 0;
     c->prev_touch = -1;
     c->redo = 0;
+    c->rebuild = 1;
     while (st->k < L->ncyc) {
         const long k = st->k;
         const int j = (int)(k % L->P);
