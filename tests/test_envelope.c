@@ -1,7 +1,7 @@
 /* The envelope tier ([solver] tier = envelope) against the every-cycle tier: on a
  * uniform sample, over height and material edges and on the bistable scene its images
  * agree with the every-cycle tier's within the envelope run's own error estimate (the
- * companion line) and the measured error of the every-cycle run itself; at low Q and
+ * companion line); at low Q and
  * with noise it falls back to every cycle (identical images); and its images are the
  * same on one thread as on two. */
 #include <stdlib.h>
@@ -47,8 +47,8 @@ static tt_scan *scan_with(const char *b, const char *extra, const char *solver, 
 }
 
 /* The envelope run against the every-cycle run at the same tolerance: their difference
- * is within the envelope run's own estimate plus the every-cycle run's error (measured
- * against a reference at 1e-11); and the envelope tier skipped most cycles. */
+ * is within the envelope run's own error estimate (the companion line); and the
+ * envelope tier skipped at least the given share of the cycles. */
 static void agrees(const char *b, const char *extra, double skipped_at_least)
 {
     tt_scene *s1, *s2, *s3;
@@ -73,8 +73,12 @@ static void agrees(const char *b, const char *extra, double skipped_at_least)
         print_message("%-14s envelope - every: max %.3g rms %.3g; estimate max %.3g rms %.3g; "
                       "every - reference: max %.3g rms %.3g\n",
                       name[c], dm, dr, est[c][0], est[c][1], rm, rr);
-        assert_true(dm <= est[c][0] + rm);
-        assert_true(dr <= est[c][1] + rr);
+        /* height and phase within the estimate alone; the amplitude's estimate on a
+         * uniform sample is rounding (1e-17 m), so the every-cycle run's error is its
+         * floor */
+        double floor_max = c == 1 ? rm : 0, floor_rms = c == 1 ? rr : 0;
+        assert_true(dm <= est[c][0] + floor_max);
+        assert_true(dr <= est[c][1] + floor_rms);
     }
     tt_scan_free(env);
     tt_scan_free(every);
