@@ -36,6 +36,9 @@ typedef struct {
     tt_piezo pz;
     size_t current; /* the material on the sim */
     double x[2];    /* the tip's state at cycle k's start: the sim's, or the model's */
+    long next_k;    /* the surface at cycle next_k's start, found with the cycle before */
+    double next_h, next_topo;
+    size_t next_mat;
     long cycles;
     double worst;
     int clamped;
@@ -62,32 +65,38 @@ static size_t material_at(const tt_scan *S, double x, double y)
     return S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
 }
 
-/* The inputs of cycle k (j: its place in the block); advances the piezo. */
+/* The surface at the start of cycle k: the height the apex meets, the true height and
+ * the material (as scan.c's scan_line finds them). */
+static void surface_at(const line_ctx *L, long k, double *h, double *topo, size_t *mat)
+{
+    const tt_scan *S = L->S;
+    double x, y;
+    tt_raster_position(&S->raster, L->line, L->dir, L->nc, L->phase ? k : 0, &x, &y);
+    if (S->plain) {
+        *h = *topo = S->flat ? 0 : tt_surface_height(S->surface, x, y);
+    } else {
+        double t = tt_scan_clock_at(S, L->line, L->phase, L->nc, L->phase ? k : 0);
+        *h = tt_scan_sample_at(S, &x, &y, t, topo);
+    }
+    *mat = material_at(S, x, y);
+}
+
+/* The inputs of cycle k (j: its place in the block); advances the piezo. The surface at
+ * its end is the next cycle's start: kept for it. */
 static void inputs(const line_ctx *L, line_state *st, long k, int j, cycle_in *in)
 {
     const tt_scan *S = L->S;
-    const tt_raster *R = &S->raster;
-    double xa, ya, xb, yb;
-    if (L->phase == 0) {
-        tt_raster_position(R, L->line, 0, L->nc, 0, &xa, &ya);
-        xb = xa;
-        yb = ya;
+    if (st->next_k == k) {
+        in->ha = st->next_h;
+        in->topo = st->next_topo;
+        in->mat = st->next_mat;
     } else {
-        tt_raster_position(R, L->line, L->dir, L->nc, k, &xa, &ya);
-        tt_raster_position(R, L->line, L->dir, L->nc, k + 1, &xb, &yb);
+        surface_at(L, k, &in->ha, &in->topo, &in->mat);
     }
-    if (S->plain) {
-        in->ha = S->flat ? 0 : tt_surface_height(S->surface, xa, ya);
-        in->hb = S->flat ? 0 : tt_surface_height(S->surface, xb, yb);
-        in->topo = in->ha;
-    } else {
-        double tb = tt_scan_clock_at(S, L->line, L->phase, L->nc, L->phase ? k + 1 : 0);
-        in->ha = tt_scan_sample_at(S, &xa, &ya, tt_scan_clock_at(S, L->line, L->phase, L->nc, k),
-                                   &in->topo);
-        in->hb = tt_scan_sample_at(S, &xb, &yb, tb, &(double){0});
-    }
-    in->mat = material_at(S, xa, ya);
-    in->mat_next = material_at(S, xb, yb);
+    surface_at(L, k + 1, &in->hb, &st->next_topo, &in->mat_next);
+    st->next_k = k + 1;
+    st->next_h = in->hb;
+    st->next_mat = in->mat_next;
     const double P = L->P;
     in->za = st->z_from + (st->z_to - st->z_from) * (double)j / P;
     double zb = st->z_from + (st->z_to - st->z_from) * (double)(j + 1) / P;
@@ -466,6 +475,7 @@ int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out,
         L.dir = phase == 2 ? 1 : 0;
         L.ncyc = phase == 0 ? settle_blocks * L.P : L.nc;
         st.k = 0;
+        st.next_k = -1;
         rc = run_phase(&L, &st, &c, integrated);
     }
     *cycles += st.cycles;
