@@ -28,6 +28,13 @@ enum {
     WAIT_MAX = 1024  /* the same after repeated failures (doubling) */
 };
 
+/* The surface at a cycle's start. */
+typedef struct {
+    long k;
+    double h, topo;
+    size_t mat;
+} surf_pt;
+
 /* What a line carries from cycle to cycle: what a rollback restores. */
 typedef struct {
     long k; /* the next cycle of this phase */
@@ -36,9 +43,7 @@ typedef struct {
     tt_piezo pz;
     size_t current; /* the material on the sim */
     double x[2];    /* the tip's state at cycle k's start: the sim's, or the model's */
-    long next_k;    /* the surface at cycle next_k's start, found with the cycle before */
-    double next_h, next_topo;
-    size_t next_mat;
+    surf_pt ahead[2]; /* the surface at the next two cycles' starts (k < 0: none) */
     long cycles;
     double worst;
     int clamped;
@@ -48,6 +53,7 @@ typedef struct {
 typedef struct {
     double ha, hb, topo, za, sa, sb;
     size_t mat, mat_next;
+    int edge_next; /* the next cycle crosses an edge */
 } cycle_in;
 
 /* The line's fixed quantities. */
@@ -81,22 +87,34 @@ static void surface_at(const line_ctx *L, long k, double *h, double *topo, size_
     *mat = material_at(S, x, y);
 }
 
-/* The inputs of cycle k (j: its place in the block); advances the piezo. The surface at
- * its end is the next cycle's start: kept for it. */
+/* The surface at cycle k's start, from the two found ahead when they hold it. */
+static surf_pt surface_cached(const line_ctx *L, const line_state *st, long k)
+{
+    for (int i = 0; i < 2; i++)
+        if (st->ahead[i].k == k)
+            return st->ahead[i];
+    surf_pt p = {.k = k};
+    surface_at(L, k, &p.h, &p.topo, &p.mat);
+    return p;
+}
+
+/* The inputs of cycle k (j: its place in the block); advances the piezo. The surface
+ * is found one cycle further ahead than the cycle needs, so that a stretch closes its
+ * check before a cycle that crosses an edge (edge_next), and kept for the next cycles. */
 static void inputs(const line_ctx *L, line_state *st, long k, int j, cycle_in *in)
 {
     const tt_scan *S = L->S;
-    if (st->next_k == k) {
-        in->ha = st->next_h;
-        in->topo = st->next_topo;
-        in->mat = st->next_mat;
-    } else {
-        surface_at(L, k, &in->ha, &in->topo, &in->mat);
-    }
-    surface_at(L, k + 1, &in->hb, &st->next_topo, &in->mat_next);
-    st->next_k = k + 1;
-    st->next_h = in->hb;
-    st->next_mat = in->mat_next;
+    surf_pt a = surface_cached(L, st, k), b = surface_cached(L, st, k + 1), c = b;
+    if (k + 1 < L->ncyc)
+        c = surface_cached(L, st, k + 2);
+    st->ahead[0] = b;
+    st->ahead[1] = c;
+    in->ha = a.h;
+    in->topo = a.topo;
+    in->mat = a.mat;
+    in->hb = b.h;
+    in->mat_next = b.mat;
+    in->edge_next = c.mat != b.mat || fabs(c.h - b.h) > L->edge;
     const double P = L->P;
     in->za = st->z_from + (st->z_to - st->z_from) * (double)j / P;
     double zb = st->z_from + (st->z_to - st->z_from) * (double)(j + 1) / P;
@@ -288,7 +306,7 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
     if ((*rc = integrate(L, st, in, &cy, obs, &c1, integrated)))
         return 0;
     int touch = tt_envelope_touched(&cy);
-    int quiet = !edge && touch == c->prev_touch && c1 == c0;
+    int quiet = !edge && !in->edge_next && touch == c->prev_touch && c1 == c0;
     if (!quiet)
         c->rebuild = 1;
     quiet = quiet && st->k >= c->redo;
@@ -350,10 +368,12 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c, long *int
         inputs(L, st, k, j, &in);
         const int edge = edge_ahead(L, &in);
         int snap = 0;
-        /* the phase's last cycle closes the stretch: the next phase starts integrating
-         * from the sim's state */
+        /* a model cycle, unless the stretch is done, this or the next cycle crosses an
+         * edge, the sample is out of the anchor's reach, or it is the phase's last (the
+         * next phase starts integrating from the sim's state): then a check */
         const double sdot = (in.sb - in.sa) / L->S->cantilever.T;
-        if (c->model && c->left > 0 && !edge && in.mat == st->current && k + 1 < L->ncyc &&
+        if (c->model && c->left > 0 && !edge && !in.edge_next && in.mat == st->current &&
+            k + 1 < L->ncyc &&
             fabs(tt_envelope_sample_offset(L->W->env, in.sa, sdot)) <= L->edge) {
             double x1[2];
             tt_envelope_predict(L->W->env, st->x, in.sa, sdot, x1, obs);
@@ -369,7 +389,7 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c, long *int
             }
             c->m = 2 * c->m < M_MAX ? 2 * c->m : M_MAX;
             c->wait = WAIT_MIN;
-            c->model = !edge;
+            c->model = !edge && !in.edge_next;
             c->quiet = 0;
             snap = c->model;
         } else {
@@ -475,7 +495,7 @@ int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out,
         L.dir = phase == 2 ? 1 : 0;
         L.ncyc = phase == 0 ? settle_blocks * L.P : L.nc;
         st.k = 0;
-        st.next_k = -1;
+        st.ahead[0].k = st.ahead[1].k = -1;
         rc = run_phase(&L, &st, &c, integrated);
     }
     *cycles += st.cycles;
