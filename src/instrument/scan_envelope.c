@@ -8,11 +8,13 @@
  * against the integration is the stretch's local error; within the tolerance the
  * stretch stands, the model is re-anchored on the check and m doubles; beyond it the
  * line rolls back to the stretch's start (lock-in, feedback, piezo, pixels, the
- * block's samples, the tip's state), integrates every cycle from there, and tries the
- * model again later with m quartered. Every cycle is integrated near a material or
- * height edge (the next cycle's surface differs), when a cycle's contact (touching or
- * not, the flag at its start and end) differs from its neighbours', at the start of
- * each phase (settling, trace, retrace), and for a while after a failed check. */
+ * block's samples, the tip's state) and runs the stretch again at a quarter of its
+ * length; a failure on the shortest stretch integrates every cycle through the check
+ * and tries the model again after a wait. Every cycle is integrated at a material or
+ * height edge (a cycle whose end's surface differs from its start's), when a cycle's
+ * contact (touching or not, the flag at its start and end) differs from its
+ * neighbours', at the start of each phase (settling, trace, retrace), and after a
+ * failed check on the shortest stretch. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -127,7 +129,8 @@ static void inputs(const line_ctx *L, line_state *st, long k, int j, cycle_in *i
     in->sb = L->s_ref - in->hb + pb;
 }
 
-/* The surface under the next cycle differs: an edge, where every cycle is integrated.
+/* The surface at the cycle's end differs from its start's: the cycle crosses an edge,
+ * and is integrated.
  * (A stretch also ends, with a check, where the sample has moved this far from the
  * anchor: a smooth slope, or a tip's rounded image of a step, which steepens into one.) */
 static int edge_ahead(const line_ctx *L, const cycle_in *in)
