@@ -273,7 +273,7 @@ static int integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_c
 /* The check closing a stretch: cycle k integrated from the model's state, against the
  * model's own prediction of it. 1: the stretch stands (the model is re-anchored). */
 static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *obs,
-                 long *integrated, int *rc)
+                 long *integrated)
 {
     tt_envelope *env = L->W->env;
     const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
@@ -284,8 +284,12 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
     tt_sim_set_state(L->W->sim, x0[0], x0[1], c0);
     tt_cycle cy;
     int c1;
-    if ((*rc = integrate(L, st, in, &cy, obs, &c1, integrated)))
+    if (integrate(L, st, in, &cy, obs, &c1, integrated) != TT_OK) {
+        /* a model state the cycle cannot be integrated from is a failed check: the
+         * stretch is run again from its start, and at last every cycle */
+        tt_error_clear();
         return 0;
+    }
     double err = tt_envelope_error(env, xp, pred, st->x, obs);
     if (!(err <= L->tol) || c1 != c0 || tt_envelope_touched(&cy) != tt_envelope_anchor_touched(env))
         return 0;
@@ -384,9 +388,7 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c, long *int
             st->x[1] = x1[1];
             c->left--;
         } else if (c->model) {
-            if (!check(L, st, &in, obs, integrated, &rc)) {
-                if (rc)
-                    return rc;
+            if (!check(L, st, &in, obs, integrated)) {
                 fail(L, st, c, k);
                 continue;
             }
