@@ -24,7 +24,8 @@ static void help(void)
            "Then the imaging figure: two lines of 256 pixels at 1 Hz over a sample with\n"
            "height and material edges, for each setting the real-time factor on two\n"
            "threads, the speedup of -j 2 over -j 1, and the height and phase error against\n"
-           "the every-cycle reference (dopri5 at tolerance 1e-10) on the same lines.\n\n"
+           "the every-cycle reference (dopri5 at tolerance 1e-10) on the same lines; the last\n"
+           "row is the envelope tier ([solver] tier = envelope) at the default tolerance.\n\n"
            "  --cycles N      cycles timed per setting of the steady figure (default 5000)\n"
            "  --no-steady     skip the steady figure\n"
            "  --no-imaging    skip the imaging figure\n"
@@ -36,6 +37,7 @@ typedef struct {
     tt_method method;
     double tol;
     int steps;
+    tt_tier tier;
 } setting;
 
 /* Settle the standard scene's tapping point with a solver, then time n cycles. */
@@ -209,6 +211,7 @@ static int bench_imaging(const tt_scene *scene, const setting *set, size_t nset)
         p.solver.method = set[i].method;
         p.solver.tolerance = set[i].tol;
         p.solver.steps_per_cycle = set[i].steps;
+        p.solver.tier = set[i].tier;
         imaging_run r1 = {0}, r2 = {0};
         if (i > 0)
             rc = imaging_once(&p, 1, 0, &r1);
@@ -258,14 +261,14 @@ static int bench_imaging(const tt_scene *scene, const setting *set, size_t nset)
 static int bench_steady(const tt_setup *st, const tt_approach_params *ap, long n)
 {
     static const setting settings[] = {
-        {"reference dopri5 tol 1e-12", TT_METHOD_DOPRI5, 1e-12, 512},
-        {"dopri5 tol 1e-6", TT_METHOD_DOPRI5, 1e-6, 512},
-        {"dopri5 tol 1e-7", TT_METHOD_DOPRI5, 1e-7, 512},
-        {"dopri5 tol 1e-8 (default)", TT_METHOD_DOPRI5, 1e-8, 512},
-        {"rk4 128 steps", TT_METHOD_RK4, 1e-8, 128},
-        {"rk4 512 steps", TT_METHOD_RK4, 1e-8, 512},
-        {"radau tol 1e-6", TT_METHOD_RADAU, 1e-6, 512},
-        {"radau tol 1e-8", TT_METHOD_RADAU, 1e-8, 512},
+        {"reference dopri5 tol 1e-12", TT_METHOD_DOPRI5, 1e-12, 512, TT_TIER_EVERY},
+        {"dopri5 tol 1e-6", TT_METHOD_DOPRI5, 1e-6, 512, TT_TIER_EVERY},
+        {"dopri5 tol 1e-7", TT_METHOD_DOPRI5, 1e-7, 512, TT_TIER_EVERY},
+        {"dopri5 tol 1e-8 (default)", TT_METHOD_DOPRI5, 1e-8, 512, TT_TIER_EVERY},
+        {"rk4 128 steps", TT_METHOD_RK4, 1e-8, 128, TT_TIER_EVERY},
+        {"rk4 512 steps", TT_METHOD_RK4, 1e-8, 512, TT_TIER_EVERY},
+        {"radau tol 1e-6", TT_METHOD_RADAU, 1e-6, 512, TT_TIER_EVERY},
+        {"radau tol 1e-8", TT_METHOD_RADAU, 1e-8, 512, TT_TIER_EVERY},
     };
     int rc = TT_OK;
     tt_cycle ref = {0};
@@ -335,10 +338,11 @@ int cmd_bench(int argc, char **argv)
         rc = bench_steady(st, &ap, n);
     if (!rc && imaging) {
         static const setting imaging_settings[] = {
-            {"reference dopri5 tol 1e-10", TT_METHOD_DOPRI5, 1e-10, 512},
-            {"dopri5 tol 1e-6", TT_METHOD_DOPRI5, 1e-6, 512},
-            {"dopri5 tol 1e-7", TT_METHOD_DOPRI5, 1e-7, 512},
-            {"dopri5 tol 1e-8", TT_METHOD_DOPRI5, 1e-8, 512},
+            {"reference dopri5 tol 1e-10", TT_METHOD_DOPRI5, 1e-10, 512, TT_TIER_EVERY},
+            {"dopri5 tol 1e-6", TT_METHOD_DOPRI5, 1e-6, 512, TT_TIER_EVERY},
+            {"dopri5 tol 1e-7", TT_METHOD_DOPRI5, 1e-7, 512, TT_TIER_EVERY},
+            {"dopri5 tol 1e-8", TT_METHOD_DOPRI5, 1e-8, 512, TT_TIER_EVERY},
+            {"envelope dopri5 tol 1e-8", TT_METHOD_DOPRI5, 1e-8, 512, TT_TIER_ENVELOPE},
         };
         rc = bench_imaging(scene, imaging_settings, sizeof imaging_settings / sizeof imaging_settings[0]);
     }

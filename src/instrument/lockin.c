@@ -84,6 +84,15 @@ void tt_lockin_reset(tt_lockin *l, double amplitude, double phase)
     l->rawY[0] = amplitude * sin(phase);
 }
 
+void tt_lockin_copy(tt_lockin *dst, const tt_lockin *src)
+{
+    memcpy(dst->X, src->X, sizeof dst->X);
+    memcpy(dst->Y, src->Y, sizeof dst->Y);
+    memcpy(dst->rawX, src->rawX, sizeof dst->rawX);
+    memcpy(dst->rawY, src->rawY, sizeof dst->rawY);
+    dst->mean = src->mean;
+}
+
 int tt_lockin_push(tt_lockin *l, const double *samples)
 {
     memcpy(l->in, samples, (size_t)l->n * sizeof(double));

@@ -1,6 +1,7 @@
 /* Closed-loop imaging: raster, lock-in, feedback and per-pixel channels
  * (see include/tiptap/instrument/scan.h). */
 #include "tiptap/instrument/scan.h"
+#include "scan_private.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -23,9 +24,6 @@ static const struct {
     {"harmonic5_phase", "deg"}, {"harmonic6_phase", "deg"}, {"harmonic7_phase", "deg"},
     {"harmonic8_phase", "deg"},
 };
-
-enum { NHARM = TT_CH_HARMONIC_MAX - 1 }; /* harmonic channels of each kind */
-_Static_assert(TT_CH_COUNT <= 8 * sizeof(unsigned), "a channel mask holds every channel");
 
 const char *tt_scan_channel_name(int i) { return i >= 0 && i < TT_CH_COUNT ? channel_info[i].name : "?"; }
 const char *tt_scan_channel_unit(int i) { return i >= 0 && i < TT_CH_COUNT ? channel_info[i].unit : "?"; }
@@ -75,54 +73,6 @@ int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t l
     }
     return 0;
 }
-
-/* One thread's workspace: its own simulation, lock-in and sample buffer. */
-typedef struct {
-    tt_sim *sim;
-    tt_lockin *lockin;
-    tt_sample *samples;
-    double *y;
-    /* continuous lines: the feedback and the z piezo's ramp where the last line ended */
-    int engaged;
-    tt_feedback fb;
-    double z_from, z_to;
-    tt_piezo pz;
-    double z_act;
-} worker;
-
-struct tt_scan {
-    tt_cantilever cantilever;
-    tt_solver solver;
-    size_t nmaterials;
-    tt_contact **contacts; /* every material's force law, shared by the threads */
-    double *Qi;
-    tt_raster raster;
-    tt_surface *surface;
-    tt_dilation *dilation; /* the surface as the tip's shape images it; NULL: the apex */
-    tt_instrument_params inst;
-    int plain;             /* a point tip on an ideal instrument: the heights as they are */
-    int uniform, flat;
-    unsigned channels;
-    long settle_cycles;
-    long profile_line;
-    tt_scan_noise noise;
-    double sd, sz;       /* per-sample detector and per-cycle z piezo noise, m rms */
-    int continuous;
-    /* lock-in and feedback */
-    tt_lockin_params lockin;
-    double setpoint, kp, ki, z_range;
-    double A0;
-    /* results: [retrace][channel] -> lines * pixels */
-    double *img[2][TT_CH_COUNT];
-    char *line_done;
-    long lines_done;
-    long cycles;
-    double worst_residual;
-    int clamped;
-    /* the first failure of any thread */
-    int status;
-    char message[1024];
-};
 
 /* Every material's force law, built before any line runs. */
 static int build_contacts(tt_scan *S, const tt_material *m, size_t n)
@@ -265,6 +215,36 @@ static void worker_free(worker *W)
     tt_lockin_free(W->lockin);
     free(W->samples);
     free(W->y);
+    tt_envelope_free(W->env);
+    tt_lockin_free(W->lockin_save);
+    free(W->y_save);
+    free(W->obs);
+}
+
+/* Whether a solver setting runs on the envelope tier here: it falls back to every
+ * cycle at low Q (the envelope follows the free transient's Q / pi cycles; below Q 30
+ * there are too few to skip) and with noise on (the cycles are not smooth in the
+ * cycle index). */
+static int envelope_usable(const tt_scan *S, const tt_solver *solver)
+{
+    const tt_scan_noise *n = &S->noise;
+    return solver->tier == TT_TIER_ENVELOPE && S->cantilever.Q >= 30 && n->temperature == 0 &&
+           n->detector == 0 && n->z_piezo == 0;
+}
+
+static int envelope_alloc(tt_scan *S, worker *W)
+{
+    size_t n = (size_t)S->lockin.samples_per_period * (size_t)S->lockin.periods_per_block;
+    int rc = tt_envelope_alloc(&W->env, &S->cantilever, S->lockin.samples_per_period);
+    if (!rc)
+        rc = tt_lockin_alloc(&W->lockin_save, &S->lockin);
+    if (rc)
+        return rc;
+    W->y_save = calloc(n, sizeof *W->y_save);
+    W->obs = calloc(2 * (size_t)tt_envelope_size(W->env), sizeof *W->obs);
+    if (!W->y_save || !W->obs)
+        return tt_error(TT_ENOMEM, "out of memory");
+    return TT_OK;
 }
 
 static int worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)
@@ -280,16 +260,9 @@ static int worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)
     W->y = calloc(n, sizeof *W->y);
     if (!W->samples || !W->y)
         return tt_error(TT_ENOMEM, "out of memory");
-    return TT_OK;
+    return envelope_usable(S, solver) ? envelope_alloc(S, W) : TT_OK;
 }
 
-/* Per-pixel sums of one scan direction. */
-typedef struct {
-    double sum[TT_CH_COUNT]; /* harmonic phases: the in-phase parts, X = A cos(phase) */
-    double quad[NHARM];      /* harmonic phases: the quadrature parts, Y = A sin(phase) */
-    long n;    /* cycles, for the per-cycle channels */
-    long nblk; /* cycles of the lock-in blocks that ended in this pixel */
-} pixel_acc;
 
 /* Phase lag in the lock-in's range, (-90, 270] degrees (see src/instrument/lockin.c). */
 static double lag(double X, double Y)
@@ -300,7 +273,7 @@ static double lag(double X, double Y)
 
 /* The instrument's clock (tt_instrument_params) at the start of cycle k of phase 0
  * (settling: the line's start), 1 (trace) or 2 (retrace). */
-static double clock_at(const tt_scan *S, long line, int phase, long nc, long k)
+double tt_scan_clock_at(const tt_scan *S, long line, int phase, long nc, long k)
 {
     double half = 0.5 / S->raster.line_rate, t = (double)line / S->raster.line_rate;
     if (phase == 0)
@@ -311,7 +284,7 @@ static double clock_at(const tt_scan *S, long line, int phase, long nc, long k)
 /* The sample under raster position (x, y) at time t: *x, *y become the surface's point
  * there (drift); returns the height the apex meets (dilated, tilted, drifted in z) and
  * the true height in *topo. */
-static double sample_at(const tt_scan *S, double *x, double *y, double t, double *topo)
+double tt_scan_sample_at(const tt_scan *S, double *x, double *y, double t, double *topo)
 {
     const tt_instrument_params *in = &S->inst;
     *x -= in->drift_x * t;
@@ -321,12 +294,6 @@ static double sample_at(const tt_scan *S, double *x, double *y, double t, double
     return h + in->tilt_x * *x + in->tilt_y * *y + in->drift_z * t;
 }
 
-/* Where a line's pixels go: the scan's images, or (packed) one line's worth per
- * channel and direction. */
-typedef struct {
-    double *img[2][TT_CH_COUNT];
-    int packed;
-} line_out;
 
 /* Scan one line: engage at its first pixel, then trace and retrace. */
 static int scan_line(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
@@ -346,7 +313,7 @@ static int scan_line(tt_scan *S, worker *W, long line, const line_out *out, long
     if (S->plain)
         h0 = tt_surface_height(S->surface, x, y);
     else
-        h0 = sample_at(S, &x, &y, clock_at(S, line, 0, nc, 0), &topo);
+        h0 = tt_scan_sample_at(S, &x, &y, tt_scan_clock_at(S, line, 0, nc, 0), &topo);
     size_t mat = S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
     tt_sim_set_contact(sim, S->contacts[mat], S->Qi[mat]);
     size_t current = mat;
@@ -416,9 +383,9 @@ static int scan_line(tt_scan *S, worker *W, long line, const line_out *out, long
                     hb = S->flat ? 0 : tt_surface_height(S->surface, xb, yb);
                     topo = ha;
                 } else {
-                    double tb = clock_at(S, line, phase, nc, phase ? k + 1 : 0);
-                    ha = sample_at(S, &xa, &ya, clock_at(S, line, phase, nc, k), &topo);
-                    hb = sample_at(S, &xb, &yb, tb, &(double){0});
+                    double tb = tt_scan_clock_at(S, line, phase, nc, phase ? k + 1 : 0);
+                    ha = tt_scan_sample_at(S, &xa, &ya, tt_scan_clock_at(S, line, phase, nc, k), &topo);
+                    hb = tt_scan_sample_at(S, &xb, &yb, tb, &(double){0});
                 }
                 if (!S->uniform) {
                     size_t m = (size_t)tt_surface_material(S->surface, xa, ya);
@@ -523,6 +490,17 @@ static int scan_line(tt_scan *S, worker *W, long line, const line_out *out, long
     return rc;
 }
 
+/* One line on the worker's tier. */
+static int run_line(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
+                    long *integrated, double *worst, int *clamped)
+{
+    if (W->env)
+        return tt_scan_line_envelope(S, W, line, out, cycles, integrated, worst, clamped);
+    int rc = scan_line(S, W, line, out, cycles, worst, clamped);
+    *integrated = *cycles;
+    return rc;
+}
+
 int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done, long total),
                 void *user)
 {
@@ -552,13 +530,14 @@ int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done,
             if (failed || S->line_done[line] || tt_cancel_requested())
                 continue;
             worker *w = &W[omp_get_thread_num()];
-            long cycles = 0;
+            long cycles = 0, integrated = 0;
             double worst = 0;
             int clamped = 0;
-            int lrc = scan_line(S, w, line, &images, &cycles, &worst, &clamped);
+            int lrc = run_line(S, w, line, &images, &cycles, &integrated, &worst, &clamped);
 #pragma omp critical(tt_scan_result)
             {
                 S->cycles += cycles;
+                S->integrated += integrated;
                 if (worst > S->worst_residual)
                     S->worst_residual = worst;
                 S->clamped |= clamped;
@@ -591,7 +570,7 @@ static int companion_line(tt_scan *S, const tt_solver *solver, double *buf)
 {
     worker W;
     line_out out = {{{0}}, 1};
-    long px = S->raster.pixels, cycles = 0;
+    long px = S->raster.pixels, cycles = 0, integrated = 0;
     double worst = 0;
     int clamped = 0;
     for (int c = 0; c < 3; c++)
@@ -599,7 +578,7 @@ static int companion_line(tt_scan *S, const tt_solver *solver, double *buf)
             out.img[r][c] = buf + (size_t)(2 * c + r) * (size_t)px;
     int rc = worker_alloc(S, &W, solver);
     if (!rc)
-        rc = scan_line(S, &W, S->profile_line, &out, &cycles, &worst, &clamped);
+        rc = run_line(S, &W, S->profile_line, &out, &cycles, &integrated, &worst, &clamped);
     worker_free(&W);
     return rc;
 }
@@ -674,6 +653,7 @@ int tt_scan_has_retrace(const tt_scan *S) { return S->raster.retrace; }
 long tt_scan_lines_done(const tt_scan *S) { return S->lines_done; }
 long tt_scan_profile_line(const tt_scan *S) { return S->profile_line; }
 long tt_scan_cycles(const tt_scan *S) { return S->cycles; }
+long tt_scan_cycles_integrated(const tt_scan *S) { return S->integrated; }
 double tt_scan_error_estimate(const tt_scan *S) { return S->worst_residual; }
 int tt_scan_clamped(const tt_scan *S) { return S->clamped; }
 const tt_dilation *tt_scan_dilation(const tt_scan *S) { return S->dilation; }

@@ -27,6 +27,7 @@ void tt_solver_default(tt_solver *s)
     s->method = TT_METHOD_DOPRI5;
     s->tolerance = 1e-8;
     s->steps_per_cycle = 512;
+    s->tier = TT_TIER_EVERY;
 }
 
 static int method_known(tt_method m) { return m >= TT_METHOD_DOPRI5 && m <= TT_METHOD_RADAU; }
@@ -119,6 +120,8 @@ void tt_sim_set_sampling(tt_sim *S, int n, tt_sample *buf)
     S->nsamp = buf ? n : 0;
     S->samples = buf;
 }
+
+const tt_sample *tt_sim_samples(const tt_sim *S) { return S->nsamp ? S->samples : NULL; }
 
 void tt_sim_track_extremes(tt_sim *S, int on)
 {

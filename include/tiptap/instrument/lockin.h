@@ -36,6 +36,10 @@ void tt_lockin_free(tt_lockin *l);
  * scan does not begin with a filter transient from zero. */
 void tt_lockin_reset(tt_lockin *l, double amplitude, double phase);
 
+/* Copy the filter's state (and the last block's results) of src into dst, a lock-in of
+ * the same parameters: a snapshot to return to (the envelope tier's rollback). */
+void tt_lockin_copy(tt_lockin *dst, const tt_lockin *src);
+
 /* Feed one block: samples_per_period * periods_per_block samples. */
 int tt_lockin_push(tt_lockin *l, const double *samples);
 

@@ -154,6 +154,8 @@ double tt_scan_instrument_time(const tt_scan *s);
  * worst residual of a cycle relative to the free drive work per cycle. It checks the
  * integration, but it is not the error of the images (tt_scan_estimate_error is). */
 long tt_scan_cycles(const tt_scan *s);
+/* Cycles integrated: all of them on the every-cycle tier, fewer on the envelope tier. */
+long tt_scan_cycles_integrated(const tt_scan *s);
 double tt_scan_error_estimate(const tt_scan *s);
 
 /* The estimated error of the images, from a companion run: the profile line scanned

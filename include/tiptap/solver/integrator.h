@@ -32,13 +32,18 @@ extern "C" {
 
 typedef enum { TT_METHOD_DOPRI5 = 0, TT_METHOD_RK4 = 1, TT_METHOD_RADAU = 2 } tt_method;
 
+/* Which cycles a scan integrates (docs/dynamics.md, Tiers): every one, or those the
+ * envelope tier's error control asks for (tiptap/solver/envelope.h). */
+typedef enum { TT_TIER_EVERY = 0, TT_TIER_ENVELOPE = 1 } tt_tier;
+
 typedef struct {
     tt_method method;
     double tolerance;     /* dopri5, radau: local error per step relative to the free amplitude */
     int steps_per_cycle;  /* rk4 */
+    tt_tier tier;         /* scans only */
 } tt_solver;
 
-/* Defaults: dopri5, tolerance 1e-8, rk4 at 512 steps per cycle. */
+/* Defaults: dopri5, tolerance 1e-8, rk4 at 512 steps per cycle, every cycle. */
 void tt_solver_default(tt_solver *s);
 const char *tt_method_name(tt_method m);
 
@@ -92,6 +97,8 @@ void tt_sim_set_sample(tt_sim *sim, double s, double sdot);
 
 /* Record n samples per cycle at t = k T / n (k = 0 .. n-1) into buf (NULL: none). */
 void tt_sim_set_sampling(tt_sim *sim, int n, tt_sample *buf);
+/* The buffer the samples go to (NULL: none). */
+const tt_sample *tt_sim_samples(const tt_sim *sim);
 
 /* Change the cantilever's constants (a ramp of its stiffness), keeping the state and
  * the interaction damping coefficient. The drive frequency must stay the same. */

@@ -1,0 +1,86 @@
+/* tiptap: the envelope tier's local model of the cycle map (docs/dynamics.md, Tiers).
+ *
+ * A drive cycle takes the stroboscopic state x = (d, d') at its start and the sample's
+ * position s at its middle to the state one period later, P(x, s), and yields the
+ * cycle's observables o(x, s): the deflection samples the lock-in reads, the peak
+ * force, the greatest indentation and the tip-sample loss. Where the envelope moves
+ * slowly, x and s stay close to where a cycle was last integrated (the anchor), and
+ *
+ *     P(x, s) = P(xa, sa) + dP/dx (x - xa) + dP/ds (s - sa) + O(|x - xa|^2 + |s - sa|^2)
+ *
+ * and likewise o: one cycle of the model costs a 2 x 3 and an (n + 3) x 3 product
+ * instead of an integration. Its Jacobians come from central differences (6 cycles);
+ * each integrated cycle re-anchors the model, so the second-order remainder stays
+ * small while the Jacobians are reused. The model is iterated cycle by cycle, so it
+ * contracts as the true map does (its eigenvalues are the Floquet multipliers): it is
+ * stable however strongly the contact damps, which an extrapolation over many cycles
+ * would not be.
+ *
+ * Its error is measured, not assumed: tt_envelope_error compares the model's cycle
+ * with an integrated one from the same state and sample, in units of the free
+ * amplitude (velocities of w A0, forces of k A0, losses of the free loss per cycle),
+ * as the stepper's tolerance is.
+ *
+ * Ownership: tt_envelope_alloc returns a handle freed by tt_envelope_free. It drives
+ * the sim given to tt_envelope_build and keeps no pointer to it.
+ */
+#ifndef TIPTAP_ENVELOPE_H
+#define TIPTAP_ENVELOPE_H
+
+#include "tiptap/solver/integrator.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Observables after the n deflection samples of a cycle's vector. */
+enum { TT_ENV_PEAK = 0, TT_ENV_INDENT = 1, TT_ENV_ETS = 2, TT_ENV_EXTRA = 3 };
+
+typedef struct tt_envelope tt_envelope;
+
+/* A model for n deflection samples per cycle. */
+int tt_envelope_alloc(tt_envelope **out, const tt_cantilever *c, int n);
+void tt_envelope_free(tt_envelope *e);
+/* Observables per cycle: n + TT_ENV_EXTRA. */
+int tt_envelope_size(const tt_envelope *e);
+
+/* A cycle's observable vector from its samples (deflection d - z) and results. */
+void tt_envelope_observe(const tt_envelope *e, const tt_sample *samples, const tt_cycle *cy,
+                         double *obs);
+
+/* A cycle the caller just integrated, from state x0 (contact flag c0) with the sample at
+ * s (at the cycle's start) moving at sdot, ended in the sim's present state with the
+ * observables obs. Anchor the model there and take its Jacobians by central
+ * differences: 6 more cycles, each from x0 or s perturbed, and the sim is put back at
+ * the end of the unperturbed cycle (its sampling buffer is overwritten). Returns 1
+ * when the model is usable: every perturbed cycle ran and touched the sample, or did
+ * not, as the unperturbed one did, and ended with its contact flag. *cycles counts the
+ * cycles run. A failing cycle is no error here: the caller integrates every cycle. */
+int tt_envelope_build(tt_envelope *e, tt_sim *sim, const double x0[2], int c0, double s,
+                      double sdot, const tt_cycle *cy, const double *obs, long *cycles);
+
+/* Re-anchor on an integrated cycle (the Jacobians are kept). x1: its end state. */
+void tt_envelope_anchor(tt_envelope *e, const double x0[2], double s, double sdot,
+                        const double x1[2], const tt_cycle *cy, const double *obs);
+
+/* The model's cycle from x with the sample at s moving at sdot: end state x1 and the
+ * observables obs. */
+void tt_envelope_predict(const tt_envelope *e, const double x[2], double s, double sdot,
+                         double x1[2], double *obs);
+
+/* The largest scaled difference between two versions of one cycle (model and
+ * integration): end states and observables, relative to the free amplitude. */
+double tt_envelope_error(const tt_envelope *e, const double xa[2], const double *oa,
+                         const double xb[2], const double *ob);
+
+/* Whether a cycle touched the sample; the anchor's touch and start contact flag. */
+int tt_envelope_touched(const tt_cycle *cy);
+int tt_envelope_anchor_touched(const tt_envelope *e);
+int tt_envelope_anchor_contact(const tt_envelope *e);
+/* How far the sample at s moving at sdot is from the anchor's (mid-cycle), m. */
+double tt_envelope_sample_offset(const tt_envelope *e, double s, double sdot);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,193 @@
+/* The envelope tier ([solver] tier = envelope) against the every-cycle tier: on a
+ * uniform sample, over height and material edges and on the bistable scene its images
+ * agree with the every-cycle tier's within the envelope run's own error estimate (the
+ * companion line); at low Q and
+ * with noise it falls back to every cycle (identical images); and its images are the
+ * same on one thread as on two. */
+#include <stdlib.h>
+
+#include "tt_test.h"
+#include "tt_scan_test.h"
+#include "tiptap/config/config.h"
+#include "tiptap/util/error.h"
+#include "tiptap/instrument/scan.h"
+
+static const char *base =
+    "[cantilever]\nspring_constant = 40 N/m\nresonance_frequency = 300 kHz\nquality_factor = 400\n"
+    "free_amplitude = 20 nm\n"
+    "[material soft]\nyoungs_modulus = 0.5 GPa\nadhesion_energy = 30 mJ/m^2\n"
+    "interaction_quality_factor = 10\n"
+    "[material stiff]\nyoungs_modulus = 3 GPa\nadhesion_energy = 40 mJ/m^2\n"
+    "[scan]\nsize = 1 um\npixels = 32\nlines = 1\nline_rate = 8 Hz\nsettle_cycles = 2000\n"
+    "channels = height, amplitude, phase, peak_force\n"
+    "[feedback]\nsetpoint = 80 %\nintegral_gain = 3000 Hz\n";
+
+/* Largest and rms difference of channel c between two scans, trace and retrace. */
+static void diff(const tt_scan *a, const tt_scan *b, int c, double *max, double *rms)
+{
+    long n = tt_scan_xres(a) * tt_scan_yres(a);
+    double m = 0, s = 0;
+    for (int r = 0; r < 2; r++) {
+        const double *x = tt_scan_image(a, c, r), *y = tt_scan_image(b, c, r);
+        for (long i = 0; i < n; i++) {
+            double d = fabs(x[i] - y[i]);
+            m = d > m ? d : m;
+            s += d * d;
+        }
+    }
+    *max = m;
+    *rms = sqrt(s / (double)(2 * n));
+}
+
+static tt_scan *scan_with(const char *b, const char *extra, const char *solver, tt_scene **sc)
+{
+    char text[2048];
+    snprintf(text, sizeof text, "%s\n[solver]\n%s\n", extra, solver);
+    return tt_run_scan(b, text, sc);
+}
+
+/* The envelope run against the every-cycle run at the same tolerance: their difference
+ * is within the envelope run's own error estimate (the companion line); and the
+ * envelope tier skipped at least the given share of the cycles. */
+static void agrees(const char *b, const char *extra, double skipped_at_least)
+{
+    tt_scene *s1, *s2, *s3;
+    tt_scan *env = scan_with(b, extra, "tier = envelope", &s1);
+    tt_scan *every = scan_with(b, extra, "tier = every", &s2);
+    tt_scan *ref = scan_with(b, extra, "tolerance = 1e-11", &s3);
+    tt_scan_error e;
+    assert_int_equal(tt_scan_estimate_error(env, &e), TT_OK);
+    double frac = 1 - (double)tt_scan_cycles_integrated(env) / (double)tt_scan_cycles(env);
+    print_message("cycles %ld, integrated %ld (%.1f %% skipped)\n", tt_scan_cycles(env),
+                  tt_scan_cycles_integrated(env), 100 * frac);
+    assert_int_equal(tt_scan_cycles(env), tt_scan_cycles(every));
+    assert_true(frac >= skipped_at_least);
+    const double est[3][2] = {{e.height_max, e.height_rms},
+                              {e.amplitude_max * 20e-9, e.amplitude_rms * 20e-9},
+                              {e.phase_max, e.phase_rms}};
+    const char *name[3] = {"height (m)", "amplitude (m)", "phase (deg)"};
+    for (int c = 0; c < 3; c++) {
+        double dm, dr, rm, rr;
+        diff(env, every, c, &dm, &dr);
+        diff(every, ref, c, &rm, &rr);
+        print_message("%-14s envelope - every: max %.3g rms %.3g; estimate max %.3g rms %.3g; "
+                      "every - reference: max %.3g rms %.3g\n",
+                      name[c], dm, dr, est[c][0], est[c][1], rm, rr);
+        /* height and phase within the estimate alone; the amplitude's estimate on a
+         * uniform sample is rounding (1e-17 m), so the every-cycle run's error is its
+         * floor */
+        double floor_max = c == 1 ? rm : 0, floor_rms = c == 1 ? rr : 0;
+        assert_true(dm <= est[c][0] + floor_max);
+        assert_true(dr <= est[c][1] + floor_rms);
+    }
+    tt_scan_free(env);
+    tt_scan_free(every);
+    tt_scan_free(ref);
+    tt_scene_free(s1);
+    tt_scene_free(s2);
+    tt_scene_free(s3);
+}
+
+static void uniform_sample(void **st)
+{
+    (void)st;
+    agrees(base, "[surface]\nmap = uniform\n", 0.5);
+}
+
+static void height_and_material_edges(void **st)
+{
+    (void)st;
+    agrees(base,
+           "[surface]\ntype = steps\nstep_height = 1 nm\nstep_width = 300 nm\n"
+           "map = stripes\nmap_materials = soft, stiff\nmap_period = 500 nm\n",
+           0.3);
+}
+
+/* examples/extreme/bistable.ini's cantilever and sample, imaged on the repulsive
+ * branch over steps. */
+static void bistable(void **st)
+{
+    (void)st;
+    static const char *b =
+        "[cantilever]\nspring_constant = 40 N/m\nresonance_frequency = 300 kHz\n"
+        "quality_factor = 400\nfree_amplitude = 5 nm\n"
+        "[tip]\nradius = 10 nm\n"
+        "[material silicon]\nyoungs_modulus = 100 GPa\npoisson_ratio = 0.27\n"
+        "adhesion_energy = 40 mJ/m^2\n"
+        "[scan]\nsize = 1 um\npixels = 32\nlines = 1\nline_rate = 8 Hz\nsettle_cycles = 2000\n"
+        "channels = height, amplitude, phase\n"
+        "[feedback]\nsetpoint = 60 %\nintegral_gain = 3000 Hz\n";
+    agrees(b, "[surface]\ntype = steps\nstep_height = 0.5 nm\nstep_width = 300 nm\n", 0.3);
+}
+
+/* Where the tier falls back, the images are the every-cycle tier's, bit for bit. */
+static void same_as_every(const char *extra)
+{
+    tt_scene *s1, *s2;
+    tt_scan *env = scan_with(base, extra, "tier = envelope", &s1);
+    tt_scan *every = scan_with(base, extra, "tier = every", &s2);
+    assert_int_equal(tt_scan_cycles_integrated(env), tt_scan_cycles(env));
+    long n = tt_scan_xres(env) * tt_scan_yres(env);
+    for (int r = 0; r < 2; r++)
+        for (int c = 0; c < 3; c++)
+            assert_memory_equal(tt_scan_image(env, c, r), tt_scan_image(every, c, r),
+                                (size_t)n * sizeof(double));
+    tt_scan_free(env);
+    tt_scan_free(every);
+    tt_scene_free(s1);
+    tt_scene_free(s2);
+}
+
+static void low_q_falls_back(void **st)
+{
+    (void)st;
+    same_as_every("[cantilever]\nquality_factor = 10\n[scan]\nline_rate = 40 Hz\n"
+                  "[surface]\ntype = steps\nstep_height = 1 nm\nstep_width = 300 nm\n");
+}
+
+static void noise_falls_back(void **st)
+{
+    (void)st;
+    same_as_every("[scan]\nline_rate = 40 Hz\n[noise]\ndetector = 100 fm/sqrt(Hz)\n");
+}
+
+/* Two lines on one thread and on two: the same images. */
+static void threads_agree(void **st)
+{
+    (void)st;
+    tt_scene *sc = tt_scene_alloc();
+    assert_int_equal(tt_scene_load_string(sc, base, "base"), TT_OK);
+    assert_int_equal(tt_scene_load_string(sc,
+                                          "[scan]\nlines = 2\nline_rate = 20 Hz\n"
+                                          "[surface]\ntype = steps\nstep_height = 1 nm\n"
+                                          "step_width = 300 nm\n[solver]\ntier = envelope\n",
+                                          "extra"),
+                     TT_OK);
+    tt_scan *a, *b;
+    assert_int_equal(tt_config_scan_alloc(&a, sc), TT_OK);
+    assert_int_equal(tt_config_scan_alloc(&b, sc), TT_OK);
+    assert_int_equal(tt_scan_run(a, 1, NULL, NULL), TT_OK);
+    assert_int_equal(tt_scan_run(b, 2, NULL, NULL), TT_OK);
+    assert_true(tt_scan_cycles_integrated(a) < tt_scan_cycles(a));
+    long n = tt_scan_xres(a) * tt_scan_yres(a);
+    for (int r = 0; r < 2; r++)
+        for (int c = 0; c < 3; c++)
+            assert_memory_equal(tt_scan_image(a, c, r), tt_scan_image(b, c, r),
+                                (size_t)n * sizeof(double));
+    tt_scan_free(a);
+    tt_scan_free(b);
+    tt_scene_free(sc);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(uniform_sample),
+        cmocka_unit_test(height_and_material_edges),
+        cmocka_unit_test(bistable),
+        cmocka_unit_test(low_q_falls_back),
+        cmocka_unit_test(noise_falls_back),
+        cmocka_unit_test(threads_agree),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
