@@ -107,7 +107,7 @@ static const tt_scene_key solver_keys[] = {
      "adaptive methods (dopri5, radau): local error tolerance relative to the free amplitude"},
     {"steps_per_cycle", TT_KEY_INT, 0, "512", 8, 1e7, 0, NULL,
      "rk4: fixed steps per drive cycle"},
-    {"tier", TT_KEY_ENUM, 0, "every", 0, 0, 0, "every|envelope",
+    {"tier", TT_KEY_ENUM, 0, "envelope", 0, 0, 0, "every|envelope",
      "scans: every: integrate every drive cycle; envelope: integrate some cycles and follow "
      "the others on the cycle map's local linear model, under error control (docs/dynamics.md)"},
 };
