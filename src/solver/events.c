@@ -102,5 +102,8 @@ int tt_event_take(tt_sim *S, double th)
     tt_sim_invalidate(S);
     S->events++;
     S->step_h = h; /* keep the step length the controller chose */
+    /* dopri5's rejections follow the contact's onset (tt_touch_factor) until a step is
+     * accepted (radau's error estimate is another, of lower order) */
+    S->touch_first = S->contact_state && S->type == &tt_step_dopri5;
     return TT_OK;
 }

@@ -174,6 +174,7 @@ void tt_sim_reset_free(tt_sim *S)
      * what the sim did before (scan lines give the same images on any thread) */
     if (S->type->reset)
         S->type->reset(S);
+    S->touch_first = 0;
     tt_sim_invalidate(S);
 }
 

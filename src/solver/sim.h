@@ -56,6 +56,7 @@ struct tt_sim {
     double y[NY];
     int contact_state;
     double h;            /* dopri5, radau: next step size */
+    int touch_first;     /* dopri5: the next accepted step is a contact's first */
     int rk4_j;           /* rk4: index of the next grid point in the cycle */
     /* first-same-as-last derivative at (tau, y), valid while fsal_ok */
     double fsal[NY];

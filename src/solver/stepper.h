@@ -43,6 +43,17 @@ extern const tt_step_type tt_step_dopri5, tt_step_rk4, tt_step_radau;
 /* The method dispatch: tt_step_types[solver.method]. */
 extern const tt_step_type *const tt_step_types[3];
 
+/* The step-size factor after a rejected first step of a contact. The contact branch of
+ * an adhesive law starts at its fold, where the force rises like the square root of the
+ * penetration, and the error of a step from there grows only about like h^2 (measured:
+ * h^2.1 on the standard scene) rather than h^5: the usual 0.9 err^(-1/5) took three or
+ * four rejections per contact to find the step, 0.9 err^(-1/2) takes one. */
+static inline double tt_touch_factor(double err)
+{
+    double fac = 0.9 / sqrt(err);
+    return fac < 0.2 ? 0.2 : fac;
+}
+
 /* The step-size control of the adaptive step types (dopri5, radau): a step of the
  * length the controller chose, rejected and retried shorter while its error exceeds 1.
  * Inline, with the caller's own type, so that its step and factor are direct calls. */
@@ -76,6 +87,8 @@ static inline int tt_step_adaptive(tt_sim *S, double T, const tt_step_type *type
     S->last_rejected = err > 1;
     if (err > 1) {
         S->rejected++;
+        if (S->touch_first)
+            fac = tt_touch_factor(err);
         S->h = h * fac;
         if (S->h < hmin)
             return tt_error(TT_ENUM,
@@ -87,6 +100,7 @@ static inline int tt_step_adaptive(tt_sim *S, double T, const tt_step_type *type
     }
     if (!last || fac < 1)
         S->h = h * fac;
+    S->touch_first = 0;
     *outcome = TT_STEP_TRIAL;
     return TT_OK;
 }
