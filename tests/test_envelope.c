@@ -145,6 +145,15 @@ static void low_q_falls_back(void **st)
                   "[surface]\ntype = steps\nstep_height = 1 nm\nstep_width = 300 nm\n");
 }
 
+/* examples/extreme/vacuum-q1e4.ini's quality factor: above Q 3000 every cycle. */
+static void high_q_falls_back(void **st)
+{
+    (void)st;
+    same_as_every("[cantilever]\nquality_factor = 1e4\n[feedback]\nintegral_gain = 30 Hz\n"
+                  "[scan]\nsettle_cycles = 20000\n"
+                  "[surface]\ntype = steps\nstep_height = 0.5 nm\nstep_width = 300 nm\n");
+}
+
 static void noise_falls_back(void **st)
 {
     (void)st;
@@ -185,6 +194,7 @@ int main(void)
         cmocka_unit_test(uniform_sample),
         cmocka_unit_test(height_and_material_edges),
         cmocka_unit_test(bistable),
+        cmocka_unit_test(high_q_falls_back),
         cmocka_unit_test(low_q_falls_back),
         cmocka_unit_test(noise_falls_back),
         cmocka_unit_test(threads_agree),

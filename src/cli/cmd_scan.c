@@ -310,6 +310,14 @@ int cmd_scan(int argc, char **argv)
         rc = erc; /* stopped in the companion: the images are written, the exit says so */
     else if (rc == TT_OK && !quiet && !have_est)
         fprintf(stderr, "tiptap: no error estimate: %s\n", tt_error_message());
+    if (!quiet && params.solver.tier == TT_TIER_ENVELOPE) {
+        long all = tt_scan_cycles(scan), done = tt_scan_cycles_integrated(scan);
+        fprintf(stderr, "cycles_integrated = %ld (%.1f %%; envelope tier%s)\n", done,
+                all > 0 ? 100.0 * (double)done / (double)all : 0.0,
+                all > 0 && done == all ? ": every cycle, since Q is below 30 or above 3000 or "
+                                         "noise is on (docs/dynamics.md)"
+                                       : ": the rest followed on the cycle map's model");
+    }
     if (!quiet) {
         fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f\ninstrument_time_s = %.3f\n"
                         "real_time_factor = %.3f\nenergy_balance = %.3g (largest energy-balance "

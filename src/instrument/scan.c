@@ -223,13 +223,15 @@ static void worker_free(worker *W)
 
 /* Whether a solver setting runs on the envelope tier here: it falls back to every
  * cycle at low Q (the envelope follows the free transient's Q / pi cycles; below Q 30
- * there are too few to skip) and with noise on (the cycles are not smooth in the
- * cycle index). */
+ * there are too few to skip), at very high Q (above 3000 the envelope drifts over
+ * stretches by more than the check of their last cycle sees: at Q 1e4 the images erred
+ * 1.4 times the estimate, tests/test_envelope.c) and with noise on (the cycles are not
+ * smooth in the cycle index). */
 static int envelope_usable(const tt_scan *S, const tt_solver *solver)
 {
     const tt_scan_noise *n = &S->noise;
-    return solver->tier == TT_TIER_ENVELOPE && S->cantilever.Q >= 30 && n->temperature == 0 &&
-           n->detector == 0 && n->z_piezo == 0;
+    return solver->tier == TT_TIER_ENVELOPE && S->cantilever.Q >= 30 && S->cantilever.Q <= 3000 &&
+           n->temperature == 0 && n->detector == 0 && n->z_piezo == 0;
 }
 
 static int envelope_alloc(tt_scan *S, worker *W)
