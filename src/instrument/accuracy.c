@@ -253,6 +253,9 @@ int tt_accuracy_alloc(tt_accuracy **out, const tt_accuracy_subject *subject,
     A->p = *p;
     A->cantilever = subject->cantilever;
     A->solver = subject->solver;
+    /* the ladders are the every-cycle tier's: the envelope tier's error is judged by
+     * tiptap bench and tests/test_envelope.c */
+    A->solver.tier = TT_TIER_EVERY;
     int rc = TT_OK;
     if (!(A->p.repeats >= 1))
         A->p.repeats = 1;
