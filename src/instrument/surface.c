@@ -381,7 +381,7 @@ static int build_png_height(tt_surface *S, const tt_surface_params *p)
         return tt_error(TT_ENOMEM, "out of memory");
     }
     for (size_t k = 0; k < (size_t)S->gw * S->gh; k++)
-        S->grid[k] = range * pix[k] / maxv;
+        S->grid[k] = range * ((double)pix[k] / maxv); /* the brightest pixel is range exactly */
     free(pix);
     return TT_OK;
 }
@@ -405,8 +405,13 @@ static double grid_at(const tt_surface *S, double x, double y)
         j1 = j1 < 0 ? 0 : j1 >= S->gh ? S->gh - 1 : j1;
     }
     const double *g = S->grid;
-    return (1 - fu) * (1 - fv) * g[(size_t)j * S->gw + i] + fu * (1 - fv) * g[(size_t)j * S->gw + i1] +
-           (1 - fu) * fv * g[(size_t)j1 * S->gw + i] + fu * fv * g[(size_t)j1 * S->gw + i1];
+    double a = g[(size_t)j * S->gw + i], b = g[(size_t)j * S->gw + i1];
+    double c = g[(size_t)j1 * S->gw + i], d = g[(size_t)j1 * S->gw + i1];
+    double h = (1 - fu) * (1 - fv) * a + fu * (1 - fv) * b + (1 - fu) * fv * c + fu * fv * d;
+    /* rounding must not lift the surface above its highest pixel (or below its lowest):
+     * a map's brightest grey is its [surface] height exactly (found by fuzz_png) */
+    double lo = fmin(fmin(a, b), fmin(c, d)), hi = fmax(fmax(a, b), fmax(c, d));
+    return h < lo ? lo : h > hi ? hi : h;
 }
 
 double tt_surface_height(const tt_surface *S, double x, double y)
