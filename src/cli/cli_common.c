@@ -151,6 +151,35 @@ tt_scene *cli_options_scene(const cli_spec *spec, cli_args *a, int argc, char **
 
 int cli_progress_enabled(void) { return isatty(STDERR_FILENO); }
 
+void cli_progress_begin(cli_progress *p, const char *cmd, const char *unit, int quiet)
+{
+    p->cmd = cmd;
+    p->unit = unit;
+    p->t0 = p->last = cli_now();
+    p->tty = cli_progress_enabled();
+    p->on = !quiet;
+}
+
+void cli_progress_show(cli_progress *p, long done, long total)
+{
+    if (!p->on || done <= 0)
+        return;
+    double now = cli_now(), el = now - p->t0;
+    double wait = p->tty ? 0.1 : CLI_PROGRESS_LOG_S;
+    if (now - p->last < wait && done != total)
+        return;
+    p->last = now;
+    double left = el / (double)done * (double)(total - done);
+    fprintf(stderr, "%s%s: %ld/%ld %s, %.0f s elapsed, about %.0f s left%s", p->tty ? "\r" : "",
+            p->cmd, done, total, p->unit, el, left, p->tty ? "   " : "\n");
+}
+
+void cli_progress_end(const cli_progress *p)
+{
+    if (p->on && p->tty)
+        fputc('\n', stderr);
+}
+
 static void on_sigint(int sig)
 {
     /* A second Ctrl-C ends the program at once. */

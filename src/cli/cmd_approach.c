@@ -193,8 +193,8 @@ int cmd_approach(int argc, char **argv)
                "contact_fraction,dissipated_aJ,branch,settled,cycles,drive_work_aJ,energy_residual,"
                "deflection_min_nm,deflection_max_nm\n");
     cli_catch_interrupt();
-    int progress = !quiet && cli_progress_enabled();
-    double logged = cli_now(); /* the last plain progress line (not a terminal) */
+    cli_progress prog;
+    cli_progress_begin(&prog, "approach", "points", quiet);
     while (!tt_approach_done(ap)) {
         if (tt_cancel_requested()) {
             rc = tt_error(TT_EINTR, "interrupted: %s keeps the %zu rows finished", out, n);
@@ -204,15 +204,9 @@ int cmd_approach(int argc, char **argv)
             break;
         write_row(f, &pts[n]);
         n++;
-        if (progress)
-            fprintf(stderr, "\rapproach: %zu/%zu points", n, tt_approach_rows(ap));
-        else if (!quiet && cli_now() - logged >= CLI_PROGRESS_LOG_S) {
-            fprintf(stderr, "approach: %zu/%zu points\n", n, tt_approach_rows(ap));
-            logged = cli_now();
-        }
+        cli_progress_show(&prog, (long)n, (long)tt_approach_rows(ap));
     }
-    if (progress)
-        fprintf(stderr, "\n");
+    cli_progress_end(&prog);
     /* Keep what finished, also when interrupted or when the solver failed later on. */
     {
         int crc = tt_outfile_close(of, n > 0);

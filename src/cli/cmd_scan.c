@@ -46,22 +46,9 @@ static void help(void)
            "to the free oscillation's drive work per cycle.\n");
 }
 
-typedef struct {
-    double t0, last; /* start, and the last plain line's time (not a terminal) */
-    int tty;
-} progress_state;
-
 static void show_progress(void *user, long done, long total)
 {
-    progress_state *ps = user;
-    double now = cli_now(), el = now - ps->t0;
-    double left = el / (double)done * (double)(total - done);
-    if (ps->tty)
-        fprintf(stderr, "\rscan: %ld/%ld lines, %.0f s elapsed, about %.0f s left   ", done, total, el, left);
-    else if (now - ps->last >= CLI_PROGRESS_LOG_S || done == total) {
-        fprintf(stderr, "scan: %ld/%ld lines, %.0f s elapsed, about %.0f s left\n", done, total, el, left);
-        ps->last = now;
-    }
+    cli_progress_show(user, done, total);
 }
 
 static double display_scale(int ch, const char **unit, tt_colormap *cmap)
@@ -288,10 +275,10 @@ int cmd_scan(int argc, char **argv)
     if ((rc = tt_outfile_close(of, 1)))
         goto done;
     cli_catch_interrupt();
-    progress_state ps = {t0, t0, cli_progress_enabled()};
-    rc = tt_scan_run(scan, threads, quiet ? NULL : show_progress, &ps);
-    if (!quiet && ps.tty)
-        fprintf(stderr, "\n");
+    cli_progress prog;
+    cli_progress_begin(&prog, "scan", "lines", quiet);
+    rc = tt_scan_run(scan, threads, quiet ? NULL : show_progress, &prog);
+    cli_progress_end(&prog);
     int written = 1; /* scene.ini */
     if (tt_scan_lines_done(scan) > 0) {
         char saved[1024];

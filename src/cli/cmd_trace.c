@@ -150,8 +150,8 @@ int cmd_trace(int argc, char **argv)
                "contact%s%s\n",
             p.ramp ? "," : "", p.ramp ? p.ramp : "");
     cli_catch_interrupt();
-    int progress = !quiet && cli_progress_enabled();
-    double logged = cli_now(); /* the last plain progress line (not a terminal) */
+    cli_progress prog;
+    cli_progress_begin(&prog, "trace", "cycles", quiet);
     while (!tt_trace_done(tr)) {
         if (tt_cancel_requested()) {
             rc = tt_error(TT_EINTR, "interrupted: %s keeps the %ld cycles finished", out, done_cycles);
@@ -170,16 +170,11 @@ int cmd_trace(int argc, char **argv)
         if (rc)
             break;
         done_cycles++;
-        /* a cycle takes a millisecond or less: a line every 64 keeps the terminal calm */
-        if (progress && (done_cycles % 64 == 0 || tt_trace_done(tr)))
-            fprintf(stderr, "\rtrace: %ld/%zu cycles", done_cycles, tt_trace_rows(tr));
-        else if (!quiet && !progress && cli_now() - logged >= CLI_PROGRESS_LOG_S) {
-            fprintf(stderr, "trace: %ld/%zu cycles\n", done_cycles, tt_trace_rows(tr));
-            logged = cli_now();
-        }
+        /* a cycle takes a millisecond or less: the clock is read every 64 */
+        if (done_cycles % 64 == 0 || tt_trace_done(tr))
+            cli_progress_show(&prog, done_cycles, (long)tt_trace_rows(tr));
     }
-    if (progress)
-        fprintf(stderr, "\n");
+    cli_progress_end(&prog);
     /* Keep the cycles finished when interrupted; a run that failed (the solver, a ramp
      * value) keeps no file: a partial CSV would read as complete. */
     {

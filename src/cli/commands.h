@@ -128,6 +128,19 @@ void cli_unlock_folder(const char *dir, int fd);
  * progress line at most every this many seconds instead of a line kept rewritten. */
 #define CLI_PROGRESS_LOG_S 5.0
 
+/* Progress of a run on stderr: "CMD: DONE/TOTAL UNIT, N s elapsed, about M s left",
+ * on a terminal one line kept rewritten (at most ten times a second), otherwise a plain
+ * line every CLI_PROGRESS_LOG_S and at the end; nothing when quiet. */
+typedef struct {
+    const char *cmd, *unit;
+    double t0, last;
+    int tty, on;
+} cli_progress;
+void cli_progress_begin(cli_progress *p, const char *cmd, const char *unit, int quiet);
+void cli_progress_show(cli_progress *p, long done, long total);
+/* Ends the rewritten line on a terminal. */
+void cli_progress_end(const cli_progress *p);
+
 /* The run's parameters as key/value metadata for the files it writes (cli_meta.c):
  * first the given pairs, then every key of the effective scene but its approach and
  * trace sections, as "section.key" (or "material.NAME.key", as --set spells it) = the
