@@ -22,23 +22,6 @@ static const char *base =
     "channels = height, amplitude, phase, peak_force\n"
     "[feedback]\nsetpoint = 80 %\nintegral_gain = 3000 Hz\n";
 
-/* Largest and rms difference of channel c between two scans, trace and retrace. */
-static void diff(const tt_scan *a, const tt_scan *b, int c, double *max, double *rms)
-{
-    long n = tt_scan_xres(a) * tt_scan_yres(a);
-    double m = 0, s = 0;
-    for (int r = 0; r < 2; r++) {
-        const double *x = tt_scan_image(a, c, r), *y = tt_scan_image(b, c, r);
-        for (long i = 0; i < n; i++) {
-            double d = fabs(x[i] - y[i]);
-            m = d > m ? d : m;
-            s += d * d;
-        }
-    }
-    *max = m;
-    *rms = sqrt(s / (double)(2 * n));
-}
-
 static tt_scan *scan_with(const char *b, const char *extra, const char *solver, tt_scene **sc)
 {
     char text[2048];
@@ -68,8 +51,8 @@ static void agrees(const char *b, const char *extra, double skipped_at_least)
     const char *name[3] = {"height (m)", "amplitude (m)", "phase (deg)"};
     for (int c = 0; c < 3; c++) {
         double dm, dr, rm, rr;
-        diff(env, every, c, &dm, &dr);
-        diff(every, ref, c, &rm, &rr);
+        tt_scan_diff(env, every, c, &dm, &dr);
+        tt_scan_diff(every, ref, c, &rm, &rr);
         print_message("%-14s envelope - every: max %.3g rms %.3g; estimate max %.3g rms %.3g; "
                       "every - reference: max %.3g rms %.3g\n",
                       name[c], dm, dr, est[c][0], est[c][1], rm, rr);

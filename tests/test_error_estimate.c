@@ -20,23 +20,6 @@ static const char *base =
     "channels = height, amplitude, phase\n"
     "[feedback]\nsetpoint = 80 %\nintegral_gain = 3000 Hz\n";
 
-/* Largest and rms difference of channel c between two scans, trace and retrace. */
-static void diff(const tt_scan *a, const tt_scan *b, int c, double *max, double *rms)
-{
-    long n = tt_scan_xres(a) * tt_scan_yres(a);
-    double m = 0, s = 0;
-    for (int r = 0; r < 2; r++) {
-        const double *x = tt_scan_image(a, c, r), *y = tt_scan_image(b, c, r);
-        for (long i = 0; i < n; i++) {
-            double d = fabs(x[i] - y[i]);
-            m = d > m ? d : m;
-            s += d * d;
-        }
-    }
-    *max = m;
-    *rms = sqrt(s / (double)(2 * n));
-}
-
 /* The estimate lies between the measured error and ten times it. */
 static void check(const char *what, double est, double meas)
 {
@@ -55,9 +38,9 @@ static void estimate_brackets_error(const char *extra)
     tt_scan_error e;
     assert_int_equal(tt_scan_estimate_error(run, &e), TT_OK);
     double hm, hr, am, ar, pm, pr;
-    diff(run, ref, 0, &hm, &hr);
-    diff(run, ref, 1, &am, &ar);
-    diff(run, ref, 2, &pm, &pr);
+    tt_scan_diff(run, ref, 0, &hm, &hr);
+    tt_scan_diff(run, ref, 1, &am, &ar);
+    tt_scan_diff(run, ref, 2, &pm, &pr);
     check("height rms (m)", e.height_rms, hr);
     check("height max (m)", e.height_max, hm);
     check("phase rms (deg)", e.phase_rms, pr);

@@ -2,6 +2,9 @@
 #ifndef TT_SCAN_TEST_H
 #define TT_SCAN_TEST_H
 
+#include <math.h>
+#include <string.h>
+
 #include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 #include "tiptap/instrument/scan.h"
@@ -20,6 +23,23 @@ static inline tt_scan *tt_run_scan(const char *base, const char *extra, tt_scene
     if (tt_scan_run(s, 2, NULL, NULL) != TT_OK)
         fail_msg("%s", tt_error_message());
     return s;
+}
+
+/* Largest and rms difference of channel c between two scans, trace and retrace. */
+static inline void tt_scan_diff(const tt_scan *a, const tt_scan *b, int c, double *max, double *rms)
+{
+    long n = tt_scan_xres(a) * tt_scan_yres(a);
+    double m = 0, s = 0;
+    for (int r = 0; r < 2; r++) {
+        const double *x = tt_scan_image(a, c, r), *y = tt_scan_image(b, c, r);
+        for (long i = 0; i < n; i++) {
+            double d = fabs(x[i] - y[i]);
+            m = d > m ? d : m;
+            s += d * d;
+        }
+    }
+    *max = m;
+    *rms = sqrt(s / (double)(2 * n));
 }
 
 /* The scene base plus text must be refused, by the loader or by tt_scan_alloc, with a
