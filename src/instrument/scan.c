@@ -297,6 +297,59 @@ double tt_scan_sample_at(const tt_scan *S, double *x, double *y, double t, doubl
 }
 
 
+void tt_scan_engage(tt_scan *S, worker *W, long line, long nc, scan_carry *e)
+{
+    const tt_raster *R = &S->raster;
+    double x, y, h0, topo;
+    tt_raster_position(R, line, 0, nc, 0, &x, &y);
+    if (S->plain)
+        h0 = tt_surface_height(S->surface, x, y);
+    else
+        h0 = tt_scan_sample_at(S, &x, &y, tt_scan_clock_at(S, line, 0, nc, 0), &topo);
+    e->current = S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
+    tt_sim_set_contact(W->sim, S->contacts[e->current], S->Qi[e->current]);
+    e->fb = W->fb;
+    e->z_from = W->z_from;
+    e->z_to = W->z_to;
+    e->pz = W->pz;
+    e->z_act = W->z_act;
+    if (S->continuous && W->engaged)
+        return;
+    /* heights are reported against the surface's own zero, the piezo's range centred
+     * on it; creep follows the whole line */
+    tt_feedback_init(&e->fb, S->setpoint, S->kp, S->ki, -0.5 * S->z_range, 0.5 * S->z_range, h0);
+    e->z_from = e->z_to = e->z_act = e->fb.z;
+    tt_piezo_init(&e->pz, &S->inst.piezo, e->fb.z,
+                  (double)S->settle_cycles * S->cantilever.T + 1 / R->line_rate);
+    tt_sim_reset_free(W->sim);
+    tt_lockin_reset(W->lockin, S->cantilever.A0, S->cantilever.phi0);
+}
+
+void tt_scan_line_done(const tt_scan *S, worker *W, long line, const scan_carry *e,
+                       const pixel_acc *pix, const line_out *out)
+{
+    const tt_raster *R = &S->raster;
+    W->engaged = 1;
+    W->fb = e->fb;
+    W->z_from = e->z_from;
+    W->z_to = e->z_to;
+    W->pz = e->pz;
+    W->z_act = e->z_act;
+    for (int dir = 0; dir < (R->retrace ? 2 : 1); dir++)
+        for (long px = 0; px < R->pixels; px++) {
+            const pixel_acc *a = &pix[(size_t)dir * (size_t)R->pixels + (size_t)px];
+            for (int ch = 0; ch < TT_CH_COUNT; ch++) {
+                /* lock-in channels come once per lock-in block, the rest per cycle */
+                long cnt = tt_scan_channel_harmonic(ch) ? a->nblk : a->n;
+                double v = cnt ? a->sum[ch] / (double)cnt : NAN;
+                if (ch >= TT_CH_HARMONIC_PHASE_INDEX && cnt)
+                    v = lag(a->sum[ch], a->quad[ch - TT_CH_HARMONIC_PHASE_INDEX]) * 180 / M_PI;
+                if (out->img[dir][ch])
+                    out->img[dir][ch][out->packed ? px : tt_raster_index(R, line, px)] = v;
+            }
+        }
+}
+
 /* Scan one line: engage at its first pixel, then trace and retrace. */
 static int scan_line(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
                      double *worst, int *clamped)
@@ -307,41 +360,22 @@ static int scan_line(tt_scan *S, worker *W, long line, const line_out *out, long
     const double T = c->T;
     const int P = S->lockin.periods_per_block, N = S->lockin.samples_per_period;
     const long nc = tt_raster_cycles_per_direction(R, T);
-    const double h_ref = 0; /* heights are reported against the surface's own zero */
     int rc = TT_OK;
 
-    double x, y, h0, topo;
-    tt_raster_position(R, line, 0, nc, 0, &x, &y);
-    if (S->plain)
-        h0 = tt_surface_height(S->surface, x, y);
-    else
-        h0 = tt_scan_sample_at(S, &x, &y, tt_scan_clock_at(S, line, 0, nc, 0), &topo);
-    size_t mat = S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
-    tt_sim_set_contact(sim, S->contacts[mat], S->Qi[mat]);
-    size_t current = mat;
-
+    double topo;
     /* Engage: the rest separation of a free tip whose amplitude the surface limits to
      * the setpoint is about the setpoint; the feedback then settles the rest. Continuous
      * lines engage once and carry on from where the last retrace ended. */
     const double s_ref = S->setpoint;
-    const int carry = S->continuous && W->engaged;
-    tt_feedback fb = W->fb;
-    double z_from = W->z_from, z_to = W->z_to;
-    /* the piezo rests at the engage height; creep follows the whole line (continuous
-     * lines: the scan) */
-    tt_piezo pz = W->pz;
+    const int carry = S->continuous && W->engaged; /* no settling then */
+    scan_carry e;
+    tt_scan_engage(S, W, line, nc, &e);
+    size_t current = e.current;
+    tt_feedback fb = e.fb;
+    double z_from = e.z_from, z_to = e.z_to;
+    tt_piezo pz = e.pz;
     int piezo = !tt_piezo_ideal(&S->inst.piezo);
-    double z_act = W->z_act;
-    if (!carry) {
-        tt_feedback_init(&fb, S->setpoint, S->kp, S->ki, h_ref - 0.5 * S->z_range,
-                         h_ref + 0.5 * S->z_range, h0);
-        z_from = z_to = fb.z;
-        tt_piezo_init(&pz, &S->inst.piezo, fb.z,
-                      (double)S->settle_cycles * T + 1 / R->line_rate);
-        z_act = fb.z;
-        tt_sim_reset_free(sim);
-        tt_lockin_reset(W->lockin, c->A0, c->phi0);
-    }
+    double z_act = e.z_act;
     tt_sim_set_sampling(sim, N, W->samples);
     tt_sim_track_peaks(sim, (S->channels & (TT_CH_PEAK_FORCE | TT_CH_INDENTATION)) != 0);
     /* the noise of this line: keyed by (seed, line), counted in cycles from its start */
@@ -468,25 +502,12 @@ static int scan_line(tt_scan *S, worker *W, long line, const line_out *out, long
         }
     }
     if (rc == TT_OK) {
-        W->engaged = 1;
-        W->fb = fb;
-        W->z_from = z_from;
-        W->z_to = z_to;
-        W->pz = pz;
-        W->z_act = z_act;
-        for (int dir = 0; dir < (R->retrace ? 2 : 1); dir++)
-            for (long px = 0; px < R->pixels; px++) {
-                pixel_acc *a = &pix[(size_t)dir * (size_t)R->pixels + (size_t)px];
-                for (int ch = 0; ch < TT_CH_COUNT; ch++) {
-                    /* lock-in channels come once per lock-in block, the rest per cycle */
-                    long cnt = tt_scan_channel_harmonic(ch) ? a->nblk : a->n;
-                    double v = cnt ? a->sum[ch] / (double)cnt : NAN;
-                    if (ch >= TT_CH_HARMONIC_PHASE_INDEX && cnt)
-                        v = lag(a->sum[ch], a->quad[ch - TT_CH_HARMONIC_PHASE_INDEX]) * 180 / M_PI;
-                    if (out->img[dir][ch])
-                        out->img[dir][ch][out->packed ? px : tt_raster_index(R, line, px)] = v;
-                }
-            }
+        e.fb = fb;
+        e.z_from = z_from;
+        e.z_to = z_to;
+        e.pz = pz;
+        e.z_act = z_act;
+        tt_scan_line_done(S, W, line, &e, pix, out);
     }
     free(pix);
     return rc;

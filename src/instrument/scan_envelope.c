@@ -415,57 +415,20 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c, long *int
     return TT_OK;
 }
 
-/* Engage as scan.c's scan_line does: the feedback at the first pixel's height, the
- * lock-in on the free oscillation (continuous lines carry both on). */
-static void engage(tt_scan *S, worker *W, long line, long nc, line_state *st, int carry)
+/* Engage as scan.c's scan_line does (tt_scan_engage); the tip's state is the model's
+ * first input. */
+static void engage(tt_scan *S, worker *W, long line, long nc, line_state *st)
 {
-    const tt_raster *R = &S->raster;
-    const double T = S->cantilever.T;
-    double x, y, h0, topo;
-    tt_raster_position(R, line, 0, nc, 0, &x, &y);
-    if (S->plain)
-        h0 = tt_surface_height(S->surface, x, y);
-    else
-        h0 = tt_scan_sample_at(S, &x, &y, tt_scan_clock_at(S, line, 0, nc, 0), &topo);
-    st->current = material_at(S, x, y);
-    tt_sim_set_contact(W->sim, S->contacts[st->current], S->Qi[st->current]);
-    st->fb = W->fb;
-    st->z_from = W->z_from;
-    st->z_to = W->z_to;
-    st->pz = W->pz;
-    st->z_act = W->z_act;
-    if (!carry) {
-        tt_feedback_init(&st->fb, S->setpoint, S->kp, S->ki, -0.5 * S->z_range,
-                         0.5 * S->z_range, h0);
-        st->z_from = st->z_to = st->fb.z;
-        tt_piezo_init(&st->pz, &S->inst.piezo, st->fb.z,
-                      (double)S->settle_cycles * T + 1 / R->line_rate);
-        st->z_act = st->fb.z;
-        tt_sim_reset_free(W->sim);
-        tt_lockin_reset(W->lockin, S->cantilever.A0, S->cantilever.phi0);
-    }
+    scan_carry e;
+    tt_scan_engage(S, W, line, nc, &e);
+    st->current = e.current;
+    st->fb = e.fb;
+    st->z_from = e.z_from;
+    st->z_to = e.z_to;
+    st->pz = e.pz;
+    st->z_act = e.z_act;
     int contact;
     tt_sim_get_state(W->sim, &st->x[0], &st->x[1], &contact);
-}
-
-/* The pixels' values from their sums, into the line's images. */
-static void write_pixels(const tt_scan *S, long line, const pixel_acc *pix, const line_out *out)
-{
-    const tt_raster *R = &S->raster;
-    for (int dir = 0; dir < (R->retrace ? 2 : 1); dir++)
-        for (long px = 0; px < R->pixels; px++) {
-            const pixel_acc *a = &pix[(size_t)dir * (size_t)R->pixels + (size_t)px];
-            for (int ch = 0; ch < TT_CH_COUNT; ch++) {
-                long cnt = tt_scan_channel_harmonic(ch) ? a->nblk : a->n;
-                double v = cnt ? a->sum[ch] / (double)cnt : NAN;
-                if (ch >= TT_CH_HARMONIC_PHASE_INDEX && cnt) {
-                    double ph = atan2(a->quad[ch - TT_CH_HARMONIC_PHASE_INDEX], a->sum[ch]);
-                    v = (ph < -M_PI / 2 ? ph + 2 * M_PI : ph) * 180 / M_PI;
-                }
-                if (out->img[dir][ch])
-                    out->img[dir][ch][out->packed ? px : tt_raster_index(R, line, px)] = v;
-            }
-        }
 }
 
 int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
@@ -485,8 +448,8 @@ int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out,
     L.tol = 10 * S->solver.tolerance;
     L.edge = 1e-3 * S->A0;
     line_state st = {0};
-    const int carry = S->continuous && W->engaged;
-    engage(S, W, line, L.nc, &st, carry);
+    const int carry = S->continuous && W->engaged; /* no settling then */
+    engage(S, W, line, L.nc, &st);
     tt_sim_set_sampling(W->sim, L.N, W->samples);
     tt_sim_track_peaks(W->sim, (S->channels & (TT_CH_PEAK_FORCE | TT_CH_INDENTATION)) != 0);
     controller c = {.m = M_MIN, .wait = WAIT_MIN};
@@ -508,13 +471,8 @@ int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out,
         *worst = st.worst;
     *clamped |= st.clamped;
     if (rc == TT_OK) {
-        W->engaged = 1;
-        W->fb = st.fb;
-        W->z_from = st.z_from;
-        W->z_to = st.z_to;
-        W->pz = st.pz;
-        W->z_act = st.z_act;
-        write_pixels(S, line, L.pix, out);
+        scan_carry e = {st.fb, st.z_from, st.z_to, st.z_act, st.pz, st.current};
+        tt_scan_line_done(S, W, line, &e, L.pix, out);
     }
     free(L.pix);
     free(c.sn.pix);

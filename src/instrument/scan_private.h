@@ -83,6 +83,24 @@ typedef struct {
 double tt_scan_clock_at(const tt_scan *S, long line, int phase, long nc, long k);
 double tt_scan_sample_at(const tt_scan *S, double *x, double *y, double t, double *topo);
 
+/* What a line starts from and leaves to the next (continuous lines): the feedback, the
+ * z piezo's command ramp and actual height, and the material set on the sim. */
+typedef struct {
+    tt_feedback fb;
+    double z_from, z_to, z_act;
+    tt_piezo pz;
+    size_t current;
+} scan_carry;
+
+/* Engage at the line's first pixel (scan.c): the material there on the sim, and, unless
+ * continuous lines carry on from the last retrace, the feedback at that pixel's height,
+ * the piezo at rest there, the tip and the lock-in on the free oscillation. */
+void tt_scan_engage(tt_scan *S, worker *W, long line, long nc, scan_carry *e);
+/* A line finished: its state kept for the next (continuous lines), its pixels' means
+ * into the images. */
+void tt_scan_line_done(const tt_scan *S, worker *W, long line, const scan_carry *e,
+                       const pixel_acc *pix, const line_out *out);
+
 /* One line on the envelope tier (scan_envelope.c); the arguments as scan.c's
  * scan_line. */
 int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
