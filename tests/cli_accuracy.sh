@@ -22,12 +22,12 @@ interaction_quality_factor = 2
 INI
 "$tiptap" accuracy "$tmp/tap.ini" --methods dopri5 --repeats 1 -o "$tmp/a.csv" --plot "$tmp/a.png" \
   >"$tmp/out.txt" 2>"$tmp/err.txt" || bad "accuracy ran: $(cat "$tmp/err.txt")"
-head -1 "$tmp/a.csv" | grep -qx "method,knob,value,run_time_s,cpu_time_s,steps_per_cycle,amplitude_err_rel,phase_err_deg,mean_err_m,peak_force_err_rel,dissipation_err_rel,residual_rel,role,is_default,status" \
+head -1 "$tmp/a.csv" | grep -qx "method,tier,knob,value,run_time_s,cpu_time_s,steps_per_cycle,integrated,amplitude_err_rel,phase_err_deg,mean_err_m,peak_force_err_rel,dissipation_err_rel,residual_rel,role,is_default,status" \
   && ok "CSV header" || bad "CSV header: $(head -1 "$tmp/a.csv")"
 # reference, floor, 15 tolerances with the default among them
 [ "$(wc -l <"$tmp/a.csv")" -eq 18 ] && ok "CSV rows" || bad "CSV rows $(wc -l <"$tmp/a.csv")"
-grep -q "^dopri5,tolerance,1e-08,.*,setting,1,ok$" "$tmp/a.csv" && ok "default row marked" || bad "default row"
-grep -q "^dopri5,tolerance,1e-12,.*,floor,0,ok$" "$tmp/a.csv" && ok "floor row" || bad "floor row"
+grep -q "^dopri5,every,tolerance,1e-08,.*,setting,1,ok$" "$tmp/a.csv" && ok "default row marked" || bad "default row"
+grep -q "^dopri5,every,tolerance,1e-12,.*,floor,0,ok$" "$tmp/a.csv" && ok "floor row" || bad "floor row"
 [ "$(head -c 8 "$tmp/a.png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] && ok "PNG written" || bad "PNG"
 grep -q "(default)" "$tmp/out.txt" && ok "table on stdout" || bad "table: $(cat "$tmp/out.txt")"
 grep -q "^cheapest dopri5 with relative amplitude error <= 0.0001: dopri5 tolerance" "$tmp/err.txt" && ok "cheapest setting" || bad "cheapest: $(cat "$tmp/err.txt")"
@@ -38,7 +38,8 @@ tail -2 "$tmp/summary.txt" | head -1 | grep -q "^run_time_s = " && tail -1 "$tmp
   && ok "ends with run time and error estimate" || bad "summary end: $(tail -2 "$tmp/summary.txt")"
 ls "$tmp" | grep -q "\.tmp\." && bad "temporary files left" || ok "no temporary files"
 
-# a scan scene is judged by a short line: height columns
+# a scan scene is judged by a short line: height and phase columns, and the envelope
+# tier (the scan's default) has its own ladder
 cat >"$tmp/scan.ini" <<'INI'
 [scan]
 size = 1 um
@@ -48,8 +49,20 @@ settle_cycles = 300
 INI
 "$tiptap" accuracy "$tmp/tap.ini" "$tmp/scan.ini" --methods rk4 --pixels 3 --repeats 1 -q -o "$tmp/l.csv" \
   || bad "line ran"
-head -1 "$tmp/l.csv" | grep -qx "method,knob,value,run_time_s,cpu_time_s,steps_per_cycle,height_err_max_m,height_err_rms_m,residual_rel,role,is_default,status" \
+head -1 "$tmp/l.csv" | grep -qx "method,tier,knob,value,run_time_s,cpu_time_s,steps_per_cycle,integrated,height_err_max_m,height_err_rms_m,phase_err_max_deg,phase_err_rms_deg,residual_rel,role,is_default,status" \
   && ok "line CSV header" || bad "line CSV header: $(head -1 "$tmp/l.csv")"
+# the default (envelope tier, dopri5 1e-8) is judged even when its ladder is left out
+grep -q "^dopri5,envelope,tolerance,1e-08,.*,setting,1,ok$" "$tmp/l.csv" && ok "line default on the envelope tier" \
+  || bad "line default: $(cat "$tmp/l.csv")"
+"$tiptap" accuracy "$tmp/tap.ini" "$tmp/scan.ini" --methods envelope --pixels 3 --repeats 1 -o "$tmp/e.csv" \
+  >"$tmp/eout.txt" 2>"$tmp/eerr.txt" || bad "envelope ladder ran: $(cat "$tmp/eerr.txt")"
+[ "$(grep -c "^dopri5,envelope,tolerance,.*,setting,[01],ok$" "$tmp/e.csv")" -eq 15 ] && ok "envelope ladder rows" \
+  || bad "envelope rows: $(cat "$tmp/e.csv")"
+grep -q "^envelope (dopri5) tolerance 1e-08 (default)" "$tmp/eout.txt" && ok "envelope rows named" \
+  || bad "envelope table: $(cat "$tmp/eout.txt")"
+grep -q "^cheapest envelope with largest height error / free amplitude <= 0.0001: .*of the cycles integrated)$" \
+  "$tmp/eerr.txt" && ok "envelope summary" || bad "envelope summary: $(cat "$tmp/eerr.txt")"
+expect_error "envelope on a point" "judged on scan lines" "$tiptap" accuracy "$tmp/tap.ini" --methods envelope
 
 cat >"$tmp/typo.ini" <<'INI'
 [solver]

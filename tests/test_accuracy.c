@@ -46,13 +46,13 @@ static tt_accuracy *study(const char *text, const tt_accuracy_ladder *lad, size_
     return a;
 }
 
-/* Rows of one method in ladder order. */
-static size_t rows_of(const tt_accuracy *a, tt_method m, const tt_accuracy_row **out)
+/* Rows of one ladder ("dopri5", "envelope") in ladder order. */
+static size_t rows_of(const tt_accuracy *a, const char *name, const tt_accuracy_row **out)
 {
     size_t n = 0;
     for (size_t i = 0; i < tt_accuracy_rows(a); i++) {
         const tt_accuracy_row *r = tt_accuracy_row_at(a, i);
-        if (r->role == TT_ACCURACY_SETTING && r->method == m)
+        if (r->role == TT_ACCURACY_SETTING && strcmp(r->name, name) == 0)
             out[n++] = r;
     }
     return n;
@@ -61,8 +61,8 @@ static size_t rows_of(const tt_accuracy *a, tt_method m, const tt_accuracy_row *
 static void tapping_errors_shrink_and_default_meets_1e4(void **st)
 {
     (void)st;
-    const tt_accuracy_ladder lad[] = {{TT_METHOD_DOPRI5, "tolerance", tols, 3},
-                                      {TT_METHOD_RK4, "steps_per_cycle", steps, 5}};
+    const tt_accuracy_ladder lad[] = {{TT_METHOD_DOPRI5, "tolerance", tols, 3, TT_TIER_EVERY, NULL},
+                                      {TT_METHOD_RK4, "steps_per_cycle", steps, 5, TT_TIER_EVERY, NULL}};
     tt_accuracy *a = study(tapping, lad, 2, TT_ACCURACY_AUTO);
     assert_int_equal(tt_accuracy_kind_of(a), TT_ACCURACY_POINT);
     assert_close(tt_accuracy_point(a), 16e-9, 1e-18); /* 0.8 of the free amplitude */
@@ -73,7 +73,7 @@ static void tapping_errors_shrink_and_default_meets_1e4(void **st)
 
     const tt_accuracy_row *d[8], *k[8];
     /* the default (1e-8) is not on this ladder: it is put between 1e-7 and 1e-9 */
-    assert_int_equal(rows_of(a, TT_METHOD_DOPRI5, d), 4);
+    assert_int_equal(rows_of(a, "dopri5", d), 4);
     assert_true(d[2]->is_default);
     assert_close(d[2]->value, 1e-8, 0);
     assert_ptr_equal(tt_accuracy_default_row(a), d[2]);
@@ -90,7 +90,7 @@ static void tapping_errors_shrink_and_default_meets_1e4(void **st)
     /* RK4 on the physical force law: the errors fall by a factor of hundreds over four
      * doublings, an observed order near 2, below the method's 4 because the solution
      * has kinks at the contact events (docs/dynamics.md, docs/accuracy.md) */
-    assert_int_equal(rows_of(a, TT_METHOD_RK4, k), 5);
+    assert_int_equal(rows_of(a, "rk4", k), 5);
     for (int o = 0; o < 5; o += 1) {
         double p = log2(k[0]->err[o] / k[4]->err[o]) / 4;
         print_message("rk4 on the tapping point, 64 to 1024 steps: observable %d order %.2f\n", o, p);
@@ -111,11 +111,11 @@ static void tapping_errors_shrink_and_default_meets_1e4(void **st)
 
     /* the default meets 1e-4 in amplitude, and so does the setting recommended for it */
     assert_true(d[2]->primary < 1e-4);
-    const tt_accuracy_row *c = tt_accuracy_cheapest(a, TT_METHOD_DOPRI5, 1e-4);
+    const tt_accuracy_row *c = tt_accuracy_cheapest(a, "dopri5", 1e-4);
     assert_non_null(c);
     assert_true(c->primary <= 1e-4);
     assert_true(c->value >= 1e-8); /* no tighter than the default */
-    assert_null(tt_accuracy_cheapest(a, TT_METHOD_DOPRI5, 1e-30));
+    assert_null(tt_accuracy_cheapest(a, "dopri5", 1e-30));
     tt_accuracy_free(a);
 }
 
@@ -125,14 +125,14 @@ static void rk4_order_four_on_a_free_cantilever(void **st)
 {
     (void)st;
     static const double s[] = {32, 64, 128, 256};
-    const tt_accuracy_ladder lad[] = {{TT_METHOD_RK4, "steps_per_cycle", s, 4}};
+    const tt_accuracy_ladder lad[] = {{TT_METHOD_RK4, "steps_per_cycle", s, 4, TT_TIER_EVERY, NULL}};
     char text[1024];
     snprintf(text, sizeof text, "%s[approach]\nfrom = 40 nm\nto = 40 nm\npoints = 1\n", tapping);
     tt_accuracy *a = study(text, lad, 1, TT_ACCURACY_AUTO);
     assert_close(tt_accuracy_point(a), 40e-9, 0); /* the scene's single [approach] point */
     assert_true(tt_accuracy_reference_cycle(a)->contact_fraction == 0);
     const tt_accuracy_row *k[5];
-    assert_int_equal(rows_of(a, TT_METHOD_RK4, k), 4);
+    assert_int_equal(rows_of(a, "rk4", k), 4);
     for (int i = 0; i + 1 < 4; i++) {
         double p = log2(k[i]->err[1] / k[i + 1]->err[1]);
         print_message("rk4 free, %g to %g steps: phase order %.2f, amplitude error %.2e to %.2e\n",
@@ -143,17 +143,21 @@ static void rk4_order_four_on_a_free_cantilever(void **st)
     tt_accuracy_free(a);
 }
 
-/* A scan line: the height profile of a short segment, trace and retrace. */
-static void scan_line_height_errors(void **st)
+/* A scan line: the height and phase profiles of a short segment, trace and retrace, on
+ * both tiers against the every-cycle reference. The envelope tier's check cycles hold
+ * its error to ten times the tolerance (docs/dynamics.md), so at each tolerance its
+ * height error stays within ten times the every-cycle tier's, or the floor. */
+static void scan_line_errors_on_both_tiers(void **st)
 {
     (void)st;
     char text[2048];
     snprintf(text, sizeof text,
-             "%s[scan]\nsize = 1 um\npixels = 64\nline_rate = 50 Hz\nsettle_cycles = 300\n"
+             "%s[scan]\nsize = 1 um\npixels = 64\nline_rate = 5 Hz\nsettle_cycles = 300\n"
              "[feedback]\nsetpoint = 80 %%\nintegral_gain = 3000 Hz\n"
              "[surface]\ntype = steps\n",
              tapping);
-    const tt_accuracy_ladder lad[] = {{TT_METHOD_DOPRI5, "tolerance", tols, 3}};
+    const tt_accuracy_ladder lad[] = {{TT_METHOD_DOPRI5, "tolerance", tols, 3, TT_TIER_EVERY, NULL},
+                                      {TT_METHOD_DOPRI5, "tolerance", tols, 3, TT_TIER_ENVELOPE, "envelope"}};
     tt_scene *sc = tt_scene_alloc();
     assert_int_equal(tt_scene_load_string(sc, text, "scan scene"), TT_OK);
     tt_accuracy_params p;
@@ -161,15 +165,16 @@ static void scan_line_height_errors(void **st)
     p.repeats = 1;
     p.line_pixels = 4;
     p.ladders = lad;
-    p.nladders = 1;
+    p.nladders = 2;
     tt_accuracy *a;
     if (tt_config_accuracy_alloc(&a, sc, &p) != TT_OK)
         fail_msg("%s", tt_error_message());
     tt_scene_free(sc);
     assert_int_equal(tt_accuracy_kind_of(a), TT_ACCURACY_LINE);
     const tt_accuracy_observable *obs;
-    assert_int_equal(tt_accuracy_observables(a, &obs), 2);
+    assert_int_equal(tt_accuracy_observables(a, &obs), 4);
     assert_string_equal(obs[0].column, "height_err_max_m");
+    assert_string_equal(obs[3].column, "phase_err_rms_deg");
     while (!tt_accuracy_done(a)) {
         const tt_accuracy_row *r;
         if (tt_accuracy_iterate(a, &r) != TT_OK || r->status != TT_OK)
@@ -177,19 +182,41 @@ static void scan_line_height_errors(void **st)
     }
     size_t n;
     const double *h = tt_accuracy_reference_profile(a, &n);
-    assert_int_equal(n, 8); /* four pixels, trace and retrace */
+    assert_int_equal(n, 16); /* four pixels, trace and retrace, height and phase */
     for (size_t i = 0; i < n; i++)
         assert_true(isfinite(h[i]));
-    const tt_accuracy_row *d[8], *fl = tt_accuracy_row_at(a, 1);
-    assert_int_equal(rows_of(a, TT_METHOD_DOPRI5, d), 4);
+    const tt_accuracy_row *d[8], *e[8], *fl = tt_accuracy_row_at(a, 1);
+    assert_int_equal(rows_of(a, "dopri5", d), 3);
+    /* the scan's default, the envelope tier at 1e-8, joins its ladder between 1e-7 and 1e-9 */
+    assert_int_equal(rows_of(a, "envelope", e), 4);
+    assert_ptr_equal(tt_accuracy_default_row(a), e[2]);
+    assert_close(e[2]->value, 1e-8, 0);
+    for (int i = 0; i < 3; i++)
+        print_message("line dopri5 %g: height max %.2e rms %.2e m, phase max %.2e deg\n", d[i]->value,
+                      d[i]->err[0], d[i]->err[1], d[i]->err[2]);
     for (int i = 0; i < 4; i++)
-        print_message("line dopri5 %g: height max %.2e rms %.2e m\n", d[i]->value, d[i]->err[0],
-                      d[i]->err[1]);
-    print_message("line floor: %.2e m\n", fl->err[0]);
-    assert_true(d[3]->err[0] < 0.1 * d[0]->err[0]);
-    assert_true(d[3]->err[1] <= d[3]->err[0]); /* RMS within the largest */
-    assert_true(fl->err[0] < 0.1 * d[3]->err[0]);
+        print_message("line envelope %g: height max %.2e rms %.2e m, phase max %.2e deg, %.3f of "
+                      "the cycles integrated\n",
+                      e[i]->value, e[i]->err[0], e[i]->err[1], e[i]->err[2], e[i]->integrated);
+    print_message("line floor: %.2e m, %.2e deg\n", fl->err[0], fl->err[2]);
+    assert_true(d[2]->err[0] < 0.1 * d[0]->err[0]);
+    assert_true(d[2]->err[1] <= d[2]->err[0]); /* RMS within the largest */
+    assert_true(d[2]->err[3] <= d[2]->err[2]);
+    assert_true(fl->err[0] < 0.1 * d[2]->err[0]);
+    assert_true(fl->err[2] < 0.1 * d[2]->err[2]);
     assert_close(d[0]->primary, d[0]->err[0] / 20e-9, 1e-20);
+    for (int i = 0; i < 3; i++)
+        assert_true(d[i]->tier == TT_TIER_EVERY && d[i]->integrated == 1);
+    /* the envelope tier skips cycles, and its errors stay within ten times the every-cycle
+     * tier's at the same tolerance */
+    const tt_accuracy_row *same[4] = {d[0], d[1], e[2], d[2]};
+    for (int i = 0; i < 4; i++) {
+        assert_true(e[i]->tier == TT_TIER_ENVELOPE);
+        assert_true(e[i]->integrated < 0.9);
+        if (same[i] != e[2])
+            assert_true(e[i]->err[0] <= 10 * same[i]->err[0] + 10 * fl->err[0]);
+    }
+    assert_true(e[3]->err[0] < 0.1 * e[0]->err[0]);
     tt_accuracy_free(a);
 }
 
@@ -204,7 +231,7 @@ static void table_and_parameters(void **st)
     for (size_t i = 0; i < n; i++) {
         assert_true(t[i].nvalues >= 5);
         for (size_t j = i + 1; j < n; j++)
-            assert_true(t[i].method != t[j].method);
+            assert_string_not_equal(tt_accuracy_ladder_name(&t[i]), tt_accuracy_ladder_name(&t[j]));
         /* loosest first: tolerances fall, step counts rise */
         int up = strcmp(t[i].knob, "steps_per_cycle") == 0;
         for (size_t j = 1; j < t[i].nvalues; j++)
@@ -225,7 +252,7 @@ static void table_and_parameters(void **st)
     /* the scene's rk4 at 500 steps joins the built-in rk4 ladder between 256 and 512 */
     const tt_accuracy_row *def = tt_accuracy_default_row(a), *k[16];
     assert_non_null(def);
-    size_t m = rows_of(a, TT_METHOD_RK4, k);
+    size_t m = rows_of(a, "rk4", k);
     for (size_t i = 0; i < m; i++)
         if (k[i] == def) {
             assert_true(i > 0 && i + 1 < m);
@@ -251,7 +278,7 @@ int main(void)
         cmocka_unit_test(table_and_parameters),
         cmocka_unit_test(rk4_order_four_on_a_free_cantilever),
         cmocka_unit_test(tapping_errors_shrink_and_default_meets_1e4),
-        cmocka_unit_test(scan_line_height_errors),
+        cmocka_unit_test(scan_line_errors_on_both_tiers),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

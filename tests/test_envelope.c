@@ -121,10 +121,14 @@ static void same_as_every(const char *extra)
     tt_scene_free(s2);
 }
 
+/* examples/extreme's Q 10 and Q 1 (liquid-q1.ini): below Q 30 every cycle. */
 static void low_q_falls_back(void **st)
 {
     (void)st;
     same_as_every("[cantilever]\nquality_factor = 10\n[scan]\nline_rate = 40 Hz\n"
+                  "[surface]\ntype = steps\nstep_height = 1 nm\nstep_width = 300 nm\n");
+    same_as_every("[cantilever]\nquality_factor = 1\n[scan]\nline_rate = 40 Hz\n"
+                  "[feedback]\nintegral_gain = 300 Hz\n"
                   "[surface]\ntype = steps\nstep_height = 1 nm\nstep_width = 300 nm\n");
 }
 

@@ -26,29 +26,35 @@ static void help(void)
            "    when it has exactly one, else 0.8 times the free amplitude (where tapping holds\n"
            "    the amplitude near 80 %% of free).\n"
            "  a scan line (a scene with [scan]): the first --pixels pixels of the middle line,\n"
-           "    with the scene's pixel size and time per pixel; observable: the height profile\n"
-           "    (trace and retrace), its largest and RMS difference from the reference.\n"
-           "Each setting of each method's ladder (dopri5: tolerance 1e-4 .. 1e-11; rk4: 32 ..\n"
-           "2048 steps per cycle) runs from the same state for the same cycles, timed (wall\n"
-           "clock and CPU time; a run under 0.5 s is timed in each of --repeats passes over\n"
-           "the ladders and keeps its best time), against a reference at\n"
-           "dopri5 tolerance 1e-13. The floor, the reference's own error, is its difference\n"
-           "from a second reference at 1e-12: smaller errors cannot be measured.\n\n"
-           "  -o, --output FILE   CSV, one row per run (default accuracy.csv): method, knob,\n"
-           "                      value, run_time_s (wall clock), cpu_time_s, steps_per_cycle\n"
-           "                      (accepted steps; NaN for a line), the errors (point:\n"
-           "                      amplitude_err_rel, phase_err_deg, mean_err_m,\n"
-           "                      peak_force_err_rel, dissipation_err_rel; line:\n"
-           "                      height_err_max_m, height_err_rms_m), residual_rel (the run's\n"
-           "                      own error estimate), role (reference, floor, setting),\n"
-           "                      is_default, status (ok, failed)\n"
-           "      --plot FILE     PNG: error against run time, log-log, a curve per method and\n"
-           "                      a panel per observable\n"
+           "    with the scene's pixel size and time per pixel; observables: the height and\n"
+           "    phase profiles (trace and retrace), their largest and RMS differences from the\n"
+           "    reference.\n"
+           "Each setting of each ladder (dopri5: tolerance 1e-4 .. 1e-11; rk4: 32 .. 2048\n"
+           "steps per cycle; radau: tolerance; on a scan line also envelope: the envelope\n"
+           "tier over dopri5 at each tolerance) runs from the same state for the same cycles,\n"
+           "timed (wall clock and CPU time; a run under 0.5 s is timed in each of --repeats\n"
+           "passes over the ladders and keeps its best time), against a reference that\n"
+           "integrates every cycle with dopri5 at tolerance 1e-13. The floor, the reference's\n"
+           "own error, is its difference from a second reference at 1e-12: smaller errors\n"
+           "cannot be measured.\n\n"
+           "  -o, --output FILE   CSV, one row per run (default accuracy.csv): method, tier\n"
+           "                      (every, envelope), knob, value, run_time_s (wall clock),\n"
+           "                      cpu_time_s, steps_per_cycle (accepted steps; NaN for a\n"
+           "                      line), integrated (line: the fraction of cycles integrated;\n"
+           "                      NaN for a point), the errors (point: amplitude_err_rel,\n"
+           "                      phase_err_deg, mean_err_m, peak_force_err_rel,\n"
+           "                      dissipation_err_rel; line: height_err_max_m,\n"
+           "                      height_err_rms_m, phase_err_max_deg, phase_err_rms_deg),\n"
+           "                      residual_rel (the run's energy-balance check), role\n"
+           "                      (reference, floor, setting), is_default, status (ok, failed)\n"
+           "      --plot FILE     PNG: error against run time, log-log, a curve per ladder\n"
+           "                      and a panel per observable\n"
            "      --point Z       judge a steady point at rest separation Z (a length: 16nm)\n"
            "      --cycles N      point: cycles per run (default Q ln(1e8) / pi, when the free\n"
            "                      transient has decayed to 1e-8)\n"
            "      --pixels N      line: pixels of the segment (default 8)\n"
-           "      --methods LIST  methods to study, comma-separated (default: all)\n"
+           "      --methods LIST  ladders to study, comma-separated: dopri5, envelope, rk4,\n"
+           "                      radau (default: all; envelope on scan lines only)\n"
            "      --repeats N     timing passes (default 3; 1: every setting runs once)\n"
            "      --clock C       wall (default) or cpu: the run time the plot and the summary\n"
            "                      use; CPU time is steadier on a machine shared with others\n"
@@ -56,7 +62,8 @@ static void help(void)
            "                      relative amplitude; line: height error / free amplitude)\n"
            "      --set S.K=V     override a scene key (material.NAME.key for named sections)\n"
            "  -q, --quiet         no table and summary\n\n"
-           "The default setting is the scene's [solver] (dopri5, tolerance 1e-8 unless set).\n"
+           "The default setting is the scene's [solver] (dopri5, tolerance 1e-8 unless set; on a\n"
+           "scan line the envelope tier unless [solver] tier = every).\n"
            "stdout: the table. stderr: for each method the cheapest setting meeting the target\n"
            "(its loosest from which on every tighter setting meets it too, so that a lucky\n"
            "cancellation of errors does not count), the run time of the default and of the\n"
@@ -74,15 +81,22 @@ static const char *role_name(tt_accuracy_role r)
     return r == TT_ACCURACY_REFERENCE ? "reference" : r == TT_ACCURACY_FLOOR ? "floor" : "setting";
 }
 
+static const char *tier_name(tt_tier t) { return t == TT_TIER_ENVELOPE ? "envelope" : "every"; }
+
+/* "dopri5 tolerance 1e-08", or with the ladder's own name "envelope (dopri5) tolerance 1e-08" */
 static void describe(char *buf, size_t n, const tt_accuracy_row *r)
 {
-    snprintf(buf, n, "%s %s %g", tt_method_name(r->method), r->knob, r->value);
+    const char *m = tt_method_name(r->method);
+    if (strcmp(r->name, m) == 0)
+        snprintf(buf, n, "%s %s %g", m, r->knob, r->value);
+    else
+        snprintf(buf, n, "%s (%s) %s %g", r->name, m, r->knob, r->value);
 }
 
 static void write_row(FILE *f, const tt_accuracy_row *r, size_t nobs)
 {
-    fprintf(f, "%s,%s,%.6g,%.6g,%.6g,%.6g", tt_method_name(r->method), r->knob, r->value, r->run_time,
-            r->cpu_time, r->steps_per_cycle);
+    fprintf(f, "%s,%s,%s,%.6g,%.6g,%.6g,%.6g,%.4g", tt_method_name(r->method), tier_name(r->tier),
+            r->knob, r->value, r->run_time, r->cpu_time, r->steps_per_cycle, r->integrated);
     for (size_t i = 0; i < nobs; i++)
         fprintf(f, ",%.6g", r->err[i]);
     fprintf(f, ",%.3g,%s,%d,%s\n", r->residual_rel, role_name(r->role), r->is_default,
@@ -99,12 +113,14 @@ static void print_row(const tt_accuracy_row *r, size_t nobs)
         strcat(s, " (floor)");
     else if (r->is_default)
         strcat(s, " (default)");
-    printf("%-38s", s);
+    printf("%-44s", s);
     if (r->status != TT_OK) {
         printf(" failed: %s\n", r->message);
         return;
     }
-    printf(" %10.4f %10.4f %9.1f", r->run_time, r->cpu_time, r->steps_per_cycle);
+    /* a line counts the cycles integrated, not the steps */
+    printf(" %10.4f %10.4f %9.3g", r->run_time, r->cpu_time,
+           isfinite(r->integrated) ? r->integrated : r->steps_per_cycle);
     for (size_t i = 0; i < nobs; i++)
         printf(" %11.2e", r->err[i]);
     printf(" %11.2e\n", r->residual_rel);
@@ -112,9 +128,9 @@ static void print_row(const tt_accuracy_row *r, size_t nobs)
 }
 
 /* Short column titles of the table, in the order of the observables. */
-static void print_header(const tt_accuracy_observable *obs, size_t nobs)
+static void print_header(const tt_accuracy_observable *obs, size_t nobs, int line)
 {
-    printf("%-38s %10s %10s %9s", "setting", "run_time_s", "cpu_time_s", "steps/cyc");
+    printf("%-44s %10s %10s %9s", "setting", "run_time_s", "cpu_time_s", line ? "integr." : "steps/cyc");
     for (size_t i = 0; i < nobs; i++) {
         char t[16];
         snprintf(t, sizeof t, "%.11s", obs[i].column);
@@ -123,12 +139,12 @@ static void print_header(const tt_accuracy_observable *obs, size_t nobs)
     printf(" %11s\n", "residual");
 }
 
-/* Whether row i (past the reference and the floor, rows 0 and 1) is its method's first:
- * the plot draws and the summary reports each method once. */
-static int first_of_method(const tt_accuracy *a, size_t i)
+/* Whether row i (past the reference and the floor, rows 0 and 1) is its ladder's first:
+ * the plot draws and the summary reports each ladder once. */
+static int first_of_ladder(const tt_accuracy *a, size_t i)
 {
     for (size_t k = 2; k < i; k++)
-        if (tt_accuracy_row_at(a, k)->method == tt_accuracy_row_at(a, i)->method)
+        if (strcmp(tt_accuracy_row_at(a, k)->name, tt_accuracy_row_at(a, i)->name) == 0)
             return 0;
     return 1;
 }
@@ -153,17 +169,17 @@ static int plot(const char *path, const tt_accuracy *a, const char *title)
         tt_figure_axes(f, (int)o, use_cpu ? "run time (s, CPU)" : "run time (s, wall clock)",
                        obs[o].label);
         tt_figure_log(f, (int)o, 1, 1);
-        /* one curve per method, in the order the rows came */
+        /* one curve per ladder, in the order the rows came */
         int colour = 0;
         for (size_t i = 2; i < n && rc == TT_OK; i++) {
             const tt_accuracy_row *r = tt_accuracy_row_at(a, i);
-            if (!first_of_method(a, i))
+            if (!first_of_ladder(a, i))
                 continue;
             colour++;
             size_t m = 0;
             for (size_t k = i; k < n; k++) {
                 const tt_accuracy_row *q = tt_accuracy_row_at(a, k);
-                if (q->method != r->method)
+                if (strcmp(q->name, r->name) != 0)
                     continue;
                 x[m] = cost(q);
                 y[m] = q->err[o];
@@ -176,7 +192,7 @@ static int plot(const char *path, const tt_accuracy *a, const char *title)
                 }
             }
             char label[64];
-            snprintf(label, sizeof label, "%s (%s)", tt_method_name(r->method), r->knob);
+            snprintf(label, sizeof label, "%s (%s)", r->name, r->knob);
             rc = tt_figure_line(f, (int)o, x, y, m, o == 0 ? label : NULL, (unsigned)colour | TT_PLOT_THICK);
             if (rc == TT_OK)
                 rc = tt_figure_line(f, (int)o, x, y, m, NULL, (unsigned)colour | TT_PLOT_POINTS);
@@ -204,7 +220,7 @@ static int plot(const char *path, const tt_accuracy *a, const char *title)
     return rc;
 }
 
-/* The built-in ladders of the methods named in list ("dopri5,rk4"). */
+/* The built-in ladders named in list ("dopri5,envelope,rk4"). */
 static int pick_methods(const char *list, tt_accuracy_ladder *out, size_t *n)
 {
     size_t nall;
@@ -215,12 +231,12 @@ static int pick_methods(const char *list, tt_accuracy_ladder *out, size_t *n)
     for (char *save = NULL, *tok = strtok_r(buf, ", ", &save); tok; tok = strtok_r(NULL, ", ", &save)) {
         size_t i;
         for (i = 0; i < nall; i++)
-            if (strcmp(tt_method_name(all[i].method), tok) == 0)
+            if (strcmp(tt_accuracy_ladder_name(&all[i]), tok) == 0)
                 break;
         if (i == nall) {
             fprintf(stderr, "tiptap accuracy: --methods: unknown method '%s'; known:", tok);
             for (size_t k = 0; k < nall; k++)
-                fprintf(stderr, "%s %s", k ? "," : "", tt_method_name(all[k].method));
+                fprintf(stderr, "%s %s", k ? "," : "", tt_accuracy_ladder_name(&all[k]));
             fprintf(stderr, "\n");
             return -1;
         }
@@ -245,7 +261,8 @@ static void summary(const tt_accuracy *a, double target, double t0)
     if (line) {
         size_t np;
         tt_accuracy_reference_profile(a, &np);
-        fprintf(stderr, "judged: the height along a scan line of %ld pixels (%s)\n",
+        np /= 2; /* height, then phase */
+        fprintf(stderr, "judged: the height and phase along a scan line of %ld pixels (%s)\n",
                 tt_accuracy_line_pixels(a),
                 np > (size_t)tt_accuracy_line_pixels(a) ? "trace and retrace" : "trace");
     } else {
@@ -271,16 +288,19 @@ static void summary(const tt_accuracy *a, double target, double t0)
         const tt_accuracy_row *r = tt_accuracy_row_at(a, i);
         if (r->role != TT_ACCURACY_SETTING)
             continue;
-        if (!first_of_method(a, i))
+        if (!first_of_ladder(a, i))
             continue;
-        const tt_accuracy_row *c = tt_accuracy_cheapest(a, (int)r->method, target);
+        const tt_accuracy_row *c = tt_accuracy_cheapest(a, r->name, target);
         if (c) {
             describe(s, sizeof s, c);
-            fprintf(stderr, "cheapest %s with %s <= %g: %s, %s = %.4f (error %.2g)\n",
-                    tt_method_name(r->method), what, target, s, clock, cost(c), c->primary);
+            fprintf(stderr, "cheapest %s with %s <= %g: %s, %s = %.4f (error %.2g", r->name, what,
+                    target, s, clock, cost(c), c->primary);
+            if (line)
+                fprintf(stderr, "; phase rms %.2g deg; %.3g of the cycles integrated", c->err[3],
+                        c->integrated);
+            fprintf(stderr, ")\n");
         } else {
-            fprintf(stderr, "cheapest %s with %s <= %g: none on its ladder\n", tt_method_name(r->method),
-                    what, target);
+            fprintf(stderr, "cheapest %s with %s <= %g: none on its ladder\n", r->name, what, target);
         }
     }
     const tt_accuracy_row *def = tt_accuracy_default_row(a);
@@ -289,9 +309,12 @@ static void summary(const tt_accuracy *a, double target, double t0)
         fprintf(stderr, "default %s: %s = %.4f, %s %.2g", s, clock, cost(def), what, def->primary);
         if (isfinite(def->steps_per_cycle))
             fprintf(stderr, ", steps_per_cycle = %.1f", def->steps_per_cycle);
+        if (line)
+            fprintf(stderr, ", phase rms %.2g deg, %.3g of the cycles integrated", def->err[3],
+                    def->integrated);
         fprintf(stderr, "\n");
         double want = def->primary / 10;
-        const tt_accuracy_row *ten = tt_accuracy_cheapest(a, -1, want);
+        const tt_accuracy_row *ten = tt_accuracy_cheapest(a, NULL, want);
         if (floor && floor->status == TT_OK && want < 10 * floor->primary)
             fprintf(stderr, "ten times more accurate (%.2g): not measurable, within 10 times the "
                             "reference floor (%.2g)\n",
@@ -421,13 +444,13 @@ int cmd_accuracy(int argc, char **argv)
     const tt_accuracy_observable *obs;
     size_t nobs = tt_accuracy_observables(a, &obs), n = 0;
     FILE *f = tt_outfile_stream(of);
-    fprintf(f, "method,knob,value,run_time_s,cpu_time_s,steps_per_cycle");
+    fprintf(f, "method,tier,knob,value,run_time_s,cpu_time_s,steps_per_cycle,integrated");
     for (size_t i = 0; i < nobs; i++)
         fprintf(f, ",%s", obs[i].column);
     fprintf(f, ",residual_rel,role,is_default,status\n");
     cli_catch_interrupt();
     if (!quiet)
-        print_header(obs, nobs);
+        print_header(obs, nobs, tt_accuracy_kind_of(a) == TT_ACCURACY_LINE);
     int progress = !quiet && cli_progress_enabled();
     while (!tt_accuracy_done(a)) {
         if (tt_cancel_requested()) {

@@ -18,17 +18,26 @@ static const double dopri5_tolerances[] = {1e-4, 3e-5, 1e-5, 3e-6, 1e-6, 3e-7, 1
                                            1e-8, 3e-9, 1e-9, 3e-10, 1e-10, 3e-11, 1e-11};
 static const double rk4_steps[] = {32, 64, 128, 256, 512, 1024, 2048};
 
-/* One row per method: a new method joins the study here. */
+/* One row per method and tier: a new method joins the study here. The envelope tier's
+ * error control follows the same tolerance (tiptap/solver/envelope.h), so its ladder is
+ * dopri5's. */
 static const tt_accuracy_ladder ladders[] = {
-    {TT_METHOD_DOPRI5, "tolerance", dopri5_tolerances, COUNT(dopri5_tolerances)},
-    {TT_METHOD_RK4, "steps_per_cycle", rk4_steps, COUNT(rk4_steps)},
-    {TT_METHOD_RADAU, "tolerance", dopri5_tolerances, COUNT(dopri5_tolerances)},
+    {TT_METHOD_DOPRI5, "tolerance", dopri5_tolerances, COUNT(dopri5_tolerances), TT_TIER_EVERY, NULL},
+    {TT_METHOD_DOPRI5, "tolerance", dopri5_tolerances, COUNT(dopri5_tolerances), TT_TIER_ENVELOPE,
+     "envelope"},
+    {TT_METHOD_RK4, "steps_per_cycle", rk4_steps, COUNT(rk4_steps), TT_TIER_EVERY, NULL},
+    {TT_METHOD_RADAU, "tolerance", dopri5_tolerances, COUNT(dopri5_tolerances), TT_TIER_EVERY, NULL},
 };
 
 const tt_accuracy_ladder *tt_accuracy_ladders(size_t *count)
 {
     *count = COUNT(ladders);
     return ladders;
+}
+
+const char *tt_accuracy_ladder_name(const tt_accuracy_ladder *l)
+{
+    return l->name ? l->name : tt_method_name(l->method);
 }
 
 static const tt_accuracy_observable point_obs[] = {
@@ -41,6 +50,8 @@ static const tt_accuracy_observable point_obs[] = {
 static const tt_accuracy_observable line_obs[] = {
     {"height_err_max_m", "largest height error (m)"},
     {"height_err_rms_m", "RMS height error (m)"},
+    {"phase_err_max_deg", "largest phase error (deg)"},
+    {"phase_err_rms_deg", "RMS phase error (deg)"},
 };
 
 void tt_accuracy_params_default(tt_accuracy_params *p)
@@ -62,8 +73,8 @@ void tt_accuracy_params_default(tt_accuracy_params *p)
 typedef struct {
     tt_cycle last;     /* point: the last cycle */
     double prev_amp;   /* point: the amplitude of the cycle before */
-    double *profile;   /* line: heights, trace then retrace */
-    double seconds, cpu_seconds, steps_per_cycle, residual_rel;
+    double *profile;   /* line: heights (m), then phases (deg), trace then retrace */
+    double seconds, cpu_seconds, steps_per_cycle, residual_rel, integrated;
 } run_result;
 
 struct tt_accuracy {
@@ -78,7 +89,7 @@ struct tt_accuracy {
     double z;          /* point: rest separation */
     long cycles;
     double A0;
-    size_t nprofile;   /* line: values per profile */
+    size_t nprofile;   /* line: values per channel's profile (trace and retrace) */
     tt_accuracy_row *rows;
     size_t nrows, next;
     int pass;          /* 1: every row computed; 2..repeats: cheap rows timed again */
@@ -120,8 +131,25 @@ static double get_knob(const tt_solver *sv, const char *knob)
     return strcmp(knob, "steps_per_cycle") == 0 ? (double)sv->steps_per_cycle : sv->tolerance;
 }
 
-static int add_row(tt_accuracy *A, tt_accuracy_role role, tt_method m, const char *knob,
-                   double value, int is_default)
+/* What a row runs: its ladder's method, tier, knob and name. */
+typedef struct {
+    tt_method method;
+    tt_tier tier;
+    const char *knob, *name;
+} row_kind;
+
+static row_kind kind_of(const tt_accuracy_ladder *l)
+{
+    row_kind k = {l->method, l->tier, l->knob, tt_accuracy_ladder_name(l)};
+    return k;
+}
+
+static int same_kind(row_kind a, row_kind b)
+{
+    return a.method == b.method && a.tier == b.tier && strcmp(a.knob, b.knob) == 0;
+}
+
+static int add_row(tt_accuracy *A, tt_accuracy_role role, row_kind k, double value, int is_default)
 {
     tt_accuracy_row *r = realloc(A->rows, (A->nrows + 1) * sizeof *r);
     if (!r)
@@ -130,36 +158,41 @@ static int add_row(tt_accuracy *A, tt_accuracy_role role, tt_method m, const cha
     r = &A->rows[A->nrows++];
     memset(r, 0, sizeof *r);
     r->role = role;
-    r->method = m;
-    r->knob = knob;
+    r->method = k.method;
+    r->tier = k.tier;
+    r->knob = k.knob;
+    r->name = k.name;
     r->value = value;
     r->is_default = is_default;
     r->run_time = r->cpu_time = r->steps_per_cycle = r->residual_rel = r->primary = NAN;
+    r->integrated = NAN;
     for (int i = 0; i < TT_ACCURACY_MAX_OBS; i++)
         r->err[i] = NAN;
     return TT_OK;
 }
 
-/* The subject's own setting: its method and the value of that method's knob. */
-static int own_setting(const tt_solver *own, const tt_accuracy_ladder *lad, size_t nlad,
-                       tt_method *m, const char **knob, double *value)
+/* The subject's own setting: its method and tier, the value of that method's knob, and
+ * the name of the ladder it belongs on (the envelope tier's, or the method's). */
+static int own_setting(const tt_solver *own, tt_tier tier, const tt_accuracy_ladder *lad,
+                       size_t nlad, row_kind *k, double *value)
 {
-    tt_solver sv = *own;
-    *m = sv.method;
-    *knob = NULL;
+    k->method = own->method;
+    k->tier = tier;
+    k->knob = NULL;
+    k->name = tier == TT_TIER_ENVELOPE ? "envelope" : tt_method_name(own->method);
     *value = NAN;
     size_t n;
     const tt_accuracy_ladder *all = tt_accuracy_ladders(&n);
-    for (size_t i = 0; i < nlad && !*knob; i++)
-        if (lad[i].method == sv.method)
-            *knob = lad[i].knob;
-    for (size_t i = 0; i < n && !*knob; i++)
-        if (all[i].method == sv.method)
-            *knob = all[i].knob;
-    if (!*knob)
+    for (size_t i = 0; i < nlad && !k->knob; i++)
+        if (lad[i].method == own->method && lad[i].tier == tier)
+            *k = kind_of(&lad[i]);
+    for (size_t i = 0; i < n && !k->knob; i++)
+        if (all[i].method == own->method)
+            k->knob = all[i].knob;
+    if (!k->knob)
         return tt_error(TT_EINVAL, "the accuracy study has no ladder for method %s",
-                        tt_method_name(sv.method));
-    *value = get_knob(&sv, *knob);
+                        tt_method_name(own->method));
+    *value = get_knob(own, k->knob);
     return TT_OK;
 }
 
@@ -171,20 +204,25 @@ static int plan(tt_accuracy *A)
     size_t nlad = A->p.nladders;
     if (!lad)
         lad = tt_accuracy_ladders(&nlad);
-    tt_method dm;
-    const char *dknob;
+    int line = A->kind == TT_ACCURACY_LINE;
+    /* a point has no tiers: the subject's setting is judged on every cycle there */
+    tt_tier tier = line ? A->solver.tier : TT_TIER_EVERY;
+    row_kind dk, ref = {TT_METHOD_DOPRI5, TT_TIER_EVERY, "tolerance", "dopri5"};
     double dval;
-    int rc;
-    if ((rc = own_setting(&A->solver, lad, nlad, &dm, &dknob, &dval)) ||
-        (rc = add_row(A, TT_ACCURACY_REFERENCE, TT_METHOD_DOPRI5, "tolerance", A->p.ref_tolerance, 0)) ||
-        (rc = add_row(A, TT_ACCURACY_FLOOR, TT_METHOD_DOPRI5, "tolerance", A->p.check_tolerance, 0)))
+    int rc, kept = 0;
+    if ((rc = own_setting(&A->solver, tier, lad, nlad, &dk, &dval)) ||
+        (rc = add_row(A, TT_ACCURACY_REFERENCE, ref, A->p.ref_tolerance, 0)) ||
+        (rc = add_row(A, TT_ACCURACY_FLOOR, ref, A->p.check_tolerance, 0)))
         return rc;
     int placed = 0;
     for (size_t l = 0; l < nlad; l++) {
         const tt_accuracy_ladder *L = &lad[l];
+        if (L->tier != TT_TIER_EVERY && !line)
+            continue;
+        kept++;
         const double *v = L->values;
         size_t n = L->nvalues, pos = n + 1; /* n + 1: the default is not added here */
-        if (L->method == dm && strcmp(L->knob, dknob) == 0 && !placed) {
+        if (same_kind(kind_of(L), dk) && !placed) {
             pos = n;
             for (size_t i = 0; i < n; i++)
                 if (v[i] == dval)
@@ -197,20 +235,23 @@ static int plan(tt_accuracy *A)
         }
         for (size_t i = 0; i <= n; i++) {
             if (i == pos) {
-                if ((rc = add_row(A, TT_ACCURACY_SETTING, dm, dknob, dval, 1)))
+                if ((rc = add_row(A, TT_ACCURACY_SETTING, dk, dval, 1)))
                     return rc;
                 placed = 1;
             }
             if (i == n)
                 break;
-            int is_def = !placed && L->method == dm && strcmp(L->knob, dknob) == 0 && v[i] == dval;
-            if ((rc = add_row(A, TT_ACCURACY_SETTING, L->method, L->knob, v[i], is_def)))
+            int is_def = !placed && same_kind(kind_of(L), dk) && v[i] == dval;
+            if ((rc = add_row(A, TT_ACCURACY_SETTING, kind_of(L), v[i], is_def)))
                 return rc;
             placed |= is_def;
         }
     }
+    if (!kept)
+        return tt_error(TT_EINVAL, "the ladders chosen are of the envelope tier, which a steady "
+                                   "point does not have (it is judged on scan lines)");
     /* a method left out of the ladders still has its own setting judged */
-    if (!placed && (rc = add_row(A, TT_ACCURACY_SETTING, dm, dknob, dval, 1)))
+    if (!placed && (rc = add_row(A, TT_ACCURACY_SETTING, dk, dval, 1)))
         return rc;
     return TT_OK;
 }
@@ -238,7 +279,7 @@ static int make_segment(tt_accuracy *A, const tt_scan_params *scan)
     else
         A->scan.raster.size_x = r.size_x * frac;
     A->scan.profile_line = -1;
-    A->scan.channels = TT_CH_HEIGHT;
+    A->scan.channels = TT_CH_HEIGHT | TT_CH_PHASE;
     A->nprofile = (size_t)P * (r.retrace ? 2 : 1);
     return TT_OK;
 }
@@ -253,9 +294,6 @@ int tt_accuracy_alloc(tt_accuracy **out, const tt_accuracy_subject *subject,
     A->p = *p;
     A->cantilever = subject->cantilever;
     A->solver = subject->solver;
-    /* the ladders are the every-cycle tier's: the envelope tier's error is judged by
-     * tiptap bench and tests/test_envelope.c */
-    A->solver.tier = TT_TIER_EVERY;
     int rc = TT_OK;
     if (!(A->p.repeats >= 1))
         A->p.repeats = 1;
@@ -365,18 +403,22 @@ static int run_line(tt_accuracy *A, run_result *res)
     res->cpu_seconds = cpu_now() - c0;
     if (!rc) {
         free(res->profile);
-        res->profile = malloc(A->nprofile * sizeof *res->profile);
+        res->profile = malloc(2 * A->nprofile * sizeof *res->profile);
         if (!res->profile)
             rc = tt_error(TT_ENOMEM, "out of memory");
     }
     if (!rc) {
-        size_t P = A->nprofile / (tt_scan_has_retrace(scan) ? 2 : 1);
-        for (int r = 0; r < (tt_scan_has_retrace(scan) ? 2 : 1); r++) {
-            const double *img = tt_scan_image(scan, 0, r);
-            memcpy(res->profile + (size_t)r * P, img, P * sizeof *img);
-        }
+        /* height then phase, each trace then retrace (channel indices: the bit's place) */
+        int dirs = tt_scan_has_retrace(scan) ? 2 : 1, ch[2] = {0, 2};
+        size_t P = A->nprofile / (size_t)dirs;
+        for (int c = 0; c < 2; c++)
+            for (int r = 0; r < dirs; r++) {
+                const double *img = tt_scan_image(scan, ch[c], r);
+                memcpy(res->profile + (size_t)c * A->nprofile + (size_t)r * P, img, P * sizeof *img);
+            }
         res->steps_per_cycle = NAN;
         res->residual_rel = tt_scan_error_estimate(scan);
+        res->integrated = (double)tt_scan_cycles_integrated(scan) / (double)tt_scan_cycles(scan);
     }
     tt_scan_free(scan);
     return rc;
@@ -385,6 +427,7 @@ static int run_line(tt_accuracy *A, run_result *res)
 static int run_setting(tt_accuracy *A, const tt_accuracy_row *row, run_result *res)
 {
     A->solver.method = row->method;
+    A->solver.tier = row->tier;
     int rc = set_knob(&A->solver, row->knob, row->value);
     if (rc)
         return rc;
@@ -401,16 +444,21 @@ static double rel(double a, double b, double ref, double scale)
 static void compare(tt_accuracy *A, tt_accuracy_row *row, const run_result *res)
 {
     if (A->kind == TT_ACCURACY_LINE) {
-        double mx = 0, ss = 0;
-        for (size_t i = 0; i < A->nprofile; i++) {
-            double d = fabs(res->profile[i] - A->ref.profile[i]);
-            if (!(d <= mx))
-                mx = d; /* NaN wins: a failed pixel is no accuracy */
-            ss += d * d;
+        for (int c = 0; c < 2; c++) {
+            const double *a = res->profile + (size_t)c * A->nprofile;
+            const double *b = A->ref.profile + (size_t)c * A->nprofile;
+            double mx = 0, ss = 0;
+            for (size_t i = 0; i < A->nprofile; i++) {
+                /* phases wrap: a lag of 359.9 deg is 0.1 deg from one of 0 */
+                double d = c ? fabs(remainder(a[i] - b[i], 360.0)) : fabs(a[i] - b[i]);
+                if (!(d <= mx))
+                    mx = d; /* NaN wins: a failed pixel is no accuracy */
+                ss += d * d;
+            }
+            row->err[2 * c] = mx;
+            row->err[2 * c + 1] = sqrt(ss / (double)A->nprofile);
         }
-        row->err[0] = mx;
-        row->err[1] = sqrt(ss / (double)A->nprofile);
-        row->primary = mx / A->A0;
+        row->primary = row->err[0] / A->A0;
         return;
     }
     const tt_cycle *c = &res->last, *r = &A->ref.last;
@@ -498,6 +546,7 @@ int tt_accuracy_iterate(tt_accuracy *A, const tt_accuracy_row **out)
     row->runs = 1;
     row->steps_per_cycle = res.steps_per_cycle;
     row->residual_rel = res.residual_rel;
+    row->integrated = A->kind == TT_ACCURACY_LINE ? res.integrated : NAN;
     if (row->role == TT_ACCURACY_REFERENCE) {
         A->ref = res;
         A->ref_done = 1;
@@ -531,14 +580,14 @@ const tt_accuracy_row *tt_accuracy_row_at(const tt_accuracy *A, size_t i)
 /* Rows with their numbers: all of them after the first pass. */
 static size_t computed(const tt_accuracy *A) { return A->pass > 1 ? A->nrows : A->next; }
 
-/* The loosest setting of method m from which on every tighter one meets the target:
+/* The loosest setting of a ladder from which on every tighter one meets the target:
  * a lucky cancellation of errors at one loose setting is no setting to recommend. */
-static const tt_accuracy_row *reliable(const tt_accuracy *A, tt_method m, double target)
+static const tt_accuracy_row *reliable(const tt_accuracy *A, const char *name, double target)
 {
     const tt_accuracy_row *pick = NULL;
     for (size_t i = 0; i < computed(A); i++) {
         const tt_accuracy_row *r = &A->rows[i];
-        if (r->role != TT_ACCURACY_SETTING || r->method != m)
+        if (r->role != TT_ACCURACY_SETTING || strcmp(r->name, name) != 0)
             continue;
         if (r->status == TT_OK && r->primary <= target) {
             if (!pick)
@@ -555,14 +604,14 @@ static double cost(const tt_accuracy *A, const tt_accuracy_row *r)
     return A->p.cpu_clock ? r->cpu_time : r->run_time;
 }
 
-const tt_accuracy_row *tt_accuracy_cheapest(const tt_accuracy *A, int method, double target)
+const tt_accuracy_row *tt_accuracy_cheapest(const tt_accuracy *A, const char *name, double target)
 {
     const tt_accuracy_row *best = NULL;
     for (size_t i = 0; i < computed(A); i++) {
         const tt_accuracy_row *r = &A->rows[i];
-        if (r->role != TT_ACCURACY_SETTING || (method >= 0 && (int)r->method != method))
+        if (r->role != TT_ACCURACY_SETTING || (name && strcmp(r->name, name) != 0))
             continue;
-        const tt_accuracy_row *c = reliable(A, r->method, target);
+        const tt_accuracy_row *c = reliable(A, r->name, target);
         if (c && (!best || cost(A, c) < cost(A, best)))
             best = c;
     }
@@ -603,6 +652,6 @@ const double *tt_accuracy_reference_profile(const tt_accuracy *A, size_t *n)
         *n = 0;
         return NULL;
     }
-    *n = A->nprofile;
+    *n = 2 * A->nprofile;
     return A->ref.profile;
 }

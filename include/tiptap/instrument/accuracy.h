@@ -7,16 +7,19 @@
  *    cycle's amplitude, phase, mean deflection, peak force and tip-sample dissipation
  *    are the observables;
  *  - a scan line (TT_ACCURACY_LINE, subjects with a scan): a short segment of one
- *    line, with the scan's pixel size and time per pixel; the observable is the
- *    height profile (trace, and retrace if the scan records it).
+ *    line, with the scan's pixel size and time per pixel; the observables are the
+ *    height and phase profiles (trace, and retrace if the scan records it).
  * Every setting of every ladder starts from the same state and runs the same cycles,
  * so the differences are integration errors alone. Errors are measured against a
  * reference run (dopri5 at ref_tolerance); the reference's own error is bounded by
  * comparing it with a second one at check_tolerance: the floor, below which no error
  * of the study can be told from zero.
  *
- * The ladders come from one table, one row per method (tt_accuracy_ladders): a new
- * method joins the study with one row naming its [solver] knob and its values.
+ * The ladders come from one table, one row per method and tier (tt_accuracy_ladders):
+ * a new method joins the study with one row naming its [solver] knob and its values.
+ * A scan line is also judged on the envelope tier (ladder "envelope": dopri5 cycles
+ * between skipped ones, [solver] tier = envelope), against the same every-cycle
+ * reference; a steady point has no tiers, and leaves that ladder out.
  *
  * Usage:
  *   tt_accuracy_params_default(&p);
@@ -49,7 +52,13 @@ typedef struct {
     const char *knob;      /* [solver] key: "tolerance", "steps_per_cycle" */
     const double *values;
     size_t nvalues;
+    tt_tier tier;          /* TT_TIER_EVERY (0), or TT_TIER_ENVELOPE: scan lines only */
+    const char *name;      /* what tables, plots and --methods call it; NULL: the
+                            * method's name */
 } tt_accuracy_ladder;
+
+/* The ladder's name: its own, else its method's. */
+const char *tt_accuracy_ladder_name(const tt_accuracy_ladder *l);
 
 /* The built-in table (static storage). */
 const tt_accuracy_ladder *tt_accuracy_ladders(size_t *count);
@@ -88,7 +97,9 @@ typedef enum {
 typedef struct {
     tt_accuracy_role role;
     int is_default;          /* the subject's own solver setting (added if not on a ladder) */
+    const char *name;        /* its ladder's name (static or the ladder's): one curve each */
     tt_method method;
+    tt_tier tier;            /* the tier it ran on (a line; TT_TIER_EVERY for a point) */
     const char *knob;        /* static or the ladder's */
     double value;
     int status;              /* TT_OK, or why this setting failed (then errors are NAN) */
@@ -97,6 +108,9 @@ typedef struct {
     double cpu_time;         /* s, CPU time of the same, best of the repeats */
     int runs;                /* how many runs the times are the best of */
     double steps_per_cycle;  /* accepted steps per cycle (NAN for a line: not counted) */
+    double integrated;       /* line: the fraction of cycles integrated (1 on the every-
+                              * cycle tier, and where the envelope tier fell back); NAN
+                              * for a point */
     double residual_rel;     /* the run's own error estimate: largest energy-balance
                               * residual of a cycle / free drive work per cycle */
     double err[TT_ACCURACY_MAX_OBS]; /* per observable, against the reference */
@@ -146,10 +160,11 @@ int tt_accuracy_pass(const tt_accuracy *a);
 const tt_accuracy_row *tt_accuracy_row_at(const tt_accuracy *a, size_t i);
 
 /* The setting to recommend for a target accuracy of the primary observable: for one
- * method, its loosest setting from which on every tighter finished setting of its
- * ladder meets the target (one lucky setting does not count); for method -1, the
- * fastest of the methods' choices (by the clock of the parameters). NULL if none. */
-const tt_accuracy_row *tt_accuracy_cheapest(const tt_accuracy *a, int method, double target);
+ * ladder (by name, "dopri5", "envelope"), its loosest setting from which on every
+ * tighter finished setting of that ladder meets the target (one lucky setting does not
+ * count); for name NULL, the fastest of the ladders' choices (by the clock of the
+ * parameters). NULL if none. */
+const tt_accuracy_row *tt_accuracy_cheapest(const tt_accuracy *a, const char *name, double target);
 /* The subject's own setting. */
 const tt_accuracy_row *tt_accuracy_default_row(const tt_accuracy *a);
 
@@ -163,7 +178,8 @@ const tt_cycle *tt_accuracy_reference_cycle(const tt_accuracy *a);
 /* The reference's amplitude change over its last cycle relative to the free amplitude:
  * how far from steady the judged cycle still is (point). */
 double tt_accuracy_reference_drift(const tt_accuracy *a);
-/* The reference height profile (line): trace then retrace, n values, m. */
+/* The reference profiles (line): height trace then retrace (m), then phase trace then
+ * retrace (deg); n values in all. */
 const double *tt_accuracy_reference_profile(const tt_accuracy *a, size_t *n);
 
 #ifdef __cplusplus
