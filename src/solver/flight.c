@@ -200,6 +200,28 @@ static inline void flight_keep(tt_sim *S, double h, const double *dp, const doub
     S->step_flight = 1;
 }
 
+/* The drive's particular solution (its deflection dp and rate dpd, with the drive's
+ * cos and sin) and the sample (sj) at the step's nodes and end (index FL_N), and the
+ * homogeneous part's start (x0, x0d). */
+static inline void flight_nodes(const tt_sim *S, double h, const fl_cache *F, double *cw,
+                                double *sw, double *dp, double *dpd, double *sj, double *x0,
+                                double *x0d)
+{
+    const double t0 = S->tau, w = S->c.wd, *y0 = S->y;
+    const double Dr = S->fl_Dr, Di = S->fl_Di;
+    double s0w, c0w;
+    phase_sincos(w * t0, &s0w, &c0w);
+    for (int j = 0; j <= FL_N; j++) {
+        cw[j] = c0w * F->cw[j] - s0w * F->sw[j];
+        sw[j] = s0w * F->cw[j] + c0w * F->sw[j];
+        dp[j] = Dr * cw[j] - Di * sw[j];
+        dpd[j] = -w * (Dr * sw[j] + Di * cw[j]);
+        sj[j] = S->s0 + S->sdot * (t0 + (j < FL_N ? FL_C[j] : 1.0) * h);
+    }
+    *x0 = y0[Y_D] - (Dr * c0w - Di * s0w);
+    *x0d = y0[Y_V] + w * (Dr * s0w + Di * c0w);
+}
+
 /* One exponential step of length h from (tau, y) out of contact, into y1 with the
  * per-cycle integrals, filling the dense data. d = d_p + x with x advanced exactly for
  * the linear part (the damped oscillator's propagator) and the van der Waals force
@@ -211,23 +233,12 @@ static inline void flight_keep(tt_sim *S, double h, const double *dp, const doub
  * converge. */
 static double flight_step(tt_sim *S, double h, const fl_cache *F)
 {
-    const tt_cantilever *c = &S->c;
-    const double t0 = S->tau, w = c->wd, *y0 = S->y;
-    const double Dr = S->fl_Dr, Di = S->fl_Di;
-    const double sc = 1.0 / (S->solver.tolerance * c->A0 * w);
-    double s0w, c0w;
-    phase_sincos(w * t0, &s0w, &c0w);
-    double cw[FL_N + 1], sw[FL_N + 1], dp[FL_N + 1], dpd[FL_N + 1], sj[FL_N + 1];
-    for (int j = 0; j <= FL_N; j++) {
-        cw[j] = c0w * F->cw[j] - s0w * F->sw[j];
-        sw[j] = s0w * F->cw[j] + c0w * F->sw[j];
-        dp[j] = Dr * cw[j] - Di * sw[j];
-        dpd[j] = -w * (Dr * sw[j] + Di * cw[j]);
-        sj[j] = S->s0 + S->sdot * (t0 + (j < FL_N ? FL_C[j] : 1.0) * h);
-    }
-    const double x0 = y0[Y_D] - (Dr * c0w - Di * s0w), x0d = y0[Y_V] + w * (Dr * s0w + Di * c0w);
+    const double *y0 = S->y;
+    const double sc = 1.0 / (S->solver.tolerance * S->c.A0 * S->c.wd);
+    double cw[FL_N + 1], sw[FL_N + 1], dp[FL_N + 1], dpd[FL_N + 1], sj[FL_N + 1], x0, x0d;
+    flight_nodes(S, h, F, cw, sw, dp, dpd, sj, &x0, &x0d);
     double N[FL_N], a[FL_N], xj[FL_N], xdj[FL_N];
-    double N0 = fl_force(S, y0[Y_D] - (S->s0 + S->sdot * t0));
+    double N0 = fl_force(S, y0[Y_D] - (S->s0 + S->sdot * S->tau));
     for (int j = 0; j < FL_N; j++)
         N[j] = N0;
     /* Picard iteration. After the first round the next change of the forcing is bounded
