@@ -148,7 +148,9 @@ static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, 
     if (job.grid)
         sweep_header(&job, header, sizeof header);
     size_t n = job.grid ? tt_sweep_count(job.grid) : 0;
-    int progress = !a->quiet && rank == 0 && cli_progress_enabled();
+    cli_progress prog;
+    cli_progress_begin(&prog, "sweep", "combinations", a->quiet || rank != 0);
+    cli_progress *progress = &prog;
     if (!rc && rank == 0)
         rc = sweep_results_open(&r, n, a->output, fingerprint(scene, &job, header));
     else if (!rc && !(r.text = calloc(n, sizeof *r.text)))
@@ -169,6 +171,7 @@ static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, 
     if (!rc)
         rc = sweep_run_threads(&job, &r, kind == SWEEP_SCAN ? 1 : threads, progress);
 #endif
+    cli_progress_end(&prog);
     if (rank == 0 && rc == TT_EINTR)
         rc = tt_error(TT_EINTR, "interrupted: %zu of %zu combinations kept in %s; the same command "
                                 "resumes there", r.done, n, r.journal_path);

@@ -131,7 +131,7 @@ void cli_unlock_folder(const char *dir, int fd);
 /* Progress of a run on stderr: "CMD: DONE/TOTAL UNIT, N s elapsed, about M s left",
  * on a terminal one line kept rewritten (at most ten times a second), otherwise a plain
  * line every CLI_PROGRESS_LOG_S and at the end; nothing when quiet. */
-typedef struct {
+typedef struct cli_progress {
     const char *cmd, *unit;
     double t0, last;
     int tty, on;

@@ -42,7 +42,12 @@ typedef struct {
     size_t done;
     FILE *journal;    /* OUT.partial, appended as combinations finish */
     char *journal_path;
+    size_t resumed;   /* done when the journal was opened (a resumed sweep) */
 } sweep_results;
+
+struct cli_progress;
+/* Show r's progress (the combinations this run computes) on p; NULL: none. */
+void sweep_progress(struct cli_progress *p, const sweep_results *r);
 
 /* Open (or resume) the journal OUT.partial of a sweep with fingerprint hash: its
  * finished combinations are loaded into r and not run again. */
@@ -57,7 +62,8 @@ void sweep_results_free(sweep_results *r);
 /* Compute the combinations not yet in r on threads threads (dynamic load balance),
  * recording each as it finishes; progress on stderr when shown. Stops at cancellation
  * with TT_EINTR. */
-int sweep_run_threads(const sweep_job *job, sweep_results *r, int threads, int progress);
+int sweep_run_threads(const sweep_job *job, sweep_results *r, int threads,
+                      struct cli_progress *progress);
 
 /* The loop under both: compute the combinations todo[0..m) on threads threads
  * (dynamic, one at a time), handing each finished text to deliver (which takes it) one
@@ -76,7 +82,7 @@ int sweep_mpi_start(int *rank, int *size);
 /* The combinations not in r spread over the ranks (cyclic), threads threads each;
  * rank 0 receives and records every result. r must be the same on every rank (rank 0
  * sends its finished flags to the others first). */
-int sweep_mpi_run(const sweep_job *job, sweep_results *r, int threads, int progress);
+int sweep_mpi_run(const sweep_job *job, sweep_results *r, int threads, struct cli_progress *progress);
 /* All ranks agree on rc (the worst); broadcast from rank 0. */
 int sweep_mpi_agree(int rc);
 void sweep_mpi_stop(void);

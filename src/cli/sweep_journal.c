@@ -93,6 +93,7 @@ int sweep_results_open(sweep_results *r, size_t n, const char *out, unsigned lon
         return tt_error(TT_ENOMEM, "out of memory");
     snprintf(r->journal_path, pl, "%s.partial", out);
     int rc = resume(r, hash);
+    r->resumed = r->done;
     if (rc != -1)
         return rc;
     if (!(r->journal = fopen(r->journal_path, "wb")))
@@ -181,21 +182,26 @@ int sweep_run_list(const sweep_job *job, const size_t *todo, size_t m, int threa
     return err ? tt_error(err, "%s", saved) : TT_OK;
 }
 
+void sweep_progress(cli_progress *p, const sweep_results *r)
+{
+    if (p)
+        cli_progress_show(p, (long)(r->done - r->resumed), (long)(r->n - r->resumed));
+}
+
 typedef struct {
     sweep_results *r;
-    int progress;
+    cli_progress *progress;
 } local;
 
 static int record_local(void *user, size_t i, char *text)
 {
     local *l = user;
     int rc = sweep_results_record(l->r, i, text);
-    if (l->progress)
-        fprintf(stderr, "\rsweep: %zu/%zu combinations", l->r->done, l->r->n);
+    sweep_progress(l->progress, l->r);
     return rc;
 }
 
-int sweep_run_threads(const sweep_job *job, sweep_results *r, int threads, int progress)
+int sweep_run_threads(const sweep_job *job, sweep_results *r, int threads, cli_progress *progress)
 {
     size_t *todo = malloc((r->n ? r->n : 1) * sizeof *todo), m = 0;
     if (!todo)
@@ -205,8 +211,6 @@ int sweep_run_threads(const sweep_job *job, sweep_results *r, int threads, int p
             todo[m++] = i;
     local l = {r, progress};
     int rc = sweep_run_list(job, todo, m, threads, record_local, &l);
-    if (progress)
-        fprintf(stderr, "\n");
     free(todo);
     return rc;
 }

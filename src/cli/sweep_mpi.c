@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "commands.h"
 #include "sweep.h"
 #include "tiptap/util/error.h"
 
@@ -74,7 +75,8 @@ static int send_result(void *user, size_t i, char *text)
 
 typedef struct {
     sweep_results *r;
-    int progress, pending; /* ranks not yet done */
+    cli_progress *progress;
+    int pending; /* ranks not yet done */
     int rc;                /* the first error another rank reported */
     char why[1024];
 } root;
@@ -113,8 +115,7 @@ static int receive(root *R, int block)
     free(buf);
     if (text && idx < R->r->n && !R->r->text[idx]) {
         sweep_results_record(R->r, (size_t)idx, text);
-        if (R->progress)
-            fprintf(stderr, "\rsweep: %zu/%zu combinations", R->r->done, R->r->n);
+        sweep_progress(R->progress, R->r);
     } else
         free(text);
     return 1;
@@ -125,14 +126,13 @@ static int record_root(void *user, size_t i, char *text)
 {
     root *R = user;
     int rc = sweep_results_record(R->r, i, text);
-    if (R->progress)
-        fprintf(stderr, "\rsweep: %zu/%zu combinations", R->r->done, R->r->n);
+    sweep_progress(R->progress, R->r);
     while (receive(R, 0))
         ;
     return rc;
 }
 
-int sweep_mpi_run(const sweep_job *job, sweep_results *r, int threads, int progress)
+int sweep_mpi_run(const sweep_job *job, sweep_results *r, int threads, cli_progress *progress)
 {
     int rank, size;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -166,8 +166,6 @@ int sweep_mpi_run(const sweep_job *job, sweep_results *r, int threads, int progr
     rc = sweep_run_list(job, mine, m, threads, record_root, &R);
     while (R.pending > 0)
         receive(&R, 1);
-    if (progress)
-        fprintf(stderr, "\n");
     free(mine);
     if (!rc && R.rc)
         rc = tt_error(R.rc, "%s", R.why);
