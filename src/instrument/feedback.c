@@ -1,17 +1,16 @@
 /* PI amplitude feedback with a clamped z piezo (see include/tiptap/instrument/feedback.h). */
 #include "tiptap/instrument/feedback.h"
 
-void tt_feedback_init(tt_feedback *f, double setpoint, double kp, double ki, double z_min,
-                      double z_max, double z0)
+void tt_feedback_init(tt_feedback *f, const tt_feedback_params *p, double z0)
 {
-    f->setpoint = setpoint;
-    f->kp = kp;
-    f->ki = ki;
-    f->z_min = z_min;
-    f->z_max = z_max;
+    f->setpoint = p->setpoint;
+    f->kp = p->kp;
+    f->ki = p->ki;
+    f->z_min = -0.5 * p->z_range;
+    f->z_max = 0.5 * p->z_range;
     f->integral = 0;
     f->z0 = z0;
-    f->z = z0 < z_min ? z_min : z0 > z_max ? z_max : z0;
+    f->z = z0 < f->z_min ? f->z_min : z0 > f->z_max ? f->z_max : z0;
     f->clamped = 0;
 }
 

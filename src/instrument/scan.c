@@ -317,7 +317,8 @@ void tt_scan_engage(tt_scan *S, worker *W, long line, long nc, scan_carry *e)
         return;
     /* heights are reported against the surface's own zero, the piezo's range centred
      * on it; creep follows the whole line */
-    tt_feedback_init(&e->fb, S->setpoint, S->kp, S->ki, -0.5 * S->z_range, 0.5 * S->z_range, h0);
+    const tt_feedback_params fp = {S->setpoint, S->kp, S->ki, S->z_range};
+    tt_feedback_init(&e->fb, &fp, h0);
     e->z_from = e->z_to = e->z_act = e->fb.z;
     tt_piezo_init(&e->pz, &S->inst.piezo, e->fb.z,
                   (double)S->settle_cycles * S->cantilever.T + 1 / R->line_rate);

@@ -38,8 +38,9 @@ typedef struct {
     int clamped;       /* last output was clamped */
 } tt_feedback;
 
-void tt_feedback_init(tt_feedback *f, double setpoint, double kp, double ki, double z_min,
-                      double z_max, double z0);
+/* Start the loop from output z0 (clamped to the piezo's range, -z_range / 2 to
+ * z_range / 2) with an empty integrator. */
+void tt_feedback_init(tt_feedback *f, const tt_feedback_params *p, double z0);
 /* One update after dt seconds with the measured amplitude; returns the new z. */
 double tt_feedback_update(tt_feedback *f, double amplitude, double dt);
 
