@@ -221,17 +221,26 @@ static void worker_free(worker *W)
     free(W->obs);
 }
 
-/* Whether a solver setting runs on the envelope tier here: it falls back to every
- * cycle at low Q (the envelope follows the free transient's Q / pi cycles; below Q 30
- * there are too few to skip), at very high Q (above 3000 the envelope drifts over
- * stretches by more than the check of their last cycle sees: at Q 1e4 the images erred
- * 1.4 times the estimate, tests/test_envelope.c) and with noise on (the cycles are not
- * smooth in the cycle index). */
+/* The envelope tier falls back to every cycle at low Q (the envelope follows the free
+ * transient's Q / pi cycles; below Q 30 there are too few to skip), at very high Q
+ * (above 3000 the envelope drifts over stretches by more than the check of their last
+ * cycle sees: at Q 1e4 the images erred 1.4 times the estimate, tests/test_envelope.c)
+ * and with noise on (the cycles are not smooth in the cycle index). */
+static int envelope_allowed(const tt_cantilever *c, const tt_scan_noise *n)
+{
+    return c->Q >= 30 && c->Q <= 3000 && n->temperature == 0 && n->detector == 0 &&
+           n->z_piezo == 0;
+}
+
+int tt_scan_envelope_tier(const tt_scan_params *p)
+{
+    return p->solver.tier == TT_TIER_ENVELOPE && envelope_allowed(&p->cantilever, &p->noise);
+}
+
+/* Whether a solver setting runs on the envelope tier here. */
 static int envelope_usable(const tt_scan *S, const tt_solver *solver)
 {
-    const tt_scan_noise *n = &S->noise;
-    return solver->tier == TT_TIER_ENVELOPE && S->cantilever.Q >= 30 && S->cantilever.Q <= 3000 &&
-           n->temperature == 0 && n->detector == 0 && n->z_piezo == 0;
+    return solver->tier == TT_TIER_ENVELOPE && envelope_allowed(&S->cantilever, &S->noise);
 }
 
 static int envelope_alloc(tt_scan *S, worker *W)
