@@ -251,6 +251,12 @@ static int envelope_alloc(tt_scan *S, worker *W)
         rc = tt_lockin_alloc(&W->lockin_save, &S->lockin);
     if (rc)
         return rc;
+    /* the model's cycles give the lock-in its per-period components, not samples: a few
+     * dozen multiply-adds a cycle instead of n products and a transform */
+    rc = tt_envelope_reduce(W->env, tt_lockin_components(W->lockin),
+                            tt_lockin_component_matrix(W->lockin));
+    if (rc)
+        return rc;
     W->y_save = calloc(n, sizeof *W->y_save);
     W->obs = calloc(2 * (size_t)tt_envelope_size(W->env), sizeof *W->obs);
     if (!W->y_save || !W->obs)

@@ -101,7 +101,8 @@ static int block_end(const line_ctx *L, line_state *st, long b)
 {
     tt_scan *S = L->S;
     tt_lockin *li = L->W->lockin;
-    int rc = tt_lockin_push(li, L->W->y);
+    /* the envelope tier keeps the block's periods as the lock-in's components */
+    int rc = L->W->env ? tt_lockin_push_components(li, L->W->y) : tt_lockin_push(li, L->W->y);
     if (rc)
         return rc;
     const int P = L->P;

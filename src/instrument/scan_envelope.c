@@ -38,14 +38,22 @@ static int edge_ahead(const line_ctx *L, const cycle_in *in)
     return in->mat_next != in->mat || fabs(in->hb - in->ha) > L->edge;
 }
 
-/* A cycle's observables into the block's samples and the pixel's sums; the cycle ends
- * (tt_scan_cycle_end). */
-static int record(const line_ctx *L, line_state *st, const cycle_in *in, const double *obs)
+/* A cycle's observables into the block's and the pixel's sums; the cycle ends
+ * (tt_scan_cycle_end). The block keeps each period as the lock-in's components
+ * (tt_lockin_transform): obs holds them already after a model cycle (reduced), else
+ * the cycle's samples. */
+static int record(const line_ctx *L, line_state *st, const cycle_in *in, const double *obs,
+                  int reduced)
 {
-    const int N = L->N;
-    memcpy(L->W->y + (size_t)in->j * (size_t)N, obs, (size_t)N * sizeof *obs);
-    return tt_scan_cycle_end(L, st, in, obs[N + TT_ENV_PEAK], obs[N + TT_ENV_INDENT],
-                             obs[N + TT_ENV_ETS]);
+    const tt_lockin *li = L->W->lockin;
+    const int nc = tt_lockin_components(li);
+    double *slot = L->W->y + (size_t)in->j * (size_t)nc;
+    if (reduced)
+        memcpy(slot, obs, (size_t)nc * sizeof *obs);
+    else
+        tt_lockin_transform(li, obs, slot);
+    const double *x = obs + (reduced ? nc : L->N);
+    return tt_scan_cycle_end(L, st, in, x[TT_ENV_PEAK], x[TT_ENV_INDENT], x[TT_ENV_ETS]);
 }
 
 /* A point the line can return to: its state after a cycle, the lock-in's filter, the
@@ -209,7 +217,8 @@ static void fail(const line_ctx *L, line_state *st, controller *c, long k)
 
 /* A model cycle, unless the stretch is done, this or the next cycle crosses an edge,
  * the sample is out of the anchor's reach, or it is the phase's last (the next phase
- * starts integrating from the sim's state): then a check. 1: the model ran the cycle. */
+ * starts integrating from the sim's state): then a check. 1: the model ran the cycle,
+ * its samples reduced to the lock-in's components in obs. */
 static int model_step(const line_ctx *L, line_state *st, const controller *c,
                       const cycle_in *in, int edge, double *obs)
 {
@@ -219,7 +228,7 @@ static int model_step(const line_ctx *L, line_state *st, const controller *c,
         !(fabs(tt_envelope_sample_offset(L->W->env, in->sa, sdot)) <= L->edge))
         return 0;
     double x1[2];
-    tt_envelope_predict(L->W->env, st->x, in->sa, sdot, x1, obs);
+    tt_envelope_predict_reduced(L->W->env, st->x, in->sa, sdot, x1, obs);
     st->x[0] = x1[0];
     st->x[1] = x1[1];
     return 1;
@@ -240,8 +249,8 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c, long *int
         if ((rc = tt_scan_cycle_begin(L, st, &in)))
             return rc;
         const int edge = edge_ahead(L, &in);
-        int snap = 0;
-        if (model_step(L, st, c, &in, edge, obs)) {
+        int snap = 0, reduced = model_step(L, st, c, &in, edge, obs);
+        if (reduced) {
             c->left--;
         } else if (c->model) {
             if (!check(L, st, &in, obs, integrated)) {
@@ -258,7 +267,7 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c, long *int
             if (rc)
                 return rc;
         }
-        if ((rc = record(L, st, &in, obs)))
+        if ((rc = record(L, st, &in, obs, reduced)))
             return rc;
         if (snap) {
             c->left = c->m;

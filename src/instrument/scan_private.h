@@ -17,7 +17,8 @@ typedef struct {
     tt_sim *sim;
     tt_lockin *lockin;
     tt_sample *samples;
-    double *y;
+    double *y; /* the lock-in block's periods: samples, or on the envelope tier each
+                * period's components (tt_lockin_transform) */
     /* continuous lines: the feedback and the z piezo's ramp where the last line ended */
     int engaged;
     tt_feedback fb;
@@ -25,7 +26,7 @@ typedef struct {
     tt_piezo pz;
     double z_act;
     /* the envelope tier (NULL: every cycle): its model, a snapshot of the lock-in and
-     * of the block's samples to roll back to, and two observable vectors */
+     * of the block's periods (y) to roll back to, and two observable vectors */
     tt_envelope *env;
     tt_lockin *lockin_save;
     double *y_save, *obs;
