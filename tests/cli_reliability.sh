@@ -47,6 +47,12 @@ grep -qF "tiptap scan: warning: [material silcon] is not used: a uniform map sca
 out=$("$tiptap" scan "$tmp/s.ini" -o "$tmp/est" 2>&1 >/dev/null | head -1)
 grep -qE '^scan: 16 x 2 pixels, [0-9.e+]+ drive cycles, about .* by estimate on [0-9]+ threads?, .* of memory$' <<<"$out" &&
   ok "estimate first" || bad "first line: '$out'"
+# the envelope tier (the default) gives a range; every cycle, one figure
+grep -qE 'about .* to .* \(envelope tier: 2 % to 80 % of the cycles integrated' <<<"$out" &&
+  ok "envelope tier: a range" || bad "envelope estimate: '$out'"
+out=$("$tiptap" scan "$tmp/s.ini" -o "$tmp/est" --set solver.tier=every 2>&1 >/dev/null | head -1)
+grep -qE '^scan: 16 x 2 pixels, [0-9.e+]+ drive cycles, about [0-9.]+ [a-z]+ by estimate on' <<<"$out" &&
+  ok "every-cycle tier: one figure" || bad "every-cycle estimate: '$out'"
 # under ulimit -v 1 GB; a sanitizer build cannot start under it (its shadow memory), so
 # there every channel both ways: 42 images of 2.1 GB, more than a test machine has
 huge=(--set scan.pixels=16384 --set scan.lines=16384 --set "scan.line_rate=0.001 Hz")

@@ -34,6 +34,46 @@ static void demodulates_exactly(void **st)
         }
 }
 
+/* A block fed as its periods' components (tt_lockin_transform of each) gives the
+ * filter the results the transform of its samples gives, up to rounding, through a
+ * filter of two orders over several blocks of differing periods. */
+static void components_as_samples(void **st)
+{
+    (void)st;
+    int Ns[] = {8, 32, 100};
+    for (int a = 0; a < 3; a++)
+        for (int P = 1; P <= 3; P++) {
+            tt_lockin_params p = {1e5, Ns[a], P, 3, 2e-5, 2};
+            tt_lockin *ls, *lc;
+            assert_int_equal(tt_lockin_alloc(&ls, &p), TT_OK);
+            assert_int_equal(tt_lockin_alloc(&lc, &p), TT_OK);
+            const int N = Ns[a], nc = tt_lockin_components(lc);
+            assert_int_equal(nc, 7);
+            double *y = malloc((size_t)(N * P) * sizeof *y), *c = malloc((size_t)(nc * P) * sizeof *c);
+            for (int b = 0; b < 4; b++) {
+                for (int k = 0; k < N * P; k++) {
+                    double wt = 2 * M_PI * k / N, f = 1 + 0.1 * b + 0.01 * k / N;
+                    y[k] = 0.7 * f + 2.0 * cos(wt - 1.2 * f) + 0.3 * f * cos(2 * wt - 0.4) +
+                           0.1 * cos(3 * wt + 2.9 * f) + 0.05 * cos(5 * wt);
+                }
+                for (int j = 0; j < P; j++)
+                    tt_lockin_transform(lc, y + j * N, c + j * nc);
+                assert_int_equal(tt_lockin_push(ls, y), TT_OK);
+                assert_int_equal(tt_lockin_push_components(lc, c), TT_OK);
+                for (int h = 1; h <= 3; h++) {
+                    assert_close(tt_lockin_amplitude(lc, h), tt_lockin_amplitude(ls, h), 1e-13);
+                    assert_close(tt_lockin_phase(lc, h), tt_lockin_phase(ls, h), 1e-12);
+                    assert_close(tt_lockin_raw_amplitude(lc, h), tt_lockin_raw_amplitude(ls, h), 1e-13);
+                }
+                assert_close(tt_lockin_mean(lc), tt_lockin_mean(ls), 1e-13);
+            }
+            free(y);
+            free(c);
+            tt_lockin_free(ls);
+            tt_lockin_free(lc);
+        }
+}
+
 static void filter_step_response(void **st)
 {
     (void)st;
@@ -86,6 +126,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(demodulates_exactly),
+        cmocka_unit_test(components_as_samples),
         cmocka_unit_test(filter_step_response),
         cmocka_unit_test(reset_starts_settled),
     };

@@ -179,12 +179,21 @@ static int check_cost(const tt_scan_params *p, int threads, int quiet)
                 cli_bytes(avail, have, sizeof have));
         return TT_ENOMEM;
     }
-    char t[32];
+    char t[32], lo[32], tier[160] = "";
+    /* the envelope tier's time depends on how many cycles the scene lets the model
+     * follow: a range (src/config/estimate.c) */
+    if (e.envelope)
+        snprintf(tier, sizeof tier, "%s to %s (envelope tier: %.0f %% to %.0f %% of the cycles "
+                                    "integrated, as on the bundled surfaces)",
+                 cli_duration(e.seconds_low / n, lo, sizeof lo), cli_duration(e.seconds / n, t, sizeof t),
+                 100 * e.integrated_low, 100 * e.integrated_high);
+    else
+        cli_duration(e.seconds / n, tier, sizeof tier);
     if (!quiet)
         fprintf(stderr, "scan: %ld x %ld pixels, %.3g drive cycles, about %s by estimate on %d "
                         "thread%s, %s of memory\n",
-                p->raster.pixels, p->raster.lines, e.cycles, cli_duration(e.seconds / n, t, sizeof t),
-                n, n > 1 ? "s" : "", cli_bytes(bytes, need, sizeof need));
+                p->raster.pixels, p->raster.lines, e.cycles, tier, n, n > 1 ? "s" : "",
+                cli_bytes(bytes, need, sizeof need));
     cli_report_estimate("scan", e.cycles, e.seconds, e.upper_bound, n, p->cantilever.f0,
                         p->cantilever.fd, 1);
     return TT_OK;

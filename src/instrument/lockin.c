@@ -21,7 +21,30 @@ struct tt_lockin {
     double alpha;           /* filter coefficient per block */
     double X[MAXORDER][MAXH], Y[MAXORDER][MAXH]; /* filter stages */
     double rawX[MAXH], rawY[MAXH], mean;
+    int nc;                 /* components per period: 1 + 2 harmonics */
+    double *R;              /* nc x samples_per_period: one period's samples to them */
 };
+
+/* The matrix of tt_lockin_transform: the mean, then per harmonic (2 / N) cos and sin of
+ * h w t at the samples, so that a block's transform is the mean of its periods'. */
+static int component_matrix(tt_lockin *l)
+{
+    const int N = l->p.samples_per_period;
+    l->nc = 1 + 2 * l->p.harmonics;
+    l->R = malloc((size_t)l->nc * (size_t)N * sizeof *l->R);
+    if (!l->R)
+        return -1;
+    for (int q = 0; q < N; q++) {
+        l->R[q] = 1.0 / N;
+        for (int h = 1; h <= l->p.harmonics; h++) {
+            /* the angle reduced to one turn first, exact in integers */
+            double a = 2 * M_PI * (double)((long)h * q % N) / N;
+            l->R[(size_t)(2 * h - 1) * (size_t)N + (size_t)q] = 2.0 / N * cos(a);
+            l->R[(size_t)(2 * h) * (size_t)N + (size_t)q] = 2.0 / N * sin(a);
+        }
+    }
+    return 0;
+}
 
 int tt_lockin_alloc(tt_lockin **out, const tt_lockin_params *p)
 {
@@ -51,6 +74,10 @@ int tt_lockin_alloc(tt_lockin **out, const tt_lockin_params *p)
         tt_lockin_free(l);
         return tt_error(TT_ENOMEM, "lock-in: no FFTW plan");
     }
+    if (component_matrix(l)) {
+        tt_lockin_free(l);
+        return tt_error(TT_ENOMEM, "out of memory");
+    }
     double Tb = p->periods_per_block / p->drive_frequency;
     /* exact discretisation of a first-order section for a block-held input */
     l->alpha = p->time_constant > 0 ? 1 - exp(-Tb / p->time_constant) : 1.0;
@@ -69,6 +96,7 @@ void tt_lockin_free(tt_lockin *l)
     }
     fftw_free(l->in);
     fftw_free(l->out);
+    free(l->R);
     free(l);
 }
 
@@ -93,26 +121,75 @@ void tt_lockin_copy(tt_lockin *dst, const tt_lockin *src)
     dst->mean = src->mean;
 }
 
+/* One block's raw results (the fundamental and harmonics: in-phase X, quadrature Y)
+ * through the filter. */
+static void filter(tt_lockin *l, const double *X, const double *Y)
+{
+    for (int h = 0; h < l->p.harmonics; h++) {
+        double x = X[h], y = Y[h];
+        l->rawX[h] = x;
+        l->rawY[h] = y;
+        for (int k = 0; k < l->p.filter_order; k++) {
+            l->X[k][h] += l->alpha * (x - l->X[k][h]);
+            l->Y[k][h] += l->alpha * (y - l->Y[k][h]);
+            x = l->X[k][h];
+            y = l->Y[k][h];
+        }
+    }
+}
+
 int tt_lockin_push(tt_lockin *l, const double *samples)
 {
     memcpy(l->in, samples, (size_t)l->n * sizeof(double));
     fftw_execute(l->plan);
-    double scale = 2.0 / l->n;
+    double scale = 2.0 / l->n, X[MAXH], Y[MAXH];
     l->mean = l->out[0][0] / l->n;
     for (int h = 1; h <= l->p.harmonics; h++) {
         int bin = h * l->p.periods_per_block;
         /* y = A cos(h w t - phi) = A cos(phi) cos + A sin(phi) sin; the transform's
          * bin holds (X - iY) n / 2 */
-        double X = l->out[bin][0] * scale, Y = -l->out[bin][1] * scale;
-        l->rawX[h - 1] = X;
-        l->rawY[h - 1] = Y;
-        for (int k = 0; k < l->p.filter_order; k++) {
-            l->X[k][h - 1] += l->alpha * (X - l->X[k][h - 1]);
-            l->Y[k][h - 1] += l->alpha * (Y - l->Y[k][h - 1]);
-            X = l->X[k][h - 1];
-            Y = l->Y[k][h - 1];
+        X[h - 1] = l->out[bin][0] * scale;
+        Y[h - 1] = -l->out[bin][1] * scale;
+    }
+    filter(l, X, Y);
+    return TT_OK;
+}
+
+int tt_lockin_components(const tt_lockin *l) { return l->nc; }
+const double *tt_lockin_component_matrix(const tt_lockin *l) { return l->R; }
+
+void tt_lockin_transform(const tt_lockin *l, const double *samples, double *c)
+{
+    const int N = l->p.samples_per_period;
+    for (int i = 0; i < l->nc; i++) {
+        const double *r = l->R + (size_t)i * (size_t)N;
+        double sum = 0;
+        for (int q = 0; q < N; q++)
+            sum += r[q] * samples[q];
+        c[i] = sum;
+    }
+}
+
+int tt_lockin_push_components(tt_lockin *l, const double *c)
+{
+    const int P = l->p.periods_per_block, nc = l->nc;
+    double X[MAXH], Y[MAXH], mean = 0;
+    for (int h = 0; h < l->p.harmonics; h++)
+        X[h] = Y[h] = 0;
+    for (int j = 0; j < P; j++) {
+        const double *cj = c + (size_t)j * (size_t)nc;
+        mean += cj[0];
+        for (int h = 0; h < l->p.harmonics; h++) {
+            X[h] += cj[2 * h + 1];
+            Y[h] += cj[2 * h + 2];
         }
     }
+    l->mean = mean / P;
+    for (int h = 0; h < l->p.harmonics && P > 1; h++) { /* one period: its own, exactly */
+        X[h] /= P;
+        Y[h] /= P;
+    }
+    filter(l, X, Y);
     return TT_OK;
 }
 

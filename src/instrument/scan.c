@@ -221,17 +221,26 @@ static void worker_free(worker *W)
     free(W->obs);
 }
 
-/* Whether a solver setting runs on the envelope tier here: it falls back to every
- * cycle at low Q (the envelope follows the free transient's Q / pi cycles; below Q 30
- * there are too few to skip), at very high Q (above 3000 the envelope drifts over
- * stretches by more than the check of their last cycle sees: at Q 1e4 the images erred
- * 1.4 times the estimate, tests/test_envelope.c) and with noise on (the cycles are not
- * smooth in the cycle index). */
+/* The envelope tier falls back to every cycle at low Q (the envelope follows the free
+ * transient's Q / pi cycles; below Q 30 there are too few to skip), at very high Q
+ * (above 3000 the envelope drifts over stretches by more than the check of their last
+ * cycle sees: at Q 1e4 the images erred 1.4 times the estimate, tests/test_envelope.c)
+ * and with noise on (the cycles are not smooth in the cycle index). */
+static int envelope_allowed(const tt_cantilever *c, const tt_scan_noise *n)
+{
+    return c->Q >= 30 && c->Q <= 3000 && n->temperature == 0 && n->detector == 0 &&
+           n->z_piezo == 0;
+}
+
+int tt_scan_envelope_tier(const tt_scan_params *p)
+{
+    return p->solver.tier == TT_TIER_ENVELOPE && envelope_allowed(&p->cantilever, &p->noise);
+}
+
+/* Whether a solver setting runs on the envelope tier here. */
 static int envelope_usable(const tt_scan *S, const tt_solver *solver)
 {
-    const tt_scan_noise *n = &S->noise;
-    return solver->tier == TT_TIER_ENVELOPE && S->cantilever.Q >= 30 && S->cantilever.Q <= 3000 &&
-           n->temperature == 0 && n->detector == 0 && n->z_piezo == 0;
+    return solver->tier == TT_TIER_ENVELOPE && envelope_allowed(&S->cantilever, &S->noise);
 }
 
 static int envelope_alloc(tt_scan *S, worker *W)
@@ -240,6 +249,12 @@ static int envelope_alloc(tt_scan *S, worker *W)
     int rc = tt_envelope_alloc(&W->env, &S->cantilever, S->lockin.samples_per_period);
     if (!rc)
         rc = tt_lockin_alloc(&W->lockin_save, &S->lockin);
+    if (rc)
+        return rc;
+    /* the model's cycles give the lock-in its per-period components, not samples: a few
+     * dozen multiply-adds a cycle instead of n products and a transform */
+    rc = tt_envelope_reduce(W->env, tt_lockin_components(W->lockin),
+                            tt_lockin_component_matrix(W->lockin));
     if (rc)
         return rc;
     W->y_save = calloc(n, sizeof *W->y_save);
@@ -297,7 +312,10 @@ double tt_scan_sample_at(const tt_scan *S, double *x, double *y, double t, doubl
 }
 
 
-void tt_scan_engage(tt_scan *S, worker *W, long line, long nc, scan_carry *e)
+/* Engage at the line's first pixel: the material there on the sim, and, unless
+ * continuous lines carry on from the last retrace, the feedback at that pixel's height,
+ * the piezo at rest there, the tip and the lock-in on the free oscillation. */
+static void engage(tt_scan *S, worker *W, long line, long nc, line_state *st)
 {
     const tt_raster *R = &S->raster;
     double x, y, h0, topo;
@@ -306,36 +324,38 @@ void tt_scan_engage(tt_scan *S, worker *W, long line, long nc, scan_carry *e)
         h0 = tt_surface_height(S->surface, x, y);
     else
         h0 = tt_scan_sample_at(S, &x, &y, tt_scan_clock_at(S, line, 0, nc, 0), &topo);
-    e->current = S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
-    tt_sim_set_contact(W->sim, S->contacts[e->current], S->Qi[e->current]);
-    e->fb = W->fb;
-    e->z_from = W->z_from;
-    e->z_to = W->z_to;
-    e->pz = W->pz;
-    e->z_act = W->z_act;
+    st->current = S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
+    tt_sim_set_contact(W->sim, S->contacts[st->current], S->Qi[st->current]);
+    st->fb = W->fb;
+    st->z_from = W->z_from;
+    st->z_to = W->z_to;
+    st->pz = W->pz;
+    st->z_act = W->z_act;
     if (S->continuous && W->engaged)
         return;
     /* heights are reported against the surface's own zero, the piezo's range centred
      * on it; creep follows the whole line */
     const tt_feedback_params fp = {S->setpoint, S->kp, S->ki, S->z_range};
-    tt_feedback_init(&e->fb, &fp, h0);
-    e->z_from = e->z_to = e->z_act = e->fb.z;
-    tt_piezo_init(&e->pz, &S->inst.piezo, e->fb.z,
+    tt_feedback_init(&st->fb, &fp, h0);
+    st->z_from = st->z_to = st->z_act = st->fb.z;
+    tt_piezo_init(&st->pz, &S->inst.piezo, st->fb.z,
                   (double)S->settle_cycles * S->cantilever.T + 1 / R->line_rate);
     tt_sim_reset_free(W->sim);
     tt_lockin_reset(W->lockin, S->cantilever.A0, S->cantilever.phi0);
 }
 
-void tt_scan_line_done(const tt_scan *S, worker *W, long line, const scan_carry *e,
-                       const pixel_acc *pix, const line_out *out)
+/* A line finished: its state kept for the next (continuous lines), its pixels' means
+ * into the images. */
+static void line_done(const tt_scan *S, worker *W, long line, const line_state *st,
+                      const pixel_acc *pix, const line_out *out)
 {
     const tt_raster *R = &S->raster;
     W->engaged = 1;
-    W->fb = e->fb;
-    W->z_from = e->z_from;
-    W->z_to = e->z_to;
-    W->pz = e->pz;
-    W->z_act = e->z_act;
+    W->fb = st->fb;
+    W->z_from = st->z_from;
+    W->z_to = st->z_to;
+    W->pz = st->pz;
+    W->z_act = st->z_act;
     for (int dir = 0; dir < (R->retrace ? 2 : 1); dir++)
         for (long px = 0; px < R->pixels; px++) {
             const pixel_acc *a = &pix[(size_t)dir * (size_t)R->pixels + (size_t)px];
@@ -351,167 +371,105 @@ void tt_scan_line_done(const tt_scan *S, worker *W, long line, const scan_carry 
         }
 }
 
-/* Scan one line: engage at its first pixel, then trace and retrace. */
-static int scan_line(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
-                     double *worst, int *clamped)
+/* The line's fixed quantities. Engage: the rest separation of a free tip whose
+ * amplitude the surface limits to the setpoint is about the setpoint; the feedback
+ * then settles the rest. */
+static line_ctx line_context(tt_scan *S, worker *W, long line)
+{
+    line_ctx L = {.S = S, .W = W, .line = line};
+    L.P = S->lockin.periods_per_block;
+    L.N = S->lockin.samples_per_period;
+    L.nc = tt_raster_cycles_per_direction(&S->raster, S->cantilever.T);
+    L.piezo = !tt_piezo_ideal(&S->inst.piezo);
+    L.s_ref = S->setpoint;
+    /* The model's error per cycle, relative to the free amplitude: held to ten times
+     * the stepper's tolerance, below what the integration itself errs per cycle (13 to
+     * 16 times the tolerance at 1e-8 on the standard scene, 5 to 20 times at 1e-6 and
+     * 1e-7: one cycle against one at 1e-12 from the same state) */
+    L.tol = 10 * S->solver.tolerance;
+    L.edge = 1e-3 * S->A0;
+    /* the noise of this line: keyed by (seed, line), counted in cycles from its start */
+    L.kd = tt_noise_key(S->noise.seed, TT_NOISE_DETECTOR, line);
+    L.kz = tt_noise_key(S->noise.seed, TT_NOISE_PIEZO, line);
+    return L;
+}
+
+int tt_scan_line_run(tt_scan *S, worker *W, long line, const line_out *out, scan_phase_fn run,
+                     void *tier, long *cycles, double *worst, int *clamped)
 {
     const tt_raster *R = &S->raster;
-    tt_sim *sim = W->sim;
-    const tt_cantilever *c = &S->cantilever;
-    const double T = c->T;
-    const int P = S->lockin.periods_per_block, N = S->lockin.samples_per_period;
-    const long nc = tt_raster_cycles_per_direction(R, T);
-    int rc = TT_OK;
-
-    double topo;
-    /* Engage: the rest separation of a free tip whose amplitude the surface limits to
-     * the setpoint is about the setpoint; the feedback then settles the rest. Continuous
-     * lines engage once and carry on from where the last retrace ended. */
-    const double s_ref = S->setpoint;
-    const int carry = S->continuous && W->engaged; /* no settling then */
-    scan_carry e;
-    tt_scan_engage(S, W, line, nc, &e);
-    size_t current = e.current;
-    tt_feedback fb = e.fb;
-    double z_from = e.z_from, z_to = e.z_to;
-    tt_piezo pz = e.pz;
-    int piezo = !tt_piezo_ideal(&S->inst.piezo);
-    double z_act = e.z_act;
-    tt_sim_set_sampling(sim, N, W->samples);
-    tt_sim_track_peaks(sim, (S->channels & (TT_CH_PEAK_FORCE | TT_CH_INDENTATION)) != 0);
-    /* the noise of this line: keyed by (seed, line), counted in cycles from its start */
-    tt_sim_noise_key(sim, tt_noise_key(S->noise.seed, TT_NOISE_THERMAL, line));
-    const uint64_t kd = tt_noise_key(S->noise.seed, TT_NOISE_DETECTOR, line);
-    const uint64_t kz = tt_noise_key(S->noise.seed, TT_NOISE_PIEZO, line);
-    uint64_t kl = 0;
-
-    pixel_acc *pix = calloc((size_t)R->pixels * 2, sizeof *pix);
-    if (!pix)
-        return tt_error(TT_ENOMEM, "out of memory");
-
+    line_ctx L = line_context(S, W, line);
+    line_state st = {0};
+    /* Continuous lines engage once and carry on from where the last retrace ended, with
+     * no settling. */
+    const int carry = S->continuous && W->engaged;
+    engage(S, W, line, L.nc, &st);
+    int contact;
+    tt_sim_get_state(W->sim, &st.x[0], &st.x[1], &contact);
+    tt_sim_set_sampling(W->sim, L.N, W->samples);
+    tt_sim_track_peaks(W->sim, (S->channels & (TT_CH_PEAK_FORCE | TT_CH_INDENTATION)) != 0);
+    tt_sim_noise_key(W->sim, tt_noise_key(S->noise.seed, TT_NOISE_THERMAL, line));
+    L.pix = calloc((size_t)R->pixels * 2, sizeof *L.pix);
+    int rc = L.pix ? TT_OK : tt_error(TT_ENOMEM, "out of memory");
     /* Phase 0 settles at the first pixel; phases 1 and 2 are trace and retrace. */
-    long settle_blocks = carry ? 0 : (S->settle_cycles + P - 1) / P;
+    long settle_blocks = carry ? 0 : (S->settle_cycles + L.P - 1) / L.P;
     /* continuous lines retrace whether recorded or not: the next line starts there */
     int nphase = R->retrace || S->continuous ? 3 : 2;
     for (int phase = 0; phase < nphase && rc == TT_OK; phase++) {
-        long nblocks = phase == 0 ? settle_blocks : (nc + P - 1) / P;
-        int dir = phase == 2 ? 1 : 0;
-        for (long b = 0; b < nblocks && rc == TT_OK; b++) {
-            if ((b & 63) == 0 && tt_cancel_requested()) {
-                rc = TT_EINTR;
-                break;
-            }
-            for (int j = 0; j < P; j++) {
-                long k = b * P + j; /* cycle index within this direction */
-                if (phase > 0 && k >= nc)
-                    break;
-                double xa, ya, xb, yb;
-                if (phase == 0) {
-                    tt_raster_position(R, line, 0, nc, 0, &xa, &ya);
-                    xb = xa;
-                    yb = ya;
-                } else {
-                    tt_raster_position(R, line, dir, nc, k, &xa, &ya);
-                    tt_raster_position(R, line, dir, nc, k + 1, &xb, &yb);
-                }
-                double ha, hb;
-                if (S->plain) {
-                    ha = S->flat ? 0 : tt_surface_height(S->surface, xa, ya);
-                    hb = S->flat ? 0 : tt_surface_height(S->surface, xb, yb);
-                    topo = ha;
-                } else {
-                    double tb = tt_scan_clock_at(S, line, phase, nc, phase ? k + 1 : 0);
-                    ha = tt_scan_sample_at(S, &xa, &ya, tt_scan_clock_at(S, line, phase, nc, k), &topo);
-                    hb = tt_scan_sample_at(S, &xb, &yb, tb, &(double){0});
-                }
-                if (!S->uniform) {
-                    size_t m = (size_t)tt_surface_material(S->surface, xa, ya);
-                    if (m != current) {
-                        tt_sim_set_contact(sim, S->contacts[m], S->Qi[m]);
-                        current = m;
-                    }
-                }
-                /* The z piezo moves linearly from the last output to the new one over
-                 * the block after an update, so the sample never jumps. */
-                double za = z_from + (z_to - z_from) * (double)j / P;
-                double zb = z_from + (z_to - z_from) * (double)(j + 1) / P;
-                /* the sample follows the piezo's actual height; the height channel
-                 * records the command, as an instrument's does */
-                double pa = za, pb = zb;
-                if (piezo) {
-                    pa = z_act;
-                    pb = z_act = tt_piezo_advance(&pz, zb, T);
-                }
-                double sa = s_ref - ha + pa, sb = s_ref - hb + pb;
-                if (S->sz > 0) {
-                    sa += S->sz * tt_noise_gauss(kz, kl);
-                    sb += S->sz * tt_noise_gauss(kz, kl + 1);
-                }
-                tt_sim_set_sample(sim, sa, (sb - sa) / T);
-                tt_cycle cy;
-                if ((rc = tt_sim_cycle(sim, &cy)))
-                    break;
-                (*cycles)++;
-                if (cy.residual_rel > *worst)
-                    *worst = cy.residual_rel;
-                for (int q = 0; q < N; q++)
-                    W->y[j * N + q] = W->samples[q].d - W->samples[q].z;
-                if (S->sd > 0)
-                    for (int q = 0; q < N; q++)
-                        W->y[j * N + q] += S->sd * tt_noise_gauss(kd, kl * (uint64_t)N + (uint64_t)q);
-                kl++;
-                if (phase > 0) {
-                    long px = tt_raster_pixel(R, dir, nc, k);
-                    pixel_acc *a = &pix[(size_t)dir * (size_t)R->pixels + (size_t)px];
-                    a->sum[3] += cy.peak_force;
-                    a->sum[4] += cy.max_indentation;
-                    a->sum[5] += cy.e_ts;
-                    a->sum[6] += topo;
-                    a->sum[0] += za;
-                    a->n++;
-                }
-            }
-            if (rc)
-                break;
-            if ((rc = tt_lockin_push(W->lockin, W->y)))
-                break;
-            double A = tt_lockin_amplitude(W->lockin, 1), ph = tt_lockin_phase(W->lockin, 1);
-            z_from = z_to;
-            z_to = tt_feedback_update(&fb, A, P * T);
-            if (fb.clamped)
-                *clamped = 1;
-            if (phase > 0) {
-                /* the block's lock-in outputs belong to the pixel of its last cycle */
-                long k = b * P + P - 1;
-                if (k >= nc)
-                    k = nc - 1;
-                long px = tt_raster_pixel(R, dir, nc, k);
-                pixel_acc *a = &pix[(size_t)dir * (size_t)R->pixels + (size_t)px];
-                a->sum[1] += (A - S->setpoint) * P;
-                a->sum[2] += ph * 180 / M_PI * P;
-                a->nblk += P;
-                for (int h = 2; h <= S->lockin.harmonics; h++) {
-                    double Ah = tt_lockin_amplitude(W->lockin, h);
-                    a->sum[TT_CH_HARMONIC_INDEX + h - 2] += Ah * P;
-                    /* a harmonic's phase is averaged as a vector: near zero amplitude it
-                     * is noise, and a plain mean across its wrap would be meaningless */
-                    double phh = tt_lockin_phase(W->lockin, h);
-                    a->sum[TT_CH_HARMONIC_PHASE_INDEX + h - 2] += Ah * cos(phh) * P;
-                    a->quad[h - 2] += Ah * sin(phh) * P;
-                }
-            }
-        }
+        L.phase = phase;
+        L.dir = phase == 2 ? 1 : 0;
+        L.ncyc = phase == 0 ? settle_blocks * L.P : L.nc;
+        st.k = 0;
+        st.ahead[0].k = st.ahead[1].k = -1;
+        rc = run(&L, &st, tier);
     }
-    if (rc == TT_OK) {
-        e.fb = fb;
-        e.z_from = z_from;
-        e.z_to = z_to;
-        e.pz = pz;
-        e.z_act = z_act;
-        tt_scan_line_done(S, W, line, &e, pix, out);
-    }
-    free(pix);
+    *cycles += st.cycles;
+    if (st.worst > *worst)
+        *worst = st.worst;
+    *clamped |= st.clamped;
+    if (rc == TT_OK)
+        line_done(S, W, line, &st, L.pix, out);
+    free(L.pix);
     return rc;
+}
+
+/* The cycle's deflection samples into the block's (j: its place in it), with the
+ * detector's noise. */
+static void block_samples(const line_ctx *L, const line_state *st, int j)
+{
+    const int N = L->N;
+    const tt_sample *smp = L->W->samples;
+    double *y = L->W->y + (size_t)j * (size_t)N;
+    for (int q = 0; q < N; q++)
+        y[q] = smp[q].d - smp[q].z;
+    const double sd = L->S->sd;
+    if (sd > 0)
+        for (int q = 0; q < N; q++)
+            y[q] += sd * tt_noise_gauss(L->kd, (uint64_t)st->cycles * (uint64_t)N + (uint64_t)q);
+}
+
+/* The every-cycle tier's cycles of one phase: each integrated. */
+static int every_phase(const line_ctx *L, line_state *st, void *tier)
+{
+    (void)tier;
+    const double sz = L->S->sz;
+    while (st->k < L->ncyc) {
+        cycle_in in;
+        int rc = tt_scan_cycle_begin(L, st, &in);
+        if (rc)
+            return rc;
+        if (sz > 0) {
+            in.sa += sz * tt_noise_gauss(L->kz, (uint64_t)st->cycles);
+            in.sb += sz * tt_noise_gauss(L->kz, (uint64_t)st->cycles + 1);
+        }
+        tt_cycle cy;
+        if ((rc = tt_scan_integrate(L, st, &in, &cy)))
+            return rc;
+        block_samples(L, st, in.j);
+        if ((rc = tt_scan_cycle_end(L, st, &in, cy.peak_force, cy.max_indentation, cy.e_ts)))
+            return rc;
+    }
+    return TT_OK;
 }
 
 /* One line on the worker's tier. */
@@ -520,7 +478,7 @@ static int run_line(tt_scan *S, worker *W, long line, const line_out *out, long 
 {
     if (W->env)
         return tt_scan_line_envelope(S, W, line, out, cycles, integrated, worst, clamped);
-    int rc = scan_line(S, W, line, out, cycles, worst, clamped);
+    int rc = tt_scan_line_run(S, W, line, out, every_phase, NULL, cycles, worst, clamped);
     *integrated = *cycles;
     return rc;
 }

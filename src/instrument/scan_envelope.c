@@ -20,7 +20,6 @@
 #include <string.h>
 
 #include "scan_private.h"
-#include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 
 enum {
@@ -29,105 +28,6 @@ enum {
     WAIT_MIN = 16,   /* quiet integrated cycles before the model is tried */
     WAIT_MAX = 1024  /* the same after repeated failures (doubling) */
 };
-
-/* The surface at a cycle's start. */
-typedef struct {
-    long k;
-    double h, topo;
-    size_t mat;
-} surf_pt;
-
-/* What a line carries from cycle to cycle: what a rollback restores. */
-typedef struct {
-    long k; /* the next cycle of this phase */
-    tt_feedback fb;
-    double z_from, z_to, z_act;
-    tt_piezo pz;
-    size_t current; /* the material on the sim */
-    double x[2];    /* the tip's state at cycle k's start: the sim's, or the model's */
-    surf_pt ahead[2]; /* the surface at the next two cycles' starts (k < 0: none) */
-    long cycles;
-    double worst;
-    int clamped;
-} line_state;
-
-/* One cycle's inputs, as scan.c's scan_line computes them. */
-typedef struct {
-    double ha, hb, topo, za, sa, sb;
-    size_t mat, mat_next;
-    int edge_next; /* the next cycle crosses an edge */
-} cycle_in;
-
-/* The line's fixed quantities. */
-typedef struct {
-    tt_scan *S;
-    worker *W;
-    long line, nc, ncyc;
-    int phase, dir, P, N, piezo;
-    double s_ref, tol, edge;
-    pixel_acc *pix;
-} line_ctx;
-
-static size_t material_at(const tt_scan *S, double x, double y)
-{
-    return S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
-}
-
-/* The surface at the start of cycle k: the height the apex meets, the true height and
- * the material (as scan.c's scan_line finds them). */
-static void surface_at(const line_ctx *L, long k, double *h, double *topo, size_t *mat)
-{
-    const tt_scan *S = L->S;
-    double x, y;
-    tt_raster_position(&S->raster, L->line, L->dir, L->nc, L->phase ? k : 0, &x, &y);
-    if (S->plain) {
-        *h = *topo = S->flat ? 0 : tt_surface_height(S->surface, x, y);
-    } else {
-        double t = tt_scan_clock_at(S, L->line, L->phase, L->nc, L->phase ? k : 0);
-        *h = tt_scan_sample_at(S, &x, &y, t, topo);
-    }
-    *mat = material_at(S, x, y);
-}
-
-/* The surface at cycle k's start, from the two found ahead when they hold it. */
-static surf_pt surface_cached(const line_ctx *L, const line_state *st, long k)
-{
-    for (int i = 0; i < 2; i++)
-        if (st->ahead[i].k == k)
-            return st->ahead[i];
-    surf_pt p = {.k = k};
-    surface_at(L, k, &p.h, &p.topo, &p.mat);
-    return p;
-}
-
-/* The inputs of cycle k (j: its place in the block); advances the piezo. The surface
- * is found one cycle further ahead than the cycle needs, so that a stretch closes its
- * check before a cycle that crosses an edge (edge_next), and kept for the next cycles. */
-static void inputs(const line_ctx *L, line_state *st, long k, int j, cycle_in *in)
-{
-    const tt_scan *S = L->S;
-    surf_pt a = surface_cached(L, st, k), b = surface_cached(L, st, k + 1), c = b;
-    if (k + 1 < L->ncyc)
-        c = surface_cached(L, st, k + 2);
-    st->ahead[0] = b;
-    st->ahead[1] = c;
-    in->ha = a.h;
-    in->topo = a.topo;
-    in->mat = a.mat;
-    in->hb = b.h;
-    in->mat_next = b.mat;
-    in->edge_next = c.mat != b.mat || fabs(c.h - b.h) > L->edge;
-    const double P = L->P;
-    in->za = st->z_from + (st->z_to - st->z_from) * (double)j / P;
-    double zb = st->z_from + (st->z_to - st->z_from) * (double)(j + 1) / P;
-    double pa = in->za, pb = zb;
-    if (L->piezo) {
-        pa = st->z_act;
-        pb = st->z_act = tt_piezo_advance(&st->pz, zb, S->cantilever.T);
-    }
-    in->sa = L->s_ref - in->ha + pa;
-    in->sb = L->s_ref - in->hb + pb;
-}
 
 /* The surface at the cycle's end differs from its start's: the cycle crosses an edge,
  * and is integrated.
@@ -138,56 +38,22 @@ static int edge_ahead(const line_ctx *L, const cycle_in *in)
     return in->mat_next != in->mat || fabs(in->hb - in->ha) > L->edge;
 }
 
-/* A cycle's observables into the block's samples and the pixel's sums. */
-static void record(const line_ctx *L, long k, int j, const cycle_in *in, const double *obs)
+/* A cycle's observables into the block's and the pixel's sums; the cycle ends
+ * (tt_scan_cycle_end). The block keeps each period as the lock-in's components
+ * (tt_lockin_transform): obs holds them already after a model cycle (reduced), else
+ * the cycle's samples. */
+static int record(const line_ctx *L, line_state *st, const cycle_in *in, const double *obs,
+                  int reduced)
 {
-    const tt_scan *S = L->S;
-    const int N = L->N;
-    memcpy(L->W->y + (size_t)j * (size_t)N, obs, (size_t)N * sizeof *obs);
-    if (L->phase == 0)
-        return;
-    long px = tt_raster_pixel(&S->raster, L->dir, L->nc, k);
-    pixel_acc *a = &L->pix[(size_t)L->dir * (size_t)S->raster.pixels + (size_t)px];
-    a->sum[3] += obs[N + TT_ENV_PEAK];
-    a->sum[4] += obs[N + TT_ENV_INDENT];
-    a->sum[5] += obs[N + TT_ENV_ETS];
-    a->sum[6] += in->topo;
-    a->sum[0] += in->za;
-    a->n++;
-}
-
-/* The end of a lock-in block: demodulate, update the feedback, and (trace, retrace)
- * add the lock-in's outputs to the pixel of the block's last cycle. */
-static int block_end(const line_ctx *L, line_state *st, long b)
-{
-    tt_scan *S = L->S;
-    tt_lockin *li = L->W->lockin;
-    int rc = tt_lockin_push(li, L->W->y);
-    if (rc)
-        return rc;
-    const int P = L->P;
-    double A = tt_lockin_amplitude(li, 1), ph = tt_lockin_phase(li, 1);
-    st->z_from = st->z_to;
-    st->z_to = tt_feedback_update(&st->fb, A, P * S->cantilever.T);
-    if (st->fb.clamped)
-        st->clamped = 1;
-    if (L->phase == 0)
-        return TT_OK;
-    long k = b * P + P - 1;
-    if (k >= L->nc)
-        k = L->nc - 1;
-    long px = tt_raster_pixel(&S->raster, L->dir, L->nc, k);
-    pixel_acc *a = &L->pix[(size_t)L->dir * (size_t)S->raster.pixels + (size_t)px];
-    a->sum[1] += (A - S->setpoint) * P;
-    a->sum[2] += ph * 180 / M_PI * P;
-    a->nblk += P;
-    for (int h = 2; h <= S->lockin.harmonics; h++) {
-        double Ah = tt_lockin_amplitude(li, h), phh = tt_lockin_phase(li, h);
-        a->sum[TT_CH_HARMONIC_INDEX + h - 2] += Ah * P;
-        a->sum[TT_CH_HARMONIC_PHASE_INDEX + h - 2] += Ah * cos(phh) * P;
-        a->quad[h - 2] += Ah * sin(phh) * P;
-    }
-    return TT_OK;
+    const tt_lockin *li = L->W->lockin;
+    const int nc = tt_lockin_components(li);
+    double *slot = L->W->y + (size_t)in->j * (size_t)nc;
+    if (reduced)
+        memcpy(slot, obs, (size_t)nc * sizeof *obs);
+    else
+        tt_lockin_transform(li, obs, slot);
+    const double *x = obs + (reduced ? nc : L->N);
+    return tt_scan_cycle_end(L, st, in, x[TT_ENV_PEAK], x[TT_ENV_INDENT], x[TT_ENV_ETS]);
 }
 
 /* A point the line can return to: its state after a cycle, the lock-in's filter, the
@@ -246,25 +112,18 @@ typedef struct {
     int prev_touch;
     int rebuild;     /* the Jacobians must be taken anew before the model runs */
     snapshot sn;
+    long integrated; /* cycles integrated, rolled-back ones too */
 } controller;
 
 /* Integrate cycle k from the sim's state: its observables and end state (st->x). */
 static int integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_cycle *cy,
                      double *obs, int *c1, long *integrated)
 {
-    tt_scan *S = L->S;
     tt_sim *sim = L->W->sim;
-    if (in->mat != st->current) {
-        tt_sim_set_contact(sim, S->contacts[in->mat], S->Qi[in->mat]);
-        st->current = in->mat;
-    }
-    tt_sim_set_sample(sim, in->sa, (in->sb - in->sa) / S->cantilever.T);
-    int rc = tt_sim_cycle(sim, cy);
+    int rc = tt_scan_integrate(L, st, in, cy);
     if (rc)
         return rc;
     (*integrated)++;
-    if (cy->residual_rel > st->worst)
-        st->worst = cy->residual_rel;
     tt_envelope_observe(L->W->env, tt_sim_samples(sim), cy, obs);
     tt_sim_get_state(sim, &st->x[0], &st->x[1], c1);
     return TT_OK;
@@ -356,6 +215,25 @@ static void fail(const line_ctx *L, line_state *st, controller *c, long k)
     c->wait = c->wait * 2 < WAIT_MAX ? c->wait * 2 : WAIT_MAX;
 }
 
+/* A model cycle, unless the stretch is done, this or the next cycle crosses an edge,
+ * the sample is out of the anchor's reach, or it is the phase's last (the next phase
+ * starts integrating from the sim's state): then a check. 1: the model ran the cycle,
+ * its samples reduced to the lock-in's components in obs. */
+static int model_step(const line_ctx *L, line_state *st, const controller *c,
+                      const cycle_in *in, int edge, double *obs)
+{
+    const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
+    if (!c->model || c->left <= 0 || edge || in->edge_next || in->mat != st->current ||
+        in->k + 1 >= L->ncyc ||
+        !(fabs(tt_envelope_sample_offset(L->W->env, in->sa, sdot)) <= L->edge))
+        return 0;
+    double x1[2];
+    tt_envelope_predict_reduced(L->W->env, st->x, in->sa, sdot, x1, obs);
+    st->x[0] = x1[0];
+    st->x[1] = x1[1];
+    return 1;
+}
+
 /* The cycles of one phase. */
 static int run_phase(const line_ctx *L, line_state *st, controller *c, long *integrated)
 {
@@ -367,29 +245,16 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c, long *int
     c->redo = 0;
     c->rebuild = 1;
     while (st->k < L->ncyc) {
-        const long k = st->k;
-        const int j = (int)(k % L->P);
-        if ((k & 255) == 0 && tt_cancel_requested())
-            return TT_EINTR;
         cycle_in in;
-        inputs(L, st, k, j, &in);
+        if ((rc = tt_scan_cycle_begin(L, st, &in)))
+            return rc;
         const int edge = edge_ahead(L, &in);
-        int snap = 0;
-        /* a model cycle, unless the stretch is done, this or the next cycle crosses an
-         * edge, the sample is out of the anchor's reach, or it is the phase's last (the
-         * next phase starts integrating from the sim's state): then a check */
-        const double sdot = (in.sb - in.sa) / L->S->cantilever.T;
-        if (c->model && c->left > 0 && !edge && !in.edge_next && in.mat == st->current &&
-            k + 1 < L->ncyc &&
-            fabs(tt_envelope_sample_offset(L->W->env, in.sa, sdot)) <= L->edge) {
-            double x1[2];
-            tt_envelope_predict(L->W->env, st->x, in.sa, sdot, x1, obs);
-            st->x[0] = x1[0];
-            st->x[1] = x1[1];
+        int snap = 0, reduced = model_step(L, st, c, &in, edge, obs);
+        if (reduced) {
             c->left--;
         } else if (c->model) {
             if (!check(L, st, &in, obs, integrated)) {
-                fail(L, st, c, k);
+                fail(L, st, c, in.k);
                 continue;
             }
             c->m = 2 * c->m < M_MAX ? 2 * c->m : M_MAX;
@@ -402,11 +267,8 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c, long *int
             if (rc)
                 return rc;
         }
-        record(L, k, j, &in, obs);
-        st->cycles++;
-        if ((j == L->P - 1 || k == L->ncyc - 1) && (rc = block_end(L, st, k / L->P)))
+        if ((rc = record(L, st, &in, obs, reduced)))
             return rc;
-        st->k = k + 1;
         if (snap) {
             c->left = c->m;
             snap_take(L, st, tt_envelope_anchor_contact(L->W->env), c->left, &c->sn);
@@ -415,66 +277,22 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c, long *int
     return TT_OK;
 }
 
-/* Engage as scan.c's scan_line does (tt_scan_engage); the tip's state is the model's
- * first input. */
-static void engage(tt_scan *S, worker *W, long line, long nc, line_state *st)
+/* The envelope tier's cycles of one phase (a scan_phase_fn; tier: the controller). */
+static int envelope_phase(const line_ctx *L, line_state *st, void *tier)
 {
-    scan_carry e;
-    tt_scan_engage(S, W, line, nc, &e);
-    st->current = e.current;
-    st->fb = e.fb;
-    st->z_from = e.z_from;
-    st->z_to = e.z_to;
-    st->pz = e.pz;
-    st->z_act = e.z_act;
-    int contact;
-    tt_sim_get_state(W->sim, &st->x[0], &st->x[1], &contact);
+    controller *c = tier;
+    return run_phase(L, st, c, &c->integrated);
 }
 
 int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
                           long *integrated, double *worst, int *clamped)
 {
-    const tt_raster *R = &S->raster;
-    line_ctx L = {.S = S, .W = W, .line = line};
-    L.P = S->lockin.periods_per_block;
-    L.N = S->lockin.samples_per_period;
-    L.nc = tt_raster_cycles_per_direction(R, S->cantilever.T);
-    L.piezo = !tt_piezo_ideal(&S->inst.piezo);
-    L.s_ref = S->setpoint;
-    /* The model's error per cycle, relative to the free amplitude: held to ten times
-     * the stepper's tolerance, below what the integration itself errs per cycle (13 to
-     * 16 times the tolerance at 1e-8 on the standard scene, 5 to 20 times at 1e-6 and
-     * 1e-7: one cycle against one at 1e-12 from the same state) */
-    L.tol = 10 * S->solver.tolerance;
-    L.edge = 1e-3 * S->A0;
-    line_state st = {0};
-    const int carry = S->continuous && W->engaged; /* no settling then */
-    engage(S, W, line, L.nc, &st);
-    tt_sim_set_sampling(W->sim, L.N, W->samples);
-    tt_sim_track_peaks(W->sim, (S->channels & (TT_CH_PEAK_FORCE | TT_CH_INDENTATION)) != 0);
     controller c = {.m = M_MIN, .wait = WAIT_MIN};
-    L.pix = calloc((size_t)R->pixels * 2, sizeof *L.pix);
-    c.sn.pix = calloc((size_t)R->pixels, sizeof *c.sn.pix);
-    int rc = L.pix && c.sn.pix ? TT_OK : tt_error(TT_ENOMEM, "out of memory");
-    long settle_blocks = carry ? 0 : (S->settle_cycles + L.P - 1) / L.P;
-    int nphase = R->retrace || S->continuous ? 3 : 2;
-    for (int phase = 0; phase < nphase && rc == TT_OK; phase++) {
-        L.phase = phase;
-        L.dir = phase == 2 ? 1 : 0;
-        L.ncyc = phase == 0 ? settle_blocks * L.P : L.nc;
-        st.k = 0;
-        st.ahead[0].k = st.ahead[1].k = -1;
-        rc = run_phase(&L, &st, &c, integrated);
-    }
-    *cycles += st.cycles;
-    if (st.worst > *worst)
-        *worst = st.worst;
-    *clamped |= st.clamped;
-    if (rc == TT_OK) {
-        scan_carry e = {st.fb, st.z_from, st.z_to, st.z_act, st.pz, st.current};
-        tt_scan_line_done(S, W, line, &e, L.pix, out);
-    }
-    free(L.pix);
+    c.sn.pix = calloc((size_t)S->raster.pixels, sizeof *c.sn.pix);
+    if (!c.sn.pix)
+        return tt_error(TT_ENOMEM, "out of memory");
+    int rc = tt_scan_line_run(S, W, line, out, envelope_phase, &c, cycles, worst, clamped);
+    *integrated += c.integrated;
     free(c.sn.pix);
     return rc;
 }

@@ -1,7 +1,10 @@
 /* The scan's private state, shared by its line loops: scan.c (every cycle) and
- * scan_envelope.c (the envelope tier). Private to libtiptap. */
+ * scan_envelope.c (the envelope tier), and the per-cycle steps they share
+ * (scan_cycle.c). Private to libtiptap. */
 #ifndef TIPTAP_SCAN_PRIVATE_H
 #define TIPTAP_SCAN_PRIVATE_H
+
+#include <stdint.h>
 
 #include "tiptap/instrument/scan.h"
 #include "tiptap/solver/envelope.h"
@@ -14,7 +17,8 @@ typedef struct {
     tt_sim *sim;
     tt_lockin *lockin;
     tt_sample *samples;
-    double *y;
+    double *y; /* the lock-in block's periods: samples, or on the envelope tier each
+                * period's components (tt_lockin_transform) */
     /* continuous lines: the feedback and the z piezo's ramp where the last line ended */
     int engaged;
     tt_feedback fb;
@@ -22,7 +26,7 @@ typedef struct {
     tt_piezo pz;
     double z_act;
     /* the envelope tier (NULL: every cycle): its model, a snapshot of the lock-in and
-     * of the block's samples to roll back to, and two observable vectors */
+     * of the block's periods (y) to roll back to, and two observable vectors */
     tt_envelope *env;
     tt_lockin *lockin_save;
     double *y_save, *obs;
@@ -83,26 +87,74 @@ typedef struct {
 double tt_scan_clock_at(const tt_scan *S, long line, int phase, long nc, long k);
 double tt_scan_sample_at(const tt_scan *S, double *x, double *y, double t, double *topo);
 
-/* What a line starts from and leaves to the next (continuous lines): the feedback, the
- * z piezo's command ramp and actual height, and the material set on the sim. */
+/* The surface at a cycle's start: the height the apex meets, the true height and the
+ * material (k < 0: none found). */
 typedef struct {
+    long k;
+    double h, topo;
+    size_t mat;
+} surf_pt;
+
+/* What a line carries from cycle to cycle, and from line to line (continuous lines):
+ * what the envelope tier's rollback restores. */
+typedef struct {
+    long k; /* the next cycle of this phase */
     tt_feedback fb;
-    double z_from, z_to, z_act;
+    double z_from, z_to, z_act; /* the z piezo's command ramp and actual height */
     tt_piezo pz;
-    size_t current;
-} scan_carry;
+    size_t current;   /* the material on the sim */
+    double x[2];      /* the tip's state at cycle k's start: the sim's, or the model's */
+    surf_pt ahead[2]; /* the surface at the next two cycles' starts */
+    long cycles;      /* the line's cycles so far (the noise's cycle count) */
+    double worst;
+    int clamped;
+} line_state;
 
-/* Engage at the line's first pixel (scan.c): the material there on the sim, and, unless
- * continuous lines carry on from the last retrace, the feedback at that pixel's height,
- * the piezo at rest there, the tip and the lock-in on the free oscillation. */
-void tt_scan_engage(tt_scan *S, worker *W, long line, long nc, scan_carry *e);
-/* A line finished: its state kept for the next (continuous lines), its pixels' means
- * into the images. */
-void tt_scan_line_done(const tt_scan *S, worker *W, long line, const scan_carry *e,
-                       const pixel_acc *pix, const line_out *out);
+/* One cycle's inputs: the surface at its start and end, the z piezo's command at its
+ * start, and the sample's position (separation at rest) at its start and end. */
+typedef struct {
+    long k; /* the cycle of this phase */
+    int j;  /* its place in the lock-in block */
+    double ha, hb, topo, za, sa, sb;
+    size_t mat, mat_next;
+    int edge_next; /* the next cycle crosses an edge (edge heights or materials) */
+} cycle_in;
 
-/* One line on the envelope tier (scan_envelope.c); the arguments as scan.c's
- * scan_line. */
+/* A line's fixed quantities within a phase. */
+typedef struct {
+    tt_scan *S;
+    worker *W;
+    long line, nc, ncyc; /* cycles per direction; of this phase */
+    int phase, dir, P, N, piezo;
+    double s_ref;
+    double tol, edge; /* the envelope tier's error per cycle and edge height */
+    uint64_t kd, kz;  /* the every-cycle tier's detector and z piezo noise keys */
+    pixel_acc *pix;   /* [direction][pixel] */
+} line_ctx;
+
+/* A tier's cycles of one phase (L->phase), from st (k = 0). */
+typedef int (*scan_phase_fn)(const line_ctx *L, line_state *st, void *tier);
+
+/* One line (scan.c): engage at its first pixel, settle, trace and retrace, each phase's
+ * cycles run by the tier's run; the pixels' means into out. */
+int tt_scan_line_run(tt_scan *S, worker *W, long line, const line_out *out, scan_phase_fn run,
+                     void *tier, long *cycles, double *worst, int *clamped);
+
+/* The per-cycle steps both tiers share (scan_cycle.c). */
+/* A cycle starts: the inputs of cycle st->k, or TT_EINTR when the run is cancelled;
+ * advances the piezo. The surface is found one cycle further ahead than the cycle
+ * needs (edge_next) and kept in st->ahead for the next cycles. */
+int tt_scan_cycle_begin(const line_ctx *L, line_state *st, cycle_in *in);
+/* Integrate the cycle from the sim's state, its material set on the sim first. */
+int tt_scan_integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_cycle *cy);
+/* A cycle ends (its deflection samples in W->y): its per-cycle channels into its
+ * pixel's sums (trace, retrace), and at the end of a lock-in block, the lock-in, the
+ * feedback and the block's outputs into the pixel of its last cycle; on to the next. */
+int tt_scan_cycle_end(const line_ctx *L, line_state *st, const cycle_in *in, double peak,
+                      double indent, double ets);
+
+/* One line on the envelope tier (scan_envelope.c), through tt_scan_line_run;
+ * *integrated counts the cycles integrated, the rest followed the model. */
 int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
                           long *integrated, double *worst, int *clamped);
 

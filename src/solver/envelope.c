@@ -21,6 +21,10 @@ struct tt_envelope {
     /* Jacobians: of the end state and of the observables, by input */
     double J[2][NIN];
     double *C;            /* no x NIN, by columns (the prediction's loop vectorises) */
+    /* the samples reduced (tt_envelope_reduce): m x n rows R; the anchor's reduced
+     * observables ra (m + TT_ENV_EXTRA) and their Jacobian Cr, by columns */
+    int m;
+    double *R, *ra, *Cr;
 };
 
 int tt_envelope_alloc(tt_envelope **out, const tt_cantilever *c, int n)
@@ -60,10 +64,45 @@ void tt_envelope_free(tt_envelope *e)
     free(e->oscale);
     free(e->oa);
     free(e->C);
+    free(e->R);
+    free(e->ra);
+    free(e->Cr);
     free(e);
 }
 
 int tt_envelope_size(const tt_envelope *e) { return e->no; }
+
+int tt_envelope_reduce(tt_envelope *e, int m, const double *R)
+{
+    size_t nr = (size_t)m + TT_ENV_EXTRA;
+    free(e->R);
+    free(e->ra);
+    free(e->Cr);
+    e->m = m;
+    e->R = malloc((size_t)m * (size_t)e->n * sizeof *e->R);
+    e->ra = calloc(nr, sizeof *e->ra);
+    e->Cr = calloc(nr * NIN, sizeof *e->Cr);
+    if (!e->R || !e->ra || !e->Cr)
+        return tt_error(TT_ENOMEM, "out of memory");
+    memcpy(e->R, R, (size_t)m * (size_t)e->n * sizeof *R);
+    return TT_OK;
+}
+
+/* An observable vector o (no) reduced: r (m + TT_ENV_EXTRA), the samples through R. */
+static void reduce(const tt_envelope *e, const double *o, double *r)
+{
+    if (!e->R)
+        return;
+    for (int i = 0; i < e->m; i++) {
+        const double *row = e->R + (size_t)i * (size_t)e->n;
+        double sum = 0;
+        for (int q = 0; q < e->n; q++)
+            sum += row[q] * o[q];
+        r[i] = sum;
+    }
+    for (int i = 0; i < TT_ENV_EXTRA; i++)
+        r[e->m + i] = o[e->n + i];
+}
 
 int tt_envelope_touched(const tt_cycle *cy) { return cy->contact_fraction > 0 || cy->events > 0; }
 int tt_envelope_anchor_touched(const tt_envelope *e) { return e->touched; }
@@ -94,6 +133,7 @@ void tt_envelope_anchor(tt_envelope *e, const double x0[2], double s, double sdo
     e->x1[1] = x1[1];
     e->touched = tt_envelope_touched(cy);
     memcpy(e->oa, obs, (size_t)e->no * sizeof *obs);
+    reduce(e, e->oa, e->ra);
 }
 
 /* One perturbed cycle from x0 + dx with the sample at s + ds: end state and
@@ -147,20 +187,46 @@ int tt_envelope_build(tt_envelope *e, tt_sim *sim, const double x0[2], int c0, d
             e->C[j * e->no + i] = (op[i] - om[i]) / (2 * h[j]);
     }
     free(op);
+    for (int j = 0; j < NIN && ok; j++)
+        reduce(e, e->C + (size_t)j * (size_t)e->no, e->Cr + (size_t)j * (size_t)(e->m + TT_ENV_EXTRA));
     tt_sim_set_state(sim, x1[0], x1[1], c1);
     return ok;
+}
+
+/* The model's inputs' offsets from the anchor, and its end state from x. */
+static void step(const tt_envelope *e, const double x[2], double s, double sdot, double u[NIN],
+                 double x1[2])
+{
+    u[0] = x[0] - e->xa[0];
+    u[1] = x[1] - e->xa[1];
+    u[2] = s + 0.5 * sdot * e->T - e->sa;
+    for (int i = 0; i < 2; i++)
+        x1[i] = e->x1[i] + e->J[i][0] * u[0] + e->J[i][1] * u[1] + e->J[i][2] * u[2];
+}
+
+/* Observables o = oa + C u, C by columns of length no. */
+static void linear(int no, const double *restrict oa, const double *restrict C,
+                   const double u[NIN], double *restrict o)
+{
+    const double *restrict c0 = C, *restrict c1 = c0 + no, *restrict c2 = c1 + no;
+    for (int i = 0; i < no; i++)
+        o[i] = oa[i] + c0[i] * u[0] + c1[i] * u[1] + c2[i] * u[2];
 }
 
 void tt_envelope_predict(const tt_envelope *e, const double x[2], double s, double sdot,
                          double x1[2], double *obs)
 {
-    const double u[NIN] = {x[0] - e->xa[0], x[1] - e->xa[1], s + 0.5 * sdot * e->T - e->sa};
-    for (int i = 0; i < 2; i++)
-        x1[i] = e->x1[i] + e->J[i][0] * u[0] + e->J[i][1] * u[1] + e->J[i][2] * u[2];
-    const double *restrict c0 = e->C, *restrict c1 = c0 + e->no, *restrict c2 = c1 + e->no;
-    const double *restrict oa = e->oa;
-    for (int i = 0; i < e->no; i++)
-        obs[i] = oa[i] + c0[i] * u[0] + c1[i] * u[1] + c2[i] * u[2];
+    double u[NIN];
+    step(e, x, s, sdot, u, x1);
+    linear(e->no, e->oa, e->C, u, obs);
+}
+
+void tt_envelope_predict_reduced(const tt_envelope *e, const double x[2], double s, double sdot,
+                                 double x1[2], double *red)
+{
+    double u[NIN];
+    step(e, x, s, sdot, u, x1);
+    linear(e->m + TT_ENV_EXTRA, e->ra, e->Cr, u, red);
 }
 
 double tt_envelope_error(const tt_envelope *e, const double xa[2], const double *oa,

@@ -93,6 +93,10 @@ typedef struct {
     double cycles;        /* drive cycles to simulate */
     double cycle_seconds; /* wall time of one, one thread */
     double seconds;       /* of the whole run, one thread */
+    double seconds_low;   /* the least (the envelope tier, where the model follows most
+                           * cycles); seconds otherwise */
+    int envelope;         /* 1: a scan on the envelope tier (seconds_low to seconds) */
+    double integrated_low, integrated_high; /* its fractions of the cycles integrated */
     int upper_bound;      /* 1: cycles and seconds are the most it can take (settling) */
     double bytes;         /* memory held for the run (scan: images and previews) */
     double thread_bytes;  /* and per thread */

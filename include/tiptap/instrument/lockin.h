@@ -43,6 +43,20 @@ void tt_lockin_copy(tt_lockin *dst, const tt_lockin *src);
 /* Feed one block: samples_per_period * periods_per_block samples. */
 int tt_lockin_push(tt_lockin *l, const double *samples);
 
+/* A period's components: what a block's transform is linear in, for a caller that has
+ * them without the samples (the envelope tier's model cycles). Per period of N
+ * samples y: the mean, then per harmonic h = 1..harmonics the in-phase and quadrature
+ * parts (2 / N) sum y cos(h w t), (2 / N) sum y sin(h w t); a block's results are their
+ * means over its periods, as the transform of its samples gives them (up to rounding). */
+int tt_lockin_components(const tt_lockin *l); /* 1 + 2 harmonics */
+/* The components' matrix, components x samples_per_period by rows (the lock-in's). */
+const double *tt_lockin_component_matrix(const tt_lockin *l);
+/* One period's samples to its components (c: tt_lockin_components values). */
+void tt_lockin_transform(const tt_lockin *l, const double *samples, double *c);
+/* Feed one block as its periods' components, periods_per_block x components: the same
+ * filter step as tt_lockin_push of its samples. */
+int tt_lockin_push_components(tt_lockin *l, const double *c);
+
 /* Filtered outputs for harmonic h (1 = fundamental, up to harmonics). */
 double tt_lockin_amplitude(const tt_lockin *l, int h);
 double tt_lockin_phase(const tt_lockin *l, int h);

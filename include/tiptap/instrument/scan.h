@@ -156,6 +156,9 @@ double tt_scan_instrument_time(const tt_scan *s);
 long tt_scan_cycles(const tt_scan *s);
 /* Cycles integrated: all of them on the every-cycle tier, fewer on the envelope tier. */
 long tt_scan_cycles_integrated(const tt_scan *s);
+/* Whether a scan of these parameters runs on the envelope tier: [solver] tier asks for
+ * it and the scan allows it (Q from 30 to 3000, no noise); else every cycle. */
+int tt_scan_envelope_tier(const tt_scan_params *p);
 double tt_scan_error_estimate(const tt_scan *s);
 
 /* The estimated error of the images, from a companion run: the profile line scanned

@@ -9,7 +9,8 @@
  *     P(x, s) = P(xa, sa) + dP/dx (x - xa) + dP/ds (s - sa) + O(|x - xa|^2 + |s - sa|^2)
  *
  * and likewise o: one cycle of the model costs a 2 x 3 and an (n + 3) x 3 product
- * instead of an integration. Its Jacobians come from central differences (6 cycles);
+ * instead of an integration, or (m + 3) x 3 when the caller needs only m linear
+ * combinations of the samples (tt_envelope_reduce). Its Jacobians come from central differences (6 cycles);
  * each integrated cycle re-anchors the model, so the second-order remainder stays
  * small while the Jacobians are reused. The model is iterated cycle by cycle, so it
  * contracts as the true map does (its eigenvalues are the Floquet multipliers): it is
@@ -67,6 +68,17 @@ void tt_envelope_anchor(tt_envelope *e, const double x0[2], double s, double sdo
  * observables obs. */
 void tt_envelope_predict(const tt_envelope *e, const double x[2], double s, double sdot,
                          double x1[2], double *obs);
+
+/* Reduce the model's deflection samples to m linear combinations of them, R (m x n, by
+ * rows; copied), for a caller that needs only those (the lock-in's per-period
+ * components, tiptap/instrument/lockin.h): tt_envelope_predict_reduced then costs
+ * (m + 3) x 3 instead of (n + 3) x 3. Call it before the model is first built. */
+int tt_envelope_reduce(tt_envelope *e, int m, const double *R);
+
+/* tt_envelope_predict with the samples reduced: red holds the m reduced values, then
+ * the TT_ENV_EXTRA observables. Needs tt_envelope_reduce. */
+void tt_envelope_predict_reduced(const tt_envelope *e, const double x[2], double s, double sdot,
+                                 double x1[2], double *red);
 
 /* The largest scaled difference between two versions of one cycle (model and
  * integration): end states and observables, relative to the free amplitude. */
