@@ -117,16 +117,24 @@ typedef struct {
     double *img[2][2]; /* [height, phase][trace, retrace] */
 } imaging_run;
 
-static int imaging_once(const tt_scan_params *p, int threads, int estimate, imaging_run *out)
+/* One scan on a number of threads, its wall and CPU times; the caller frees *scan. */
+static int timed_scan(const tt_scan_params *p, int threads, tt_scan **scan, double *wall, double *cpu)
 {
-    tt_scan *scan = NULL;
-    int rc = tt_scan_alloc(&scan, p);
+    *scan = NULL;
+    int rc = tt_scan_alloc(scan, p);
     double t0 = cli_now();
     clock_t c0 = clock();
     if (!rc)
-        rc = tt_scan_run(scan, threads, NULL, NULL);
-    out->wall = cli_now() - t0;
-    out->cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
+        rc = tt_scan_run(*scan, threads, NULL, NULL);
+    *wall = cli_now() - t0;
+    *cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
+    return rc;
+}
+
+static int imaging_once(const tt_scan_params *p, int threads, int estimate, imaging_run *out)
+{
+    tt_scan *scan;
+    int rc = timed_scan(p, threads, &scan, &out->wall, &out->cpu);
     if (!rc) {
         size_t n = (size_t)(p->raster.pixels * p->raster.lines);
         out->inst = tt_scan_instrument_time(scan);
@@ -143,6 +151,22 @@ static int imaging_once(const tt_scan_params *p, int threads, int estimate, imag
             }
     }
     tt_scan_free(scan);
+    return rc;
+}
+
+/* A run shorter than a second is timed again, up to five runs, keeping the best wall
+ * and CPU times: a fifth of a second is at the mercy of one burst of load. */
+static int imaging_timed(const tt_scan_params *p, int threads, int estimate, imaging_run *out)
+{
+    int rc = imaging_once(p, threads, estimate, out);
+    for (int k = 1; k < 5 && !rc && out->wall < 1.0; k++) {
+        tt_scan *scan;
+        double wall, cpu;
+        rc = timed_scan(p, threads, &scan, &wall, &cpu);
+        out->wall = fmin(out->wall, wall);
+        out->cpu = fmin(out->cpu, cpu);
+        tt_scan_free(scan);
+    }
     return rc;
 }
 
@@ -214,9 +238,9 @@ static int bench_imaging(const tt_scene *scene, const setting *set, size_t nset)
         p.solver.tier = set[i].tier;
         imaging_run r1 = {0}, r2 = {0};
         if (i > 0)
-            rc = imaging_once(&p, 1, 0, &r1);
+            rc = imaging_timed(&p, 1, 0, &r1);
         if (!rc)
-            rc = imaging_once(&p, 2, i > 0, &r2);
+            rc = imaging_timed(&p, 2, i > 0, &r2);
         if (!rc) {
             if (i == 0) {
                 ref = r2;
@@ -248,7 +272,8 @@ static int bench_imaging(const tt_scene *scene, const setting *set, size_t nset)
     p.materials = own;
     tt_config_scan_free(&p);
     if (!rc)
-        printf("# rtf_j2: instrument time / wall time on two threads (10 is the goal); rtf_cpu: the\n"
+        printf("# runs under a second: the best of five\n"
+               "# rtf_j2: instrument time / wall time on two threads (10 is the goal); rtf_cpu: the\n"
                "# same from the CPU time, what two idle cores give (a shared machine's wall time is\n"
                "# not); energy_bal: the energy-balance check (largest residual / free drive work)\n");
     if (!rc)
