@@ -40,14 +40,14 @@ static size_t run(double A0_nm, const char *keys, tt_approach_point *pt, size_t 
     return n;
 }
 
-/* 40 um/s over 130 nm is 169 cycles at 52 kHz: 400 rows would run the sample 176 nm
- * past `to`; refused, and 170 rows end exactly at `to`. */
+/* 40 um/s over 130 nm is 169 cycles at 52 kHz: 171 rows would run the sample past `to`;
+ * refused, and 170 rows end exactly at `to`. */
 static void ramp_ends_at_to(void **st)
 {
     (void)st;
     static tt_approach_point pt[400];
     int arc;
-    size_t n = run(150, "mode = ramp\nfrom = 130 nm\nto = 0 nm\nspeed = 40 um/s\npoints = 400\n", pt, 400, &arc);
+    size_t n = run(150, "mode = ramp\nfrom = 130 nm\nto = 0 nm\nspeed = 40 um/s\npoints = 171\n", pt, 400, &arc);
     assert_int_equal(arc, TT_EINVAL);
     assert_int_equal(n, 0);
     assert_non_null(strstr(tt_error_message(), "[approach] points"));
@@ -57,6 +57,19 @@ static void ramp_ends_at_to(void **st)
     for (size_t i = 0; i < n; i++)
         assert_true(pt[i].z >= -1e-18 && pt[i].z <= 130e-9 + 1e-18);
     assert_close(pt[n - 1].z, 0, 1e-18);
+}
+
+/* Steady points 0.5 m apart would take the sample 5e9 cycles to move between: refused
+ * before anything runs, naming the key. */
+static void steady_move_too_long_refused(void **st)
+{
+    (void)st;
+    tt_approach_point pt[2];
+    int arc;
+    size_t n = run(150, "mode = steady\nfrom = 0.5 m\nto = 0 nm\npoints = 2\n", pt, 2, &arc);
+    assert_int_equal(arc, TT_EINVAL);
+    assert_int_equal(n, 0);
+    assert_non_null(strstr(tt_error_message(), "[approach] points"));
 }
 
 /* Steady points 5 nm apart: once the tip is captured (in contact all cycle long) no
@@ -94,21 +107,22 @@ static void unsettled_point_says_why(void **st)
     size_t n = run(200, "mode = steady\nfrom = 20 nm\nto = 7.25 nm\npoints = 52\nretract = no\n"
                         "max_cycles = 1000\n", pt, 52, &arc);
     assert_int_equal(n, 52);
-    for (size_t i = 0; i + 1 < n; i++)
-        if (!pt[i].settled)
-            assert_true(pt[i].period >= 0 && pt[i].period <= 8);
     const tt_approach_point *last = &pt[51];
     assert_close(last->z, 7.25e-9, 1e-18);
     assert_int_equal(last->settled, 0);
     assert_int_equal(last->period, 4);
     assert_close(last->amp_min, 2.93e-9, 0.05e-9);
     assert_close(last->amp_max, 9.36e-9, 0.05e-9);
+    /* an orbit does not drift: its change is taken over whole periods (over 23 cycles,
+     * not a multiple of 4, its phases passed for 0.28 nm per cycle) */
+    assert_true(fabs(last->amp_change) < 1e-12);
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(ramp_ends_at_to),
+        cmocka_unit_test(steady_move_too_long_refused),
         cmocka_unit_test(captured_stays_captured),
         cmocka_unit_test(unsettled_point_says_why),
     };

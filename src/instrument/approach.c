@@ -17,6 +17,12 @@ struct tt_approach {
     double z_last;         /* steady mode: the previous point's separation, m */
 };
 
+/* Steady mode moves the sample from one point to the next at this much per cycle at
+ * most (5 um/s at 52 kHz, the slow end of an instrument's approach): a jump would keep
+ * the tip's state against a surface that moved by the step, far beyond the contact's
+ * length scale a0, and kick a tip captured by adhesion loose (Burnham et al. fig. 4a). */
+#define TT_APPROACH_MOVE_PER_CYCLE 0.1e-9
+
 int tt_approach_alloc(tt_approach **out, tt_sim *sim, const tt_approach_params *p)
 {
     *out = NULL;
@@ -56,6 +62,15 @@ int tt_approach_alloc(tt_approach **out, tt_sim *sim, const tt_approach_params *
         }
         a->dz_cycle = (p->to - p->from) / (double)a->cycles_total;
         tt_sim_track_extremes(sim, 1);
+    } else {
+        /* the sample moves between points at TT_APPROACH_MOVE_PER_CYCLE at most */
+        double step = fabs(p->to - p->from) / (double)(p->points > 1 ? p->points - 1 : 1);
+        if (!(step / TT_APPROACH_MOVE_PER_CYCLE <= 2e9)) {
+            free(a);
+            return tt_error(TT_EINVAL, "[approach] points: %ld points from %g to %g m move the "
+                                       "sample more than 2e9 cycles between two of them",
+                            p->points, p->from, p->to);
+        }
     }
     *out = a;
     return TT_OK;
@@ -73,12 +88,6 @@ static double branch_z(const tt_approach_params *p, size_t i, int retract)
     double f = (double)i / (double)(p->points - 1);
     return retract ? p->to + f * (p->from - p->to) : p->from + f * (p->to - p->from);
 }
-
-/* Steady mode moves the sample from one point to the next at this much per cycle at
- * most (5 um/s at 52 kHz, the slow end of an instrument's approach): a jump would keep
- * the tip's state against a surface that moved by the step, far beyond the contact's
- * length scale a0, and kick a tip captured by adhesion loose (Burnham et al. fig. 4a). */
-#define TT_APPROACH_MOVE_PER_CYCLE 0.1e-9
 
 static int move_sample(tt_approach *a, double from, double to, long *cycles)
 {
@@ -137,7 +146,11 @@ static int diagnose(tt_approach *a, tt_approach_point *pt)
     }
     pt->amp_min = lo;
     pt->amp_max = hi;
-    pt->amp_change = (amp[TT_APPROACH_DIAG_CYCLES - 1] - amp[h]) / (double)(TT_APPROACH_DIAG_CYCLES - 1 - h);
+    /* over whole periods of an orbit, so that its phases do not pass for a drift */
+    int span = TT_APPROACH_DIAG_CYCLES - 1 - h;
+    if (pt->period > 1)
+        span -= span % pt->period;
+    pt->amp_change = (amp[h + span] - amp[h]) / (double)span;
     return TT_OK;
 }
 

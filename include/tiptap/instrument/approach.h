@@ -51,7 +51,8 @@ typedef struct {
     tt_shoot_result shot; /* steady mode by shooting: how the point was found (else zero) */
     /* steady mode, a point that did not settle: after 48 more cycles, its period in
      * cycles (2 to 8: a period-n orbit; 1: it settled just then; 0: no period up to 8),
-     * the amplitude's range over the last 24 cycles and its mean change per cycle, m */
+     * the amplitude's range over the last 24 cycles, m, and its mean change per cycle,
+     * m, taken over whole periods of an orbit */
     int period;
     double amp_min, amp_max, amp_change;
 } tt_approach_point;

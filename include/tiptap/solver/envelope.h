@@ -10,12 +10,12 @@
  *
  * and likewise o: one cycle of the model costs a 2 x 3 and an (n + 3) x 3 product
  * instead of an integration, or (m + 3) x 3 when the caller needs only m linear
- * combinations of the samples (tt_envelope_reduce). Its Jacobians come from central differences (6 cycles);
- * each integrated cycle re-anchors the model, so the second-order remainder stays
- * small while the Jacobians are reused. The model is iterated cycle by cycle, so it
- * contracts as the true map does (its eigenvalues are the Floquet multipliers): it is
- * stable however strongly the contact damps, which an extrapolation over many cycles
- * would not be.
+ * combinations of the samples (tt_envelope_reduce). Its Jacobians come from central
+ * differences (6 cycles); each integrated cycle re-anchors the model, so the
+ * second-order remainder stays small while the Jacobians are reused. The model is
+ * iterated cycle by cycle, so it contracts as the true map does (its eigenvalues are
+ * the Floquet multipliers): it is stable however strongly the contact damps, which an
+ * extrapolation over many cycles would not be.
  *
  * Its error is measured, not assumed: tt_envelope_error compares the model's cycle
  * with an integrated one from the same state and sample, in units of the free
