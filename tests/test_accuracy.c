@@ -209,11 +209,12 @@ static void scan_line_errors_on_both_tiers(void **st)
         assert_true(d[i]->tier == TT_TIER_EVERY && d[i]->integrated == 1);
     /* the envelope tier skips cycles, and its errors stay within ten times the every-cycle
      * tier's at the same tolerance */
-    const tt_accuracy_row *same[4] = {d[0], d[1], e[2], d[2]};
+    /* (the default, e[2] at 1e-8, has no every-cycle row at its tolerance) */
+    const tt_accuracy_row *same[4] = {d[0], d[1], NULL, d[2]};
     for (int i = 0; i < 4; i++) {
         assert_true(e[i]->tier == TT_TIER_ENVELOPE);
         assert_true(e[i]->integrated < 0.9);
-        if (same[i] != e[2])
+        if (same[i])
             assert_true(e[i]->err[0] <= 10 * same[i]->err[0] + 10 * fl->err[0]);
     }
     assert_true(e[3]->err[0] < 0.1 * e[0]->err[0]);

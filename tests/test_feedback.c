@@ -25,12 +25,12 @@ static void integral_action_removes_the_error(void **st)
     (void)st;
     tt_feedback f;
     double lo, hi;
-    tt_feedback_init(&f, &(tt_feedback_params){15e-9, 0, 2000, 2e-6}, 0);
+    tt_feedback_init(&f, &(tt_feedback_params){.setpoint = 15e-9, .kp = 0, .ki = 2000, .z_range = 2e-6}, 0);
     double e = run(&f, 3e-9, 4000, 1e-5, &lo, &hi);
     assert_close(e, 0, 1e-15);
     assert_close(f.z, 3e-9 - 1e-9, 1e-15); /* z tracks the surface */
     /* proportional control alone leaves an error */
-    tt_feedback_init(&f, &(tt_feedback_params){15e-9, 0.5, 0, 2e-6}, 0);
+    tt_feedback_init(&f, &(tt_feedback_params){.setpoint = 15e-9, .kp = 0.5, .ki = 0, .z_range = 2e-6}, 0);
     e = run(&f, 3e-9, 4000, 1e-5, &lo, &hi);
     assert_true(fabs(e) > 0.5e-9);
 }
@@ -41,7 +41,7 @@ static void clamp_and_anti_windup(void **st)
     tt_feedback f;
     double lo, hi;
     /* a surface 50 nm high with 20 nm of range: z sits at its limit */
-    tt_feedback_init(&f, &(tt_feedback_params){15e-9, 0, 2000, 20e-9}, 0);
+    tt_feedback_init(&f, &(tt_feedback_params){.setpoint = 15e-9, .kp = 0, .ki = 2000, .z_range = 20e-9}, 0);
     run(&f, 50e-9, 2000, 1e-5, &lo, &hi);
     assert_close(f.z, 10e-9, 0);
     assert_true(f.clamped);
@@ -57,10 +57,10 @@ static void too_much_gain_oscillates(void **st)
     tt_feedback f;
     double lo, hi;
     /* the discrete loop is stable for ki dt < 2 */
-    tt_feedback_init(&f, &(tt_feedback_params){15e-9, 0, 1.5e5, 2e-6}, 0);
+    tt_feedback_init(&f, &(tt_feedback_params){.setpoint = 15e-9, .kp = 0, .ki = 1.5e5, .z_range = 2e-6}, 0);
     run(&f, 3e-9, 2000, 1e-5, &lo, &hi);
     assert_true(hi - lo < 1e-15);
-    tt_feedback_init(&f, &(tt_feedback_params){15e-9, 0, 2.5e5, 2e-6}, 0);
+    tt_feedback_init(&f, &(tt_feedback_params){.setpoint = 15e-9, .kp = 0, .ki = 2.5e5, .z_range = 2e-6}, 0);
     run(&f, 3e-9, 2000, 1e-5, &lo, &hi);
     assert_true(hi - lo > 1e-9);
 }

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <unistd.h>
 
-#include "tt_test.h"
+#include "tt_gwyddion_test.h"
 #include "tiptap/util/error.h"
 #include "tiptap/io/gsf.h"
 
@@ -47,14 +47,7 @@ static void layout_is_exact(void **st)
             assert_close(data[i], d[i], 0);
         assert_true(isnan(data[5]));
         free(data);
-        /* Gwyddion itself, where installed */
-        if (system("command -v gwyddion-thumbnailer >/dev/null 2>&1") == 0) {
-            char cmd[256];
-            snprintf(cmd, sizeof cmd, "gwyddion-thumbnailer gnome2 64 %s /tmp/tt_gsf_thumb.png", path);
-            assert_int_equal(system(cmd), 0);
-        } else if (t == 0) {
-            print_message("gwyddion-thumbnailer not installed: Gwyddion load not checked\n");
-        }
+        tt_assert_gwyddion_loads(path);
         unlink(path);
     }
 }

@@ -69,8 +69,11 @@ int cli_meta_scene(cli_meta *m, const tt_scene *scene, const char *const *first_
             skip = !strcmp(section, "approach") || !strcmp(section, "trace");
         } else if (!skip && eq && line[0] != ';' && line[0] != '#') {
             *eq = 0;
-            for (char *c = section; *c; c++)
-                *c = *c == ' ' ? '.' : *c; /* the --set spelling */
+            /* the --set spelling: material.NAME.key, the name as it is (tt_scene_set
+             * takes the last dot as the key's) */
+            char *sp = strchr(section, ' ');
+            if (sp)
+                *sp = '.';
             snprintf(key, sizeof key, "%s.%s", section, line);
             rc = meta_add(m, key, eq + 3);
         }

@@ -296,7 +296,8 @@ static void summary(const tt_accuracy *a, double target, double t0)
             fprintf(stderr, "cheapest %s with %s <= %g: %s, %s = %.4f (error %.2g", r->name, what,
                     target, s, clock, cost(c), c->primary);
             if (line)
-                fprintf(stderr, "; phase rms %.2g deg; %.3g of the cycles integrated", c->err[3],
+                fprintf(stderr, "; phase rms %.2g deg; %.3g of the cycles integrated",
+                        c->err[TT_ACCURACY_PHASE_RMS],
                         c->integrated);
             fprintf(stderr, ")\n");
         } else {
@@ -310,7 +311,8 @@ static void summary(const tt_accuracy *a, double target, double t0)
         if (isfinite(def->steps_per_cycle))
             fprintf(stderr, ", steps_per_cycle = %.1f", def->steps_per_cycle);
         if (line)
-            fprintf(stderr, ", phase rms %.2g deg, %.3g of the cycles integrated", def->err[3],
+            fprintf(stderr, ", phase rms %.2g deg, %.3g of the cycles integrated",
+                    def->err[TT_ACCURACY_PHASE_RMS],
                     def->integrated);
         fprintf(stderr, "\n");
         double want = def->primary / 10;

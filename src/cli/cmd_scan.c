@@ -111,7 +111,7 @@ int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const cha
             im.unit_scale = display_scale(ch, &im.unit, &im.cmap);
             snprintf(path, sizeof path, "%s/%s_%s.png", dir, tt_scan_channel_name(ch), dirn);
             rc = tt_image_write_png(path, &im);
-            *written += 2;
+            *written += rc == TT_OK ? 2 : 1;
         }
     }
     snprintf(path, sizeof path, "%s/scan.gwy", dir);
@@ -308,11 +308,15 @@ int cmd_scan(int argc, char **argv)
         fprintf(stderr, "tiptap: no error estimate: %s\n", tt_error_message());
     if (!quiet && params.solver.tier == TT_TIER_ENVELOPE) {
         long all = tt_scan_cycles(scan), done = tt_scan_cycles_integrated(scan);
+        /* the reason from the scan's own test: a tier that ran yet integrated every
+         * cycle (a grazing tip) is not a fallback */
+        const char *why = !tt_scan_envelope_tier(&params)
+                              ? ": every cycle, since Q is below 30 or above 3000 or noise is on "
+                                "(docs/dynamics.md)"
+                          : done < all ? ": the rest followed on the cycle map's model"
+                                       : ": the model held on none (docs/dynamics.md)";
         fprintf(stderr, "cycles_integrated = %ld (%.1f %%; envelope tier%s)\n", done,
-                all > 0 ? 100.0 * (double)done / (double)all : 0.0,
-                all > 0 && done == all ? ": every cycle, since Q is below 30 or above 3000 or "
-                                         "noise is on (docs/dynamics.md)"
-                                       : ": the rest followed on the cycle map's model");
+                all > 0 ? 100.0 * (double)done / (double)all : 0.0, why);
     }
     if (!quiet) {
         fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f\ninstrument_time_s = %.3f\n"

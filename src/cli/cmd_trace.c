@@ -190,8 +190,12 @@ int cmd_trace(int argc, char **argv)
                          "partial file)", why, out, done_cycles);
         }
     }
-    if (!rc || rc == TT_EINTR)
-        (void)((S && tt_decimate_finish(S)) || (Pk && tt_decimate_finish(Pk)));
+    if (!rc || rc == TT_EINTR) {
+        /* both finished, whatever the first says: the plot shows both */
+        int frc = S ? tt_decimate_finish(S) : TT_OK, prc = Pk ? tt_decimate_finish(Pk) : TT_OK;
+        if (!rc)
+            rc = frc ? frc : prc;
+    }
     int plotted = plotpath && S && tt_decimate_count(S) > 0 && (rc == TT_OK || rc == TT_EINTR);
     if (plotted) {
         int prc = plot(plotpath, S, Pk, p.ramp);

@@ -455,10 +455,10 @@ static void compare(tt_accuracy *A, tt_accuracy_row *row, const run_result *res)
                     mx = d; /* NaN wins: a failed pixel is no accuracy */
                 ss += d * d;
             }
-            row->err[2 * c] = mx;
-            row->err[2 * c + 1] = sqrt(ss / (double)A->nprofile);
+            row->err[c ? TT_ACCURACY_PHASE_MAX : TT_ACCURACY_HEIGHT_MAX] = mx;
+            row->err[c ? TT_ACCURACY_PHASE_RMS : TT_ACCURACY_HEIGHT_RMS] = sqrt(ss / (double)A->nprofile);
         }
-        row->primary = row->err[0] / A->A0;
+        row->primary = row->err[TT_ACCURACY_HEIGHT_MAX] / A->A0;
         return;
     }
     const tt_cycle *c = &res->last, *r = &A->ref.last;

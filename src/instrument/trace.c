@@ -91,13 +91,18 @@ static double ramp_value(const tt_trace_params *p, long i)
     return p->ramp_from + (p->ramp_to - p->ramp_from) * (double)i / (double)(p->cycles - 1);
 }
 
-/* Force and pressure of the cycle's samples. The pressure is the Hertzian mean
- * pressure over the contact circle, K a / (pi R) (the load K a^3 / R over pi a^2);
- * K and R are read after each cycle since a ramp may change them. */
+/* The Hertzian mean pressure over a contact circle of radius a, K a / (pi R) (the load
+ * K a^3 / R over pi a^2). */
+static double hertz_pressure(const tt_contact_params *cp, double a)
+{
+    return cp->K * a / (M_PI * cp->R);
+}
+
+/* Force and pressure of the cycle's samples; K and R are read after each cycle since a
+ * ramp may change them. */
 static void fill_samples(tt_trace *t)
 {
     const tt_contact_params *cp = &tt_setup_material(t->st, t->mat)->contact;
-    double K = cp->K, R = cp->R;
     for (long k = 0; k < t->p.samples_per_cycle; k++) {
         const tt_sample *s = &t->raw[k];
         tt_trace_sample *o = &t->out[k];
@@ -108,7 +113,7 @@ static void fill_samples(tt_trace *t)
         o->tip = s->d;
         o->sample = s->s;
         o->contact_radius = a;
-        o->pressure = s->contact ? K * a / (M_PI * R) : 0;
+        o->pressure = s->contact ? hertz_pressure(cp, a) : 0;
         o->contact = s->contact;
     }
 }
@@ -124,7 +129,7 @@ static double peak_pressure(const tt_trace *t, const tt_cycle *c)
     tt_sample s = {.d = c->max_indentation, .contact = 1};
     double a = 0;
     tt_sim_force(tt_setup_sim(t->st), &s, &a);
-    return cp->K * a / (M_PI * cp->R);
+    return hertz_pressure(cp, a);
 }
 
 int tt_trace_iterate(tt_trace *t, tt_trace_row *row)

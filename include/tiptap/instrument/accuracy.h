@@ -94,6 +94,15 @@ typedef enum {
 
 #define TT_ACCURACY_MAX_OBS 5
 
+/* A line's observables, by their index in err (a point's: amplitude, phase, mean, peak
+ * force, dissipation, in tt_accuracy_observables' order). */
+enum {
+    TT_ACCURACY_HEIGHT_MAX = 0,
+    TT_ACCURACY_HEIGHT_RMS = 1,
+    TT_ACCURACY_PHASE_MAX = 2,
+    TT_ACCURACY_PHASE_RMS = 3
+};
+
 typedef struct {
     tt_accuracy_role role;
     int is_default;          /* the subject's own solver setting (added if not on a ladder) */
