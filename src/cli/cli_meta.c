@@ -33,10 +33,14 @@ static int meta_add(cli_meta *m, const char *key, const char *value)
             return tt_error(TT_ENOMEM, "out of memory");
         m->cap = cap;
     }
-    m->keys[m->n] = tt_strdup(key);
-    m->values[m->n] = tt_strdup(value);
-    if (!m->keys[m->n] || !m->values[m->n])
+    char *k = tt_strdup(key), *v = tt_strdup(value);
+    if (!k || !v) {
+        free(k);
+        free(v);
         return tt_error(TT_ENOMEM, "out of memory");
+    }
+    m->keys[m->n] = k;
+    m->values[m->n] = v;
     m->n++;
     return TT_OK;
 }

@@ -41,16 +41,24 @@ void scene_section_label(char *buf, size_t len, const char *section, const char 
         snprintf(buf, len, "%s", section);
 }
 
+int scene_list_add(char *buf, size_t len, size_t *used, const char *item)
+{
+    int w = snprintf(buf + *used, len - *used, "%s%s", *used ? ", " : "", item);
+    if (w < 0 || (size_t)w >= len - *used) {
+        buf[*used] = '\0';
+        return -1;
+    }
+    *used += (size_t)w;
+    return 0;
+}
+
 static const char *list_keys(const tt_scene_section *sec, char *buf, size_t len)
 {
     size_t used = 0;
     buf[0] = '\0';
-    for (size_t i = 0; i < sec->nkeys && used + 2 < len; i++) {
-        int w = snprintf(buf + used, len - used, "%s%s", i ? ", " : "", sec->keys[i].key);
-        if (w < 0 || (size_t)w >= len - used)
+    for (size_t i = 0; i < sec->nkeys; i++)
+        if (scene_list_add(buf, len, &used, sec->keys[i].key))
             break;
-        used += (size_t)w;
-    }
     return buf;
 }
 
@@ -181,12 +189,9 @@ int scene_check_section(const char *origin, const char *section, const char *nam
         char known[512];
         size_t used = 0;
         known[0] = '\0';
-        for (size_t i = 0; i < n && used + 2 < sizeof known; i++) {
-            int w = snprintf(known + used, sizeof known - used, "%s%s", i ? ", " : "", all[i].name);
-            if (w < 0 || (size_t)w >= sizeof known - used)
+        for (size_t i = 0; i < n; i++)
+            if (scene_list_add(known, sizeof known, &used, all[i].name))
                 break;
-            used += (size_t)w;
-        }
         return tt_error(TT_EINVAL, "%s: [%s]: unknown section; known sections: %s", origin, shown,
                         known);
     }

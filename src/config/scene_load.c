@@ -147,14 +147,13 @@ static int check_set_names(const tt_scene *s, const char *shown, const char *sec
         return TT_OK;
     char have[512] = "", nm[160];
     size_t used = 0;
-    for (size_t i = 0; i < n && used + 8 < sizeof have; i++) {
+    for (size_t i = 0; i < n; i++) {
         tt_ini_escape(tt_scene_named(s, section, i), nm, sizeof nm);
-        int w = snprintf(have + used, sizeof have - used, "%s%s", i ? ", " : "", nm);
-        if (w < 0 || (size_t)w >= sizeof have - used) {
+        /* room is kept for the ", ..." of a list cut short */
+        if (scene_list_add(have, sizeof have - 5, &used, nm)) {
             snprintf(have + used, sizeof have - used, ", ...");
             break;
         }
-        used += (size_t)w;
     }
     tt_ini_escape(name, nm, sizeof nm);
     return tt_error(TT_EINVAL, "--set %s: no [%s %s] in the scene; it has: %s", shown, section, nm,

@@ -77,6 +77,9 @@ const tt_scene_key *scene_find_key(const tt_scene_section *sec, const char *key)
 void scene_section_label(char *buf, size_t len, const char *section, const char *name);
 /* yes/true/on/1 and no/false/off/0, any case: 0 and *out set, or -1. */
 int scene_parse_bool(const char *v, int *out);
+/* Append item to the comma-separated list in buf (len bytes; *used of them so far) for a
+ * message: 0, or -1 when it does not fit (buf then holds the items before it). */
+int scene_list_add(char *buf, size_t len, size_t *used, const char *item);
 /* Whether v is one of choices, "a|b|c". */
 int scene_enum_has(const char *choices, const char *v);
 /* Check one value against its key description; on failure (-1) write why. */

@@ -187,8 +187,12 @@ int scene_note_section(tt_scene *s, const char *section, const char *name, const
         free(u->origin);
         return tt_error(TT_ENOMEM, "out of memory reading the scene");
     }
-    if (name && (rc = names_add(s, section, s->nuses)))
+    if (name && (rc = names_add(s, section, s->nuses))) {
+        free(u->section);
+        free(u->name);
+        free(u->origin);
         return rc;
+    }
     index_add(&s->by_section, use_hash(u), s->nuses);
     s->nuses++;
     return TT_OK;

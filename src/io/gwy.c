@@ -38,10 +38,17 @@ static void put(buf *B, const void *p, size_t n)
     B->n += n;
 }
 
+/* The file's integers are little-endian, whatever the machine. */
+static void le32(unsigned char b[4], uint32_t u)
+{
+    for (int i = 0; i < 4; i++)
+        b[i] = (unsigned char)(u >> (8 * i));
+}
+
 static void put_u32(buf *B, uint32_t u)
 {
-    unsigned char b[4] = {(unsigned char)u, (unsigned char)(u >> 8), (unsigned char)(u >> 16),
-                          (unsigned char)(u >> 24)};
+    unsigned char b[4];
+    le32(b, u);
     put(B, b, 4);
 }
 
@@ -75,10 +82,7 @@ static void obj_end(buf *B, size_t at)
 {
     if (B->err)
         return;
-    uint32_t u = (uint32_t)(B->n - at - 4);
-    unsigned char b[4] = {(unsigned char)u, (unsigned char)(u >> 8), (unsigned char)(u >> 16),
-                          (unsigned char)(u >> 24)};
-    memcpy(B->b + at, b, 4);
+    le32(B->b + at, (uint32_t)(B->n - at - 4));
 }
 
 static void si_unit(buf *B, const char *name, const char *unit)
@@ -119,9 +123,16 @@ int tt_gwy_write(const char *path, const tt_gwy_channel *ch, size_t n, const cha
 {
     if (n == 0)
         return tt_error(TT_EINVAL, "%s: no channels", path);
-    for (size_t i = 0; i < n; i++)
+    for (size_t i = 0; i < n; i++) {
         if (!ch[i].xres || !ch[i].yres || !ch[i].data)
             return tt_error(TT_EINVAL, "%s: empty channel %zu", path, i);
+        /* the format's sizes are 32-bit: xres and yres signed, the array's length not */
+        if (ch[i].xres > INT32_MAX || ch[i].yres > INT32_MAX ||
+            ch[i].xres > UINT32_MAX / ch[i].yres)
+            return tt_error(TT_EINVAL, "%s: channel %zu of %zu x %zu values is too large for the "
+                                       "GWY format",
+                            path, i, ch[i].xres, ch[i].yres);
+    }
     buf B = {0};
     char key[64];
     put(&B, "GWYP", 4);
@@ -306,6 +317,10 @@ static void read_meta(cur *C, tt_gwy_file *f)
         f->keys[f->nmeta] = tt_strdup(name);
         f->values[f->nmeta] = tt_strdup(get_str(C));
         f->nmeta++;
+        if (!f->keys[f->nmeta - 1] || !f->values[f->nmeta - 1]) {
+            C->bad = 1; /* the file's free releases what was made */
+            return;
+        }
     }
 }
 
