@@ -1,11 +1,7 @@
 /* How approach moves the sample: a ramp ends at `to` (never past it), steady points are
  * joined by a continuous move that keeps a captured tip captured, and a point that does
  * not settle says why (Burnham et al.'s figure 4a cantilever). */
-#include "tt_test.h"
-#include "tiptap/instrument/approach.h"
-#include "tiptap/config/config.h"
-#include "tiptap/util/error.h"
-#include "tiptap/config/setup.h"
+#include "tt_approach_test.h"
 
 static const char *air =
     "[cantilever]\nspring_constant = 0.58 N/m\nresonance_frequency = 52 kHz\nquality_factor = 40\n"
@@ -21,21 +17,7 @@ static size_t run(double A0_nm, const char *keys, tt_approach_point *pt, size_t 
              A0_nm);
     tt_scene *s = tt_scene_alloc();
     assert_int_equal(tt_scene_load_string(s, text, "air"), TT_OK);
-    tt_setup *su;
-    assert_int_equal(tt_setup_alloc(&su, s), TT_OK);
-    assert_int_equal(tt_setup_use_material(su, 0), TT_OK);
-    tt_approach_params p;
-    assert_int_equal(tt_config_approach(s, &p), TT_OK);
-    tt_approach *a = NULL;
-    size_t n = 0;
-    *alloc_rc = tt_approach_alloc(&a, tt_setup_sim(su), &p);
-    while (a && !tt_approach_done(a)) {
-        assert_true(n < cap);
-        assert_int_equal(tt_approach_iterate(a, &pt[n]), TT_OK);
-        n++;
-    }
-    tt_approach_free(a);
-    tt_setup_free(su);
+    size_t n = tt_run_approach(s, pt, cap, alloc_rc, NULL);
     tt_scene_free(s);
     return n;
 }

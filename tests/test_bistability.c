@@ -12,11 +12,7 @@
  * attractive down to 0.15 nm): which branch a separation shows depends on the history. */
 #include <stdlib.h>
 
-#include "tt_test.h"
-#include "tiptap/instrument/approach.h"
-#include "tiptap/config/config.h"
-#include "tiptap/util/error.h"
-#include "tiptap/config/setup.h"
+#include "tt_approach_test.h"
 
 #define DIR TT_SOURCE_DIR "/examples/extreme/"
 #define NPTS 7
@@ -58,25 +54,17 @@ static void both_branches_and_the_jumps(void **st)
                           "approach.settle_tolerance=1e-5", "solver.tolerance=1e-6"};
     for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++)
         assert_int_equal(tt_scene_set(s, sets[i]), TT_OK);
-    tt_setup *su;
-    assert_int_equal(tt_setup_alloc(&su, s), TT_OK);
-    assert_int_equal(tt_setup_use_material(su, 0), TT_OK);
     tt_approach_params p;
-    assert_int_equal(tt_config_approach(s, &p), TT_OK);
-    assert_true(p.retract);
-    tt_approach *a;
-    assert_int_equal(tt_approach_alloc(&a, tt_setup_sim(su), &p), TT_OK);
     tt_approach_point pt[2 * NPTS];
-    size_t n = 0;
-    while (!tt_approach_done(a)) {
-        assert_true(n < 2 * NPTS);
-        if (tt_approach_iterate(a, &pt[n]) != TT_OK)
-            fail_msg("%s", tt_error_message());
-        assert_true(pt[n].settled);
-        assert_true(isfinite(pt[n].cycle.amplitude) && isfinite(pt[n].cycle.phase));
-        n++;
-    }
+    int arc;
+    size_t n = tt_run_approach(s, pt, 2 * NPTS, &arc, &p);
+    assert_int_equal(arc, TT_OK);
+    assert_true(p.retract);
     assert_int_equal(n, 2 * NPTS);
+    for (size_t i = 0; i < n; i++) {
+        assert_true(pt[i].settled);
+        assert_true(isfinite(pt[i].cycle.amplitude) && isfinite(pt[i].cycle.phase));
+    }
     /* ap[i], re[i]: approach and retract at the same separation z[i], 5.1 down to 3.9 nm */
     const tt_approach_point *ap = pt, *re[NPTS];
     for (int i = 0; i < NPTS; i++) {
@@ -146,8 +134,6 @@ static void both_branches_and_the_jumps(void **st)
             assert_close(q[b]->cycle.phase * deg, ph, 0.2);
         }
     }
-    tt_approach_free(a);
-    tt_setup_free(su);
     tt_scene_free(s);
 }
 

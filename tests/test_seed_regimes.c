@@ -1,10 +1,6 @@
 /* Burnham et al.'s experiments: capture by adhesion on the figure-4a cantilever, and tapping
  * in water without adhesion (figure 4b). */
-#include "tt_test.h"
-#include "tiptap/instrument/approach.h"
-#include "tiptap/config/config.h"
-#include "tiptap/util/error.h"
-#include "tiptap/config/setup.h"
+#include "tt_approach_test.h"
 
 static const char *air =
     "[cantilever]\nspring_constant = 0.58 N/m\nresonance_frequency = 52 kHz\nquality_factor = 40\n"
@@ -18,19 +14,10 @@ static void capture_by_adhesion(void **st)
     (void)st;
     tt_scene *s = tt_scene_alloc();
     assert_int_equal(tt_scene_load_string(s, air, "air"), TT_OK);
-    tt_setup *su;
-    assert_int_equal(tt_setup_alloc(&su, s), TT_OK);
-    assert_int_equal(tt_setup_use_material(su, 0), TT_OK);
-    tt_approach_params p;
-    assert_int_equal(tt_config_approach(s, &p), TT_OK);
-    tt_approach *a;
-    assert_int_equal(tt_approach_alloc(&a, tt_setup_sim(su), &p), TT_OK);
     tt_approach_point pt[74];
-    size_t n = 0;
-    while (!tt_approach_done(a)) {
-        assert_int_equal(tt_approach_iterate(a, &pt[n]), TT_OK);
-        n++;
-    }
+    int arc;
+    size_t n = tt_run_approach(s, pt, 74, &arc, NULL);
+    assert_int_equal(arc, TT_OK);
     assert_int_equal(n, 74);
     /* free far away: the free amplitude and 90 degrees */
     assert_close(pt[0].cycle.amplitude, 150e-9, 1e-3 * 150e-9);
@@ -52,8 +39,6 @@ static void capture_by_adhesion(void **st)
     assert_close(pt[k].z, pt[25].z, 1e-15);
     assert_true(pt[25].cycle.contact_fraction < 0.5);
     assert_close(pt[k].cycle.contact_fraction, 1, 1e-12);
-    tt_approach_free(a);
-    tt_setup_free(su);
     tt_scene_free(s);
 }
 
