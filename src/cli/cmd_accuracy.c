@@ -453,7 +453,11 @@ int cmd_accuracy(int argc, char **argv)
     cli_catch_interrupt();
     if (!quiet)
         print_header(obs, nobs, tt_accuracy_kind_of(a) == TT_ACCURACY_LINE);
-    int progress = !quiet && cli_progress_enabled();
+    /* the first pass's runs, then the timing passes, each with the time left */
+    cli_progress runs, passes;
+    cli_progress_begin(&runs, "accuracy", "runs", quiet);
+    cli_progress_begin(&passes, "accuracy", "timing passes", quiet);
+    int timing = 0;
     while (!tt_accuracy_done(a)) {
         if (tt_cancel_requested()) {
             rc = interrupted(out, n);
@@ -461,8 +465,13 @@ int cmd_accuracy(int argc, char **argv)
         }
         const tt_accuracy_row *r;
         int pass = tt_accuracy_pass(a);
-        if (progress && pass > 1)
-            fprintf(stderr, "\rtiming pass %d of %d ", pass, p.repeats);
+        if (pass > 1 && !timing) {
+            cli_progress_end(&runs);
+            cli_progress_begin(&passes, "accuracy", "timing passes", quiet);
+            timing = 1;
+        }
+        if (pass > 2)
+            cli_progress_show(&passes, pass - 2, p.repeats - 1);
         if ((rc = tt_accuracy_iterate(a, &r))) {
             if (rc == TT_EINTR)
                 rc = interrupted(out, n);
@@ -473,10 +482,16 @@ int cmd_accuracy(int argc, char **argv)
             n++;
             if (!quiet)
                 print_row(r, nobs);
+            cli_progress_show(&runs, (long)n, (long)tt_accuracy_rows(a));
         }
     }
-    if (progress && tt_accuracy_pass(a) > 1)
-        fprintf(stderr, "\n");
+    if (timing) {
+        if (!rc)
+            cli_progress_show(&passes, p.repeats - 1, p.repeats - 1);
+        cli_progress_end(&passes);
+    } else {
+        cli_progress_end(&runs);
+    }
     for (size_t i = 0; i < n; i++)
         write_row(f, tt_accuracy_row_at(a, i), nobs);
     /* Keep what finished, also when interrupted. */
