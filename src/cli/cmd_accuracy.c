@@ -456,7 +456,6 @@ int cmd_accuracy(int argc, char **argv)
     /* the first pass's runs, then the timing passes, each with the time left */
     cli_progress runs, passes;
     cli_progress_begin(&runs, "accuracy", "runs", quiet);
-    cli_progress_begin(&passes, "accuracy", "timing passes", quiet);
     int timing = 0;
     while (!tt_accuracy_done(a)) {
         if (tt_cancel_requested()) {
