@@ -40,7 +40,7 @@ static void cycle_begin(tt_sim *S)
     S->y_max = -INFINITY;
     S->e_jumps = 0;
     S->switched_at = -1;
-    S->switches_there = 0;
+    S->switches_there = S->switches_near = 0;
     S->t_contact = S->t_release = NAN;
     S->steps = S->rejected = S->events = 0;
     S->next_sample = 0;

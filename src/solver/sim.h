@@ -85,6 +85,7 @@ struct tt_sim {
     double peak_force, max_indent, y_min, y_max, e_jumps, t_contact, t_release;
     double switched_at; /* tau of the cycle's last contact switch (-1: none yet) ... */
     int switches_there; /* ... and how many were made at that instant */
+    int switches_near;  /* ... and within 1e-12 T of one another (events.c) */
     long steps, rejected, events;
     /* free flight: exponential steps out of contact (dopri5 only; see flight.c) */
     int fl_ok;           /* this sim may fly: dopri5, underdamped, no extremes tracked */
