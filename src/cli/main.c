@@ -1,9 +1,11 @@
 /* tiptap: the command-line program, a thin layer over libtiptap. */
 #include <getopt.h>
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "commands.h"
+#include "tiptap/io/files.h"
 #include "tiptap/util/cancel.h"
 
 /* The subcommands, in the order --help lists them. */
@@ -44,6 +46,11 @@ static void usage(FILE *out)
 
 int main(int argc, char **argv)
 {
+    /* Past ulimit -f, SIGXFSZ would end the program without a word and leave a
+     * temporary file; ignored, the write fails with EFBIG and says so, naming the file. */
+    signal(SIGXFSZ, SIG_IGN);
+    /* every file a command reads is remembered, so that no output replaces one */
+    tt_inputs_track(1);
     if (argc < 2) {
         usage(stderr);
         return CLI_USAGE;

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tiptap/io/files.h"
 #include "tiptap/util/error.h"
 
 int tt_config_raster(const tt_scene *s, tt_raster *r)
@@ -362,4 +363,15 @@ int tt_config_surface_alloc(tt_surface **out, const tt_scene *s, double size_x, 
     }
     free(m);
     return TT_OK;
+}
+
+void tt_config_note_inputs(const tt_scene *s)
+{
+    static const char *const keys[] = {"png", "map_png"};
+    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
+        char path[4096];
+        if (tt_scene_has(s, "surface", NULL, keys[i]) &&
+            tt_scene_get_path(s, "surface", NULL, keys[i], path, sizeof path) == TT_OK)
+            tt_input_note(path, "PNG map");
+    }
 }
