@@ -572,6 +572,40 @@ static int check_map_values(const unsigned long long *key, const tt_material *ma
     return rc;
 }
 
+/* The largest level of the map at path as read_png gives it (255, or 65535 for 16 bits),
+ * from the IHDR chunk, which the PNG format puts first; -1 when it is not there. */
+static int png_header_maxval(FILE *f)
+{
+    static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    unsigned char h[26];
+    if (fread(h, 1, sizeof h, f) != sizeof h || memcmp(h, sig, 8) != 0 || memcmp(h + 12, "IHDR", 4) != 0)
+        return -1;
+    return h[24] == 16 ? 65535 : 255;
+}
+
+int tt_surface_check_map_values(const tt_surface_params *p, const tt_material *mat, size_t nm)
+{
+    if ((mapkind)p->map != M_PNG)
+        return TT_OK;
+    FILE *f;
+    if (tt_input_fopen(p->map_png, "PNG map", "map", TT_PNG_MAX_BYTES, &f)) {
+        char why[1024];
+        snprintf(why, sizeof why, "%s", tt_error_message());
+        return tt_error(TT_EINVAL, "[surface] map_png: %s", why);
+    }
+    int maxv = png_header_maxval(f);
+    fclose(f);
+    unsigned long long *key = malloc((nm ? nm : 1) * sizeof *key);
+    if (!key)
+        return tt_error(TT_ENOMEM, "out of memory");
+    for (size_t i = 0; i < nm; i++)
+        if ((mat[i].map_grey < 0 && mat[i].map_rgb < 0) || map_key(&mat[i], (unsigned)maxv, &key[i]))
+            key[i] = ~0ULL; /* a level beyond the depth: tt_surface_alloc says so */
+    int rc = maxv > 0 ? check_map_values(key, mat, nm, maxv, p->map_png) : TT_OK;
+    free(key);
+    return rc;
+}
+
 static int build_png_map(tt_surface *S, const tt_surface_params *p, const tt_material *mat,
                          size_t nm)
 {

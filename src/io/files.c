@@ -92,6 +92,8 @@ int tt_file_update(const char *path, const char *what, long long max_bytes, FILE
         return TT_OK;
     if (fd < 0 && (errno == ELOOP || errno == EMLINK))
         return link_refused(path, what);
+    if (fd < 0 && errno == EISDIR)
+        return tt_error(TT_EINVAL, "%s: is a folder, not a %s", path, what);
     if (fd < 0)
         return tt_error(TT_EIO, "%s: cannot open %s: %s", path, what, strerror(errno));
     int rc = check_regular(fd, path, what, what, max_bytes, NULL);
