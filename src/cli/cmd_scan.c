@@ -43,7 +43,8 @@ static void help(void)
            "lines under way and writes the finished lines (the others are NaN, shown grey).\n"
            "stderr starts with an estimate of the cycles, time and memory; a scan needing\n"
            "more memory than the machine has is refused, and so is a second scan into a\n"
-           "folder in use (DIR/.tiptap.lock).\n"
+           "folder in use (DIR/.tiptap.lock). Channel files of an earlier run in DIR that\n"
+           "this run does not write are removed once its files are written, and named.\n"
            "stderr ends with the run time, the real-time factor (instrument time / run time)\n"
            "and the error estimate: the largest energy-balance residual of a cycle relative\n"
            "to the free oscillation's drive work per cycle.\n");
