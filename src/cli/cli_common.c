@@ -13,6 +13,9 @@
 #include <unistd.h>
 
 #include "commands.h"
+#include "tiptap/config/config.h"
+#include "tiptap/io/files.h"
+#include "tiptap/io/lock.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 
@@ -47,6 +50,7 @@ tt_scene *cli_load_scene(char **files, int nfiles, char **sets, int nsets)
             return NULL;
         }
     }
+    tt_config_note_inputs(s); /* its PNG maps: no output may replace them */
     return s;
 }
 
@@ -134,6 +138,14 @@ tt_scene *cli_args_scene(const cli_spec *spec, cli_args *a, int argc, char **arg
     tt_scene *scene = cli_scene_args(spec->cmd, argc, argv, optind, a->sets, a->nsets, exit_code);
     a->sets = NULL;
     a->nsets = 0;
+    /* an output that is one of the files just read (-o s.ini) is refused before the run */
+    const char *outs[] = {a->output, a->plot};
+    for (size_t i = 0; scene && i < 2; i++)
+        if (outs[i] && tt_output_check(outs[i]) != TT_OK) {
+            *exit_code = cli_fail(TT_EINVAL, NULL);
+            tt_scene_free(scene);
+            scene = NULL;
+        }
     return scene;
 }
 
@@ -279,54 +291,12 @@ void cli_report_estimate(const char *cmd, double cycles, double seconds, int upp
 
 int cli_lock_folder(const char *cmd, const char *dir)
 {
-    char path[4096];
-    snprintf(path, sizeof path, "%s/.tiptap.lock", dir);
-    int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd < 0) {
-        fprintf(stderr, "tiptap %s: %s: cannot open: %s\n", cmd, path, strerror(errno));
-        return -1;
-    }
-    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
-        int err = errno;
-        char buf[32] = "";
-        ssize_t n = pread(fd, buf, sizeof buf - 1, 0);
-        buf[n > 0 ? n : 0] = '\0';
-        long pid = strtol(buf, NULL, 10);
-        close(fd);
-        if (err == EWOULDBLOCK && pid > 0)
-            fprintf(stderr, "tiptap %s: %s is in use by another tiptap %s (pid %ld)\n", cmd, dir,
-                    cmd, pid);
-        else if (err == EWOULDBLOCK)
-            fprintf(stderr, "tiptap %s: %s is in use by another tiptap run\n", cmd, dir);
-        else
-            fprintf(stderr, "tiptap %s: %s: cannot lock: %s\n", cmd, path, strerror(err));
-        return -1;
-    }
-    /* The last run removes the file when it finishes (cli_unlock_folder): a lock taken
-     * on a file that was removed meanwhile guards nothing, so take the new one. */
-    struct stat held, named;
-    int found = stat(path, &named) == 0, gone = !found && errno == ENOENT;
-    if (fstat(fd, &held) == 0 &&
-        (gone || (found && (held.st_ino != named.st_ino || held.st_dev != named.st_dev)))) {
-        close(fd);
-        return cli_lock_folder(cmd, dir);
-    }
-    char buf[32];
-    int n = snprintf(buf, sizeof buf, "%ld\n", (long)getpid());
-    if (ftruncate(fd, 0) != 0 || pwrite(fd, buf, (size_t)n, 0) != n) {
-        fprintf(stderr, "tiptap %s: %s: cannot write: %s\n", cmd, path, strerror(errno));
-        close(fd);
+    int fd;
+    if (tt_folder_lock(dir, cmd, &fd) != TT_OK) {
+        fprintf(stderr, "tiptap %s: %s\n", cmd, tt_error_message());
         return -1;
     }
     return fd;
 }
 
-void cli_unlock_folder(const char *dir, int fd)
-{
-    if (fd < 0)
-        return;
-    char path[4096];
-    snprintf(path, sizeof path, "%s/.tiptap.lock", dir);
-    unlink(path); /* while still held, so that no run locks the file being removed */
-    close(fd);
-}
+void cli_unlock_folder(const char *dir, int fd) { tt_folder_unlock(dir, fd); }

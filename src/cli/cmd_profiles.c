@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "tiptap/config/units.h"
+#include "tiptap/io/files.h"
 #include "tiptap/io/plot.h"
 #include "tiptap/util/error.h"
 
@@ -50,9 +51,11 @@ static int read_profile(const char *dir, profile *p)
 {
     char path[4096];
     snprintf(path, sizeof path, "%s/profile.csv", dir);
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return tt_error(TT_EIO, "%s: %s", path, strerror(errno));
+    /* a regular file only (a pipe or a link to /dev/zero would be read for ever) */
+    FILE *f;
+    int rc = tt_input_fopen(path, "profile CSV", "profile", TT_INPUT_MAX_BYTES, &f);
+    if (rc)
+        return rc;
     char line[8192];
     int map[COLS], ncol = 0;
     memset(p, 0, sizeof *p);
@@ -67,7 +70,6 @@ static int read_profile(const char *dir, profile *p)
         ncol++;
     }
     size_t cap = 0;
-    int rc = TT_OK;
     while (rc == TT_OK && fgets(line, sizeof line, f)) {
         if (p->n == cap) {
             cap = cap ? 2 * cap : 256;

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "commands.h"
@@ -12,6 +13,8 @@
 #include "tiptap/io/gsf.h"
 #include "tiptap/io/gwy.h"
 #include "tiptap/io/image.h"
+#include "tiptap/io/files.h"
+#include "tiptap/io/lock.h"
 #include "tiptap/io/outfile.h"
 #include "tiptap/config/config.h"
 #include "tiptap/instrument/scan.h"
@@ -40,7 +43,8 @@ static void help(void)
            "lines under way and writes the finished lines (the others are NaN, shown grey).\n"
            "stderr starts with an estimate of the cycles, time and memory; a scan needing\n"
            "more memory than the machine has is refused, and so is a second scan into a\n"
-           "folder in use (DIR/.tiptap.lock).\n"
+           "folder in use (DIR/.tiptap.lock). Channel files of an earlier run in DIR that\n"
+           "this run does not write are removed once its files are written, and named.\n"
            "stderr ends with the run time, the real-time factor (instrument time / run time)\n"
            "and the error estimate: the largest energy-balance residual of a cycle relative\n"
            "to the free oscillation's drive work per cycle.\n");
@@ -73,6 +77,63 @@ static double display_scale(int ch, const char **unit, tt_colormap *cmap)
     }
 }
 
+/* The path of channel ch's image file in dir: retrace r, PNG or GSF. */
+static void channel_path(char *buf, size_t len, const char *dir, int ch, int r, int png)
+{
+    snprintf(buf, len, "%s/%s_%s.%s", dir, tt_scan_channel_name(ch), r ? "retrace" : "trace",
+             png ? "png" : "gsf");
+}
+
+int cli_scan_check_outputs(const char *dir)
+{
+    static const char *const fixed[] = {"scene.ini", "profile.csv", "scan.gwy", ".tiptap.lock"};
+    char path[4200];
+    int rc = TT_OK;
+    for (size_t i = 0; i < sizeof fixed / sizeof fixed[0] && !rc; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, fixed[i]);
+        rc = tt_output_check(path);
+    }
+    /* every channel's files, also those this run does not write: it may remove them */
+    for (int k = 0; k < 4 * TT_CH_COUNT && !rc; k++) {
+        channel_path(path, sizeof path, dir, k / 4, k / 2 % 2, k % 2);
+        rc = tt_output_check(path);
+    }
+    return rc;
+}
+
+int cli_scan_folder_take(const char *cmd, const char *dir, int *lock)
+{
+    int rc;
+    *lock = -1;
+    if ((rc = cli_scan_check_outputs(dir)) || (rc = tt_mkdirs(dir)))
+        return rc;
+    return tt_folder_lock(dir, cmd, lock);
+}
+
+/* The channel files of an earlier run in dir that this one did not write (a run with
+ * fewer channels): removed, so that the folder holds one run's images, and named on
+ * stderr. Only the names tiptap writes are touched; a link is removed, not followed. */
+static void remove_stale(const tt_scan *scan, const char *dir)
+{
+    char path[4200], names[4096] = "";
+    int n = 0;
+    for (int k = 0; k < 4 * TT_CH_COUNT; k++) {
+        int ch = k / 4, r = k / 2 % 2;
+        struct stat st;
+        if (tt_scan_image(scan, ch, r))
+            continue;
+        channel_path(path, sizeof path, dir, ch, r, k % 2);
+        if (lstat(path, &st) != 0 || !(S_ISREG(st.st_mode) || S_ISLNK(st.st_mode)) ||
+            unlink(path) != 0)
+            continue;
+        size_t used = strlen(names);
+        snprintf(names + used, sizeof names - used, "%s%s", n++ ? ", " : "", path + strlen(dir) + 1);
+    }
+    if (n)
+        fprintf(stderr, "tiptap: %s: removed %d file%s of an earlier run with channels this run "
+                        "does not write: %s\n", dir, n, n > 1 ? "s" : "", names);
+}
+
 /* Every channel, trace and retrace, with the run's parameters: GSF and PNG files, and
  * one .gwy holding them all (scan.gwy). *written counts the files. */
 int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int *written)
@@ -103,13 +164,13 @@ int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const cha
                               (const char *const *)meta.keys, (const char *const *)meta.values, meta.n};
             gch[ng++] = (tt_gwy_channel){title[ch][r], (size_t)xres, (size_t)yres, tt_scan_size_x(scan),
                                          tt_scan_size_y(scan), 0, 0, "m", tt_scan_channel_unit(ch), img};
-            snprintf(path, sizeof path, "%s/%s_%s.gsf", dir, tt_scan_channel_name(ch), dirn);
+            channel_path(path, sizeof path, dir, ch, r, 0);
             if ((rc = tt_gsf_write(path, &g)))
                 break;
             tt_image im = {(size_t)xres, (size_t)yres, tt_scan_size_x(scan), tt_scan_size_y(scan),
                            img, title[ch][r], NULL, 1, TT_CMAP_GOLD};
             im.unit_scale = display_scale(ch, &im.unit, &im.cmap);
-            snprintf(path, sizeof path, "%s/%s_%s.png", dir, tt_scan_channel_name(ch), dirn);
+            channel_path(path, sizeof path, dir, ch, r, 1);
             rc = tt_image_write_png(path, &im);
             *written += rc == TT_OK ? 2 : 1;
         }
@@ -152,6 +213,8 @@ int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const cha
     }
     rc = tt_outfile_close(of, 1);
     *written += rc == TT_OK;
+    if (rc == TT_OK)
+        remove_stale(scan, dir);
     return rc;
 }
 
@@ -267,7 +330,7 @@ int cmd_scan(int argc, char **argv)
     /* Then the folder and the effective scene: a bad output folder fails at once, not
      * after an hour of scanning. The folder is locked for the run: two scans into one
      * folder would mix their images and scene.ini. */
-    if ((rc = tt_mkdirs(dir)))
+    if ((rc = cli_scan_check_outputs(dir)) || (rc = tt_mkdirs(dir)))
         goto done;
     if ((lock = cli_lock_folder("scan", dir)) < 0) {
         rc = TT_EINVAL;

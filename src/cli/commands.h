@@ -22,6 +22,12 @@ int cmd_sweep(int argc, char **argv);
  * all of them) and profile into dir, as tiptap scan does (cmd_scan.c), with the scene's
  * keys as metadata; *written counts the files written. */
 int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int *written);
+/* TT_EINVAL when a file a scan writes into dir (or removes there as an earlier run's
+ * channel file) is an input of this run (tt_output_check). */
+int cli_scan_check_outputs(const char *dir);
+/* A scan's folder made ready: its outputs checked (cli_scan_check_outputs), the folder
+ * made, and locked for command cmd (tt_folder_lock; *lock for cli_unlock_folder). */
+int cli_scan_folder_take(const char *cmd, const char *dir, int *lock);
 int cmd_profiles(int argc, char **argv);
 
 /* Exit codes: 0 success, 1 bad input or failure, 2 usage, 130 interrupted (Ctrl-C);

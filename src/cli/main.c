@@ -1,9 +1,12 @@
 /* tiptap: the command-line program, a thin layer over libtiptap. */
+#include <errno.h>
 #include <getopt.h>
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "commands.h"
+#include "tiptap/io/files.h"
 #include "tiptap/util/cancel.h"
 
 /* The subcommands, in the order --help lists them. */
@@ -42,8 +45,25 @@ static void usage(FILE *out)
             "(Ctrl-C), 143 stopped by SIGTERM.\n");
 }
 
+/* Results printed on stdout are output too: redirected into a file past ulimit -f or on
+ * a full disk, the command fails and says so rather than exit 0 with a short file. */
+static int check_stdout(int code)
+{
+    errno = 0;
+    int bad = fflush(stdout) != 0, e = errno;
+    if (!bad && !ferror(stdout))
+        return code;
+    fprintf(stderr, "tiptap: standard output: cannot write: %s\n", e ? strerror(e) : "write error");
+    return code == CLI_OK ? CLI_FAIL : code;
+}
+
 int main(int argc, char **argv)
 {
+    /* Past ulimit -f, SIGXFSZ would end the program without a word and leave a
+     * temporary file; ignored, the write fails with EFBIG and says so, naming the file. */
+    signal(SIGXFSZ, SIG_IGN);
+    /* every file a command reads is remembered, so that no output replaces one */
+    tt_inputs_track(1);
     if (argc < 2) {
         usage(stderr);
         return CLI_USAGE;
@@ -51,6 +71,7 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < NCOMMANDS; i++)
         if (strcmp(argv[1], commands[i].name) == 0) {
             int code = commands[i].run(argc - 1, argv + 1);
+            code = check_stdout(code);
             /* stopped by a signal: 128 + its number, the shells' convention (143: SIGTERM) */
             if (code == CLI_INTERRUPTED && tt_cancel_signal())
                 code = 128 + tt_cancel_signal();

@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "sweep.h"
+#include "tiptap/io/files.h"
 #include "tiptap/io/outfile.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
@@ -42,9 +43,10 @@ static size_t load_records(sweep_results *r, const char *buf, size_t len, size_t
 /* Resume an existing journal of the same sweep; -1 when there was none. */
 static int resume(sweep_results *r, unsigned long long hash)
 {
-    FILE *f = fopen(r->journal_path, "r+b");
-    if (!f)
-        return -1;
+    FILE *f;
+    int rc = tt_file_update(r->journal_path, "sweep journal", TT_INPUT_MAX_BYTES, &f);
+    if (rc || !f)
+        return rc ? rc : -1;
     char *buf = NULL;
     size_t len = 0, cap = 0, got;
     char chunk[65536];
@@ -96,8 +98,8 @@ int sweep_results_open(sweep_results *r, size_t n, const char *out, unsigned lon
     r->resumed = r->done;
     if (rc != -1)
         return rc;
-    if (!(r->journal = fopen(r->journal_path, "wb")))
-        return tt_error(TT_EIO, "%s: cannot write the journal", r->journal_path);
+    if ((rc = tt_file_create(r->journal_path, "sweep journal", &r->journal)))
+        return rc;
     fprintf(r->journal, "%s %016llx %zu\n", magic, hash, n);
     return fflush(r->journal) == 0 ? TT_OK : tt_error(TT_EIO, "%s: cannot write", r->journal_path);
 }

@@ -322,9 +322,10 @@ static int compute_scan(const sweep_job *job, size_t i, FILE *f)
     tt_cantilever cant;
     snprintf(folder, sizeof folder, "%s/%04zu", job->dir, i + 1);
     snprintf(path, sizeof path, "%s/scene.ini", folder);
-    int rc;
+    int rc, lock = -1;
+    /* the folder locked as tiptap scan locks it: a scan running there is not mixed into */
     if ((rc = tt_sweep_scene(job->grid, i, &scene)) || (rc = tt_config_cantilever(scene, &cant)) ||
-        (rc = tt_config_scan_alloc(&scan, scene)) || (rc = tt_mkdirs(folder)) ||
+        (rc = tt_config_scan_alloc(&scan, scene)) || (rc = cli_scan_folder_take("sweep", folder, &lock)) ||
         (rc = tt_outfile_open(&of, path)))
         goto done;
     rc = tt_scene_write(scene, tt_outfile_stream(of), NULL);
@@ -335,6 +336,7 @@ static int compute_scan(const sweep_job *job, size_t i, FILE *f)
     const char *slash = strrchr(folder, '/');
     rc = scan_summary(job, i, scene, scan, slash ? slash + 1 : folder, f);
 done:
+    cli_unlock_folder(folder, lock);
     tt_scan_free(scan);
     tt_scene_free(scene);
     return rc;

@@ -6,7 +6,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
+#include "tiptap/io/files.h"
 #include "tiptap/util/error.h"
 
 int tt_config_raster(const tt_scene *s, tt_raster *r)
@@ -31,6 +33,20 @@ int tt_config_raster(const tt_scene *s, tt_raster *r)
 static int get_d(const tt_scene *s, const char *key, double *v)
 {
     return tt_scene_get_double(s, "surface", NULL, key, v);
+}
+
+/* The height map is a regular file (a pipe or a link to /dev/zero is refused), told
+ * before the run is estimated; tt_surface_alloc reads it. */
+static int check_png_file(const tt_scene *s, const char *path)
+{
+    int fd;
+    if (tt_input_open(path, "PNG map", "map", TT_PNG_MAX_BYTES, &fd, NULL) == TT_OK) {
+        close(fd);
+        return TT_OK;
+    }
+    char why[1024];
+    snprintf(why, sizeof why, "%s", tt_error_message());
+    return tt_scene_locate(s, tt_error(TT_EINVAL, "[surface] png: %s", why));
 }
 
 static int read_shape(const tt_scene *s, tt_surface_params *p)
@@ -58,7 +74,8 @@ static int read_shape(const tt_scene *s, tt_surface_params *p)
             return rc;
         return tt_scene_get_int(s, "surface", NULL, "seed", &p->seed);
     case TT_SURFACE_PNG:
-        if ((rc = tt_scene_get_path(s, "surface", NULL, "png", p->png, sizeof p->png)))
+        if ((rc = tt_scene_get_path(s, "surface", NULL, "png", p->png, sizeof p->png)) ||
+            (rc = check_png_file(s, p->png)))
             return rc;
         return get_d(s, "png_height_range", &p->png_height_range);
     default:
@@ -142,8 +159,12 @@ int tt_config_surface(const tt_scene *s, const tt_material *m, size_t n, tt_surf
     int rc = read_shape(s, p);
     if (rc)
         return rc;
+    /* two materials on one pixel value: refused before the run is estimated */
+    if (p->map == TT_MAP_PNG &&
+        !(rc = tt_scene_get_path(s, "surface", NULL, "map_png", p->map_png, sizeof p->map_png)))
+        rc = tt_scene_locate(s, tt_surface_check_map_values(p, m, n));
     if (p->map == TT_MAP_PNG)
-        return tt_scene_get_path(s, "surface", NULL, "map_png", p->map_png, sizeof p->map_png);
+        return rc;
     if (p->map != TT_MAP_UNIFORM)
         return read_two_material_map(s, m, n, p);
     return TT_OK;
@@ -362,4 +383,15 @@ int tt_config_surface_alloc(tt_surface **out, const tt_scene *s, double size_x, 
     }
     free(m);
     return TT_OK;
+}
+
+void tt_config_note_inputs(const tt_scene *s)
+{
+    static const char *const keys[] = {"png", "map_png"};
+    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
+        char path[4096];
+        if (tt_scene_has(s, "surface", NULL, keys[i]) &&
+            tt_scene_get_path(s, "surface", NULL, keys[i], path, sizeof path) == TT_OK)
+            tt_input_note(path, "PNG map");
+    }
 }

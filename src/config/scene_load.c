@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "tiptap/config/ini.h"
+#include "tiptap/io/files.h"
 #include "tiptap/util/error.h"
 #include "tiptap/util/str.h"
 
@@ -82,33 +83,21 @@ static int load_text(tt_scene *s, const char *text, size_t len, const char *orig
     return TT_OK;
 }
 
-/* The largest scene file read: far above any real scene (50,000 materials take 5 MB). */
-#define TT_SCENE_MAX_BYTES (256L << 20)
-
 int tt_scene_load(tt_scene *s, const char *path)
 {
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0)
-        return tt_error(TT_EIO, "%s: cannot open scene file: %s", path, strerror(errno));
-    struct stat st;
-    int rc = TT_OK;
+    /* a folder reads as empty and /dev/zero never ends: only regular files are scenes,
+     * of at most TT_INPUT_MAX_BYTES (50,000 materials take 5 MB) */
+    int fd;
+    long long size = 0;
+    int rc = tt_input_open(path, "scene file", "scene", TT_INPUT_MAX_BYTES, &fd, &size);
+    if (rc)
+        return rc;
     char *text = NULL;
     size_t len = 0;
-    /* a folder reads as empty and /dev/zero never ends: only regular files are scenes */
-    if (fstat(fd, &st) != 0)
-        rc = tt_error(TT_EIO, "%s: cannot read scene file: %s", path, strerror(errno));
-    else if (S_ISDIR(st.st_mode))
-        rc = tt_error(TT_EINVAL, "%s: is a folder, not a scene file", path);
-    else if (!S_ISREG(st.st_mode))
-        rc = tt_error(TT_EINVAL, "%s: not a regular file (a device, pipe or socket); a scene is "
-                      "a file", path);
-    else if (st.st_size > TT_SCENE_MAX_BYTES)
-        rc = tt_error(TT_EINVAL, "%s: %lld bytes is too large for a scene file (at most %ld)", path,
-                      (long long)st.st_size, TT_SCENE_MAX_BYTES);
-    else if (!(text = malloc((size_t)st.st_size + 1)))
+    if (!(text = malloc((size_t)size + 1)))
         rc = tt_error(TT_ENOMEM, "%s: out of memory reading the scene", path);
-    while (!rc && len <= (size_t)st.st_size) {
-        ssize_t got = read(fd, text + len, (size_t)st.st_size + 1 - len);
+    while (!rc && len <= (size_t)size) {
+        ssize_t got = read(fd, text + len, (size_t)size + 1 - len);
         if (got < 0 && errno == EINTR)
             continue;
         if (got < 0)
@@ -119,7 +108,7 @@ int tt_scene_load(tt_scene *s, const char *path)
             len += (size_t)got;
     }
     close(fd);
-    if (!rc && len > (size_t)st.st_size)
+    if (!rc && len > (size_t)size)
         rc = tt_error(TT_EIO, "%s: the file grew while it was read", path);
     if (!rc)
         rc = load_text(s, text, len, path);

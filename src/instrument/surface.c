@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tiptap/io/files.h"
 #include "tiptap/util/error.h"
 
 typedef enum { S_FLAT, S_STEPS, S_GRATING, S_PARTICLES, S_ROUGH, S_PNG } shape;
@@ -125,10 +126,13 @@ static int decode_png(FILE *f, png_fault *e, unsigned char **data, png_uint_32 *
 static int read_png(const char *key, const char *path, int want_rgb,
                     unsigned short **pix, int *w, int *h, int *maxval)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return tt_error(TT_EINVAL, "[surface] %s: %s: cannot read as PNG: %s", key, path,
-                             strerror(errno));
+    /* a regular file only: a pipe or a link to /dev/zero would be read for ever */
+    FILE *f;
+    if (tt_input_fopen(path, "PNG map", "map", TT_PNG_MAX_BYTES, &f)) {
+        char why[1024];
+        snprintf(why, sizeof why, "%s", tt_error_message());
+        return tt_error(TT_EINVAL, "[surface] %s: %s", key, why);
+    }
     png_fault e = {""};
     unsigned char *data = NULL;
     png_uint_32 W = 0, H = 0;
@@ -517,6 +521,91 @@ static int map_key(const tt_material *m, unsigned maxval, unsigned long long *ke
     return 0;
 }
 
+/* A material's map_value as written: a grey level or #rrggbb. */
+static void map_value_text(const tt_material *m, char *buf, size_t len)
+{
+    if (m->map_grey >= 0)
+        snprintf(buf, len, "%ld", m->map_grey);
+    else
+        snprintf(buf, len, "#%06x", (unsigned)m->map_rgb);
+}
+
+typedef struct {
+    unsigned long long key;
+    size_t index;
+} keyed;
+
+static int by_key(const void *a, const void *b)
+{
+    const keyed *x = a, *y = b;
+    if (x->key != y->key)
+        return x->key < y->key ? -1 : 1;
+    return x->index < y->index ? -1 : x->index > y->index;
+}
+
+/* Two materials naming one pixel value: the map would silently give every such pixel
+ * to one of them. Refused, naming both (sorted, so many materials stay fast). */
+static int check_map_values(const unsigned long long *key, const tt_material *mat, size_t nm,
+                            int maxv, const char *path)
+{
+    keyed *k = malloc((nm ? nm : 1) * sizeof *k);
+    size_t n = 0;
+    if (!k)
+        return tt_error(TT_ENOMEM, "out of memory");
+    for (size_t i = 0; i < nm; i++)
+        if (key[i] != ~0ULL)
+            k[n++] = (keyed){key[i], i};
+    qsort(k, n, sizeof *k, by_key);
+    int rc = TT_OK;
+    for (size_t j = 1; j < n && !rc; j++)
+        if (k[j].key == k[j - 1].key) {
+            const tt_material *a = &mat[k[j - 1].index], *b = &mat[k[j].index];
+            char va[24], vb[24];
+            map_value_text(a, va, sizeof va);
+            map_value_text(b, vb, sizeof vb);
+            rc = tt_error(TT_EINVAL, "[material %s] map_value: %s names the same pixel as "
+                          "[material %s] map_value %s in the %d-bit map %s; give each material "
+                          "a value of its own", b->name, vb, a->name, va, maxv == 255 ? 8 : 16,
+                          path);
+        }
+    free(k);
+    return rc;
+}
+
+/* The largest level of the map at path as read_png gives it (255, or 65535 for 16 bits),
+ * from the IHDR chunk, which the PNG format puts first; -1 when it is not there. */
+static int png_header_maxval(FILE *f)
+{
+    static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    unsigned char h[26];
+    if (fread(h, 1, sizeof h, f) != sizeof h || memcmp(h, sig, 8) != 0 || memcmp(h + 12, "IHDR", 4) != 0)
+        return -1;
+    return h[24] == 16 ? 65535 : 255;
+}
+
+int tt_surface_check_map_values(const tt_surface_params *p, const tt_material *mat, size_t nm)
+{
+    if ((mapkind)p->map != M_PNG)
+        return TT_OK;
+    FILE *f;
+    if (tt_input_fopen(p->map_png, "PNG map", "map", TT_PNG_MAX_BYTES, &f)) {
+        char why[1024];
+        snprintf(why, sizeof why, "%s", tt_error_message());
+        return tt_error(TT_EINVAL, "[surface] map_png: %s", why);
+    }
+    int maxv = png_header_maxval(f);
+    fclose(f);
+    unsigned long long *key = malloc((nm ? nm : 1) * sizeof *key);
+    if (!key)
+        return tt_error(TT_ENOMEM, "out of memory");
+    for (size_t i = 0; i < nm; i++)
+        if ((mat[i].map_grey < 0 && mat[i].map_rgb < 0) || map_key(&mat[i], (unsigned)maxv, &key[i]))
+            key[i] = ~0ULL; /* a level beyond the depth: tt_surface_alloc says so */
+    int rc = maxv > 0 ? check_map_values(key, mat, nm, maxv, p->map_png) : TT_OK;
+    free(key);
+    return rc;
+}
+
 static int build_png_map(tt_surface *S, const tt_surface_params *p, const tt_material *mat,
                          size_t nm)
 {
@@ -535,6 +624,8 @@ static int build_png_map(tt_surface *S, const tt_surface_params *p, const tt_mat
                               maxv == 255 ? 8 : 16, path);
         }
     }
+    if (!rc && key)
+        rc = check_map_values(key, mat, nm, maxv, path);
     S->mgrid = rc || !key ? NULL : malloc((size_t)S->mw * S->mh * sizeof *S->mgrid);
     if (!S->mgrid) {
         free(key);

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "tiptap/util/error.h"
+#include "tiptap/io/files.h"
 #include "tiptap/io/outfile.h"
 #include "tiptap/config/units.h"
 
@@ -60,9 +61,10 @@ int tt_gsf_read(const char *path, size_t *xres, size_t *yres, double *xreal, dou
                 double **data)
 {
     *data = NULL;
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return tt_error(TT_EIO, "%s: cannot open", path);
+    FILE *f;
+    int rc = tt_input_fopen(path, "GSF file", "GSF file", TT_IMAGE_FILE_MAX_BYTES, &f);
+    if (rc)
+        return rc;
     char line[1024];
     long n = 0;
     *xres = *yres = 0;

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tiptap/io/files.h"
 #include "tiptap/io/outfile.h"
 #include "tiptap/util/error.h"
 #include "tiptap/util/str.h"
@@ -364,9 +365,10 @@ static void read_top(cur *C, tt_gwy_file *f)
 int tt_gwy_read(const char *path, tt_gwy_file **out)
 {
     *out = NULL;
-    FILE *fp = fopen(path, "rb");
-    if (!fp)
-        return tt_error(TT_EIO, "%s: cannot open", path);
+    FILE *fp;
+    int rc = tt_input_fopen(path, "GWY file", "GWY file", TT_IMAGE_FILE_MAX_BYTES, &fp);
+    if (rc)
+        return rc;
     buf B = {0};
     unsigned char chunk[65536];
     size_t got;

@@ -2,6 +2,7 @@
 #include "png_internal.h"
 
 #include <stdio.h>
+#include <string.h>
 
 #include "tiptap/io/outfile.h"
 #include "tiptap/util/error.h"
@@ -19,8 +20,10 @@ int tt_png_write_surface(cairo_surface_t *sf, const char *path)
         return rc;
     cairo_status_t st = cairo_surface_write_to_png_stream(sf, write_fn, tt_outfile_stream(o));
     if (st != CAIRO_STATUS_SUCCESS) {
+        int e = tt_outfile_errno(o);
         tt_outfile_close(o, 0);
-        return tt_error(TT_EIO, "%s: cannot write: %s", path, cairo_status_to_string(st));
+        return tt_error(TT_EIO, "%s: cannot write: %s", path,
+                        e ? strerror(e) : cairo_status_to_string(st));
     }
     return tt_outfile_close(o, 1);
 }

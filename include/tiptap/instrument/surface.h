@@ -57,6 +57,13 @@ typedef struct tt_surface tt_surface;
 int tt_surface_alloc(tt_surface **out, const tt_surface_params *p, const tt_material *materials,
                      size_t nmaterials, double size_x, double size_y);
 void tt_surface_free(tt_surface *s);
+/* A PNG material map (p->map is png) whose materials' map_values name one pixel at the
+ * map's depth (read from its header) is refused, naming both materials, their values and
+ * the map; so is a map file that is not a regular file. Cheap: for the configuration
+ * layer to refuse before a run is estimated. TT_OK for other maps and for a header it
+ * cannot make out (tt_surface_alloc then says why). */
+int tt_surface_check_map_values(const tt_surface_params *p, const tt_material *materials,
+                                size_t nmaterials);
 
 double tt_surface_height(const tt_surface *s, double x, double y);
 int tt_surface_material(const tt_surface *s, double x, double y);

@@ -3,7 +3,9 @@
  * tt_outfile_open writes to a temporary name beside the target; tt_outfile_close with
  * keep = 1 flushes, closes and renames it into place, with keep = 0 removes it. A run
  * that fails or is killed between the two leaves at most the temporary file, never a
- * truncated target.
+ * truncated target. Every write error (a full disk, EFBIG past ulimit -f once SIGXFSZ
+ * is ignored) fails the close with "path: cannot write: reason" and removes the
+ * temporary file.
  *
  * Ownership: the tt_outfile and its FILE belong to the library until
  * tt_outfile_close, which frees both whatever it returns.
@@ -20,9 +22,15 @@ extern "C" {
 typedef struct tt_outfile tt_outfile;
 
 /* Fails with TT_EIO and "path: cannot write: reason" (for example a missing or
- * unwritable folder). */
+ * unwritable folder), and with TT_EINVAL when path is an input of the run
+ * (tt_output_check in include/tiptap/io/files.h). The temporary file is made with
+ * O_CREAT | O_EXCL, so a link planted in its place is never followed; rename() at close
+ * replaces a link at path itself, never the file it points to. */
 int tt_outfile_open(tt_outfile **out, const char *path);
 FILE *tt_outfile_stream(tt_outfile *o);
+/* The errno of the stream's first failed write (0: none), for writers whose own
+ * library reports a failure without the reason (cairo). */
+int tt_outfile_errno(const tt_outfile *o);
 const char *tt_outfile_tmpname(const tt_outfile *o);
 int tt_outfile_close(tt_outfile *o, int keep);
 

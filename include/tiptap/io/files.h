@@ -1,0 +1,63 @@
+/* tiptap: the files a run reads, and outputs that must not replace them.
+ *
+ * Inputs (scene files, PNG maps, the sweep's journal, profile CSVs, GSF and GWY files)
+ * are opened through tt_input_open: only a regular file is read, after links are
+ * resolved (a folder, a pipe, a socket, a device, a link to /dev/zero are refused by
+ * name, without blocking on a pipe), and at most a bounded number of bytes.
+ *
+ * With tracking on (tt_inputs_track; the tiptap program turns it on), every input
+ * opened or noted is remembered, and tt_output_check refuses an output that is the same
+ * file (device and inode) or the same path as one of them: a sweep's -o s.ini would
+ * otherwise replace the scene it ran. tt_outfile_open checks every output it opens.
+ * The list is shared by the process's threads (guarded by a mutex).
+ */
+#ifndef TIPTAP_FILES_H
+#define TIPTAP_FILES_H
+
+#include <stdio.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The largest input of any kind but PNG maps: far above a real scene, journal or
+ * profile (50,000 materials take 5 MB). */
+#define TT_INPUT_MAX_BYTES (256LL << 20)
+
+/* GSF and GWY files read back (a scan of 42 images of 8192 x 8192 doubles: 22 GB) and
+ * PNG maps (8192 x 8192 pixels of 16-bit RGBA stored uncompressed: 512 MiB). */
+#define TT_IMAGE_FILE_MAX_BYTES (64LL << 30)
+#define TT_PNG_MAX_BYTES (1LL << 30)
+
+/* Open path for reading as an input named what ("scene file", "PNG map") whose
+ * refusal of a non-regular file reads "a NOUN is a file". Messages:
+ *   "path: cannot open WHAT: reason", "path: is a folder, not a WHAT",
+ *   "path: not a regular file (a device, pipe or socket); a NOUN is a file",
+ *   "path: N bytes is too large for a WHAT (at most M)".
+ * *size is the file's size (may be NULL). The descriptor is blocking and close-on-exec. */
+int tt_input_open(const char *path, const char *what, const char *noun, long long max_bytes,
+                  int *fd, long long *size);
+/* The same as a stdio stream ("rb"). */
+int tt_input_fopen(const char *path, const char *what, const char *noun, long long max_bytes,
+                   FILE **f);
+
+/* A file the run reads and then appends to in place (the sweep's journal): never
+ * through a link ("path: is a symbolic link; tiptap never writes through a link"),
+ * a regular file of at most max_bytes. TT_OK with *f NULL when it does not exist. */
+int tt_file_update(const char *path, const char *what, long long max_bytes, FILE **f);
+/* Create a new file for writing ("wb"): never through a link, never over a file there. */
+int tt_file_create(const char *path, const char *what, FILE **f);
+
+/* Remember inputs from now on (1) or forget them and stop (0). Off by default, so that
+ * a program using the library may write where it read. */
+void tt_inputs_track(int on);
+/* Remember path as an input named what, if it exists (a file the run will read). */
+void tt_input_note(const char *path, const char *what);
+/* TT_EINVAL, "out: the same file as the WHAT in that this run reads; ...", when out
+ * names an input (the same device and inode, or the same absolute path). */
+int tt_output_check(const char *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

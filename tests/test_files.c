@@ -1,0 +1,242 @@
+/* The io layer's files: inputs are regular files only (a pipe is refused without
+ * blocking, a link to /dev/zero by what it names); no output replaces an input; output
+ * files never write through a link, and a write error (EFBIG past ulimit -f) fails
+ * with the file and the reason and leaves no temporary file; a folder lock is never
+ * taken through a link and refuses a second holder, naming its pid. */
+#include <dirent.h>
+#include <errno.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "tt_test.h"
+#include "tiptap/io/files.h"
+#include "tiptap/io/lock.h"
+#include "tiptap/io/outfile.h"
+#include "tiptap/util/error.h"
+
+static char dir[] = "/tmp/tt_files_XXXXXX";
+
+static const char *at(const char *name)
+{
+    static char buf[4][512];
+    static int k;
+    k = (k + 1) % 4;
+    snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name);
+    return buf[k];
+}
+
+static void put(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+static void expect_text(const char *path, const char *text)
+{
+    char buf[256] = "";
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+    assert_string_equal(buf, text);
+}
+
+static int names_with(const char *part)
+{
+    int n = 0;
+    DIR *d = opendir(dir);
+    for (struct dirent *e; d && (e = readdir(d));)
+        n += strstr(e->d_name, part) != NULL;
+    closedir(d);
+    return n;
+}
+
+static void only_regular_inputs(void **st)
+{
+    (void)st;
+    int fd;
+    long long size = -1;
+    put(at("in.txt"), "twelve bytes");
+    assert_int_equal(tt_input_open(at("in.txt"), "scene file", "scene", 100, &fd, &size), TT_OK);
+    assert_int_equal(size, 12);
+    close(fd);
+    /* a pipe without a writer would block an open for reading for ever */
+    assert_int_equal(mkfifo(at("fifo"), 0644), 0);
+    assert_int_equal(tt_input_open(at("fifo"), "PNG map", "map", 100, &fd, NULL), TT_EINVAL);
+    assert_non_null(strstr(tt_error_message(), "fifo: not a regular file (a device, pipe or socket); a map is a file"));
+    assert_int_equal(symlink("/dev/zero", at("zero")), 0);
+    assert_int_equal(tt_input_open(at("zero"), "profile CSV", "profile", 100, &fd, NULL), TT_EINVAL);
+    assert_non_null(strstr(tt_error_message(), "zero: not a regular file"));
+    assert_int_equal(tt_input_open(dir, "scene file", "scene", 100, &fd, NULL), TT_EINVAL);
+    assert_non_null(strstr(tt_error_message(), ": is a folder, not a scene file"));
+    assert_int_equal(tt_input_open(at("in.txt"), "scene file", "scene", 11, &fd, NULL), TT_EINVAL);
+    assert_non_null(strstr(tt_error_message(), "in.txt: 12 bytes is too large for a scene file (at most 11)"));
+    assert_int_equal(tt_input_open(at("none"), "scene file", "scene", 11, &fd, NULL), TT_EIO);
+    assert_non_null(strstr(tt_error_message(), "none: cannot open scene file: No such file or directory"));
+    unlink(at("fifo"));
+    unlink(at("zero"));
+    unlink(at("in.txt"));
+}
+
+static void outputs_never_replace_inputs(void **st)
+{
+    (void)st;
+    put(at("s.ini"), "[scan]\n");
+    /* off (the library's default): a program may write where it read */
+    assert_int_equal(tt_output_check(at("s.ini")), TT_OK);
+    tt_inputs_track(1);
+    int fd;
+    assert_int_equal(tt_input_open(at("s.ini"), "scene file", "scene", 100, &fd, NULL), TT_OK);
+    close(fd);
+    assert_int_equal(tt_output_check(at("s.ini")), TT_EINVAL);
+    char want[600];
+    snprintf(want, sizeof want, "%s: the same file as the scene file %s that this run reads; "
+             "write the output elsewhere", at("s.ini"), at("s.ini"));
+    assert_string_equal(tt_error_message(), want);
+    /* the same file by another name: a hard link, a symbolic link, a path with ./ */
+    assert_int_equal(link(at("s.ini"), at("hard.ini")), 0);
+    assert_int_equal(symlink("s.ini", at("soft.ini")), 0);
+    assert_int_equal(tt_output_check(at("hard.ini")), TT_EINVAL);
+    assert_int_equal(tt_output_check(at("soft.ini")), TT_EINVAL);
+    assert_int_equal(tt_output_check(at("./s.ini")), TT_EINVAL);
+    assert_int_equal(tt_output_check(at("other.csv")), TT_OK);
+    /* and by its path once it is gone: the run read it */
+    unlink(at("s.ini"));
+    assert_int_equal(tt_output_check(at("s.ini")), TT_EINVAL);
+    tt_outfile *o;
+    assert_int_equal(tt_outfile_open(&o, at("hard.ini")), TT_EINVAL);
+    assert_null(o);
+    assert_int_equal(names_with(".tmp."), 0);
+    tt_inputs_track(0);
+    assert_int_equal(tt_output_check(at("hard.ini")), TT_OK);
+    unlink(at("hard.ini"));
+    unlink(at("soft.ini"));
+}
+
+static void rename_replaces_a_link(void **st)
+{
+    (void)st;
+    put(at("precious.txt"), "precious");
+    assert_int_equal(symlink("precious.txt", at("out.csv")), 0);
+    tt_outfile *o;
+    assert_int_equal(tt_outfile_open(&o, at("out.csv")), TT_OK);
+    fputs("result", tt_outfile_stream(o));
+    assert_int_equal(tt_outfile_close(o, 1), TT_OK);
+    struct stat sb;
+    assert_int_equal(lstat(at("out.csv"), &sb), 0);
+    assert_true(S_ISREG(sb.st_mode));
+    expect_text(at("out.csv"), "result");
+    expect_text(at("precious.txt"), "precious");
+    unlink(at("out.csv"));
+    unlink(at("precious.txt"));
+}
+
+static void write_errors_name_the_file(void **st)
+{
+    (void)st;
+    put(at("big.bin"), "earlier");
+    struct rlimit old, lim;
+    getrlimit(RLIMIT_FSIZE, &old);
+    lim = old;
+    lim.rlim_cur = 8192;
+    void (*was)(int) = signal(SIGXFSZ, SIG_IGN);
+    assert_int_equal(setrlimit(RLIMIT_FSIZE, &lim), 0);
+    tt_outfile *o;
+    assert_int_equal(tt_outfile_open(&o, at("big.bin")), TT_OK);
+    for (int i = 0; i < 10000; i++)
+        fputs("0123456789", tt_outfile_stream(o));
+    int rc = tt_outfile_close(o, 1);
+    setrlimit(RLIMIT_FSIZE, &old);
+    signal(SIGXFSZ, was);
+    assert_int_equal(rc, TT_EIO);
+    char want[600];
+    snprintf(want, sizeof want, "%s: cannot write: %s", at("big.bin"), strerror(EFBIG));
+    assert_string_equal(tt_error_message(), want);
+    expect_text(at("big.bin"), "earlier");
+    assert_int_equal(names_with(".tmp."), 0);
+    unlink(at("big.bin"));
+}
+
+static void locks(void **st)
+{
+    (void)st;
+    int fd = -1, second = -1;
+    put(at("precious.txt"), "precious");
+    assert_int_equal(symlink("precious.txt", at(".tiptap.lock")), 0);
+    assert_int_equal(tt_folder_lock(dir, "scan", &fd), TT_EIO);
+    assert_non_null(strstr(tt_error_message(), ".tiptap.lock: is a symbolic link; tiptap never writes through a link"));
+    expect_text(at("precious.txt"), "precious");
+    unlink(at(".tiptap.lock"));
+    /* a hard link would have its other name truncated */
+    assert_int_equal(link(at("precious.txt"), at(".tiptap.lock")), 0);
+    assert_int_equal(tt_folder_lock(dir, "scan", &fd), TT_EIO);
+    expect_text(at("precious.txt"), "precious");
+    unlink(at(".tiptap.lock"));
+    /* a lock left by a dead run is taken over; a held one is refused with its pid */
+    put(at(".tiptap.lock"), "999999999 scan\n");
+    assert_int_equal(tt_folder_lock(dir, "sweep", &fd), TT_OK);
+    assert_int_equal(tt_folder_lock(dir, "scan", &second), TT_EIO);
+    char want[600];
+    snprintf(want, sizeof want, "%s is in use by another tiptap sweep (pid %ld)", dir, (long)getpid());
+    assert_string_equal(tt_error_message(), want);
+    assert_int_equal(second, -1);
+    tt_folder_unlock(dir, fd);
+    assert_int_equal(access(at(".tiptap.lock"), F_OK), -1);
+    assert_int_equal(tt_folder_lock(dir, "scan", &fd), TT_OK);
+    tt_folder_unlock(dir, fd);
+    unlink(at("precious.txt"));
+}
+
+static void journals_never_through_links(void **st)
+{
+    (void)st;
+    FILE *f = NULL;
+    put(at("precious.txt"), "precious");
+    assert_int_equal(symlink("precious.txt", at("j.partial")), 0);
+    assert_int_equal(tt_file_update(at("j.partial"), "sweep journal", 100, &f), TT_EINVAL);
+    assert_int_equal(tt_file_create(at("j.partial"), "sweep journal", &f), TT_EINVAL);
+    assert_non_null(strstr(tt_error_message(), "the sweep journal is a symbolic link"));
+    expect_text(at("precious.txt"), "precious");
+    unlink(at("j.partial"));
+    assert_int_equal(tt_file_update(at("j.partial"), "sweep journal", 100, &f), TT_OK);
+    assert_null(f);
+    assert_int_equal(tt_file_create(at("j.partial"), "sweep journal", &f), TT_OK);
+    fputs("journal", f);
+    fclose(f);
+    assert_int_equal(tt_file_update(at("j.partial"), "sweep journal", 100, &f), TT_OK);
+    assert_non_null(f);
+    fclose(f);
+    unlink(at("j.partial"));
+    unlink(at("precious.txt"));
+}
+
+static int setup(void **st)
+{
+    (void)st;
+    return mkdtemp(dir) ? 0 : -1;
+}
+
+static int teardown(void **st)
+{
+    (void)st;
+    return rmdir(dir);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(only_regular_inputs),
+        cmocka_unit_test(outputs_never_replace_inputs),
+        cmocka_unit_test(rename_replaces_a_link),
+        cmocka_unit_test(write_errors_name_the_file),
+        cmocka_unit_test(locks),
+        cmocka_unit_test(journals_never_through_links),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
