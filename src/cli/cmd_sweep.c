@@ -106,8 +106,12 @@ static unsigned long long fingerprint(const tt_scene *scene, const sweep_job *jo
 /* The grid from the --vary list, every combination checked, before anything runs. */
 static int build_grid(tt_scene *scene, char **vary, int nvary, sweep_job *job, const char *contrast)
 {
+    /* an astronomical grid is refused from its --vary forms alone, before any value */
+    int rc = tt_sweep_check_size((const char *const *)vary, (size_t)nvary);
+    if (rc)
+        return rc;
     tt_sweep *g = NULL;
-    int rc = tt_sweep_alloc(&g, scene);
+    rc = tt_sweep_alloc(&g, scene);
     for (int i = 0; i < nvary && !rc; i++)
         rc = tt_sweep_vary(g, vary[i]);
     job->grid = g;
