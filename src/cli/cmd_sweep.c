@@ -5,9 +5,11 @@
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "commands.h"
 #include "sweep.h"
+#include "tiptap/io/outfile.h"
 #include "tiptap/io/plot.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
@@ -122,6 +124,30 @@ static int build_grid(tt_scene *scene, char **vary, int nvary, sweep_job *job, c
     return rc;
 }
 
+/* A file the sweep writes at its end, checked before the first combination runs: not
+ * a folder, and a file can be made beside it (made and removed again). */
+static int check_output(const char *path)
+{
+    struct stat st;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+        return tt_error(TT_EIO, "%s: is a folder; the sweep writes a file there", path);
+    tt_outfile *of;
+    int rc = tt_outfile_open(&of, path);
+    return rc ? rc : tt_outfile_close(of, 0);
+}
+
+/* Every path the sweep writes, before anything runs: the table, the plot (and whether
+ * it can be drawn at all), and a scan's folder of combination folders. */
+static int check_outputs(const sweep_job *job, const cli_args *a, long contrast)
+{
+    int rc = check_output(a->output);
+    if (!rc && a->plot && !(rc = sweep_plot_check(job, contrast)))
+        rc = check_output(a->plot);
+    if (!rc && job->kind == SWEEP_SCAN)
+        rc = tt_mkdirs(job->dir);
+    return rc;
+}
+
 static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, const cli_args *a,
                       int threads, const char *contrast)
 {
@@ -155,6 +181,8 @@ static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, 
     cli_progress prog;
     cli_progress_begin(&prog, "sweep", "combinations", a->quiet || rank != 0);
     cli_progress *progress = &prog;
+    if (!rc && rank == 0)
+        rc = check_outputs(&job, a, find_key(job.grid, contrast));
     if (!rc && rank == 0)
         rc = sweep_results_open(&r, n, a->output, fingerprint(scene, &job, header));
     else if (!rc && !(r.text = calloc(n, sizeof *r.text)))

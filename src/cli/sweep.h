@@ -71,6 +71,9 @@ int sweep_run_threads(const sweep_job *job, sweep_results *r, int threads,
 int sweep_run_list(const sweep_job *job, const size_t *todo, size_t m, int threads,
                    int (*deliver)(void *user, size_t i, char *text), void *user);
 
+/* Whether sweep_plot can draw job's table (not a scan's; points need a key to plot
+ * against besides the contrast key), before anything runs. */
+int sweep_plot_check(const sweep_job *job, long contrast);
 /* A PNG of the finished table: against the last varied key other than contrast (an
  * index, -1 for none), or against z for approach curves. */
 int sweep_plot(const sweep_job *job, const sweep_results *r, const char *path, long contrast);

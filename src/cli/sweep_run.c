@@ -1,7 +1,10 @@
 /* tiptap sweep: one combination's run into CSV rows (see sweep.h). */
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "commands.h"
 #include "sweep.h"
@@ -358,6 +361,22 @@ int sweep_compute(const sweep_job *job, size_t i, char **out)
     return TT_OK;
 }
 
+/* A scan combination's folder, if it is there already, must be a folder it can write
+ * (one left by an earlier sweep is written over). */
+static int check_folder(const sweep_job *job, size_t i)
+{
+    char folder[4096];
+    struct stat st;
+    snprintf(folder, sizeof folder, "%s/%04zu", job->dir, i + 1);
+    if (stat(folder, &st) != 0)
+        return TT_OK;
+    if (!S_ISDIR(st.st_mode))
+        return tt_error(TT_EIO, "%s: is not a folder; combination %zu writes its scan there", folder, i + 1);
+    if (access(folder, W_OK) != 0)
+        return tt_error(TT_EIO, "%s: folder not writable: %s", folder, strerror(errno));
+    return TT_OK;
+}
+
 int sweep_check(const sweep_job *job, size_t i)
 {
     if (job->kind == SWEEP_SCAN) {
@@ -369,7 +388,7 @@ int sweep_check(const sweep_job *job, size_t i)
         if (rc && scene)
             rc = name_combination(job, i, rc);
         tt_scene_free(scene);
-        return rc;
+        return rc ? rc : check_folder(job, i);
     }
     /* the configuration layer only, which checks every key and rule, without building
      * force tables (a third of a steady point's cost) */
