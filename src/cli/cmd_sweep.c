@@ -87,7 +87,8 @@ static long launched_ranks(void)
 }
 #endif
 
-/* What a journal must match: the run, the header, the grid and the whole base scene. */
+/* What a journal must match: the program's version (another may compute other rows),
+ * the run, the header, the grid and the whole base scene. */
 static unsigned long long fingerprint(const tt_scene *scene, const sweep_job *job, const char *header)
 {
     unsigned long long h = 1469598103934665603ULL;
@@ -95,7 +96,7 @@ static unsigned long long fingerprint(const tt_scene *scene, const sweep_job *jo
     size_t len = 0;
     FILE *f = open_memstream(&buf, &len);
     if (f) {
-        fprintf(f, "run %d\n%s", (int)job->kind, header);
+        fprintf(f, "tiptap %s\nrun %d\n%s", TT_VERSION, (int)job->kind, header);
         tt_scene_write(scene, f, NULL);
         fclose(f);
     }
