@@ -149,6 +149,20 @@ static int check_outputs(const sweep_job *job, const cli_args *a, long contrast)
     return rc;
 }
 
+/* Which setpoint rows say found=unreachable, so that no one takes them for points at
+ * the setpoint (shown with -q too: it is about the table, not progress). */
+static void warn_unreached(const sweep_results *r)
+{
+    size_t list[10], n = sweep_unreached(r, list, 10);
+    if (!n)
+        return;
+    fprintf(stderr, "tiptap sweep: warning: the setpoint was not reached in %zu of %zu combinations (found=%s; "
+                    "each row holds the closest point): ", n, r->n, SWEEP_UNREACHABLE);
+    for (size_t k = 0; k < n && k < 10; k++)
+        fprintf(stderr, "%s%zu", k ? ", " : "", list[k] + 1);
+    fprintf(stderr, "%s\n", n > 10 ? ", ..." : "");
+}
+
 static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, const cli_args *a,
                       int threads, const char *contrast)
 {
@@ -212,6 +226,8 @@ static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, 
         rc = sweep_results_write(&r, a->output, header);
     if (rank == 0 && !rc && a->plot)
         rc = sweep_plot(&job, &r, a->plot, find_key(job.grid, contrast));
+    if (rank == 0 && !rc && kind == SWEEP_SETPOINT)
+        warn_unreached(&r);
     double wall = cli_now() - t0;
     if (rank == 0 && !rc && !a->quiet)
         fprintf(stderr, "combinations = %zu (%zu resumed)\nranks = %d\nthreads = %d\nrun_time_s = %.3f\n"

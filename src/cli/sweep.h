@@ -27,6 +27,10 @@ typedef struct {
 /* The CSV header of a job's table (static storage reused per call; ends with \n). */
 void sweep_header(const sweep_job *job, char *buf, size_t len);
 
+/* The found column of a setpoint row whose setpoint was not reached (the row holds the
+ * closest point the search found). */
+#define SWEEP_UNREACHABLE "unreachable"
+
 /* Check combination i before anything runs: its scene and every configuration the run
  * reads. One line naming the combination on failure. */
 int sweep_check(const sweep_job *job, size_t i);
@@ -44,6 +48,10 @@ typedef struct {
     char *journal_path;
     size_t resumed;   /* done when the journal was opened (a resumed sweep) */
 } sweep_results;
+
+/* The finished setpoint combinations marked SWEEP_UNREACHABLE: how many, the first max
+ * of them (indices from 0) in list. */
+size_t sweep_unreached(const sweep_results *r, size_t *list, size_t max);
 
 struct cli_progress;
 /* Show r's progress (the combinations this run computes) on p; NULL: none. */
