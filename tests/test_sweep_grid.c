@@ -166,6 +166,10 @@ static void ranges_distinct_with_both_ends(void **st)
     assert_int_equal(tt_sweep_vary(g, "approach.from=1nm:1.0000000000000004nm:3"), TT_EINVAL);
     assert_non_null(strstr(tt_error_message(), "values 1 and 2 are both '1e-09 m'"));
     assert_int_equal(tt_sweep_vary(g, "approach.points=1:99999999999999999999:3"), TT_EINVAL);
+    /* finite as written, infinite in SI (found by fuzz_vary) */
+    assert_int_equal(tt_sweep_vary(g, "material.hard.youngs_modulus=1e308GPa,2GPa"), TT_EINVAL);
+    assert_non_null(strstr(tt_error_message(), "'1e308GPa' is not a finite number in SI units"));
+    assert_int_equal(tt_sweep_vary(g, "material.hard.youngs_modulus=1GPa:1e308GPa:3"), TT_EINVAL);
     assert_int_equal(tt_sweep_keys(g), 0);
     /* one value is fine when the ends agree; whole numbers exact and descending */
     assert_int_equal(tt_sweep_vary(g, "cantilever.free_amplitude=10nm:10nm:1"), TT_OK);

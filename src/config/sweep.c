@@ -13,7 +13,7 @@
 typedef struct {
     char *key;              /* as given: section.key or section.NAME.key */
     char unit[16];          /* SI unit of the values; "" for text */
-    size_t n;               /* values */
+    size_t n, cap;          /* values, and room for them */
     char **text;            /* as set in the scene */
     double *si;             /* SI values, NAN for text */
     int files;              /* the values are scene files to read, not values of a key */
@@ -91,15 +91,18 @@ static char *trimmed(const char *s, size_t n)
 
 static int add_value(axis *a, char *text, double si)
 {
-    char **t = realloc(a->text, (a->n + 1) * sizeof *t);
+    /* room doubled as needed: a range of millions of values is not copied per value */
+    size_t cap = a->n < a->cap ? a->cap : 2 * a->cap + 8;
+    char **t = cap == a->cap ? a->text : realloc(a->text, cap * sizeof *t);
     if (t)
         a->text = t;
-    double *v = t ? realloc(a->si, (a->n + 1) * sizeof *v) : NULL;
+    double *v = !t ? NULL : cap == a->cap ? a->si : realloc(a->si, cap * sizeof *v);
     if (!v) {
         free(text);
         return tt_error(TT_ENOMEM, "out of memory");
     }
     a->si = v;
+    a->cap = cap;
     a->text[a->n] = text;
     a->si[a->n++] = si;
     return TT_OK;
@@ -130,6 +133,8 @@ static int parse_one(axis *a, const tt_scene_key *k, const char *text, double *s
     tt_dim dim;
     if (tt_units_parse(text, k->dims, si, &dim, why, sizeof why) != 0)
         return tt_error(TT_EINVAL, "--vary %s: '%s': %s", a->key, text, why);
+    if (!isfinite(*si)) /* 1e308 GPa: finite as written, not in SI */
+        return tt_error(TT_EINVAL, "--vary %s: '%s' is not a finite number in SI units", a->key, text);
     const char *u = (dim == TT_DIM_NONE || dim == TT_DIM_FRACTION) ? "1" : tt_units_symbol(dim);
     if (a->n > 0 && strcmp(a->unit, u) != 0)
         return tt_error(TT_EINVAL, "--vary %s: '%s' has another unit than the first value", a->key, text);
