@@ -5,9 +5,11 @@
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "commands.h"
 #include "sweep.h"
+#include "tiptap/io/outfile.h"
 #include "tiptap/io/plot.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
@@ -20,7 +22,7 @@ static void help(void)
            "      --vary KEY=VALUES  vary a scene key (section.key, material.NAME.key) over\n"
            "                     a list '10 nm,20 nm', a range FROM:TO:N '10nm:30nm:5' (N values,\n"
            "                     ends included) or 'log:FROM:TO:N'; several make a grid, the first\n"
-           "                     varying slowest\n"
+           "                     varying slowest, of at most 10000000 combinations\n"
            "      --run KIND     steady: the steady oscillation at [approach] from (default);\n"
            "                     setpoint: the steady point whose amplitude is [feedback] setpoint\n"
            "                     (a secant search over the rest separation); approach: the\n"
@@ -31,7 +33,8 @@ static void help(void)
            "                     max_indentation_nm, contact_fraction, dissipated_aJ, drive_work_aJ,\n"
            "                     energy_residual (the error estimate), regime (free, attractive:\n"
            "                     phase lag above 90 deg, repulsive), direction, settled, cycles,\n"
-           "                     found (newton or settled). Scans: folder, lines_done,\n"
+           "                     found (newton or settled; unreachable: a setpoint not reached,\n"
+           "                     the row holds the closest point). Scans: folder, lines_done,\n"
            "                     error_estimate, material, pixels, height and phase mean and\n"
            "                     standard deviation, and their contrast to the first material.\n"
            "                     Scan folders go under FILE without its extension (FILE.d\n"
@@ -85,7 +88,8 @@ static long launched_ranks(void)
 }
 #endif
 
-/* What a journal must match: the run, the header, the grid and the whole base scene. */
+/* What a journal must match: the program's version (another may compute other rows),
+ * the run, the header, the grid and the whole base scene. */
 static unsigned long long fingerprint(const tt_scene *scene, const sweep_job *job, const char *header)
 {
     unsigned long long h = 1469598103934665603ULL;
@@ -93,7 +97,7 @@ static unsigned long long fingerprint(const tt_scene *scene, const sweep_job *jo
     size_t len = 0;
     FILE *f = open_memstream(&buf, &len);
     if (f) {
-        fprintf(f, "run %d\n%s", (int)job->kind, header);
+        fprintf(f, "tiptap %s\nrun %d\n%s", TT_VERSION, (int)job->kind, header);
         tt_scene_write(scene, f, NULL);
         fclose(f);
     }
@@ -106,8 +110,12 @@ static unsigned long long fingerprint(const tt_scene *scene, const sweep_job *jo
 /* The grid from the --vary list, every combination checked, before anything runs. */
 static int build_grid(tt_scene *scene, char **vary, int nvary, sweep_job *job, const char *contrast)
 {
+    /* an astronomical grid is refused from its --vary forms alone, before any value */
+    int rc = tt_sweep_check_size((const char *const *)vary, (size_t)nvary);
+    if (rc)
+        return rc;
     tt_sweep *g = NULL;
-    int rc = tt_sweep_alloc(&g, scene);
+    rc = tt_sweep_alloc(&g, scene);
     for (int i = 0; i < nvary && !rc; i++)
         rc = tt_sweep_vary(g, vary[i]);
     job->grid = g;
@@ -116,6 +124,44 @@ static int build_grid(tt_scene *scene, char **vary, int nvary, sweep_job *job, c
     for (size_t i = 0; i < tt_sweep_count(g) && !rc; i++)
         rc = sweep_check(job, i);
     return rc;
+}
+
+/* A file the sweep writes at its end, checked before the first combination runs: not
+ * a folder, and a file can be made beside it (made and removed again). */
+static int check_output(const char *path)
+{
+    struct stat st;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+        return tt_error(TT_EIO, "%s: is a folder; the sweep writes a file there", path);
+    tt_outfile *of;
+    int rc = tt_outfile_open(&of, path);
+    return rc ? rc : tt_outfile_close(of, 0);
+}
+
+/* Every path the sweep writes, before anything runs: the table, the plot (and whether
+ * it can be drawn at all), and a scan's folder of combination folders. */
+static int check_outputs(const sweep_job *job, const cli_args *a, long contrast)
+{
+    int rc = check_output(a->output);
+    if (!rc && a->plot && !(rc = sweep_plot_check(job, contrast)))
+        rc = check_output(a->plot);
+    if (!rc && job->kind == SWEEP_SCAN)
+        rc = tt_mkdirs(job->dir);
+    return rc;
+}
+
+/* Which setpoint rows say found=unreachable, so that no one takes them for points at
+ * the setpoint (shown with -q too: it is about the table, not progress). */
+static void warn_unreached(const sweep_results *r)
+{
+    size_t list[10], n = sweep_unreached(r, list, 10);
+    if (!n)
+        return;
+    fprintf(stderr, "tiptap sweep: warning: the setpoint was not reached in %zu of %zu combinations (found=%s; "
+                    "each row holds the closest point): ", n, r->n, SWEEP_UNREACHABLE);
+    for (size_t k = 0; k < n && k < 10; k++)
+        fprintf(stderr, "%s%zu", k ? ", " : "", list[k] + 1);
+    fprintf(stderr, "%s\n", n > 10 ? ", ..." : "");
 }
 
 static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, const cli_args *a,
@@ -152,6 +198,8 @@ static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, 
     cli_progress_begin(&prog, "sweep", "combinations", a->quiet || rank != 0);
     cli_progress *progress = &prog;
     if (!rc && rank == 0)
+        rc = check_outputs(&job, a, find_key(job.grid, contrast));
+    if (!rc && rank == 0)
         rc = sweep_results_open(&r, n, a->output, fingerprint(scene, &job, header));
     else if (!rc && !(r.text = calloc(n, sizeof *r.text)))
         rc = tt_error(TT_ENOMEM, "out of memory");
@@ -179,6 +227,8 @@ static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, 
         rc = sweep_results_write(&r, a->output, header);
     if (rank == 0 && !rc && a->plot)
         rc = sweep_plot(&job, &r, a->plot, find_key(job.grid, contrast));
+    if (rank == 0 && !rc && kind == SWEEP_SETPOINT)
+        warn_unreached(&r);
     double wall = cli_now() - t0;
     if (rank == 0 && !rc && !a->quiet)
         fprintf(stderr, "combinations = %zu (%zu resumed)\nranks = %d\nthreads = %d\nrun_time_s = %.3f\n"

@@ -27,6 +27,10 @@ typedef struct {
 /* The CSV header of a job's table (static storage reused per call; ends with \n). */
 void sweep_header(const sweep_job *job, char *buf, size_t len);
 
+/* The found column of a setpoint row whose setpoint was not reached (the row holds the
+ * closest point the search found). */
+#define SWEEP_UNREACHABLE "unreachable"
+
 /* Check combination i before anything runs: its scene and every configuration the run
  * reads. One line naming the combination on failure. */
 int sweep_check(const sweep_job *job, size_t i);
@@ -44,6 +48,10 @@ typedef struct {
     char *journal_path;
     size_t resumed;   /* done when the journal was opened (a resumed sweep) */
 } sweep_results;
+
+/* The finished setpoint combinations marked SWEEP_UNREACHABLE: how many, the first max
+ * of them (indices from 0) in list. */
+size_t sweep_unreached(const sweep_results *r, size_t *list, size_t max);
 
 struct cli_progress;
 /* Show r's progress (the combinations this run computes) on p; NULL: none. */
@@ -71,6 +79,9 @@ int sweep_run_threads(const sweep_job *job, sweep_results *r, int threads,
 int sweep_run_list(const sweep_job *job, const size_t *todo, size_t m, int threads,
                    int (*deliver)(void *user, size_t i, char *text), void *user);
 
+/* Whether sweep_plot can draw job's table (not a scan's; points need a key to plot
+ * against besides the contrast key), before anything runs. */
+int sweep_plot_check(const sweep_job *job, long contrast);
 /* A PNG of the finished table: against the last varied key other than contrast (an
  * index, -1 for none), or against z for approach curves. */
 int sweep_plot(const sweep_job *job, const sweep_results *r, const char *path, long contrast);

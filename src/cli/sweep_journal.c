@@ -1,44 +1,18 @@
 /* tiptap sweep: finished combinations, their journal, and the threads that compute
  * them (see sweep.h). */
+#include <errno.h>
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "commands.h"
+#include "journal.h"
 #include "sweep.h"
 #include "tiptap/io/files.h"
 #include "tiptap/io/outfile.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
-
-static const char magic[] = "tiptap-sweep-journal";
-
-/* The records of a journal's bytes: "@INDEX BYTES\n" then the text. A record cut short
- * by a kill is dropped; the length of the good part is returned. */
-static size_t load_records(sweep_results *r, const char *buf, size_t len, size_t start)
-{
-    size_t pos = start;
-    while (pos < len) {
-        size_t i, bytes;
-        int used = 0;
-        if (sscanf(buf + pos, "@%zu %zu\n%n", &i, &bytes, &used) != 2 || used == 0 || i >= r->n ||
-            bytes > len - pos - (size_t)used)
-            break;
-        char *t = malloc(bytes + 1);
-        if (!t)
-            break;
-        memcpy(t, buf + pos + used, bytes);
-        t[bytes] = '\0';
-        if (r->text[i])
-            free(r->text[i]);
-        else
-            r->done++;
-        r->text[i] = t;
-        pos += (size_t)used + bytes;
-    }
-    return pos;
-}
 
 /* Resume an existing journal of the same sweep; -1 when there was none. */
 static int resume(sweep_results *r, unsigned long long hash)
@@ -64,21 +38,17 @@ static int resume(sweep_results *r, unsigned long long hash)
         len += got;
         buf[len] = '\0';
     }
-    unsigned long long h = 0;
-    size_t n = 0;
-    int used = 0;
-    if (!buf || sscanf(buf, "tiptap-sweep-journal %llx %zu\n%n", &h, &n, &used) != 2 || used == 0 ||
-        h != hash || n != r->n) {
-        free(buf);
-        fclose(f);
-        return tt_error(TT_EINVAL, "%s: the journal of another sweep (other scene, keys or run); "
-                                   "remove it to start this one afresh", r->journal_path);
-    }
-    size_t good = load_records(r, buf, len, (size_t)used);
+    int rc = ferror(f) ? tt_error(TT_EIO, "%s: cannot read: %s", r->journal_path, strerror(errno)) : TT_OK;
+    journal_sweep sw = {TT_VERSION, hash, r->n};
+    size_t good = 0;
+    if (!rc)
+        rc = journal_read(r->journal_path, buf ? buf : "", len, &sw, r->text, &r->done, &good);
     free(buf);
-    if (ftruncate(fileno(f), (off_t)good) != 0 || fseek(f, 0, SEEK_END) != 0) {
+    if (!rc && (ftruncate(fileno(f), (off_t)good) != 0 || fseek(f, 0, SEEK_END) != 0))
+        rc = tt_error(TT_EIO, "%s: cannot continue the journal: %s", r->journal_path, strerror(errno));
+    if (rc) {
         fclose(f);
-        return tt_error(TT_EIO, "%s: cannot continue the journal", r->journal_path);
+        return rc;
     }
     r->journal = f;
     return TT_OK;
@@ -100,8 +70,10 @@ int sweep_results_open(sweep_results *r, size_t n, const char *out, unsigned lon
         return rc;
     if ((rc = tt_file_create(r->journal_path, "sweep journal", &r->journal)))
         return rc;
-    fprintf(r->journal, "%s %016llx %zu\n", magic, hash, n);
-    return fflush(r->journal) == 0 ? TT_OK : tt_error(TT_EIO, "%s: cannot write", r->journal_path);
+    journal_sweep sw = {TT_VERSION, hash, n};
+    if (journal_write_header(r->journal, &sw) != 0 || fflush(r->journal) != 0)
+        return tt_error(TT_EIO, "%s: cannot write: %s", r->journal_path, strerror(errno));
+    return TT_OK;
 }
 
 int sweep_results_record(sweep_results *r, size_t i, char *text)
@@ -111,11 +83,9 @@ int sweep_results_record(sweep_results *r, size_t i, char *text)
     else
         r->done++;
     r->text[i] = text;
-    size_t len = strlen(text);
     /* flushed record by record: a killed sweep keeps every combination it finished */
-    if (r->journal && (fprintf(r->journal, "@%zu %zu\n", i, len) < 0 || fwrite(text, 1, len, r->journal) != len ||
-                       fflush(r->journal) != 0))
-        return tt_error(TT_EIO, "%s: cannot write", r->journal_path);
+    if (r->journal && (journal_write_record(r->journal, i, text) != 0 || fflush(r->journal) != 0))
+        return tt_error(TT_EIO, "%s: cannot write: %s", r->journal_path, strerror(errno));
     return TT_OK;
 }
 

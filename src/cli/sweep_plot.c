@@ -55,19 +55,32 @@ static void series_label(const tt_sweep *g, size_t i, size_t x, long contrast, c
     }
 }
 
+/* The key steady and setpoint points are drawn against: the last one other than the
+ * contrast key; the number of keys when there is none. */
+static size_t x_key(const tt_sweep *g, long contrast)
+{
+    size_t nk = tt_sweep_keys(g);
+    for (size_t k = nk; k-- > 0;)
+        if ((long)k != contrast)
+            return k;
+    return nk;
+}
+
+int sweep_plot_check(const sweep_job *job, long contrast)
+{
+    if (job->kind == SWEEP_SCAN)
+        return tt_error(TT_EINVAL, "--plot: not for scans (each folder has its images)");
+    if (job->kind != SWEEP_APPROACH && x_key(job->grid, contrast) == tt_sweep_keys(job->grid))
+        return tt_error(TT_EINVAL, "--plot: needs a varied key besides the contrast key");
+    return TT_OK;
+}
+
 /* Steady and setpoint points: three panels against the x key, one line per series
  * (and per contrast level, as differences to the first). */
 static int plot_points(const sweep_job *job, const sweep_results *r, tt_figure *f, long contrast)
 {
     const tt_sweep *g = job->grid;
-    size_t nk = tt_sweep_keys(g), x = nk;
-    for (size_t k = nk; k-- > 0;)
-        if ((long)k != contrast) {
-            x = k;
-            break;
-        }
-    if (x == nk)
-        return tt_error(TT_EINVAL, "--plot: needs a varied key besides the contrast key");
+    size_t nk = tt_sweep_keys(g), x = x_key(g, contrast); /* x < nk: sweep_plot_check */
     int base = 1 + (int)nk + (job->kind == SWEEP_SETPOINT), ycol = job->kind == SWEEP_SETPOINT ? base : base + 1;
     int cols[3] = {ycol, base + 2, base + 7};
     size_t nx = tt_sweep_levels(g, x), ns, nc = contrast >= 0 ? tt_sweep_levels(g, (size_t)contrast) : 1;
@@ -168,12 +181,13 @@ static int plot_curves(const sweep_job *job, const sweep_results *r, tt_figure *
 
 int sweep_plot(const sweep_job *job, const sweep_results *r, const char *path, long contrast)
 {
-    if (job->kind == SWEEP_SCAN)
-        return tt_error(TT_EINVAL, "--plot: not for scans (each folder has its images)");
+    int rc = sweep_plot_check(job, contrast);
+    if (rc)
+        return rc;
     tt_figure *f = tt_figure_alloc(3, job->kind == SWEEP_APPROACH ? "Approach curves" : "Steady points");
     if (!f)
         return tt_error(TT_ENOMEM, "out of memory");
-    int rc = job->kind == SWEEP_APPROACH ? plot_curves(job, r, f) : plot_points(job, r, f, contrast);
+    rc = job->kind == SWEEP_APPROACH ? plot_curves(job, r, f) : plot_points(job, r, f, contrast);
     if (!rc)
         rc = tt_figure_write_png(f, path, 900, 1100);
     tt_figure_free(f);

@@ -1,7 +1,10 @@
 /* tiptap sweep: one combination's run into CSV rows (see sweep.h). */
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "commands.h"
 #include "sweep.h"
@@ -97,7 +100,8 @@ static const char *regime(const tt_cycle *c, double A0)
     return c->phase > M_PI / 2 ? "attractive" : "repulsive";
 }
 
-static void put_point(FILE *f, const tt_approach_point *p, double A0, int ok)
+/* A point's row; found: the last column when not how the point was found (NULL). */
+static void put_point(FILE *f, const tt_approach_point *p, double A0, int ok, const char *found)
 {
     const tt_cycle *c = &p->cycle;
     if (!ok) {
@@ -108,7 +112,7 @@ static void put_point(FILE *f, const tt_approach_point *p, double A0, int ok)
             c->amplitude * 1e9, c->phase * 180 / M_PI, c->mean * 1e9, c->peak_force * 1e9,
             c->max_indentation * 1e9, c->contact_fraction, c->e_ts * 1e18, c->e_drive * 1e18,
             c->residual_rel, regime(c, A0), p->retract ? "retract" : "approach", p->settled,
-            p->cycles, p->shot.how == TT_SHOOT_NEWTON && p->cycles >= 0 ? "newton" : "settled");
+            p->cycles, found ? found : p->shot.how == TT_SHOOT_NEWTON && p->cycles >= 0 ? "newton" : "settled");
 }
 
 /* rc with the combination named in front of the message. */
@@ -172,8 +176,10 @@ static int steady_at(combo *c, double z, tt_approach_point *pt)
 /* The rest separation where the steady amplitude equals the setpoint (to 1e-3 of A0,
  * below what an image resolves): secant steps
  * from the guess A(z) = z (the repulsive branch's slope, Burnham et al. fig. 1), kept
- * inside a bracket once one is found (regula falsi, Illinois). */
-static int setpoint_point(combo *c, double target, tt_approach_point *pt)
+ * inside a bracket once one is found (regula falsi, Illinois). *reached: whether it
+ * was; when not (an amplitude that never comes down to the setpoint, as at Q = 1, or
+ * jumps across it), *pt is the closest point. */
+static int setpoint_point(combo *c, double target, tt_approach_point *pt, int *reached)
 {
     double A0 = tt_setup_cantilever(c->st)->A0, tol = 1e-3 * A0;
     double zl = NAN, fl = NAN, zh = NAN, fh = NAN, z = target;
@@ -208,6 +214,7 @@ static int setpoint_point(combo *c, double target, tt_approach_point *pt)
             z -= f; /* amplitude rises about one to one with the separation */
     }
     *pt = best;
+    *reached = fabs(bestf) < tol;
     return TT_OK;
 }
 
@@ -225,12 +232,14 @@ static int compute_points(const sweep_job *job, size_t i, FILE *f)
         if (job->kind == SWEEP_SETPOINT && !(rc = tt_config_feedback(c.scene, A0, &fp)))
             target = fp.setpoint;
         if (!rc) {
-            int run = job->kind == SWEEP_STEADY ? steady_at(&c, c.p.from, &pt) : setpoint_point(&c, target, &pt);
+            int reached = 1;
+            int run = job->kind == SWEEP_STEADY ? steady_at(&c, c.p.from, &pt)
+                                                : setpoint_point(&c, target, &pt, &reached);
             put_keys(f, job->grid, i);
             if (job->kind == SWEEP_SETPOINT)
                 fprintf(f, ",%.9g", target * 1e9);
             fputc(',', f);
-            put_point(f, &pt, A0, run == TT_OK);
+            put_point(f, &pt, A0, run == TT_OK, reached ? NULL : SWEEP_UNREACHABLE);
         }
     } else {
         tt_approach *ap = NULL;
@@ -243,7 +252,7 @@ static int compute_points(const sweep_job *job, size_t i, FILE *f)
                 int run = tt_approach_iterate(ap, &pt);
                 put_keys(f, job->grid, i);
                 fputc(',', f);
-                put_point(f, &pt, A0, run == TT_OK);
+                put_point(f, &pt, A0, run == TT_OK, NULL);
                 if (run)
                     break; /* the branch cannot go on from a failed point */
             }
@@ -342,6 +351,19 @@ done:
     return rc;
 }
 
+size_t sweep_unreached(const sweep_results *r, size_t *list, size_t max)
+{
+    static const char tail[] = "," SWEEP_UNREACHABLE "\n";
+    size_t count = 0, tl = sizeof tail - 1;
+    for (size_t i = 0; i < r->n; i++) {
+        const char *t = r->text[i];
+        size_t len = t ? strlen(t) : 0;
+        if (len >= tl && strcmp(t + len - tl, tail) == 0 && count++ < max)
+            list[count - 1] = i;
+    }
+    return count;
+}
+
 int sweep_compute(const sweep_job *job, size_t i, char **out)
 {
     text t;
@@ -360,6 +382,22 @@ int sweep_compute(const sweep_job *job, size_t i, char **out)
     return TT_OK;
 }
 
+/* A scan combination's folder, if it is there already, must be a folder it can write
+ * (one left by an earlier sweep is written over). */
+static int check_folder(const sweep_job *job, size_t i)
+{
+    char folder[4096];
+    struct stat st;
+    snprintf(folder, sizeof folder, "%s/%04zu", job->dir, i + 1);
+    if (stat(folder, &st) != 0)
+        return TT_OK;
+    if (!S_ISDIR(st.st_mode))
+        return tt_error(TT_EIO, "%s: is not a folder; combination %zu writes its scan there", folder, i + 1);
+    if (access(folder, W_OK) != 0)
+        return tt_error(TT_EIO, "%s: folder not writable: %s", folder, strerror(errno));
+    return TT_OK;
+}
+
 int sweep_check(const sweep_job *job, size_t i)
 {
     if (job->kind == SWEEP_SCAN) {
@@ -371,7 +409,7 @@ int sweep_check(const sweep_job *job, size_t i)
         if (rc && scene)
             rc = name_combination(job, i, rc);
         tt_scene_free(scene);
-        return rc;
+        return rc ? rc : check_folder(job, i);
     }
     /* the configuration layer only, which checks every key and rule, without building
      * force tables (a third of a steady point's cost) */

@@ -28,11 +28,23 @@ extern "C" {
 
 typedef struct tt_sweep tt_sweep;
 
+/* The most combinations a grid may have: each is checked before the first runs, and a
+ * sweep keeps every finished one's rows in memory until it writes its table. */
+#define TT_SWEEP_MAX_COMBINATIONS 10000000
+
+/* Refuse a grid of more than TT_SWEEP_MAX_COMBINATIONS combinations from its n
+ * specifications alone, before any value is parsed or stored, so that neither time nor
+ * memory grows with the count (which may be far beyond 2^64): TT_EINVAL with one line
+ * naming the specifications and the count. Other faults of a specification are left
+ * to tt_sweep_vary. */
+int tt_sweep_check_size(const char *const *specs, size_t n);
+
 int tt_sweep_alloc(tt_sweep **out, const tt_scene *base);
 void tt_sweep_free(tt_sweep *sw);
 
 /* Add a varied key from "KEY=VALUES"; TT_EINVAL with one line naming the key on a bad
- * key, value, unit or range. */
+ * key, value, unit or range, and on a grid that would grow beyond
+ * TT_SWEEP_MAX_COMBINATIONS (checked before the values are stored). */
 int tt_sweep_vary(tt_sweep *sw, const char *spec);
 
 /* Number of varied keys and of combinations (1 when nothing varies). */
