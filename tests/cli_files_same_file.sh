@@ -53,6 +53,11 @@ cp "$tmp/map.png" "$tmp/out/amplitude_trace.png"
 expect_error "a map among the scan's names" "amplitude_trace.png: the same file as the PNG map" \
   "$tiptap" scan "$tmp/s.ini" -o "$tmp/out" -q --set "surface.map_png=$tmp/out/amplitude_trace.png"
 cmp -s "$tmp/out/amplitude_trace.png" "$tmp/map.png" && ok "the map kept" || bad "the map removed"
+# profiles reads DIR/profile.csv
+cp "$tmp/out/profile.csv" "$tmp/profile.orig"
+expect_error "profiles -o its input" "profile.csv: the same file as the profile CSV $tmp/out/profile.csv" \
+  "$tiptap" profiles -q -o "$tmp/out/profile.csv" "$tmp/out"
+cmp -s "$tmp/out/profile.csv" "$tmp/profile.orig" && ok "the profile kept" || bad "the profile replaced"
 # another file of the folder may be a scene
 cp "$tmp/s.ini" "$tmp/out/mine.ini"
 "$tiptap" scan "$tmp/out/mine.ini" -o "$tmp/out" -q --set "surface.map_png=$tmp/map.png" 2>/dev/null &&
