@@ -188,15 +188,27 @@ static void on_sigint(int sig)
     tt_cancel_request_signal(sig);
 }
 
-void cli_catch_interrupt(void)
+/* Nothing to keep or to clean up yet: end now (write and _exit are async-signal-safe). */
+static void on_signal_at_once(int sig)
+{
+    static const char msg[] = "tiptap: interrupted before any output was begun\n";
+    ssize_t w = write(STDERR_FILENO, msg, sizeof msg - 1);
+    (void)w;
+    _exit(128 + sig);
+}
+
+static void catch_signals(void (*handler)(int))
 {
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_sigint;
+    sa.sa_handler = handler;
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
 }
+
+void cli_interrupt_at_once(void) { catch_signals(on_signal_at_once); }
+void cli_catch_interrupt(void) { catch_signals(on_sigint); }
 
 double cli_now(void)
 {

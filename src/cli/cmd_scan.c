@@ -266,7 +266,9 @@ int cmd_scan(int argc, char **argv)
         goto done;
     /* Then the folder and the effective scene: a bad output folder fails at once, not
      * after an hour of scanning. The folder is locked for the run: two scans into one
-     * folder would mix their images and scene.ini. */
+     * folder would mix their images and scene.ini. From here on a signal keeps the lines
+     * finished. */
+    cli_catch_interrupt();
     if ((rc = tt_mkdirs(dir)))
         goto done;
     if ((lock = cli_lock_folder("scan", dir)) < 0) {
@@ -283,7 +285,6 @@ int cmd_scan(int argc, char **argv)
     }
     if ((rc = tt_outfile_close(of, 1)))
         goto done;
-    cli_catch_interrupt();
     cli_progress prog;
     cli_progress_begin(&prog, "scan", "lines", quiet);
     rc = tt_scan_run(scan, threads, quiet ? NULL : show_progress, &prog);

@@ -110,6 +110,14 @@ static void write_row(FILE *f, const tt_trace_row *r, int ramp)
     }
 }
 
+/* The message of a Ctrl-C or SIGTERM: what was kept, or that nothing was. */
+static int interrupted(const char *out, long cycles)
+{
+    if (cycles == 0)
+        return tt_error(TT_EINTR, "interrupted before the first cycle finished: %s not written", out);
+    return tt_error(TT_EINTR, "interrupted: %s keeps the %ld cycles finished", out, cycles);
+}
+
 int cmd_trace(int argc, char **argv)
 {
     static const cli_spec spec = {"trace", CLI_OPT_OUTPUT | CLI_OPT_PLOT | CLI_OPT_SET | CLI_OPT_QUIET,
@@ -138,6 +146,7 @@ int cmd_trace(int argc, char **argv)
         tt_config_trace_estimate(cl, tt_setup_solver(st), &p, &e);
         cli_report_estimate("trace", e.cycles, e.seconds, e.upper_bound, 1, cl->f0, cl->fd, quiet);
     }
+    cli_catch_interrupt(); /* from here on a signal keeps the cycles finished */
     if ((rc = tt_outfile_open(&of, out)))
         goto done;
     if (plotpath && (rc = tt_decimate_alloc(&S, 7, (double)tt_trace_rows(tr) * (double)p.samples_per_cycle,
@@ -149,16 +158,16 @@ int cmd_trace(int argc, char **argv)
     fprintf(f, "t_us,base_nm,tip_nm,sample_nm,deflection_nm,force_nN,contact_radius_nm,pressure_GPa,"
                "contact%s%s\n",
             p.ramp ? "," : "", p.ramp ? p.ramp : "");
-    cli_catch_interrupt();
     cli_progress prog;
     cli_progress_begin(&prog, "trace", "cycles", quiet);
     while (!tt_trace_done(tr)) {
-        if (tt_cancel_requested()) {
-            rc = tt_error(TT_EINTR, "interrupted: %s keeps the %ld cycles finished", out, done_cycles);
+        tt_trace_row row;
+        /* within a cycle (or the settling) the cycle is abandoned */
+        if (tt_cancel_requested() || (rc = tt_trace_iterate(tr, &row)) == TT_EINTR) {
+            rc = interrupted(out, done_cycles);
             break;
         }
-        tt_trace_row row;
-        if ((rc = tt_trace_iterate(tr, &row)))
+        if (rc)
             break;
         if (row.summary.residual_rel > worst)
             worst = row.summary.residual_rel;
@@ -183,7 +192,7 @@ int cmd_trace(int argc, char **argv)
         of = NULL;
         if (!rc)
             rc = crc;
-        else if (!keep) {
+        else if (!keep && rc != TT_EINTR) {
             char why[1024];
             snprintf(why, sizeof why, "%s", tt_error_message());
             tt_error(rc, "%s; %s not written (%ld cycles had finished; a failed trace keeps no "

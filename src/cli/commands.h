@@ -97,7 +97,13 @@ tt_scene *cli_scene_args(const char *cmd, int argc, char **argv, int optind_, ch
 /* 1 when stderr is a terminal: progress lines go there only then. */
 int cli_progress_enabled(void);
 
-/* Install the SIGINT and SIGTERM handler that requests cooperative cancellation. */
+/* SIGINT and SIGTERM before a command has begun an output: the program ends at once,
+ * 128 + the signal, with one line on stderr (main installs it for every command, also
+ * where the shell that started it ignores SIGINT, as for a background job). */
+void cli_interrupt_at_once(void);
+/* From the command's first output on (a file, a folder, a journal): the handler that
+ * requests cooperative cancellation (util/cancel.h), so that the run stops at its next
+ * poll, within a second, and keeps what it finished; a second signal ends it at once. */
 void cli_catch_interrupt(void);
 
 /* Wall-clock seconds from a monotonic clock. */
