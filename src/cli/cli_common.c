@@ -191,7 +191,7 @@ static void on_sigint(int sig)
 /* Nothing to keep or to clean up yet: end now (write and _exit are async-signal-safe). */
 static void on_signal_at_once(int sig)
 {
-    static const char msg[] = "tiptap: interrupted before any output was begun\n";
+    static const char msg[] = "tiptap: interrupted before any output file was begun\n";
     ssize_t w = write(STDERR_FILENO, msg, sizeof msg - 1);
     (void)w;
     _exit(128 + sig);

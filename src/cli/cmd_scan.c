@@ -303,8 +303,10 @@ int cmd_scan(int argc, char **argv)
     tt_scan_error est;
     int erc = rc == TT_OK && !quiet ? tt_scan_estimate_error(scan, &est) : TT_EINVAL;
     int have_est = erc == TT_OK;
-    if (erc == TT_EINTR)
-        rc = erc; /* stopped in the companion: the images are written, the exit says so */
+    if (erc == TT_EINTR) /* stopped in the companion: the images are written, the exit says so */
+        rc = tt_error(erc, "interrupted in the error estimate's companion line; the images "
+                           "(%ld of %ld lines) are written", tt_scan_lines_done(scan),
+                      tt_scan_lines(scan));
     else if (rc == TT_OK && !quiet && !have_est)
         fprintf(stderr, "tiptap: no error estimate: %s\n", tt_error_message());
     if (!quiet && params.solver.tier == TT_TIER_ENVELOPE) {

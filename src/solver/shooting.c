@@ -417,6 +417,7 @@ int tt_shoot_steady(tt_sim *sim, const tt_shoot_params *p, long max_cycles, doub
                     tt_cycle *out, int *settled, tt_shoot_result *res)
 {
     memset(res, 0, sizeof *res);
+    *settled = 0;
     res->mu_re[0] = res->mu_re[1] = res->mu_im[0] = res->mu_im[1] = res->mu_abs = NAN;
     res->why = "";
     long run = 0, k = p->presettle > 0 ? p->presettle : 1;
