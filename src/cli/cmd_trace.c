@@ -110,12 +110,15 @@ static void write_row(FILE *f, const tt_trace_row *r, int ramp)
     }
 }
 
-/* The message of a Ctrl-C or SIGTERM: what was kept, or that nothing was. */
-static int interrupted(const char *out, long cycles)
+/* The message of a Ctrl-C or SIGTERM: what was kept, or that nothing was. The plot is
+ * not drawn then: cairo takes seconds for the lines of a few thousand cycles (30 s for
+ * 5000), and a signal is answered within one. */
+static int interrupted(const char *out, long cycles, const char *plotpath)
 {
     if (cycles == 0)
         return tt_error(TT_EINTR, "interrupted before the first cycle finished: %s not written", out);
-    return tt_error(TT_EINTR, "interrupted: %s keeps the %ld cycles finished", out, cycles);
+    return tt_error(TT_EINTR, "interrupted: %s keeps the %ld cycles finished%s%s%s", out, cycles,
+                    plotpath ? " (" : "", plotpath ? plotpath : "", plotpath ? " not drawn)" : "");
 }
 
 int cmd_trace(int argc, char **argv)
@@ -164,7 +167,7 @@ int cmd_trace(int argc, char **argv)
         tt_trace_row row;
         /* within a cycle (or the settling) the cycle is abandoned */
         if (tt_cancel_requested() || (rc = tt_trace_iterate(tr, &row)) == TT_EINTR) {
-            rc = interrupted(out, done_cycles);
+            rc = interrupted(out, done_cycles, plotpath);
             break;
         }
         if (rc)
@@ -199,13 +202,13 @@ int cmd_trace(int argc, char **argv)
                          "partial file)", why, out, done_cycles);
         }
     }
-    if (!rc || rc == TT_EINTR) {
+    if (!rc) {
         /* both finished, whatever the first says: the plot shows both */
         int frc = S ? tt_decimate_finish(S) : TT_OK, prc = Pk ? tt_decimate_finish(Pk) : TT_OK;
         if (!rc)
             rc = frc ? frc : prc;
     }
-    int plotted = plotpath && S && tt_decimate_count(S) > 0 && (rc == TT_OK || rc == TT_EINTR);
+    int plotted = plotpath && S && tt_decimate_count(S) > 0 && rc == TT_OK;
     if (plotted) {
         int prc = plot(plotpath, S, Pk, p.ramp);
         if (!rc)
