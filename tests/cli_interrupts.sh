@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SIGINT and SIGTERM end a run within a second wherever it is: inside one long drive
 # cycle's step loop (trace, scan), inside a steady point's shooting on radau (approach),
-# inside a sweep's combination and during a sweep's check of a large grid. The exit
+# inside a sweep's combination, during a sweep's check of a large grid and while a
+# trace draws its plot. The exit
 # status is 130 or 143, what finished is kept (whole trace cycles, the sweep's journal
 # without the abandoned combination), what did not is not written, and no temporary
 # file is left. The scenes make single cycles slow on purpose (a drive 300,000 times
@@ -81,6 +82,20 @@ kept=$((rows / 2000))
   grep -qF "interrupted: $tmp/t2/trace.csv keeps the $kept cycles finished ($tmp/t2/trace.png not drawn)" <<<"$out" &&
   ok "trace keeps its $kept finished cycles whole" || bad "trace kept $rows rows: $out"
 no_tmp "trace after some cycles" "$tmp/t2"
+
+# trace, while drawing the plot of 1000 cycles (100,000 points a line: seconds of
+# cairo) after the CSV is complete: it ends at once, the CSV whole, no plot
+mkdir "$tmp/t3"
+"$tiptap" trace "$src/surfaces/polymer-blend.ini" --set trace.cycles=1000 -o "$tmp/t3/trace.csv" \
+  --plot "$tmp/t3/trace.png" -q 2>"$tmp/err" &
+pid=$!
+for _ in $(seq 600); do [ -e "$tmp/t3/trace.csv" ] && break; sleep 0.05; done
+sleep 0.3
+stop "trace drawing its plot" INT 130
+[ "$(wc -l <"$tmp/t3/trace.csv")" -eq 100001 ] && [ ! -e "$tmp/t3/trace.png" ] &&
+  [ "$out" = "tiptap: interrupted while drawing $tmp/t3/trace.png: $tmp/t3/trace.csv is complete, the plot not drawn" ] &&
+  ok "trace drawing its plot: CSV complete, no plot, one line" || bad "trace plot: $(ls "$tmp/t3") $out"
+no_tmp "trace drawing its plot" "$tmp/t3"
 
 # scan, inside a cycle of rk4 at 1e7 steps (about a second each): no line finished,
 # the folder keeps its scene.ini and no lock

@@ -208,8 +208,16 @@ int cmd_trace(int argc, char **argv)
         if (!rc)
             rc = frc ? frc : prc;
     }
+    if (plotpath && rc == TT_OK && tt_cancel_requested()) /* came as the CSV was closed */
+        rc = interrupted(out, done_cycles, plotpath);
     int plotted = plotpath && S && tt_decimate_count(S) > 0 && rc == TT_OK;
     if (plotted) {
+        /* the CSV is complete; drawing a long trace takes seconds, and a signal ends it
+         * at once (after the PNG, if it is being written) */
+        char why[8400];
+        snprintf(why, sizeof why, "interrupted while drawing %s: %s is complete, the plot not drawn",
+                 plotpath, out);
+        cli_interrupt_at_once(why);
         int prc = plot(plotpath, S, Pk, p.ramp);
         if (!rc)
             rc = prc;

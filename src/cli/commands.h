@@ -97,10 +97,12 @@ tt_scene *cli_scene_args(const char *cmd, int argc, char **argv, int optind_, ch
 /* 1 when stderr is a terminal: progress lines go there only then. */
 int cli_progress_enabled(void);
 
-/* SIGINT and SIGTERM before a command has begun an output: the program ends at once,
- * 128 + the signal, with one line on stderr (main installs it for every command, also
- * where the shell that started it ignores SIGINT, as for a background job). */
-void cli_interrupt_at_once(void);
+/* SIGINT and SIGTERM where nothing is left to keep: the program ends at once, 128 + the
+ * signal, with "tiptap: why" on stderr, once no output file is being written (one that
+ * is, is finished first). main installs it for every command before its first output,
+ * also where the shell that started it ignores SIGINT (a background job); trace again
+ * for its plot, drawn after the CSV is complete. */
+void cli_interrupt_at_once(const char *why);
 /* From the command's first output on (a file, a folder, a journal): the handler that
  * requests cooperative cancellation (util/cancel.h), so that the run stops at its next
  * poll, within a second, and keeps what it finished; a second signal ends it at once. */

@@ -50,7 +50,7 @@ int main(int argc, char **argv)
     }
     for (size_t i = 0; i < NCOMMANDS; i++)
         if (strcmp(argv[1], commands[i].name) == 0) {
-            cli_interrupt_at_once();
+            cli_interrupt_at_once("interrupted before any output file was begun");
             int code = commands[i].run(argc - 1, argv + 1);
             /* stopped by a signal: 128 + its number, the shells' convention (143: SIGTERM),
              * also when it came as the last output was being finished */

@@ -3,6 +3,7 @@
 #include "tiptap/io/outfile.h"
 
 #include <errno.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -16,7 +17,24 @@ struct tt_outfile {
     char *path, *tmp;
 };
 
+/* Temporary files in existence (lock-free, so that a signal handler may read it). */
+static atomic_int open_files;
+
+int tt_outfile_open_count(void) { return atomic_load(&open_files); }
+
+static int open_file(tt_outfile **out, const char *path);
+
 int tt_outfile_open(tt_outfile **out, const char *path)
+{
+    /* counted before the temporary file can exist, uncounted once it cannot */
+    atomic_fetch_add(&open_files, 1);
+    int rc = open_file(out, path);
+    if (rc)
+        atomic_fetch_sub(&open_files, 1);
+    return rc;
+}
+
+static int open_file(tt_outfile **out, const char *path)
 {
     *out = NULL;
     tt_outfile *o = calloc(1, sizeof *o);
@@ -74,6 +92,7 @@ int tt_outfile_close(tt_outfile *o, int keep)
     }
     if (!keep)
         unlink(o->tmp);
+    atomic_fetch_sub(&open_files, 1);
     free(o->path);
     free(o->tmp);
     free(o);
