@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <math.h>
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +17,7 @@
 #include "tiptap/config/config.h"
 #include "tiptap/io/files.h"
 #include "tiptap/io/lock.h"
+#include "tiptap/io/outfile.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 
@@ -200,15 +202,46 @@ static void on_sigint(int sig)
     tt_cancel_request_signal(sig);
 }
 
-void cli_catch_interrupt(void)
+/* The line the at-once handler writes: two buffers, so that a new line is made in the
+ * one the handler does not read, then switched to. */
+static char at_once_msg[2][8448];
+static size_t at_once_len[2];
+static volatile sig_atomic_t at_once_cur;
+
+/* Nothing to keep: end now (write and _exit are async-signal-safe), unless a file is
+ * being written; that one is finished first, and the exit status says so after. */
+static void on_signal_at_once(int sig)
+{
+    if (tt_outfile_open_count() > 0) {
+        on_sigint(sig);
+        return;
+    }
+    int c = at_once_cur;
+    ssize_t w = write(STDERR_FILENO, at_once_msg[c], at_once_len[c]);
+    (void)w;
+    _exit(128 + sig);
+}
+
+static void catch_signals(void (*handler)(int))
 {
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_sigint;
+    sa.sa_handler = handler;
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
 }
+
+void cli_interrupt_at_once(const char *why)
+{
+    int next = !at_once_cur;
+    snprintf(at_once_msg[next], sizeof at_once_msg[next], "tiptap: %s\n", why);
+    at_once_len[next] = strlen(at_once_msg[next]);
+    atomic_signal_fence(memory_order_seq_cst); /* the line is whole before it is used */
+    at_once_cur = next;
+    catch_signals(on_signal_at_once);
+}
+void cli_catch_interrupt(void) { catch_signals(on_sigint); }
 
 double cli_now(void)
 {

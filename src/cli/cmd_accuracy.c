@@ -441,7 +441,10 @@ int cmd_accuracy(int argc, char **argv)
     tt_outfile *of = NULL;
     int rc;
     /* The output opens first: a bad path fails at once, not after the study. */
-    if ((rc = tt_config_accuracy_alloc(&a, scene, &p)) || (rc = tt_outfile_open(&of, out)))
+    if ((rc = tt_config_accuracy_alloc(&a, scene, &p)))
+        goto done;
+    cli_catch_interrupt(); /* from here on a signal keeps the rows finished */
+    if ((rc = tt_outfile_open(&of, out)))
         goto done;
     const tt_accuracy_observable *obs;
     size_t nobs = tt_accuracy_observables(a, &obs), n = 0;
@@ -450,7 +453,6 @@ int cmd_accuracy(int argc, char **argv)
     for (size_t i = 0; i < nobs; i++)
         fprintf(f, ",%s", obs[i].column);
     fprintf(f, ",residual_rel,role,is_default,status\n");
-    cli_catch_interrupt();
     if (!quiet)
         print_header(obs, nobs, tt_accuracy_kind_of(a) == TT_ACCURACY_LINE);
     /* the first pass's runs, then the timing passes, each with the time left */

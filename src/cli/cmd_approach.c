@@ -151,6 +151,14 @@ static void shooting_summary(const tt_approach_point *pts, size_t n)
                         "separations from %.6g to %.6g nm\n", both, pts[lo].z * 1e9, pts[hi].z * 1e9);
 }
 
+/* The message of a Ctrl-C or SIGTERM: what was kept, or that nothing was. */
+static int interrupted(const char *out, size_t rows)
+{
+    if (rows == 0)
+        return tt_error(TT_EINTR, "interrupted before the first row finished: %s not written", out);
+    return tt_error(TT_EINTR, "interrupted: %s keeps the %zu rows finished", out, rows);
+}
+
 int cmd_approach(int argc, char **argv)
 {
     static const cli_spec spec = {"approach", CLI_OPT_OUTPUT | CLI_OPT_PLOT | CLI_OPT_SET | CLI_OPT_QUIET,
@@ -181,6 +189,7 @@ int cmd_approach(int argc, char **argv)
         tt_config_approach_estimate(cl, tt_setup_solver(st), &p, &e);
         cli_report_estimate("approach", e.cycles, e.seconds, e.upper_bound, 1, cl->f0, cl->fd, quiet);
     }
+    cli_catch_interrupt(); /* from here on a signal keeps the rows finished */
     if ((rc = tt_outfile_open(&of, out)))
         goto done;
     pts = calloc(tt_approach_rows(ap), sizeof *pts);
@@ -192,15 +201,15 @@ int cmd_approach(int argc, char **argv)
     fprintf(f, "z_nm,amplitude_nm,phase_deg,mean_deflection_nm,peak_force_nN,max_indentation_nm,"
                "contact_fraction,dissipated_aJ,branch,settled,cycles,drive_work_aJ,energy_residual,"
                "deflection_min_nm,deflection_max_nm\n");
-    cli_catch_interrupt();
     cli_progress prog;
     cli_progress_begin(&prog, "approach", "points", quiet);
     while (!tt_approach_done(ap)) {
-        if (tt_cancel_requested()) {
-            rc = tt_error(TT_EINTR, "interrupted: %s keeps the %zu rows finished", out, n);
+        /* within a point (settling, shooting, the move to it) the point is abandoned */
+        if (tt_cancel_requested() || (rc = tt_approach_iterate(ap, &pts[n])) == TT_EINTR) {
+            rc = interrupted(out, n);
             break;
         }
-        if ((rc = tt_approach_iterate(ap, &pts[n])))
+        if (rc)
             break;
         write_row(f, &pts[n]);
         n++;

@@ -257,6 +257,7 @@ int cmd_contact(int argc, char **argv)
             goto done;
     }
     print_summary(ct, have_scene ? &p : NULL, Qi);
+    cli_catch_interrupt(); /* the files are finished, not left half-written */
     if (out && (rc = write_csv(out, ct, 3.0)))
         goto done;
     if (plotpath && (rc = plot(plotpath, ct, xi0n, !have_scene)))

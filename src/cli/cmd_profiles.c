@@ -152,6 +152,7 @@ int cmd_profiles(int argc, char **argv)
             rc = tt_figure_line(f, i, p.col[0], p.col[2], p.n, i == 0 ? "retrace" : NULL, 2 | TT_PLOT_THICK);
         profile_free(&p);
     }
+    cli_catch_interrupt(); /* the figure is finished, not left half-written */
     if (rc == TT_OK)
         rc = tt_figure_write_png(f, a.output, 900, 260 * n + 80);
     tt_figure_free(f);

@@ -329,8 +329,12 @@ int cmd_scan(int argc, char **argv)
         goto done;
     /* Then the folder and the effective scene: a bad output folder fails at once, not
      * after an hour of scanning. The folder is locked for the run: two scans into one
-     * folder would mix their images and scene.ini. */
-    if ((rc = cli_scan_check_outputs(dir)) || (rc = tt_mkdirs(dir)))
+     * folder would mix their images and scene.ini. From here on a signal keeps the lines
+     * finished. */
+    if ((rc = cli_scan_check_outputs(dir)))
+        goto done;
+    cli_catch_interrupt();
+    if ((rc = tt_mkdirs(dir)))
         goto done;
     if ((lock = cli_lock_folder("scan", dir)) < 0) {
         rc = TT_EINVAL;
@@ -346,7 +350,6 @@ int cmd_scan(int argc, char **argv)
     }
     if ((rc = tt_outfile_close(of, 1)))
         goto done;
-    cli_catch_interrupt();
     cli_progress prog;
     cli_progress_begin(&prog, "scan", "lines", quiet);
     rc = tt_scan_run(scan, threads, quiet ? NULL : show_progress, &prog);
@@ -365,8 +368,10 @@ int cmd_scan(int argc, char **argv)
     tt_scan_error est;
     int erc = rc == TT_OK && !quiet ? tt_scan_estimate_error(scan, &est) : TT_EINVAL;
     int have_est = erc == TT_OK;
-    if (erc == TT_EINTR)
-        rc = erc; /* stopped in the companion: the images are written, the exit says so */
+    if (erc == TT_EINTR) /* stopped in the companion: the images are written, the exit says so */
+        rc = tt_error(erc, "interrupted in the error estimate's companion line; the images "
+                           "(%ld of %ld lines) are written", tt_scan_lines_done(scan),
+                      tt_scan_lines(scan));
     else if (rc == TT_OK && !quiet && !have_est)
         fprintf(stderr, "tiptap: no error estimate: %s\n", tt_error_message());
     if (!quiet && params.solver.tier == TT_TIER_ENVELOPE) {

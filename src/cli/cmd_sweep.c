@@ -197,6 +197,7 @@ static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, 
     cli_progress prog;
     cli_progress_begin(&prog, "sweep", "combinations", a->quiet || rank != 0);
     cli_progress *progress = &prog;
+    cli_catch_interrupt(); /* from the journal on a signal keeps the combinations finished */
     if (!rc && rank == 0)
         rc = check_outputs(&job, a, find_key(job.grid, contrast));
     if (!rc && rank == 0)
@@ -208,7 +209,6 @@ static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, 
     if (!rc && !a->quiet && rank == 0 && resumed)
         fprintf(stderr, "sweep: resuming %s: %zu of %zu combinations already done\n", r.journal_path,
                 resumed, n);
-    cli_catch_interrupt();
 #ifdef TT_HAVE_MPI
     if (mpi)
         rc = sweep_mpi_agree(rc);

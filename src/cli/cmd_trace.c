@@ -110,6 +110,17 @@ static void write_row(FILE *f, const tt_trace_row *r, int ramp)
     }
 }
 
+/* The message of a Ctrl-C or SIGTERM: what was kept, or that nothing was. The plot is
+ * not drawn then: cairo takes seconds for the lines of a few thousand cycles (30 s for
+ * 5000), and a signal is answered within one. */
+static int interrupted(const char *out, long cycles, const char *plotpath)
+{
+    if (cycles == 0)
+        return tt_error(TT_EINTR, "interrupted before the first cycle finished: %s not written", out);
+    return tt_error(TT_EINTR, "interrupted: %s keeps the %ld cycles finished%s%s%s", out, cycles,
+                    plotpath ? " (" : "", plotpath ? plotpath : "", plotpath ? " not drawn)" : "");
+}
+
 int cmd_trace(int argc, char **argv)
 {
     static const cli_spec spec = {"trace", CLI_OPT_OUTPUT | CLI_OPT_PLOT | CLI_OPT_SET | CLI_OPT_QUIET,
@@ -138,6 +149,7 @@ int cmd_trace(int argc, char **argv)
         tt_config_trace_estimate(cl, tt_setup_solver(st), &p, &e);
         cli_report_estimate("trace", e.cycles, e.seconds, e.upper_bound, 1, cl->f0, cl->fd, quiet);
     }
+    cli_catch_interrupt(); /* from here on a signal keeps the cycles finished */
     if ((rc = tt_outfile_open(&of, out)))
         goto done;
     if (plotpath && (rc = tt_decimate_alloc(&S, 7, (double)tt_trace_rows(tr) * (double)p.samples_per_cycle,
@@ -149,16 +161,16 @@ int cmd_trace(int argc, char **argv)
     fprintf(f, "t_us,base_nm,tip_nm,sample_nm,deflection_nm,force_nN,contact_radius_nm,pressure_GPa,"
                "contact%s%s\n",
             p.ramp ? "," : "", p.ramp ? p.ramp : "");
-    cli_catch_interrupt();
     cli_progress prog;
     cli_progress_begin(&prog, "trace", "cycles", quiet);
     while (!tt_trace_done(tr)) {
-        if (tt_cancel_requested()) {
-            rc = tt_error(TT_EINTR, "interrupted: %s keeps the %ld cycles finished", out, done_cycles);
+        tt_trace_row row;
+        /* within a cycle (or the settling) the cycle is abandoned */
+        if (tt_cancel_requested() || (rc = tt_trace_iterate(tr, &row)) == TT_EINTR) {
+            rc = interrupted(out, done_cycles, plotpath);
             break;
         }
-        tt_trace_row row;
-        if ((rc = tt_trace_iterate(tr, &row)))
+        if (rc)
             break;
         if (row.summary.residual_rel > worst)
             worst = row.summary.residual_rel;
@@ -183,21 +195,29 @@ int cmd_trace(int argc, char **argv)
         of = NULL;
         if (!rc)
             rc = crc;
-        else if (!keep) {
+        else if (!keep && rc != TT_EINTR) {
             char why[1024];
             snprintf(why, sizeof why, "%s", tt_error_message());
             tt_error(rc, "%s; %s not written (%ld cycles had finished; a failed trace keeps no "
                          "partial file)", why, out, done_cycles);
         }
     }
-    if (!rc || rc == TT_EINTR) {
+    if (!rc) {
         /* both finished, whatever the first says: the plot shows both */
         int frc = S ? tt_decimate_finish(S) : TT_OK, prc = Pk ? tt_decimate_finish(Pk) : TT_OK;
         if (!rc)
             rc = frc ? frc : prc;
     }
-    int plotted = plotpath && S && tt_decimate_count(S) > 0 && (rc == TT_OK || rc == TT_EINTR);
+    if (plotpath && rc == TT_OK && tt_cancel_requested()) /* came as the CSV was closed */
+        rc = interrupted(out, done_cycles, plotpath);
+    int plotted = plotpath && S && tt_decimate_count(S) > 0 && rc == TT_OK;
     if (plotted) {
+        /* the CSV is complete; drawing a long trace takes seconds, and a signal ends it
+         * at once (after the PNG, if it is being written) */
+        char why[8400];
+        snprintf(why, sizeof why, "interrupted while drawing %s: %s is complete, the plot not drawn",
+                 plotpath, out);
+        cli_interrupt_at_once(why);
         int prc = plot(plotpath, S, Pk, p.ramp);
         if (!rc)
             rc = prc;

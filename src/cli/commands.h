@@ -103,7 +103,15 @@ tt_scene *cli_scene_args(const char *cmd, int argc, char **argv, int optind_, ch
 /* 1 when stderr is a terminal: progress lines go there only then. */
 int cli_progress_enabled(void);
 
-/* Install the SIGINT and SIGTERM handler that requests cooperative cancellation. */
+/* SIGINT and SIGTERM where nothing is left to keep: the program ends at once, 128 + the
+ * signal, with "tiptap: why" on stderr, once no output file is being written (one that
+ * is, is finished first). main installs it for every command before its first output,
+ * also where the shell that started it ignores SIGINT (a background job); trace again
+ * for its plot, drawn after the CSV is complete. */
+void cli_interrupt_at_once(const char *why);
+/* From the command's first output on (a file, a folder, a journal): the handler that
+ * requests cooperative cancellation (util/cancel.h), so that the run stops at its next
+ * poll, within a second, and keeps what it finished; a second signal ends it at once. */
 void cli_catch_interrupt(void);
 
 /* Wall-clock seconds from a monotonic clock. */

@@ -70,10 +70,14 @@ int main(int argc, char **argv)
     }
     for (size_t i = 0; i < NCOMMANDS; i++)
         if (strcmp(argv[1], commands[i].name) == 0) {
+            cli_interrupt_at_once("interrupted before any output file was begun");
             int code = commands[i].run(argc - 1, argv + 1);
             code = check_stdout(code);
-            /* stopped by a signal: 128 + its number, the shells' convention (143: SIGTERM) */
-            if (code == CLI_INTERRUPTED && tt_cancel_signal())
+            /* stopped by a signal: 128 + its number, the shells' convention (143: SIGTERM),
+             * also when it came as the last output was being finished */
+            if (code == CLI_OK && tt_cancel_signal())
+                fprintf(stderr, "tiptap: interrupted as the run ended; its outputs are complete\n");
+            if ((code == CLI_INTERRUPTED || code == CLI_OK) && tt_cancel_signal())
                 code = 128 + tt_cancel_signal();
             return code;
         }

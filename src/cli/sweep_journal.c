@@ -38,7 +38,7 @@ static int resume(sweep_results *r, unsigned long long hash)
         len += got;
         buf[len] = '\0';
     }
-    int rc = ferror(f) ? tt_error(TT_EIO, "%s: cannot read: %s", r->journal_path, strerror(errno)) : TT_OK;
+    rc = ferror(f) ? tt_error(TT_EIO, "%s: cannot read: %s", r->journal_path, strerror(errno)) : TT_OK;
     journal_sweep sw = {TT_VERSION, hash, r->n};
     size_t good = 0;
     if (!rc)

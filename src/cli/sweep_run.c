@@ -231,10 +231,14 @@ static int compute_points(const sweep_job *job, size_t i, FILE *f)
         tt_feedback_params fp;
         if (job->kind == SWEEP_SETPOINT && !(rc = tt_config_feedback(c.scene, A0, &fp)))
             target = fp.setpoint;
-        if (!rc) {
-            int reached = 1;
-            int run = job->kind == SWEEP_STEADY ? steady_at(&c, c.p.from, &pt)
-                                                : setpoint_point(&c, target, &pt, &reached);
+        int run = TT_OK, reached = 1;
+        if (!rc)
+            run = job->kind == SWEEP_STEADY ? steady_at(&c, c.p.from, &pt)
+                                            : setpoint_point(&c, target, &pt, &reached);
+        /* a cancelled point is no failed one: the combination is left for the resume */
+        if (run == TT_EINTR)
+            rc = run;
+        else if (!rc) {
             put_keys(f, job->grid, i);
             if (job->kind == SWEEP_SETPOINT)
                 fprintf(f, ",%.9g", target * 1e9);
@@ -250,6 +254,10 @@ static int compute_points(const sweep_job *job, size_t i, FILE *f)
                     break;
                 }
                 int run = tt_approach_iterate(ap, &pt);
+                if (run == TT_EINTR) {
+                    rc = run;
+                    break;
+                }
                 put_keys(f, job->grid, i);
                 fputc(',', f);
                 put_point(f, &pt, A0, run == TT_OK, NULL);

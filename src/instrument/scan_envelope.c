@@ -130,9 +130,10 @@ static int integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_c
 }
 
 /* The check closing a stretch: cycle k integrated from the model's state, against the
- * model's own prediction of it. 1: the stretch stands (the model is re-anchored). */
+ * model's own prediction of it. 1: the stretch stands (the model is re-anchored); 0: it
+ * does not, or the run was cancelled (*rc = TT_EINTR). */
 static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *obs,
-                 long *integrated)
+                 long *integrated, int *rc)
 {
     tt_envelope *env = L->W->env;
     const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
@@ -143,7 +144,12 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
     tt_sim_set_state(L->W->sim, x0[0], x0[1], c0);
     tt_cycle cy;
     int c1;
-    if (integrate(L, st, in, &cy, obs, &c1, integrated) != TT_OK) {
+    int irc = integrate(L, st, in, &cy, obs, &c1, integrated);
+    if (irc == TT_EINTR) {
+        *rc = irc;
+        return 0;
+    }
+    if (irc != TT_OK) {
         /* a model state the cycle cannot be integrated from is a failed check: the
          * stretch is run again from its start, and at last every cycle */
         tt_error_clear();
@@ -253,7 +259,9 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c, long *int
         if (reduced) {
             c->left--;
         } else if (c->model) {
-            if (!check(L, st, &in, obs, integrated)) {
+            if (!check(L, st, &in, obs, integrated, &rc)) {
+                if (rc)
+                    return rc;
                 fail(L, st, c, in.k);
                 continue;
             }

@@ -4,6 +4,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -40,7 +41,24 @@ static ssize_t cookie_write(void *c, const char *buf, size_t n)
     return (ssize_t)done;
 }
 
+/* Temporary files in existence (lock-free, so that a signal handler may read it). */
+static atomic_int open_files;
+
+int tt_outfile_open_count(void) { return atomic_load(&open_files); }
+
+static int open_file(tt_outfile **out, const char *path);
+
 int tt_outfile_open(tt_outfile **out, const char *path)
+{
+    /* counted before the temporary file can exist, uncounted once it cannot */
+    atomic_fetch_add(&open_files, 1);
+    int rc = open_file(out, path);
+    if (rc)
+        atomic_fetch_sub(&open_files, 1);
+    return rc;
+}
+
+static int open_file(tt_outfile **out, const char *path)
 {
     *out = NULL;
     int rc = tt_output_check(path);
@@ -109,6 +127,7 @@ int tt_outfile_close(tt_outfile *o, int keep)
     }
     if (!keep)
         unlink(o->tmp);
+    atomic_fetch_sub(&open_files, 1);
     free(o->path);
     free(o->tmp);
     free(o);

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "stepper.h"
+#include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 
 void tt_step_accept(tt_sim *S)
@@ -103,6 +104,11 @@ int tt_sim_cycle(tt_sim *S, tt_cycle *out)
     tt_observe_start(S);
     long guard = 0;
     while (S->tau < T) {
+        /* Cancellation is polled at the cycle's start and every 1024 steps (a few
+         * milliseconds at most), so that a run stops within a cycle that never ends and
+         * the mask costs the step loop next to nothing. */
+        if ((guard & 1023) == 0 && tt_cancel_requested())
+            return tt_error(TT_EINTR, "interrupted in cycle %ld", S->cycle);
         if (++guard > 50000000L)
             return tt_error(TT_ENUM, "no progress within cycle %ld", S->cycle);
         int outcome, rc;

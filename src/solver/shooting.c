@@ -21,6 +21,7 @@ typedef struct {
     tt_sim *sim;
     double L, V;
     int contact; /* the contact flag every evaluation starts with */
+    int cancelled; /* a cycle returned TT_EINTR: every later one would too */
     long cycles;
     tt_cycle cy;
 } map_ctx;
@@ -33,6 +34,7 @@ static void map_init(map_ctx *m, tt_sim *sim)
     m->L = c->A0;
     m->V = c->wd * c->A0;
     m->cycles = 0;
+    m->cancelled = 0;
     tt_sim_get_state(sim, &d, &v, &m->contact);
 }
 
@@ -50,15 +52,20 @@ static void map_set(const map_ctx *m, const double x[2])
 }
 
 /* F(x) = P(x) - x. A cycle that fails, or ends with another contact flag than it began
- * with (the map's non-smooth edge), gives F = NAN: no fixed point there. */
+ * with (the map's non-smooth edge), gives F = NAN: no fixed point there. A cancelled
+ * cycle does too, and keeps its message for the caller. */
 static void residual(map_ctx *m, const double x[2], double F[2])
 {
     double px[2];
     int pc;
     map_set(m, x);
     m->cycles++;
-    if (tt_sim_cycle(m->sim, &m->cy) != TT_OK) {
-        tt_error_clear();
+    int rc = tt_sim_cycle(m->sim, &m->cy);
+    if (rc != TT_OK) {
+        if (rc == TT_EINTR)
+            m->cancelled = 1;
+        else
+            tt_error_clear();
         F[0] = F[1] = NAN;
         return;
     }
@@ -125,8 +132,9 @@ static int line_search(map_ctx *m, const double x[2], const double F[2], const d
     return 0;
 }
 
-/* Newton from the sim's state; F0 gets the residual there (scaled). */
-static void newton(tt_sim *sim, const tt_shoot_params *p, double F0[2], int *converged,
+/* Newton from the sim's state; F0 gets the residual there (scaled). TT_EINTR when
+ * cancelled, else TT_OK whether it converged or not. */
+static int newton(tt_sim *sim, const tt_shoot_params *p, double F0[2], int *converged,
                    int *iterations, long *cycles)
 {
     map_ctx m;
@@ -140,7 +148,7 @@ static void newton(tt_sim *sim, const tt_shoot_params *p, double F0[2], int *con
     F0[0] = F[0];
     F0[1] = F[1];
     int ok = isfinite(F[0]) && isfinite(F[1]) && jacobian_F(&m, x, F, p->fd_step, J);
-    for (int it = 0; ok && it < p->max_iter; it++) {
+    for (int it = 0; ok && !m.cancelled && it < p->max_iter; it++) {
         *iterations = it + 1;
         if (!newton_step(J, F, s))
             break;
@@ -165,14 +173,18 @@ static void newton(tt_sim *sim, const tt_shoot_params *p, double F0[2], int *con
     }
     map_set(&m, x);
     *cycles = m.cycles;
+    if (m.cancelled) {
+        *converged = 0;
+        return TT_EINTR;
+    }
+    return TT_OK;
 }
 
 int tt_shoot_newton(tt_sim *sim, const tt_shoot_params *p, int *converged, int *iterations,
                     long *cycles)
 {
     double F0[2];
-    newton(sim, p, F0, converged, iterations, cycles);
-    return TT_OK;
+    return newton(sim, p, F0, converged, iterations, cycles);
 }
 
 /* The monodromy matrix dP/dx (scaled) at the sim's state by central differences. */
@@ -194,6 +206,8 @@ static int monodromy(tt_sim *sim, const tt_shoot_params *p, double J[2][2])
         J[1][j] = (Fp[1] - Fm[1]) / (2 * h) + (j == 1);
     }
     map_set(&m, x);
+    if (m.cancelled)
+        return TT_EINTR;
     if (!(isfinite(J[0][0]) && isfinite(J[0][1]) && isfinite(J[1][0]) && isfinite(J[1][1])))
         return tt_error(TT_ENUM, "Floquet multipliers: the map is not smooth at this orbit");
     return TT_OK;
@@ -332,9 +346,10 @@ static int in_basin(const trail *tr, const double xs[2], double J[2][2], double 
 }
 
 /* Newton's orbit from the sim's state, checked; 1 if it is the point (out is its last
- * cycle, the sim at its end), 0 if refused (res->why says why; the sim is anywhere). */
+ * cycle, the sim at its end), 0 if refused (res->why says why; the sim is anywhere) or
+ * cancelled (*rc = TT_EINTR). */
 static int try_orbit(tt_sim *sim, const tt_shoot_params *p, int pattern, trail *tr,
-                     tt_cycle *out, tt_shoot_result *res)
+                     tt_cycle *out, tt_shoot_result *res, int *rc)
 {
     map_ctx m;
     double F0[2], J[2][2], xs[2];
@@ -343,12 +358,14 @@ static int try_orbit(tt_sim *sim, const tt_shoot_params *p, int pattern, trail *
     map_init(&m, sim);
     double *x0 = tr->x[tr->n++];
     map_get(&m, x0, &dummy);
-    newton(sim, p, F0, &res->converged, &res->iterations, &n);
+    *rc = newton(sim, p, F0, &res->converged, &res->iterations, &n);
     /* the motion's next state, P(x0), from Newton's first residual */
     tr->x[tr->n][0] = x0[0] + F0[0];
     tr->x[tr->n][1] = x0[1] + F0[1];
     tr->n++;
     res->cycles += n;
+    if (*rc)
+        return 0;
     if (!res->converged) {
         res->why = "Newton did not converge";
         return 0;
@@ -356,6 +373,10 @@ static int try_orbit(tt_sim *sim, const tt_shoot_params *p, int pattern, trail *
     tt_sim_get_state(sim, &res->d, &res->v, &res->contact);
     int mrc = monodromy(sim, p, J);
     res->cycles += 4;
+    if (mrc == TT_EINTR) {
+        *rc = mrc;
+        return 0;
+    }
     if (mrc != TT_OK) {
         tt_error_clear();
         res->why = "the map is not smooth at the orbit";
@@ -372,9 +393,13 @@ static int try_orbit(tt_sim *sim, const tt_shoot_params *p, int pattern, trail *
         res->why = "the motion is not in the orbit's basin yet";
         return 0;
     }
-    int rc = tt_sim_cycle(sim, out);
+    int crc = tt_sim_cycle(sim, out);
     res->cycles++;
-    if (rc != TT_OK) {
+    if (crc == TT_EINTR) {
+        *rc = crc;
+        return 0;
+    }
+    if (crc != TT_OK) {
         tt_error_clear();
         res->why = "the orbit's cycle failed";
         return 0;
@@ -392,6 +417,7 @@ int tt_shoot_steady(tt_sim *sim, const tt_shoot_params *p, long max_cycles, doub
                     tt_cycle *out, int *settled, tt_shoot_result *res)
 {
     memset(res, 0, sizeof *res);
+    *settled = 0;
     res->mu_re[0] = res->mu_re[1] = res->mu_im[0] = res->mu_im[1] = res->mu_abs = NAN;
     res->why = "";
     long run = 0, k = p->presettle > 0 ? p->presettle : 1;
@@ -414,11 +440,15 @@ int tt_shoot_steady(tt_sim *sim, const tt_shoot_params *p, long max_cycles, doub
         double d, v;
         int c;
         tt_sim_get_state(sim, &d, &v, &c);
-        if (try_orbit(sim, p, pattern, &tr, out, res)) {
+        if (try_orbit(sim, p, pattern, &tr, out, res, &rc)) {
             res->how = TT_SHOOT_NEWTON;
             res->cycles += run;
             *settled = 1;
             return TT_OK;
+        }
+        if (rc) {
+            res->cycles += run;
+            return rc;
         }
         tt_sim_set_state(sim, d, v, c);
     }

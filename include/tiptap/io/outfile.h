@@ -33,6 +33,10 @@ FILE *tt_outfile_stream(tt_outfile *o);
 int tt_outfile_errno(const tt_outfile *o);
 const char *tt_outfile_tmpname(const tt_outfile *o);
 int tt_outfile_close(tt_outfile *o, int keep);
+/* How many temporary files exist now, from the start of tt_outfile_open to the end of
+ * tt_outfile_close, over all threads. Async-signal-safe: a signal handler that would
+ * end the program at once asks it first, so as never to leave a temporary file. */
+int tt_outfile_open_count(void);
 
 /* Make a folder (and its parents) if missing; TT_EIO with "dir: reason" if it cannot
  * be made or written. */

@@ -117,13 +117,15 @@ void tt_sim_reset_free(tt_sim *sim);
 
 /* Advance one drive cycle. TT_ENUM with a message if the solution fails (NaN, step
  * size underflow, rk4 steps too coarse for the contact stiffness, radau's Newton
- * iteration failing at an event). */
+ * iteration failing at an event); TT_EINTR when cancellation is requested
+ * (util/cancel.h: polled at the cycle's start and every 1024 steps), the cycle then
+ * unfinished and the sim at a step within it. */
 int tt_sim_cycle(tt_sim *sim, tt_cycle *out);
 
 /* Run cycles until amplitude and phase settle: the remaining change, extrapolated
  * from the geometric decay of successive changes, is below tol (relative to the free
  * amplitude, and in rad); at most max_cycles. *settled tells whether it did. The last
- * cycle is returned in out. */
+ * cycle is returned in out. TT_EINTR when cancelled, as tt_sim_cycle. */
 int tt_sim_settle(tt_sim *sim, long max_cycles, double tol, tt_cycle *out, int *settled,
                   long *cycles);
 

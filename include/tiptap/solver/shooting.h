@@ -67,13 +67,15 @@ typedef struct {
 } tt_shoot_result;
 
 /* Floquet multipliers of the map at the sim's current cycle-start state, from central
- * differences (4 cycles); the sim is left where it was. */
+ * differences (4 cycles); the sim is left where it was. TT_EINTR when cancelled
+ * (util/cancel.h). */
 int tt_shoot_multipliers(tt_sim *sim, const tt_shoot_params *p, double mu_re[2],
                          double mu_im[2]);
 
 /* Newton on P(x) = x from the sim's current state, at most p->max_iter iterations.
  * The sim is left set to the fixed point (*converged = 1) or to Newton's last iterate,
- * at a cycle start; *cycles counts the map's evaluations. */
+ * at a cycle start; *cycles counts the map's evaluations. TT_EINTR when cancelled
+ * (util/cancel.h): a cycle cut short counts as no fixed point, so Newton stops. */
 int tt_shoot_newton(tt_sim *sim, const tt_shoot_params *p, int *converged, int *iterations,
                     long *cycles);
 
@@ -82,7 +84,7 @@ int tt_shoot_newton(tt_sim *sim, const tt_shoot_params *p, int *converged, int *
  * most half the cycles settling is expected to take (Q / pi ln(1 / tol) / 2), and fall
  * back to tt_sim_settle (max_cycles, tol). out is the orbit's last cycle, run from the
  * fixed point; *settled whether the point is steady (Newton's, or settled within
- * max_cycles). */
+ * max_cycles). TT_EINTR when cancelled (util/cancel.h), the point unfinished. */
 int tt_shoot_steady(tt_sim *sim, const tt_shoot_params *p, long max_cycles, double tol,
                     tt_cycle *out, int *settled, tt_shoot_result *res);
 
