@@ -80,10 +80,16 @@ static int build_contacts(tt_scan *S, const tt_material *m, size_t n)
     S->nmaterials = n;
     S->contacts = calloc(n, sizeof *S->contacts);
     S->Qi = calloc(n, sizeof *S->Qi);
-    if (!S->contacts || !S->Qi)
+    S->contact_R = calloc(n, sizeof *S->contact_R);
+    S->names = calloc(n, sizeof *S->names);
+    S->indent = calloc(n, sizeof *S->indent);
+    if (!S->contacts || !S->Qi || !S->contact_R || !S->names || !S->indent)
         return tt_error(TT_ENOMEM, "out of memory");
     for (size_t i = 0; i < n; i++) {
         S->Qi[i] = m[i].Qi;
+        S->contact_R[i] = m[i].contact.R;
+        S->indent[i] = -INFINITY;
+        snprintf(S->names[i], sizeof S->names[i], "%s", m[i].name);
         if (tt_contact_alloc(&S->contacts[i], &m[i].contact)) {
             char why[512];
             snprintf(why, sizeof why, "%s", tt_error_message());
@@ -209,6 +215,9 @@ void tt_scan_free(tt_scan *S)
         tt_contact_free(S->contacts[i]);
     free(S->contacts);
     free(S->Qi);
+    free(S->contact_R);
+    free(S->names);
+    free(S->indent);
     free(S);
 }
 
@@ -222,6 +231,7 @@ static void worker_free(worker *W)
     tt_lockin_free(W->lockin_save);
     free(W->y_save);
     free(W->obs);
+    free(W->indent);
 }
 
 /* The envelope tier falls back to every cycle at low Q (the envelope follows the free
@@ -278,8 +288,11 @@ static int worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)
     size_t n = (size_t)S->lockin.samples_per_period * (size_t)S->lockin.periods_per_block;
     W->samples = calloc(n, sizeof *W->samples);
     W->y = calloc(n, sizeof *W->y);
-    if (!W->samples || !W->y)
+    W->indent = malloc(S->nmaterials * sizeof *W->indent);
+    if (!W->samples || !W->y || !W->indent)
         return tt_error(TT_ENOMEM, "out of memory");
+    for (size_t i = 0; i < S->nmaterials; i++)
+        W->indent[i] = -INFINITY;
     return envelope_usable(S, solver) ? envelope_alloc(S, W) : TT_OK;
 }
 
@@ -543,6 +556,11 @@ int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done,
             rc = tt_error(TT_EINTR, "interrupted after %ld of %ld lines", S->lines_done,
                           S->raster.lines);
     }
+    /* the greatest of each thread's: the same whichever thread ran which line */
+    for (int i = 0; i < threads; i++)
+        for (size_t m = 0; W[i].indent && m < S->nmaterials; m++)
+            if (W[i].indent[m] > S->indent[m])
+                S->indent[m] = W[i].indent[m];
     for (int i = 0; i < threads; i++)
         worker_free(&W[i]);
     free(W);
@@ -642,6 +660,19 @@ long tt_scan_cycles_integrated(const tt_scan *S) { return S->integrated; }
 double tt_scan_error_estimate(const tt_scan *S) { return S->worst_residual; }
 int tt_scan_clamped(const tt_scan *S) { return S->clamped; }
 const tt_dilation *tt_scan_dilation(const tt_scan *S) { return S->dilation; }
+size_t tt_scan_materials(const tt_scan *S) { return S->nmaterials; }
+const char *tt_scan_material_name(const tt_scan *S, size_t i) { return S->names[i]; }
+
+int tt_scan_contact_extent(const tt_scan *S, size_t i, tt_contact_extent *e)
+{
+    e->indentation = S->indent[i] > -INFINITY ? S->indent[i] : NAN;
+    e->radius = NAN;
+    e->tip_radius = S->contact_R[i];
+    if (!(e->indentation > 0))
+        return 0;
+    tt_contact_load(S->contacts[i], e->indentation, 1, NULL, &e->radius);
+    return tt_contact_beyond_validity(e->radius, e->indentation, e->tip_radius);
+}
 
 const double *tt_scan_image(const tt_scan *S, int channel, int retrace)
 {
