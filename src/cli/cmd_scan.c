@@ -277,6 +277,25 @@ static void warn_unused(const tt_scan_params *p)
         fprintf(stderr, "tiptap scan: warning: and %zu more materials are not used\n", n - 8);
 }
 
+/* A contact the force laws do not describe: once per material, from the greatest
+ * indentation of the whole run. */
+static void warn_contact(const tt_scan *scan)
+{
+    for (size_t i = 0; i < tt_scan_materials(scan); i++) {
+        tt_contact_extent e;
+        if (!tt_scan_contact_extent(scan, i, &e))
+            continue;
+        const char *name = tt_scan_material_name(scan, i);
+        fprintf(stderr, "tiptap scan: warning: [material %s]: contact radius up to %.3g nm at "
+                        "%.3g nm indentation on a tip of radius %.3g nm, beyond the contact "
+                        "laws' small contact (radius <= %.1f R, indentation <= R): their "
+                        "forces are off there; a larger [tip] radius, a higher [feedback] "
+                        "setpoint or a smaller [cantilever] free_amplitude keeps within it\n",
+                name, e.radius * 1e9, e.indentation * 1e9, e.tip_radius * 1e9,
+                TT_CONTACT_MAX_RADIUS_RATIO);
+    }
+}
+
 int cmd_scan(int argc, char **argv)
 {
     static const struct option opts[] = {{"threads", required_argument, NULL, 'j'}, {NULL, 0, NULL, 0}};
@@ -354,6 +373,7 @@ int cmd_scan(int argc, char **argv)
     cli_progress_begin(&prog, "scan", "lines", quiet);
     rc = tt_scan_run(scan, threads, quiet ? NULL : show_progress, &prog);
     cli_progress_end(&prog);
+    warn_contact(scan);
     int written = 1; /* scene.ini */
     if (tt_scan_lines_done(scan) > 0) {
         char saved[1024];

@@ -141,6 +141,8 @@ int tt_scan_cycle_end(const line_ctx *L, line_state *st, const cycle_in *in, dou
         a->sum[6] += in->topo;
         a->sum[0] += in->za;
         a->n++;
+        if (indent > L->W->indent[in->mat]) /* NaN when not tracked: left out */
+            L->W->indent[in->mat] = indent;
     }
     st->cycles++;
     st->k = in->k + 1;

@@ -30,6 +30,8 @@ typedef struct {
     tt_envelope *env;
     tt_lockin *lockin_save;
     double *y_save, *obs;
+    /* the greatest indentation of the trace and retrace cycles, per material */
+    double *indent;
 } worker;
 
 struct tt_scan {
@@ -38,6 +40,9 @@ struct tt_scan {
     size_t nmaterials;
     tt_contact **contacts; /* every material's force law, shared by the threads */
     double *Qi;
+    double *contact_R;     /* each force law's radius, m */
+    char (*names)[128];    /* each material's name, for messages */
+    double *indent;        /* the greatest indentation recorded in each material, m */
     tt_raster raster;
     tt_surface *surface;
     tt_dilation *dilation; /* the surface as the tip's shape images it; NULL: the apex */

@@ -390,23 +390,28 @@ static int build_png_height(tt_surface *S, const tt_surface_params *p)
     return TT_OK;
 }
 
-/* Bilinear interpolation on the grid, pixel centres at (i + 1/2) size / n. */
+/* Bilinear interpolation on the grid, pixel centres at (i + 1/2) size / n. Defined
+ * everywhere, as the tip's dilation samples past the scan area by the tip's reach: a
+ * periodic grid (rough) repeats, a PNG map continues its edge pixels. The node index is
+ * reduced in floating point before it becomes an int, so no distance overflows it. */
 static double grid_at(const tt_surface *S, double x, double y)
 {
     double u = x / S->sx * S->gw - 0.5, v = y / S->sy * S->gh - 0.5;
-    int i = (int)floor(u), j = (int)floor(v);
-    double fu = u - i, fv = v - j;
-    int i1 = i + 1, j1 = j + 1;
+    double fi = floor(u), fj = floor(v);
+    double fu = u - fi, fv = v - fj;
+    int i, j, i1, j1;
     if (S->periodic) {
-        i = ((i % S->gw) + S->gw) % S->gw;
-        j = ((j % S->gh) + S->gh) % S->gh;
-        i1 = i1 % S->gw;
-        j1 = j1 % S->gh;
+        fi -= S->gw * floor(fi / S->gw);
+        fj -= S->gh * floor(fj / S->gh);
+        i = fi >= S->gw ? 0 : (int)fi; /* fi / gw may round up to the next period */
+        j = fj >= S->gh ? 0 : (int)fj;
+        i1 = i + 1 == S->gw ? 0 : i + 1;
+        j1 = j + 1 == S->gh ? 0 : j + 1;
     } else {
-        i = i < 0 ? 0 : i >= S->gw ? S->gw - 1 : i;
-        i1 = i1 < 0 ? 0 : i1 >= S->gw ? S->gw - 1 : i1;
-        j = j < 0 ? 0 : j >= S->gh ? S->gh - 1 : j;
-        j1 = j1 < 0 ? 0 : j1 >= S->gh ? S->gh - 1 : j1;
+        i = fi < 0 ? 0 : fi >= S->gw - 1 ? S->gw - 1 : (int)fi;
+        i1 = fi < -1 ? 0 : fi >= S->gw - 2 ? S->gw - 1 : (int)fi + 1;
+        j = fj < 0 ? 0 : fj >= S->gh - 1 ? S->gh - 1 : (int)fj;
+        j1 = fj < -1 ? 0 : fj >= S->gh - 2 ? S->gh - 1 : (int)fj + 1;
     }
     const double *g = S->grid;
     double a = g[(size_t)j * S->gw + i], b = g[(size_t)j * S->gw + i1];
@@ -466,9 +471,10 @@ int tt_surface_material(const tt_surface *S, double x, double y)
     case M_ISLANDS:
         return particle_at(S, x, y) > 0 ? S->mat[1] : S->mat[0];
     case M_PNG: {
-        int i = (int)(x / S->sx * S->mw), j = (int)(y / S->sy * S->mh);
-        i = i < 0 ? 0 : i >= S->mw ? S->mw - 1 : i;
-        j = j < 0 ? 0 : j >= S->mh ? S->mh - 1 : j;
+        /* clamped before the conversion: past the area the edge pixels continue */
+        double u = x / S->sx * S->mw, v = y / S->sy * S->mh;
+        int i = u < 0 ? 0 : u >= S->mw ? S->mw - 1 : (int)u;
+        int j = v < 0 ? 0 : v >= S->mh ? S->mh - 1 : (int)v;
         return S->mgrid[(size_t)j * S->mw + i];
     }
     default:

@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 
 /* Grids larger than this a side coarsen their step instead (128 MiB of heights). */
@@ -116,9 +117,19 @@ typedef struct {
     double t;   /* the tip's height there */
 } offset;
 
+/* The offsets in squares of TILE by TILE nodes: a node skips a whole square when the
+ * highest sample under it, less the tip's lowest point over it, is no better than the
+ * best apex found. */
+#define TILE 8
+typedef struct {
+    long a, b;        /* the square's corner offset */
+    double t;         /* the tip's lowest point over it */
+    long start, n;    /* its offsets */
+} tile;
+
 static int by_height(const void *p, const void *q)
 {
-    double a = ((const offset *)p)->t, b = ((const offset *)q)->t;
+    double a = ((const tile *)p)->t, b = ((const tile *)q)->t;
     return (a > b) - (a < b);
 }
 
@@ -143,22 +154,160 @@ static double *sample(const tt_dilation *D, long m, double *lo, double *hi)
     return g;
 }
 
-/* The tip's nodes that can touch, lowest first, so a node's search stops at the first
- * offset whose tip height leaves no room above the best apex found. */
-static offset *offsets(const tt_dilation *D, long m, double range, long *n)
+/* The tip's nodes that can touch, square by square, the squares lowest first, so a
+ * node's search stops at the first square whose tip height leaves no room above the
+ * best apex found. */
+static offset *offsets(const tt_dilation *D, long m, double range, tile **tiles, long *ntiles)
 {
+    long side = (2 * m + TILE) / TILE;
     offset *o = malloc((size_t)(2 * m + 1) * (size_t)(2 * m + 1) * sizeof *o);
-    if (!o)
+    tile *T = malloc((size_t)side * (size_t)side * sizeof *T);
+    if (!o || !T) {
+        free(o);
+        free(T);
         return NULL;
-    *n = 0;
-    for (long b = -m; b <= m; b++)
-        for (long a = -m; a <= m; a++) {
-            double t = tt_tip_shape_height(&D->tip, D->dx * hypot((double)a, (double)b));
-            if (t <= range)
-                o[(*n)++] = (offset){a, b, t};
+    }
+    long n = 0, nt = 0;
+    for (long b0 = -m; b0 <= m; b0 += TILE)
+        for (long a0 = -m; a0 <= m; a0 += TILE) {
+            tile q = {a0, b0, INFINITY, n, 0};
+            for (long b = b0; b < b0 + TILE && b <= m; b++)
+                for (long a = a0; a < a0 + TILE && a <= m; a++) {
+                    double t = tt_tip_shape_height(&D->tip, D->dx * hypot((double)a, (double)b));
+                    if (t <= range) {
+                        o[n++] = (offset){a, b, t};
+                        q.t = fmin(q.t, t);
+                    }
+                }
+            q.n = n - q.start;
+            if (q.n)
+                T[nt++] = q;
         }
-    qsort(o, (size_t)*n, sizeof *o, by_height);
+    qsort(T, (size_t)nt, sizeof *T, by_height);
+    *tiles = T;
+    *ntiles = nt;
     return o;
+}
+
+/* The highest sample over each node's square of TILE by TILE nodes onwards (clipped at
+ * the sample's end), for the squares of offsets. */
+static double *tile_max(const double *g, long w, long h)
+{
+    double *r = malloc((size_t)w * (size_t)h * sizeof *r), *G = malloc((size_t)w * (size_t)h * sizeof *G);
+    if (!r || !G) {
+        free(r);
+        free(G);
+        return NULL;
+    }
+    for (long j = 0; j < h; j++)
+        for (long i = 0; i < w; i++) {
+            double v = g[j * w + i];
+            for (long k = i + 1; k < i + TILE && k < w; k++)
+                v = fmax(v, g[j * w + k]);
+            r[j * w + i] = v;
+        }
+    for (long j = 0; j < h; j++)
+        for (long i = 0; i < w; i++) {
+            double v = r[j * w + i];
+            for (long k = j + 1; k < j + TILE && k < h; k++)
+                v = fmax(v, r[k * w + i]);
+            G[j * w + i] = v;
+        }
+    free(r);
+    return G;
+}
+
+/* Sliding maximum over 2 m + 1 values centred on each of n (clipped at the ends), read
+ * with stride si and written with stride so: a monotone deque, O(n) whatever m. */
+static void slide_max(const double *in, long si, double *out, long so, long n, long m, long *dq)
+{
+    long head = 0, tail = 0;
+    for (long i = 0; i < n + m; i++) {
+        if (i < n) {
+            while (tail > head && in[dq[tail - 1] * si] <= in[i * si])
+                tail--;
+            dq[tail++] = i;
+        }
+        long c = i - m;
+        if (c < 0)
+            continue;
+        while (dq[head] < c - m)
+            head++;
+        out[c * so] = in[dq[head] * si];
+    }
+}
+
+/* The highest sample within m nodes along both axes of each node of the region (nx by
+ * ny of the w-wide sample g, offset by m): a bound on what the tip's footprint can
+ * meet there, far tighter than the global one away from the tallest features. */
+static double *local_max(const tt_dilation *D, const double *g, long m)
+{
+    long w = D->nx + 2 * m, h = D->ny + 2 * m;
+    double *rows = malloc((size_t)D->nx * (size_t)h * sizeof *rows);
+    double *M = malloc((size_t)D->nx * (size_t)D->ny * sizeof *M);
+    long *dq = malloc((size_t)(w > h ? w : h) * sizeof *dq);
+    double *tmp = malloc((size_t)w * sizeof *tmp);
+    if (!rows || !M || !dq || !tmp) {
+        free(rows);
+        free(M);
+        M = NULL;
+    } else {
+        for (long j = 0; j < h; j++) { /* along x, kept for the region's columns */
+            slide_max(g + j * w, 1, tmp, 1, w, m, dq);
+            for (long i = 0; i < D->nx; i++)
+                rows[j * D->nx + i] = tmp[i + m];
+        }
+        for (long i = 0; i < D->nx; i++) { /* then along y, kept for its rows */
+            slide_max(rows + i, D->nx, tmp, 1, h, m, dq);
+            for (long j = 0; j < D->ny; j++)
+                M[j * D->nx + i] = tmp[j + m];
+        }
+        free(rows);
+    }
+    free(dq);
+    free(tmp);
+    return M;
+}
+
+/* Each node's apex height: the squares of offsets lowest first, until the tip rises
+ * above the highest sample within its footprint by more than the best apex found,
+ * passing over squares whose highest sample is no better. Every offset left out is one
+ * that cannot beat the best (rounding is monotone), so the maximum is exactly that
+ * over all. */
+static int search_nodes(tt_dilation *D, const double *g, const double *M, const double *G,
+                        long m, const offset *o, const tile *T, long nt)
+{
+    long w = D->nx + 2 * m;
+    int stop = 0;
+#pragma omp parallel for schedule(dynamic, 16)
+    for (long j = 0; j < D->ny; j++) {
+        int quit;
+#pragma omp atomic read
+        quit = stop;
+        if (quit)
+            continue;
+        if (tt_cancel_requested()) { /* a row takes well under a second */
+#pragma omp atomic write
+            stop = 1;
+            continue;
+        }
+        for (long i = 0; i < D->nx; i++) {
+            const double *c = g + (j + m) * w + (i + m);
+            const double *cg = G + (j + m) * w + (i + m);
+            double best = -INFINITY, top = M[j * D->nx + i];
+            for (long k = 0; k < nt && top - T[k].t > best; k++) {
+                if (cg[T[k].b * w + T[k].a] - T[k].t <= best)
+                    continue;
+                for (const offset *q = o + T[k].start; q < o + T[k].start + T[k].n; q++) {
+                    double v = c[q->b * w + q->a] - q->t;
+                    if (v > best)
+                        best = v;
+                }
+            }
+            D->grid[j * D->nx + i] = best;
+        }
+    }
+    return stop ? tt_error(TT_EINTR, "interrupted while making the tip's dilation grid") : TT_OK;
 }
 
 static int build_grid(tt_dilation *D)
@@ -175,30 +324,20 @@ static int build_grid(tt_dilation *D)
         free(g);
         g = sample(D, m, &lo, &hi);
     }
-    long n = 0;
-    offset *o = g ? offsets(D, m, hi - lo, &n) : NULL;
-    D->grid = o ? malloc((size_t)D->nx * (size_t)D->ny * sizeof *D->grid) : NULL;
-    if (!D->grid) {
-        free(g);
-        free(o);
-        return tt_error(TT_ENOMEM, "out of memory for the tip's dilation grid");
-    }
-    long w = D->nx + 2 * m;
-#pragma omp parallel for
-    for (long j = 0; j < D->ny; j++)
-        for (long i = 0; i < D->nx; i++) {
-            const double *c = g + (j + m) * w + (i + m);
-            double best = -INFINITY;
-            for (long k = 0; k < n && hi - o[k].t > best; k++) {
-                double v = c[o[k].b * w + o[k].a] - o[k].t;
-                if (v > best)
-                    best = v;
-            }
-            D->grid[j * D->nx + i] = best;
-        }
+    long nt = 0;
+    tile *T = NULL;
+    offset *o = g ? offsets(D, m, hi - lo, &T, &nt) : NULL;
+    double *M = o ? local_max(D, g, m) : NULL;
+    double *G = M ? tile_max(g, D->nx + 2 * m, D->ny + 2 * m) : NULL;
+    D->grid = G ? malloc((size_t)D->nx * (size_t)D->ny * sizeof *D->grid) : NULL;
+    int rc = D->grid ? search_nodes(D, g, M, G, m, o, T, nt)
+                     : tt_error(TT_ENOMEM, "out of memory for the tip's dilation grid");
     free(g);
     free(o);
-    return TT_OK;
+    free(T);
+    free(M);
+    free(G);
+    return rc;
 }
 
 int tt_dilation_alloc(tt_dilation **out, const tt_surface *s, const tt_tip_shape *t, double x0,

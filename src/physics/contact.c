@@ -802,3 +802,8 @@ int tt_contact_curve(const tt_contact *c, size_t n, double A_max, double *A, dou
     }
     return TT_OK;
 }
+
+int tt_contact_beyond_validity(double a, double delta, double R)
+{
+    return a > TT_CONTACT_MAX_RADIUS_RATIO * R || delta > R;
+}

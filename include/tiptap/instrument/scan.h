@@ -182,6 +182,23 @@ int tt_scan_clamped(const tt_scan *s);
  * flat surface). */
 const tt_dilation *tt_scan_dilation(const tt_scan *s);
 
+/* The scan's materials, in the order of tt_scan_params materials, and their names. */
+size_t tt_scan_materials(const tt_scan *s);
+const char *tt_scan_material_name(const tt_scan *s, size_t i);
+
+/* How far the contact went in one material over the scan's trace and retrace cycles. */
+typedef struct {
+    double indentation; /* the greatest penetration, m (NaN: none tracked, as without
+                         * the peak_force and indentation channels; <= 0: no contact) */
+    double radius;      /* the contact radius there, m (NaN without contact) */
+    double tip_radius;  /* the radius of the material's force law, m */
+} tt_contact_extent;
+
+/* Fills e for material i; returns 1 when that contact is beyond the force laws'
+ * small-contact assumption (tt_contact_beyond_validity), else 0. Deterministic: the
+ * greatest over every line, whichever thread ran it. */
+int tt_scan_contact_extent(const tt_scan *s, size_t i, tt_contact_extent *e);
+
 #ifdef __cplusplus
 }
 #endif

@@ -101,6 +101,20 @@ double tt_contact_load(const tt_contact *c, double delta, int in_contact, double
  * it at jump-in, so that U_contact(jumpout) - U_out(jumpout) is the loop energy. */
 double tt_contact_energy(const tt_contact *c, double delta, int in_contact);
 
+/* Hertz, DMT, JKR and Maugis-Dugdale all take the sphere for a paraboloid and the
+ * contact for small against it, a << R, in linear elasticity (Johnson, Contact
+ * Mechanics, 1985, sections 4.2 and 5.6). Against Sneddon's exact sphere (Int. J. Eng.
+ * Sci. 3 (1965) 47) the paraboloid's load at a given indentation is 0.9 % high at
+ * a = 0.3 R, 2.8 % at 0.5 R and 8 % at 0.75 R (at a given radius: 3.7 %, 11 %, 27 %
+ * low), and the mean strain, about 0.2 a / R (Tabor), passes 10 % at 0.5 R, beyond the
+ * linear range of polymers; past an indentation of R the sphere is buried to its
+ * equator. The bound is 0.5 R, not 0.3 R, where the error is a percent
+ * (docs/reliability.md, Tip shapes, lists the bundled examples beyond it). Returns 1
+ * when a contact radius a (m) or an indentation delta (m) on a tip of radius R is
+ * beyond these. */
+#define TT_CONTACT_MAX_RADIUS_RATIO 0.5
+int tt_contact_beyond_validity(double a, double delta, double R);
+
 /* The event thresholds, m: an out-of-contact tip contacts when delta rises to
  * jumpin; an in-contact tip leaves when delta falls to jumpout (<= jumpin). */
 double tt_contact_jumpin(const tt_contact *c);
