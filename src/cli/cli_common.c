@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "commands.h"
+#include "tiptap/config/units.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 
@@ -61,6 +62,63 @@ tt_scene *cli_scene_args(const char *cmd, int argc, char **argv, int optind_, ch
         *exit_code = CLI_FAIL;
     free(sets);
     return scene;
+}
+
+/* A decimal number and nothing else: digits, one sign, a point, an exponent. strtod
+ * alone would also take blanks before it, hexadecimal, "inf" and "nan". */
+static int plain_number(const char *text, double *v)
+{
+    if (!text[0] || strspn(text, "0123456789+-.eE") != strlen(text))
+        return -1;
+    char *end;
+    errno = 0;
+    *v = tt_strtod(text, &end);
+    return end == text || *end || errno == ERANGE || !isfinite(*v) ? -1 : 0;
+}
+
+int cli_whole(const char *cmd, const char *opt, const char *text, long min, long max,
+              const char *what, long *out)
+{
+    double v;
+    if (plain_number(text, &v) != 0 || v != floor(v) || v < (double)min || v > (double)max) {
+        fprintf(stderr, "tiptap %s: %s: '%s' is not %s from %ld to %ld\n", cmd, opt, text,
+                what ? what : "a whole number", min, max);
+        return CLI_USAGE;
+    }
+    *out = (long)v;
+    return CLI_OK;
+}
+
+int cli_real(const char *cmd, const char *opt, const char *text, double lo, double hi,
+             const char *expected, double *out)
+{
+    double v;
+    if (plain_number(text, &v) != 0 || !(v >= lo) || !(v <= hi)) {
+        fprintf(stderr, "tiptap %s: %s: '%s' is not %s\n", cmd, opt, text, expected);
+        return CLI_USAGE;
+    }
+    *out = v;
+    return CLI_OK;
+}
+
+int cli_no_operands(const char *cmd, int argc, char **argv, int first, const char *why)
+{
+    if (first >= argc)
+        return CLI_OK;
+    char list[512];
+    size_t used = 0;
+    list[0] = '\0';
+    for (int i = first; i < argc && used + 8 < sizeof list; i++) {
+        int w = snprintf(list + used, sizeof list - used, "%s'%s'", used ? " " : "", argv[i]);
+        if (w < 0 || (size_t)w >= sizeof list - used) {
+            snprintf(list + used, sizeof list - used, " ...");
+            break;
+        }
+        used += (size_t)w;
+    }
+    fprintf(stderr, "tiptap %s: unexpected argument%s %s: %s; see 'tiptap %s --help'\n", cmd,
+            argc - first > 1 ? "s" : "", list, why, cmd);
+    return CLI_USAGE;
 }
 
 /* The merged table: the common options the command takes, then its own. */

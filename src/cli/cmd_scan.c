@@ -222,11 +222,9 @@ int cmd_scan(int argc, char **argv)
     int threads = 0, c;
     while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) { /* 'j', its only own option */
         /* atoi read "abc" and "-3" as 0, which means all cores */
-        char *end;
-        long j = strtol(optarg, &end, 10);
-        if (end == optarg || *end || j < 1 || j > 4096) {
+        long j;
+        if (cli_whole("scan", "-j", optarg, 1, 4096, "a number of threads", &j)) {
             cli_args_free(&args);
-            fprintf(stderr, "tiptap scan: -j: '%s' is not a number of threads from 1 to 4096\n", optarg);
             return CLI_USAGE;
         }
         threads = (int)j;
