@@ -173,7 +173,7 @@ int cmd_approach(int argc, char **argv)
     if ((rc = tt_setup_alloc(&st, scene)) || (rc = tt_config_approach(scene, &p)) ||
         (rc = tt_config_material_index(scene, "approach", tt_setup_material(st, 0),
                                        tt_setup_materials(st), &mat)) ||
-        (rc = tt_setup_use_material(st, mat)) || (rc = tt_approach_alloc(&ap, tt_setup_sim(st), &p)))
+        (rc = tt_setup_use_material(st, mat)) || (rc = tt_scene_locate(scene, tt_approach_alloc(&ap, tt_setup_sim(st), &p))))
         goto done;
     {
         tt_estimate e;

@@ -129,8 +129,9 @@ int cmd_trace(int argc, char **argv)
     tt_decimate *S = NULL, *Pk = NULL; /* samples; each cycle's located peak */
     long done_cycles = 0;
     int rc;
+    /* the trace's own checks name the file that set the key, as the scene's do */
     if ((rc = tt_setup_alloc(&st, scene)) || (rc = tt_config_trace(scene, &p)) ||
-        (rc = tt_trace_alloc(&tr, st, &p)))
+        (rc = tt_scene_locate(scene, tt_trace_alloc(&tr, st, &p))))
         goto done;
     {
         tt_estimate e;

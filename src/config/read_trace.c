@@ -15,7 +15,23 @@ static int ramp_value(const tt_scene *s, const char *ramp, const char *text, dou
     if (!d1)
         return tt_error(TT_EINVAL, "'%s': expected section.key or material.NAME.key", ramp);
     snprintf(section, sizeof section, "%.*s", (int)(d1 - ramp), ramp);
-    return tt_scene_parse_value(s, section, d2 + 1, text, value);
+    int rc = tt_scene_parse_value(s, section, d2 + 1, text, value);
+    if (rc)
+        return rc;
+    /* what the run can change between cycles (tt_setup_apply), checked before it starts */
+    if (strcmp(section, "cantilever") != 0 && strcmp(section, "tip") != 0 &&
+        strcmp(section, "material") != 0)
+        return tt_error(TT_EINVAL, "%s: only [cantilever], [tip] and [material] keys can be ramped",
+                        ramp);
+    if (strcmp(section, "material") == 0) {
+        char name[256];
+        snprintf(name, sizeof name, "%.*s", d2 > d1 ? (int)(d2 - d1 - 1) : 0, d1 + 1);
+        int have = tt_scene_count_named(s, "material") ? tt_scene_has_section(s, "material", name)
+                                                        : strcmp(name, "sample") == 0;
+        if (!have)
+            return tt_error(TT_EINVAL, "%s: no [material %s] in the scene", ramp, name);
+    }
+    return TT_OK;
 }
 
 int tt_config_trace(const tt_scene *s, tt_trace_params *p)
