@@ -247,6 +247,45 @@ static int check_line_rate(const tt_scene *s, const tt_scan_params *p)
     return TT_OK;
 }
 
+/* The first cycle of this direction's line that falls in pixel px (of the trace), as
+ * the raster assigns them (tt_raster_pixel). */
+static long first_cycle(const tt_raster *r, long nc, long px)
+{
+    if (px >= r->pixels)
+        return nc;
+    long k = (long)ceil((double)px * (double)nc / (double)r->pixels);
+    while (k > 0 && tt_raster_pixel(r, 0, nc, k - 1) >= px)
+        k--;
+    while (k < nc && tt_raster_pixel(r, 0, nc, k) < px)
+        k++;
+    return k;
+}
+
+/* The lock-in's amplitude and phase (and the feedback's update) come once a block of
+ * periods_per_block cycles and go to the pixel of the block's last cycle: a pixel of
+ * fewer cycles may get none, a NaN pixel in a run that ends with exit 0. */
+static int check_block(const tt_scene *s, const tt_scan_params *p)
+{
+    const tt_raster *r = &p->raster;
+    long nc = tt_raster_cycles_per_direction(r, p->cantilever.T), fewest = nc;
+    for (long px = 0; px < r->pixels && fewest >= p->lockin.periods_per_block; px++) {
+        long n = first_cycle(r, nc, px + 1) - first_cycle(r, nc, px);
+        if (n < fewest)
+            fewest = n;
+    }
+    if (fewest >= p->lockin.periods_per_block)
+        return TT_OK;
+    double fd = p->cantilever.fd;
+    return tt_scene_fail(s, "scan", NULL, "line_rate",
+                         "%g Hz gives a pixel as few as %ld drive cycle%s (%ld each way along a line of [scan] "
+                         "pixels = %ld at %g kHz), fewer than [lockin] periods_per_block = %d: "
+                         "such a pixel may get no lock-in block, so no amplitude or phase; at "
+                         "most %g Hz, fewer pixels or a smaller periods_per_block",
+                         r->line_rate, fewest, fewest == 1 ? "" : "s", nc, r->pixels, fd * 1e-3,
+                         p->lockin.periods_per_block,
+                         fd / (2.0 * (double)r->pixels * p->lockin.periods_per_block));
+}
+
 /* A sphere narrower than a pixel falls between the lines or within one pixel: the
  * image cannot show it (and a radius of picometres sized a grid of gigabytes). */
 static int check_particles(const tt_scene *s, const tt_scan_params *p)
@@ -318,10 +357,11 @@ int tt_config_scan(const tt_scene *s, tt_scan_params *p)
     p->materials = m;
     p->nmaterials = n;
     if ((rc = tt_config_raster(s, &p->raster)) || (rc = check_line_rate(s, p)) ||
-        (rc = tt_config_lockin(s, &p->lockin)) || (rc = read_scan_keys(s, p)) || (rc = read_noise(s, p)) ||
+        (rc = tt_config_lockin(s, &p->lockin)) || (rc = check_block(s, p)) || (rc = read_scan_keys(s, p)) || (rc = read_noise(s, p)) ||
         (rc = tt_config_feedback(s, p->cantilever.A0, &p->feedback)) ||
         (rc = tt_config_surface(s, m, n, &p->surface)) || (rc = check_particles(s, p)) ||
-        (rc = tt_config_tip_shape(s, &p->tip)) || (rc = tt_config_instrument(s, &p->instrument))) {
+        (rc = tt_config_tip_shape(s, &p->tip)) || (rc = tt_config_instrument(s, &p->instrument)) ||
+        (rc = tt_config_check_rk4(s, NULL, 0))) {
         tt_config_scan_free(p);
         return rc;
     }

@@ -1,9 +1,12 @@
 /* The [trace] section (see include/tiptap/config/read_trace.h). */
 #include "tiptap/config/read_trace.h"
 
+#include <math.h>
+
 #include <stdio.h>
 #include <string.h>
 
+#include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 
 /* Parse text as a value of the ramped key "section.key" or "section.name.key": the
@@ -48,6 +51,8 @@ int tt_config_trace(const tt_scene *s, tt_trace_params *p)
     p->separation_end = p->separation;
     if (tt_scene_has(s, "trace", NULL, "separation_end") &&
         (rc = tt_scene_get_double(s, "trace", NULL, "separation_end", &p->separation_end)))
+        return rc;
+    if ((rc = tt_config_check_rk4(s, "trace", fmin(p->separation, p->separation_end))))
         return rc;
     if (!p->ramp)
         return TT_OK;
