@@ -264,6 +264,12 @@ int cmd_scan(int argc, char **argv)
      * before the folder is made: a refused scan leaves no folder and touches none. */
     if ((rc = tt_config_scan(scene, &params)))
         goto done;
+    /* the scan's own solver setting (an accuracy study of the same scene tries coarser
+     * ones on purpose, so this is the command's check, not tt_config_scan's) */
+    if ((rc = tt_config_check_rk4(scene, NULL, 0))) {
+        tt_config_scan_free(&params);
+        goto done;
+    }
     tt_estimate cost;
     int nthreads;
     double bytes;

@@ -360,8 +360,7 @@ int tt_config_scan(const tt_scene *s, tt_scan_params *p)
         (rc = tt_config_lockin(s, &p->lockin)) || (rc = check_block(s, p)) || (rc = read_scan_keys(s, p)) || (rc = read_noise(s, p)) ||
         (rc = tt_config_feedback(s, p->cantilever.A0, &p->feedback)) ||
         (rc = tt_config_surface(s, m, n, &p->surface)) || (rc = check_particles(s, p)) ||
-        (rc = tt_config_tip_shape(s, &p->tip)) || (rc = tt_config_instrument(s, &p->instrument)) ||
-        (rc = tt_config_check_rk4(s, NULL, 0))) {
+        (rc = tt_config_tip_shape(s, &p->tip)) || (rc = tt_config_instrument(s, &p->instrument))) {
         tt_config_scan_free(p);
         return rc;
     }

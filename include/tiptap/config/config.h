@@ -91,8 +91,10 @@ int tt_config_accuracy_alloc(tt_accuracy **out, const tt_scene *s, const tt_accu
  * separation of the run, lies inside the sample), and the interaction damping's rate.
  * Refused ("[solver] steps_per_cycle: ...") before the run starts, instead of by the
  * solver at the first step too coarse, after the run's first lines. section: the run's
- * section whose `material` key picks the material ("trace", "approach"); NULL checks
- * every material (a scan). TT_OK for the other methods. The depth is what the energy
+ * section whose `material` key picks the material ("trace", "approach": run by
+ * tt_config_trace and tt_config_approach); NULL checks every material (tiptap scan runs
+ * it after tt_config_scan, which the accuracy study also reads, and that study tries
+ * coarse settings on purpose). TT_OK for the other methods. The depth is what the energy
  * allows, an upper bound in steady tapping; the solver's own check stays, for the
  * stages of a step that overshoot deeper. */
 int tt_config_check_rk4(const tt_scene *s, const char *section, double s_min);
