@@ -29,7 +29,7 @@ tt_scene *cli_load_scene(char **files, int nfiles, char **sets, int nsets)
 {
     tt_scene *s = tt_scene_alloc();
     if (!s) {
-        cli_fail(TT_ENOMEM, "out of memory");
+        cli_fail(tt_error_nomem("the scene"), NULL);
         return NULL;
     }
     for (int i = 0; i < nfiles; i++) {
@@ -160,7 +160,7 @@ int cli_getopt(const cli_spec *spec, cli_args *a, int argc, char **argv)
         case CLI_CODE_PLOT: a->plot = optarg; continue;
         case CLI_CODE_SET:
             if (!a->sets && !(a->sets = calloc((size_t)argc, sizeof *a->sets))) {
-                a->exit = cli_fail(TT_ENOMEM, "out of memory");
+                a->exit = cli_fail(tt_error_nomem("the --set list of %d arguments", argc), NULL);
                 return CLI_EXIT;
             }
             a->sets[a->nsets++] = optarg;

@@ -156,7 +156,7 @@ static int plot(const char *path, const tt_accuracy *a, const char *title)
     size_t nobs = tt_accuracy_observables(a, &obs), n = tt_accuracy_rows(a);
     tt_figure *f = tt_figure_alloc((int)nobs, title);
     double *x = malloc((n + 2) * sizeof *x), *y = malloc((n + 2) * sizeof *y);
-    int rc = (f && x && y) ? TT_OK : tt_error(TT_ENOMEM, "out of memory");
+    int rc = (f && x && y) ? TT_OK : tt_error_nomem("the plot %s", path);
     const tt_accuracy_row *floor = tt_accuracy_row_at(a, 1), *def = tt_accuracy_default_row(a);
     double tlo = INFINITY, thi = 0;
     for (size_t i = 0; i < n; i++) {

@@ -147,7 +147,7 @@ static int imaging_once(const tt_scan_params *p, int threads, int estimate, imag
             for (int r = 0; r < 2 && !rc; r++) {
                 out->img[c][r] = malloc(n * sizeof(double));
                 if (!out->img[c][r])
-                    rc = tt_error(TT_ENOMEM, "out of memory");
+                    rc = tt_error_nomem("the imaging figure's images");
                 else
                     memcpy(out->img[c][r], tt_scan_image(scan, c ? 2 : 0, r), n * sizeof(double));
             }

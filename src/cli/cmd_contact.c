@@ -85,7 +85,7 @@ static int plot(const char *path, const tt_contact *c, double xi0n, int referenc
                  lambda_text(s->lambda, "%.4g", lt, sizeof lt));
     tt_figure *f = tt_figure_alloc(1, title);
     if (!f)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the plot %s", path);
     tt_figure_axes(f, 0, "normalised penetration Delta", "normalised load P");
     int rc = tt_contact_curve(c, N, 2.2, A, D, P, st);
     for (int i = 0; i < N && rc == TT_OK; i++) {

@@ -77,7 +77,7 @@ static int plot(const char *path, const tt_decimate *D, const tt_decimate *P, co
     snprintf(title, sizeof title, "Trace%s%s", ramp ? ": ramp of " : "", ramp ? ramp : "");
     tt_figure *f = tt_figure_alloc(3, title);
     if (!f)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the plot %s", path);
     tt_figure_axes(f, 0, "time (us)", "position (nm)");
     tt_figure_line(f, 0, t, tt_decimate_line(D, 1), n, "base", 1);
     tt_figure_line(f, 0, t, tt_decimate_line(D, 2), n, "tip", 2);

@@ -173,7 +173,7 @@ int tt_config_materials(const tt_scene *s, tt_material **out, size_t *n)
     size_t count = tt_scene_count_named(s, "material");
     tt_material *m = calloc(count ? count : 1, sizeof *m);
     if (!m)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the %zu materials of %s", count ? count : 1, tt_scene_origin(s));
     for (size_t i = 0; i < (count ? count : 1) && rc == TT_OK; i++)
         rc = read_material(s, &tip, count ? tt_scene_named(s, "material", i) : "sample", &m[i]);
     if (rc) {

@@ -24,7 +24,7 @@ static int split_header(const char *header, char **buf, const char **section, co
     size_t n = strlen(header);
     char *b = malloc(n + 1);
     if (!b)
-        return tt_error(TT_ENOMEM, "out of memory reading the scene");
+        return tt_error_nomem("the section header [%.64s]", header);
     memcpy(b, header, n + 1);
     char *p = b;
     while (*p && !isspace((unsigned char)*p))
@@ -78,7 +78,7 @@ static int load_text(tt_scene *s, const char *text, size_t len, const char *orig
     if (rc)
         return rc;
     if (!s->origin && !(s->origin = tt_strdup(origin)))
-        return tt_error(TT_ENOMEM, "out of memory reading the scene");
+        return tt_error_nomem("the scene read from %s", origin);
     return TT_OK;
 }
 
@@ -106,7 +106,7 @@ int tt_scene_load(tt_scene *s, const char *path)
         rc = tt_error(TT_EINVAL, "%s: %lld bytes is too large for a scene file (at most %ld)", path,
                       (long long)st.st_size, TT_SCENE_MAX_BYTES);
     else if (!(text = malloc((size_t)st.st_size + 1)))
-        rc = tt_error(TT_ENOMEM, "%s: out of memory reading the scene", path);
+        rc = tt_error_nomem("the text of %s (%lld bytes)", path, (long long)st.st_size);
     while (!rc && len <= (size_t)st.st_size) {
         ssize_t got = read(fd, text + len, (size_t)st.st_size + 1 - len);
         if (got < 0 && errno == EINTR)
@@ -171,7 +171,7 @@ int tt_scene_set(tt_scene *s, const char *assignment)
     size_t n = (size_t)(eq - assignment);
     char *lhs = malloc(n + 1);
     if (!lhs)
-        return tt_error(TT_ENOMEM, "out of memory reading --set");
+        return tt_error_nomem("--set %s", shown);
     memcpy(lhs, assignment, n);
     lhs[n] = '\0';
     while (n > 0 && isspace((unsigned char)lhs[n - 1]))
@@ -186,7 +186,7 @@ int tt_scene_set(tt_scene *s, const char *assignment)
     char *d1 = strchr(lhs, '.');
     int rc = TT_OK;
     if (!val)
-        rc = tt_error(TT_ENOMEM, "out of memory reading --set");
+        rc = tt_error_nomem("--set %s", shown);
     else if (!d1)
         rc = tt_error(TT_EINVAL, "--set %s: expected section.key=value", shown);
     if (!rc) {

@@ -81,7 +81,7 @@ static int build_contacts(tt_scan *S, const tt_material *m, size_t n)
     S->contacts = calloc(n, sizeof *S->contacts);
     S->Qi = calloc(n, sizeof *S->Qi);
     if (!S->contacts || !S->Qi)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the force laws of %zu materials", n);
     for (size_t i = 0; i < n; i++) {
         S->Qi[i] = m[i].Qi;
         if (tt_contact_alloc(&S->contacts[i], &m[i].contact)) {
@@ -155,7 +155,7 @@ int tt_scan_alloc(tt_scan **out, const tt_scan_params *p)
     *out = NULL;
     tt_scan *S = calloc(1, sizeof *S);
     if (!S)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the scan");
     int rc;
     if ((rc = take_params(S, p)) ||
         (rc = tt_surface_alloc(&S->surface, &p->surface, p->materials, p->nmaterials,
@@ -178,7 +178,7 @@ int tt_scan_alloc(tt_scan **out, const tt_scan_params *p)
             S->img[r][c] = malloc(n * sizeof(double));
             if (!S->img[r][c]) {
                 tt_scan_free(S);
-                return tt_error(TT_ENOMEM, "out of memory for the images");
+                return tt_error_nomem("the scan's images of %zu pixels", n);
             }
             for (size_t i = 0; i < n; i++)
                 S->img[r][c][i] = NAN;
@@ -186,7 +186,7 @@ int tt_scan_alloc(tt_scan **out, const tt_scan_params *p)
     S->line_done = calloc((size_t)S->raster.lines, 1);
     if (!S->line_done) {
         tt_scan_free(S);
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the scan's %ld lines", S->raster.lines);
     }
     *out = S;
     return TT_OK;
@@ -260,7 +260,7 @@ static int envelope_alloc(tt_scan *S, worker *W)
     W->y_save = calloc(n, sizeof *W->y_save);
     W->obs = calloc(2 * (size_t)tt_envelope_size(W->env), sizeof *W->obs);
     if (!W->y_save || !W->obs)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("a scan thread's envelope tier");
     return TT_OK;
 }
 
@@ -276,7 +276,7 @@ static int worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)
     W->samples = calloc(n, sizeof *W->samples);
     W->y = calloc(n, sizeof *W->y);
     if (!W->samples || !W->y)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("a scan thread's lock-in samples");
     return envelope_usable(S, solver) ? envelope_alloc(S, W) : TT_OK;
 }
 
@@ -410,7 +410,7 @@ int tt_scan_line_run(tt_scan *S, worker *W, long line, const line_out *out, scan
     tt_sim_track_peaks(W->sim, (S->channels & (TT_CH_PEAK_FORCE | TT_CH_INDENTATION)) != 0);
     tt_sim_noise_key(W->sim, tt_noise_key(S->noise.seed, TT_NOISE_THERMAL, line));
     L.pix = calloc((size_t)R->pixels * 2, sizeof *L.pix);
-    int rc = L.pix ? TT_OK : tt_error(TT_ENOMEM, "out of memory");
+    int rc = L.pix ? TT_OK : tt_error_nomem("the pixel sums of line %ld", line);
     /* Phase 0 settles at the first pixel; phases 1 and 2 are trace and retrace. */
     long settle_blocks = carry ? 0 : (S->settle_cycles + L.P - 1) / L.P;
     /* continuous lines retrace whether recorded or not: the next line starts there */
@@ -494,7 +494,7 @@ int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done,
         threads = 1; /* continuous lines follow one another */
     worker *W = calloc((size_t)threads, sizeof *W);
     if (!W)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("%d scan threads", threads);
     int rc = TT_OK;
     for (int i = 0; i < threads && rc == TT_OK; i++)
         rc = worker_alloc(S, &W[i], &S->solver);
@@ -583,7 +583,7 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
     const int dirs = S->raster.retrace ? 2 : 1;
     double *buf = calloc((size_t)(12 * px), sizeof *buf);
     if (!buf)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the companion line's profile");
     tt_solver tight = companion_solver(&S->solver);
     int rc[2] = {TT_OK, TT_OK};
     char why[2][512]; /* a worker thread's message is its own: carried back here */

@@ -58,7 +58,7 @@ int tt_trace_alloc(tt_trace **out, tt_setup *st, const tt_trace_params *p)
     size_t n = (size_t)p->samples_per_cycle;
     if (!t || !(t->raw = calloc(n, sizeof *t->raw)) || !(t->out = calloc(n, sizeof *t->out))) {
         tt_trace_free(t);
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("[trace] samples_per_cycle = %ld samples", p->samples_per_cycle);
     }
     t->st = st;
     t->p = *p;
