@@ -69,6 +69,13 @@ grep -qF "at most 2343.75 Hz" <<<"$out" && ok "the largest line rate named" || b
 refused "a smaller block is named too" "[lockin] periods_per_block = 8" "$tmp/ppb" \
   "$tiptap" scan "$tmp/s.ini" -o "$tmp/ppb" --set "scan.line_rate=2000 Hz" --set lockin.periods_per_block=8
 
+# with the line rate left at its default, the key the scene set is named
+printf '[scan]\nlines = 2\n' >"$tmp/slow.ini"
+refused "block check named on the drive set" \
+  "--set: [cantilever] drive_frequency: [scan] line_rate = 1 Hz gives a pixel as few as 3 drive cycles (500 each way along a line of [scan] pixels = 128 at 1 kHz)" \
+  "$tmp/slow" "$tiptap" scan "$tmp/slow.ini" -o "$tmp/slow" --set "cantilever.drive_frequency=1 kHz" \
+  --set "cantilever.resonance_frequency=1 kHz"
+
 # the scan's own checks (its map file) came after the estimate and the unused-material
 # warning
 printf '[surface]\nmap = png\nmap_png = nosuch.png\n' >"$tmp/png.ini"

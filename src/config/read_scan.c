@@ -276,12 +276,25 @@ static int check_block(const tt_scene *s, const tt_scan_params *p)
     if (fewest >= p->lockin.periods_per_block)
         return TT_OK;
     double fd = p->cantilever.fd;
-    return tt_scene_fail(s, "scan", NULL, "line_rate",
-                         "%g Hz gives a pixel as few as %ld drive cycle%s (%ld each way along a line of [scan] "
+    /* named on a key the scene set: the line rate, else the pixels, the block, the drive */
+    const char *sec = "scan", *key = "line_rate";
+    char lead[128];
+    snprintf(lead, sizeof lead, "%g Hz gives", r->line_rate);
+    if (!tt_scene_has(s, "scan", NULL, "line_rate")) {
+        if (tt_scene_has(s, "scan", NULL, "pixels"))
+            key = "pixels";
+        else if (tt_scene_has(s, "lockin", NULL, "periods_per_block"))
+            sec = "lockin", key = "periods_per_block";
+        else if (tt_scene_has(s, "cantilever", NULL, "drive_frequency"))
+            sec = "cantilever", key = "drive_frequency";
+        snprintf(lead, sizeof lead, "[scan] line_rate = %g Hz gives", r->line_rate);
+    }
+    return tt_scene_fail(s, sec, NULL, key,
+                         "%s a pixel as few as %ld drive cycle%s (%ld each way along a line of [scan] "
                          "pixels = %ld at %g kHz), fewer than [lockin] periods_per_block = %d: "
                          "such a pixel may get no lock-in block, so no amplitude or phase; at "
                          "most %g Hz, fewer pixels or a smaller periods_per_block",
-                         r->line_rate, fewest, fewest == 1 ? "" : "s", nc, r->pixels, fd * 1e-3,
+                         lead, fewest, fewest == 1 ? "" : "s", nc, r->pixels, fd * 1e-3,
                          p->lockin.periods_per_block,
                          fd / (2.0 * (double)r->pixels * p->lockin.periods_per_block));
 }
