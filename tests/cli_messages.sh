@@ -1,5 +1,12 @@
 #!/usr/bin/env bash
 # Every message names the file and the key (issue 19, item 4): [trace] ramp refusals,
+# a rule between keys is named on the key the scene set, not on a default of the rule
+printf '[surface]\ntype = particles\n[scan]\nsize = 100 um\npixels = 16\nlines = 16\n' >"$tmp/p.ini"
+expect_error "particles: the scan size named, not the defaulted radius" \
+  "p.ini: [scan] size: spheres of 40 nm across are narrower than a pixel of the image (6250 nm)" \
+  "$tiptap" scan "$tmp/p.ini" -o "$tmp/p"
+[ -e "$tmp/p" ] && bad "a refused scan made its folder" || ok "no folder"
+
 # an allocation that fails, a derived quantity out of range (named by the key the user
 # set, not by one the scene never set).
 # usage: cli_messages.sh path/to/tiptap source_dir
@@ -46,6 +53,13 @@ expect_error "derived lambda names youngs_modulus" "young.ini: [material soft] y
 printf '[material weak]\nadhesion_energy = 1e-12 J/m^2\n' >"$tmp/weak.ini"
 expect_error "derived lambda names the adhesion energy" \
   "weak.ini: [material weak] adhesion_energy: 1e-12 J/m^2 gives lambda = 5.5e-08" "$tiptap" approach "$tmp/weak.ini"
+
+# a rule between keys is named on the key the scene set, not on a default of the rule
+printf '[surface]\ntype = particles\n[scan]\nsize = 100 um\npixels = 16\nlines = 16\n' >"$tmp/p.ini"
+expect_error "particles: the scan size named, not the defaulted radius" \
+  "p.ini: [scan] size: spheres of 40 nm across are narrower than a pixel of the image (6250 nm)" \
+  "$tiptap" scan "$tmp/p.ini" -o "$tmp/p"
+[ -e "$tmp/p" ] && bad "a refused scan made its folder" || ok "no folder"
 
 # an allocation that fails says what it was for and the file: a scene line of 100 MB
 # under a 300 MB address space (a sanitizer build cannot start under ulimit -v: skipped)

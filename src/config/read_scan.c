@@ -45,8 +45,10 @@ static int read_shape(const tt_scene *s, tt_surface_params *p)
         if (!(rc = get_d(s, "period", &p->period)) && !(rc = get_d(s, "duty", &p->duty)) &&
             !(rc = get_d(s, "height", &p->height)) && !(rc = get_d(s, "edge_width", &p->edge_width)) &&
             2 * p->edge_width > p->period * fmin(p->duty, 1 - p->duty) * 2)
-            rc = tt_scene_fail(s, "surface", NULL, "edge_width",
-                               "%g nm is wider than the line or the gap allows", p->edge_width * 1e9);
+            rc = tt_scene_fail_set(s, (const char *const[]){"surface.edge_width", "surface.period", "surface.duty", NULL},
+                                   "edge_width %g nm is wider than the line or the gap allows "
+                                   "(period %g nm, duty %g %%)",
+                                   p->edge_width * 1e9, p->period * 1e9, p->duty * 100);
         return rc;
     case TT_SURFACE_PARTICLES:
         if ((rc = get_d(s, "particle_radius", &p->particle_radius)) ||
@@ -121,8 +123,9 @@ static int read_two_material_map(const tt_scene *s, const tt_material *m, size_t
         (rc = get_d(s, "map_radius", &p->map_radius)))
         return rc;
     if (p->map == TT_MAP_DISKS && 2 * p->map_radius >= p->map_period)
-        return tt_scene_fail(s, "surface", NULL, "map_radius", "disks of radius %g nm overlap at period %g nm",
-                             p->map_radius * 1e9, p->map_period * 1e9);
+        return tt_scene_fail_set(s, (const char *const[]){"surface.map_radius", "surface.map_period", NULL},
+                                 "disks of radius %g nm overlap at period %g nm",
+                                 p->map_radius * 1e9, p->map_period * 1e9);
     if (p->map == TT_MAP_ISLANDS && p->type != TT_SURFACE_PARTICLES)
         return tt_scene_fail(s, "surface", NULL, "map", "islands need type = particles");
     return TT_OK;
@@ -187,8 +190,9 @@ int tt_config_feedback(const tt_scene *s, double A0, tt_feedback_params *p)
                                  "a percentage must lie between 0 and 100 %% (exclusive)");
         p->setpoint *= A0;
     } else if (!(p->setpoint > 0 && p->setpoint < A0)) {
-        return tt_scene_fail(s, "feedback", NULL, "setpoint",
-                             "must lie between 0 and the free amplitude (%g nm)", A0 * 1e9);
+        return tt_scene_fail_set(s, (const char *const[]){"feedback.setpoint", "cantilever.free_amplitude", NULL},
+                                 "setpoint %g nm must lie between 0 and the free amplitude (%g nm)",
+                                 p->setpoint * 1e9, A0 * 1e9);
     }
     return TT_OK;
 }
@@ -277,19 +281,14 @@ static int check_block(const tt_scene *s, const tt_scan_params *p)
         return TT_OK;
     double fd = p->cantilever.fd;
     /* named on a key the scene set: the line rate, else the pixels, the block, the drive */
-    const char *sec = "scan", *key = "line_rate";
+    static const char *const keys[] = {"scan.line_rate", "scan.pixels", "lockin.periods_per_block",
+                                       "cantilever.drive_frequency", NULL};
     char lead[128];
-    snprintf(lead, sizeof lead, "%g Hz gives", r->line_rate);
-    if (!tt_scene_has(s, "scan", NULL, "line_rate")) {
-        if (tt_scene_has(s, "scan", NULL, "pixels"))
-            key = "pixels";
-        else if (tt_scene_has(s, "lockin", NULL, "periods_per_block"))
-            sec = "lockin", key = "periods_per_block";
-        else if (tt_scene_has(s, "cantilever", NULL, "drive_frequency"))
-            sec = "cantilever", key = "drive_frequency";
+    if (tt_scene_has(s, "scan", NULL, "line_rate"))
+        snprintf(lead, sizeof lead, "%g Hz gives", r->line_rate);
+    else
         snprintf(lead, sizeof lead, "[scan] line_rate = %g Hz gives", r->line_rate);
-    }
-    return tt_scene_fail(s, sec, NULL, key,
+    return tt_scene_fail_set(s, keys,
                          "%s a pixel as few as %ld drive cycle%s (%ld each way along a line of [scan] "
                          "pixels = %ld at %g kHz), fewer than [lockin] periods_per_block = %d: "
                          "such a pixel may get no lock-in block, so no amplitude or phase; at "
@@ -310,7 +309,8 @@ static int check_particles(const tt_scene *s, const tt_scan_params *p)
     double ln = (r->fast_y ? r->size_x : r->size_y) / (double)r->lines;
     double pitch = fmax(px, ln);
     if (!(2 * p->surface.particle_radius >= pitch))
-        return tt_scene_fail(s, "surface", NULL, "particle_radius",
+        return tt_scene_fail_set(s, (const char *const[]){"surface.particle_radius", "scan.size", "scan.size_y",
+                                                          "scan.pixels", "scan.lines", NULL},
                              "spheres of %g nm across are narrower than a pixel of the image "
                              "(%g nm); it cannot resolve them: the radius must be at least %g nm, "
                              "or scan a smaller [scan] size or more pixels and lines",

@@ -71,18 +71,24 @@ int tt_config_check_rk4(const tt_scene *s, const char *section, double s_min)
         double keff, depth, need = need_steps(&c, &m[i], s_min, &keff, &depth);
         if (sv.steps_per_cycle >= need)
             continue;
-        int damped = isfinite(m[i].Qi) && m[i].Qi > 0 && c.w0 / m[i].Qi > sqrt(keff / c.m);
-        rc = tt_scene_fail(s, "solver", NULL, "steps_per_cycle",
-                           "%d steps a cycle are too few for rk4 on [material %s]: its contact "
-                           "%s%.3g N/m (%.0f times the cantilever's) at the %.3g nm a tip of "
-                           "%.3g nm amplitude can press into it, and rk4 follows that only with "
-                           "at least %.0f steps a cycle; raise steps_per_cycle or use method = "
-                           "dopri5 (or radau, implicit, for a contact this stiff)",
-                           sv.steps_per_cycle, m[i].name,
-                           damped ? "damping (interaction_quality_factor) outpaces a stiffness of "
-                                  : "stiffens to ",
-                           keff, keff / c.k, depth * 1e9,
-                           (c.A0 + (s_min < 0 ? -s_min : 0)) * 1e9, need);
+        static const char *const keys[] = {"solver.steps_per_cycle", "solver.method", NULL};
+        char why[320];
+        double wi = isfinite(m[i].Qi) && m[i].Qi > 0 ? c.w0 / m[i].Qi : 0;
+        if (wi > sqrt(keff / c.m))
+            snprintf(why, sizeof why, "its interaction damping (interaction_quality_factor = %g) "
+                                      "acts %.3g times faster than the drive",
+                     m[i].Qi, wi / c.wd);
+        else
+            snprintf(why, sizeof why, "its contact stiffens to %.3g N/m (%.0f times the "
+                                      "cantilever's) at the %.3g nm a tip of %.3g nm amplitude "
+                                      "can press into it",
+                     keff, keff / c.k, depth * 1e9, (c.A0 + (s_min < 0 ? -s_min : 0)) * 1e9);
+        rc = tt_scene_fail_set(s, keys,
+                               "%d steps a cycle are too few for rk4 on [material %s]: %s, and rk4 "
+                               "follows that only with at least %.0f steps a cycle; raise "
+                               "steps_per_cycle or use method = dopri5 (or radau, implicit, for a "
+                               "contact this stiff)",
+                               sv.steps_per_cycle, m[i].name, why, need);
     }
     free(m);
     return rc;
