@@ -70,7 +70,7 @@ tolerence = 1e-9
 INI
 expect_error "bad scene key" "typo.ini: [solver] tolerence: unknown key" "$tiptap" accuracy "$tmp/typo.ini"
 expect_error "unknown option" "unrecognized option" "$tiptap" accuracy --frobnicate "$tmp/tap.ini"
-expect_error "bad --point" "--point 16 kHz" "$tiptap" accuracy "$tmp/tap.ini" --point "16 kHz"
+expect_error "bad --point" "--point: '16 kHz': wrong unit" "$tiptap" accuracy "$tmp/tap.ini" --point "16 kHz"
 expect_error "unknown method" "unknown method 'euler'" "$tiptap" accuracy "$tmp/tap.ini" --methods euler
 expect_error "bad --cycles" "--cycles" "$tiptap" accuracy "$tmp/tap.ini" --cycles 3
 expect_error "bad --clock" "--clock" "$tiptap" accuracy "$tmp/tap.ini" --clock sundial

@@ -49,7 +49,7 @@ map_period = 500 nm
 map_duty = 75 %
 INI
 expect_error "material reached mid-image refused" \
-  "$tmp/late.ini: [material late] interatomic_distance: gives lambda = " \
+  "$tmp/late.ini: [material late] interatomic_distance: 1e-6 nm gives lambda = " \
   "$tiptap" scan "$tmp/base.ini" "$tmp/late.ini" -o "$tmp/late" -q
 [ -e "$tmp/late" ] && bad "a refused scan made its folder" || ok "no folder for a material reached late"
 

@@ -15,6 +15,7 @@
 
 #include "commands.h"
 #include "tiptap/config/config.h"
+#include "tiptap/config/units.h"
 #include "tiptap/io/files.h"
 #include "tiptap/io/lock.h"
 #include "tiptap/io/outfile.h"
@@ -33,7 +34,7 @@ tt_scene *cli_load_scene(char **files, int nfiles, char **sets, int nsets)
 {
     tt_scene *s = tt_scene_alloc();
     if (!s) {
-        cli_fail(TT_ENOMEM, "out of memory");
+        cli_fail(tt_error_nomem("the scene"), NULL);
         return NULL;
     }
     for (int i = 0; i < nfiles; i++) {
@@ -67,6 +68,63 @@ tt_scene *cli_scene_args(const char *cmd, int argc, char **argv, int optind_, ch
         *exit_code = CLI_FAIL;
     free(sets);
     return scene;
+}
+
+/* A decimal number and nothing else: digits, one sign, a point, an exponent. strtod
+ * alone would also take blanks before it, hexadecimal, "inf" and "nan". */
+static int plain_number(const char *text, double *v)
+{
+    if (!text[0] || strspn(text, "0123456789+-.eE") != strlen(text))
+        return -1;
+    char *end;
+    errno = 0;
+    *v = tt_strtod(text, &end);
+    return end == text || *end || errno == ERANGE || !isfinite(*v) ? -1 : 0;
+}
+
+int cli_whole(const char *cmd, const char *opt, const char *text, long min, long max,
+              const char *what, long *out)
+{
+    double v;
+    if (plain_number(text, &v) != 0 || v != floor(v) || v < (double)min || v > (double)max) {
+        fprintf(stderr, "tiptap %s: %s: '%s' is not %s from %ld to %ld\n", cmd, opt, text,
+                what ? what : "a whole number", min, max);
+        return CLI_USAGE;
+    }
+    *out = (long)v;
+    return CLI_OK;
+}
+
+int cli_real(const char *cmd, const char *opt, const char *text, double lo, double hi,
+             const char *expected, double *out)
+{
+    double v;
+    if (plain_number(text, &v) != 0 || !(v >= lo) || !(v <= hi)) {
+        fprintf(stderr, "tiptap %s: %s: '%s' is not %s\n", cmd, opt, text, expected);
+        return CLI_USAGE;
+    }
+    *out = v;
+    return CLI_OK;
+}
+
+int cli_no_operands(const char *cmd, int argc, char **argv, int first, const char *why)
+{
+    if (first >= argc)
+        return CLI_OK;
+    char list[512];
+    size_t used = 0;
+    list[0] = '\0';
+    for (int i = first; i < argc && used + 8 < sizeof list; i++) {
+        int w = snprintf(list + used, sizeof list - used, "%s'%s'", used ? " " : "", argv[i]);
+        if (w < 0 || (size_t)w >= sizeof list - used) {
+            snprintf(list + used, sizeof list - used, " ...");
+            break;
+        }
+        used += (size_t)w;
+    }
+    fprintf(stderr, "tiptap %s: unexpected argument%s %s: %s; see 'tiptap %s --help'\n", cmd,
+            argc - first > 1 ? "s" : "", list, why, cmd);
+    return CLI_USAGE;
 }
 
 /* The merged table: the common options the command takes, then its own. */
@@ -108,7 +166,7 @@ int cli_getopt(const cli_spec *spec, cli_args *a, int argc, char **argv)
         case CLI_CODE_PLOT: a->plot = optarg; continue;
         case CLI_CODE_SET:
             if (!a->sets && !(a->sets = calloc((size_t)argc, sizeof *a->sets))) {
-                a->exit = cli_fail(TT_ENOMEM, "out of memory");
+                a->exit = cli_fail(tt_error_nomem("the --set list of %d arguments", argc), NULL);
                 return CLI_EXIT;
             }
             a->sets[a->nsets++] = optarg;

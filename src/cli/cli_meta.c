@@ -30,14 +30,14 @@ static int meta_add(cli_meta *m, const char *key, const char *value)
         if (v)
             m->values = v;
         if (!k || !v)
-            return tt_error(TT_ENOMEM, "out of memory");
+            return tt_error_nomem("the outputs' metadata");
         m->cap = cap;
     }
     char *k = tt_strdup(key), *v = tt_strdup(value);
     if (!k || !v) {
         free(k);
         free(v);
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the outputs' metadata");
     }
     m->keys[m->n] = k;
     m->values[m->n] = v;
@@ -56,7 +56,7 @@ int cli_meta_scene(cli_meta *m, const tt_scene *scene, const char *const *first_
     size_t len = 0;
     FILE *f = open_memstream(&text, &len);
     if (!f)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the outputs' metadata");
     int rc = tt_scene_write(scene, f, NULL);
     fclose(f);
     for (size_t i = 0; rc == TT_OK && i < nfirst; i++)

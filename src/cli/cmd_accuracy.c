@@ -1,4 +1,5 @@
 /* tiptap accuracy: error against run time for each solver setting (work-precision). */
+#include <float.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
@@ -155,7 +156,7 @@ static int plot(const char *path, const tt_accuracy *a, const char *title)
     size_t nobs = tt_accuracy_observables(a, &obs), n = tt_accuracy_rows(a);
     tt_figure *f = tt_figure_alloc((int)nobs, title);
     double *x = malloc((n + 2) * sizeof *x), *y = malloc((n + 2) * sizeof *y);
-    int rc = (f && x && y) ? TT_OK : tt_error(TT_ENOMEM, "out of memory");
+    int rc = (f && x && y) ? TT_OK : tt_error_nomem("the plot %s", path);
     const tt_accuracy_row *floor = tt_accuracy_row_at(a, 1), *def = tt_accuracy_default_row(a);
     double tlo = INFINITY, thi = 0;
     for (size_t i = 0; i < n; i++) {
@@ -221,15 +222,23 @@ static int plot(const char *path, const tt_accuracy *a, const char *title)
 }
 
 /* The built-in ladders named in list ("dopri5,envelope,rk4"). */
-static int pick_methods(const char *list, tt_accuracy_ladder *out, size_t *n)
+static int pick_methods(const char *list, tt_accuracy_ladder *out, size_t max, size_t *n)
 {
     size_t nall;
     const tt_accuracy_ladder *all = tt_accuracy_ladders(&nall);
     *n = 0;
     char buf[256];
-    snprintf(buf, sizeof buf, "%s", list);
+    if (snprintf(buf, sizeof buf, "%s", list) >= (int)sizeof buf) {
+        fprintf(stderr, "tiptap accuracy: --methods: a list of %zu characters, at most %zu\n",
+                strlen(list), sizeof buf - 1);
+        return -1;
+    }
     for (char *save = NULL, *tok = strtok_r(buf, ", ", &save); tok; tok = strtok_r(NULL, ", ", &save)) {
         size_t i;
+        if (*n == max) {
+            fprintf(stderr, "tiptap accuracy: --methods: more than %zu methods\n", max);
+            return -1;
+        }
         for (i = 0; i < nall; i++)
             if (strcmp(tt_accuracy_ladder_name(&all[i]), tok) == 0)
                 break;
@@ -350,18 +359,10 @@ static int interrupted(const char *out, size_t n)
     return tt_error(TT_EINTR, "interrupted: %s keeps the %zu rows finished", out, n);
 }
 
-/* A whole-number option of at least min into *out; 1 (reported) when it is not. */
+/* A whole-number option from min to 1e8 into *out; 1 (reported) when it is not. */
 static int whole(const char *text, const char *option, long min, long *out)
 {
-    char *end;
-    long v = strtol(text, &end, 10);
-    if (*end || end == text || v < min || v > 100000000L) {
-        fprintf(stderr, "tiptap accuracy: %s %s: expected a whole number of at least %ld\n", option,
-                text, min);
-        return 1;
-    }
-    *out = v;
-    return 0;
+    return cli_whole("accuracy", option, text, min, 100000000L, NULL, out) != CLI_OK;
 }
 
 int cmd_accuracy(int argc, char **argv)
@@ -382,13 +383,13 @@ int cmd_accuracy(int argc, char **argv)
     double target = 1e-4;
     tt_accuracy_params p;
     tt_accuracy_params_default(&p);
-    char why[256], *end;
+    char why[256];
     while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) {
         int bad = 0;
         switch (c) {
         case 'z':
             if (tt_units_parse(optarg, TT_DIM_LENGTH, &p.point, NULL, why, sizeof why) != 0) {
-                fprintf(stderr, "tiptap accuracy: --point %s: %s\n", optarg, why);
+                fprintf(stderr, "tiptap accuracy: --point: '%s': %s\n", optarg, why);
                 bad = 1;
             }
             p.kind = TT_ACCURACY_POINT;
@@ -402,16 +403,14 @@ int cmd_accuracy(int argc, char **argv)
             break;
         }
         case 't':
-            target = tt_strtod(optarg, &end);
-            bad = *end || !(target > 0 && target < 1);
-            if (bad)
-                fprintf(stderr, "tiptap accuracy: --target %s: expected a number between 0 and 1\n", optarg);
+            bad = cli_real("accuracy", "--target", optarg, DBL_MIN, nextafter(1.0, 0.0), "a number between 0 and 1",
+                           &target) != CLI_OK;
             break;
         case 'm': methods = optarg; break;
         case 'k':
             bad = strcmp(optarg, "wall") != 0 && strcmp(optarg, "cpu") != 0;
             if (bad)
-                fprintf(stderr, "tiptap accuracy: --clock %s: expected wall or cpu\n", optarg);
+                fprintf(stderr, "tiptap accuracy: --clock: '%s' is not wall or cpu\n", optarg);
             use_cpu = p.cpu_clock = strcmp(optarg, "cpu") == 0;
             break;
         }
@@ -426,7 +425,7 @@ int cmd_accuracy(int argc, char **argv)
     int quiet = args.quiet;
     tt_accuracy_ladder picked[16];
     if (methods) {
-        if (pick_methods(methods, picked, &p.nladders) != 0) {
+        if (pick_methods(methods, picked, sizeof picked / sizeof picked[0], &p.nladders) != 0) {
             cli_args_free(&args);
             return CLI_USAGE;
         }

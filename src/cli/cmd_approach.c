@@ -54,7 +54,7 @@ static int plot(const char *path, const tt_approach_point *pts, size_t n, int ra
     double *x = malloc(n * sizeof *x), *a = malloc(n * sizeof *a), *ph = malloc(n * sizeof *ph),
            *e = malloc(n * sizeof *e), *lo = malloc(n * sizeof *lo), *hi = malloc(n * sizeof *hi);
     tt_figure *f = tt_figure_alloc(3, ramp ? "Approach (ramp)" : "Approach (steady state)");
-    int rc = (x && a && ph && e && lo && hi && f) ? TT_OK : tt_error(TT_ENOMEM, "out of memory");
+    int rc = (x && a && ph && e && lo && hi && f) ? TT_OK : tt_error_nomem("the plot %s", path);
     for (int branch = 0; branch < 2 && rc == TT_OK; branch++) {
         size_t m = 0;
         for (size_t i = 0; i < n; i++) {
@@ -181,7 +181,7 @@ int cmd_approach(int argc, char **argv)
     if ((rc = tt_setup_alloc(&st, scene)) || (rc = tt_config_approach(scene, &p)) ||
         (rc = tt_config_material_index(scene, "approach", tt_setup_material(st, 0),
                                        tt_setup_materials(st), &mat)) ||
-        (rc = tt_setup_use_material(st, mat)) || (rc = tt_approach_alloc(&ap, tt_setup_sim(st), &p)))
+        (rc = tt_setup_use_material(st, mat)) || (rc = tt_scene_locate(scene, tt_approach_alloc(&ap, tt_setup_sim(st), &p))))
         goto done;
     {
         tt_estimate e;
@@ -194,7 +194,7 @@ int cmd_approach(int argc, char **argv)
         goto done;
     pts = calloc(tt_approach_rows(ap), sizeof *pts);
     if (!pts) {
-        rc = tt_error(TT_ENOMEM, "out of memory");
+        rc = tt_error_nomem("%zu approach points", tt_approach_rows(ap));
         goto done;
     }
     FILE *f = tt_outfile_stream(of);

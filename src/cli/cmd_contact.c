@@ -1,4 +1,5 @@
 /* tiptap contact: a contact-mechanics curve (Burnham et al.'s figure 3) and its summary. */
+#include <float.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
@@ -84,7 +85,7 @@ static int plot(const char *path, const tt_contact *c, double xi0n, int referenc
                  lambda_text(s->lambda, "%.4g", lt, sizeof lt));
     tt_figure *f = tt_figure_alloc(1, title);
     if (!f)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the plot %s", path);
     tt_figure_axes(f, 0, "normalised penetration Delta", "normalised load P");
     int rc = tt_contact_curve(c, N, 2.2, A, D, P, st);
     for (int i = 0; i < N && rc == TT_OK; i++) {
@@ -176,21 +177,17 @@ int cmd_contact(int argc, char **argv)
     const char *model = NULL, *material = NULL;
     int c;
     while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) {
-        char *end;
         switch (c) {
         case 'l':
-            lambda = strtod(optarg, &end);
-            if (*end || !isfinite(lambda) || lambda <= 0) {
+            /* the range of Maugis' tables (tt_contact_alloc_normalised) */
+            if (cli_real("contact", "--lambda", optarg, 1e-4, 1e4, "a number from 1e-4 to 1e4", &lambda)) {
                 cli_args_free(&args);
-                fprintf(stderr, "tiptap contact: --lambda: '%s' is not a positive number\n", optarg);
                 return CLI_USAGE;
             }
             break;
         case 'x':
-            xi0n = strtod(optarg, &end);
-            if (*end || !isfinite(xi0n) || !(xi0n > 0)) {
+            if (cli_real("contact", "--xi0", optarg, DBL_MIN, DBL_MAX, "a finite positive number", &xi0n)) {
                 cli_args_free(&args);
-                fprintf(stderr, "tiptap contact: --xi0: '%s' is not a finite positive number\n", optarg);
                 return CLI_USAGE;
             }
             break;
@@ -208,6 +205,11 @@ int cmd_contact(int argc, char **argv)
         return CLI_USAGE;
     }
     int have_scene = optind < argc;
+    if (have_scene && isfinite(lambda)) {
+        cli_args_free(&args);
+        return cli_no_operands("contact", argc, argv, optind,
+                               "--lambda draws the normalised curve, which takes no scene");
+    }
     if (have_scene == isfinite(lambda) && !(model && !have_scene && m != TT_CONTACT_MAUGIS)) {
         cli_args_free(&args);
         fprintf(stderr, "tiptap contact: give either --lambda or a scene; see 'tiptap contact --help'\n");

@@ -22,6 +22,8 @@ int cmd_keys(int argc, char **argv)
         markdown = 1; /* 'm', its only option */
     if (c == CLI_EXIT)
         return args.exit;
+    if (cli_no_operands("keys", argc, argv, optind, "it lists the schema, not a scene"))
+        return CLI_USAGE;
     size_t n;
     const tt_scene_section *sec = tt_scene_schema(&n);
     if (markdown) {

@@ -76,7 +76,7 @@ static int read_profile(const char *dir, profile *p)
             for (int i = 0; i < 4 && rc == TT_OK; i++) {
                 double *q = realloc(p->col[i], cap * sizeof *q);
                 if (!q)
-                    rc = tt_error(TT_ENOMEM, "out of memory");
+                    rc = tt_error_nomem("the profile read from %s", path);
                 else
                     p->col[i] = q;
             }
@@ -135,7 +135,7 @@ int cmd_profiles(int argc, char **argv)
         return CLI_USAGE;
     }
     tt_figure *f = tt_figure_alloc(n, title);
-    int rc = f ? TT_OK : tt_error(TT_ENOMEM, "out of memory");
+    int rc = f ? TT_OK : tt_error_nomem("the plot %s", a.output);
     for (int i = 0; i < n && rc == TT_OK; i++) {
         profile p;
         if ((rc = read_profile(argv[optind + i], &p)))

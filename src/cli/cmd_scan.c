@@ -218,10 +218,11 @@ int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const cha
     return rc;
 }
 
-/* The scan's cost before it starts: its first line on stderr tells the cycles and the
- * time by estimate; a scan that needs more memory than the machine has is refused
- * (a 16384 x 16384 scan of 12 images holds 25 GB) rather than left to the OOM killer. */
-static int check_cost(const tt_scan_params *p, int threads, int quiet)
+/* The scan's cost before it starts: a scan that needs more memory than the machine has
+ * is refused (a 16384 x 16384 scan of 12 images holds 25 GB) rather than left to the
+ * OOM killer; *e, *n (threads) and *bytes for report_cost. Prints nothing else. */
+static int check_cost(const tt_scan_params *p, int threads, tt_estimate *est, int *nthreads,
+                      double *total)
 {
     tt_estimate e;
     char need[32], have[32], img[32];
@@ -231,6 +232,9 @@ static int check_cost(const tt_scan_params *p, int threads, int quiet)
     if (n > p->raster.lines)
         n = (int)p->raster.lines;
     double bytes = e.bytes + e.thread_bytes * n, avail = cli_memory_available();
+    *est = e;
+    *nthreads = n;
+    *total = bytes;
     if (bytes > avail) {
         double image = (double)p->raster.pixels * (double)p->raster.lines * sizeof(double);
         double nimg = e.bytes / image - 1;
@@ -242,7 +246,16 @@ static int check_cost(const tt_scan_params *p, int threads, int quiet)
                 cli_bytes(avail, have, sizeof have));
         return TT_ENOMEM;
     }
-    char t[32], lo[32], tier[160] = "";
+    return TT_OK;
+}
+
+/* The first line on stderr once every check passed: the cycles and the time by
+ * estimate, and the warning of a long run. */
+static void report_cost(const tt_scan_params *p, const tt_estimate *est, int n, double bytes,
+                        int quiet)
+{
+    tt_estimate e = *est;
+    char need[32], t[32], lo[32], tier[160] = "";
     /* the envelope tier's time depends on how many cycles the scene lets the model
      * follow: a range (src/config/estimate.c) */
     if (e.envelope)
@@ -259,7 +272,6 @@ static int check_cost(const tt_scan_params *p, int threads, int quiet)
                 cli_bytes(bytes, need, sizeof need));
     cli_report_estimate("scan", e.cycles, e.seconds, e.upper_bound, n, p->cantilever.f0,
                         p->cantilever.fd, 1);
-    return TT_OK;
 }
 
 /* A material that the surface map never puts under the tip is most likely a typo. */
@@ -304,11 +316,9 @@ int cmd_scan(int argc, char **argv)
     int threads = 0, c;
     while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) { /* 'j', its only own option */
         /* atoi read "abc" and "-3" as 0, which means all cores */
-        char *end;
-        long j = strtol(optarg, &end, 10);
-        if (end == optarg || *end || j < 1 || j > 4096) {
+        long j;
+        if (cli_whole("scan", "-j", optarg, 1, 4096, "a number of threads", &j)) {
             cli_args_free(&args);
-            fprintf(stderr, "tiptap scan: -j: '%s' is not a number of threads from 1 to 4096\n", optarg);
             return CLI_USAGE;
         }
         threads = (int)j;
@@ -336,16 +346,28 @@ int cmd_scan(int argc, char **argv)
      * before the folder is made: a refused scan leaves no folder and touches none. */
     if ((rc = tt_config_scan(scene, &params)))
         goto done;
-    if ((rc = check_cost(&params, threads, quiet))) {
+    /* the scan's own solver setting (an accuracy study of the same scene tries coarser
+     * ones on purpose, so this is the command's check, not tt_config_scan's) */
+    if ((rc = tt_config_check_rk4(scene, NULL, 0))) {
+        tt_config_scan_free(&params);
+        goto done;
+    }
+    tt_estimate cost;
+    int nthreads;
+    double bytes;
+    if ((rc = check_cost(&params, threads, &cost, &nthreads, &bytes))) {
         tt_config_scan_free(&params);
         reported = 1;
         goto done;
     }
-    warn_unused(&params);
-    rc = tt_scene_locate(scene, tt_scan_alloc(&scan, &params));
-    tt_config_scan_free(&params);
-    if (rc)
+    /* the scan's own checks (its surface, maps, tip) before the first line is printed */
+    if ((rc = tt_scene_locate(scene, tt_scan_alloc(&scan, &params)))) {
+        tt_config_scan_free(&params);
         goto done;
+    }
+    report_cost(&params, &cost, nthreads, bytes, quiet);
+    warn_unused(&params);
+    tt_config_scan_free(&params);
     /* Then the folder and the effective scene: a bad output folder fails at once, not
      * after an hour of scanning. The folder is locked for the run: two scans into one
      * folder would mix their images and scene.ini. From here on a signal keeps the lines

@@ -264,7 +264,6 @@ int cmd_sweep(int argc, char **argv)
     if (!vary)
         return cli_fail(TT_ENOMEM, "out of memory");
     while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) {
-        char *end;
         long j;
         switch (c) {
         case 'V': vary[nvary++] = optarg; break;
@@ -277,12 +276,10 @@ int cmd_sweep(int argc, char **argv)
             free(vary);
             return CLI_USAGE;
         case 'j':
-            j = strtol(optarg, &end, 10);
-            if (*end == '\0' && j >= 1 && j <= 4096) {
+            if (cli_whole("sweep", "-j", optarg, 1, 4096, "a number of threads", &j) == CLI_OK) {
                 threads = (int)j;
                 break;
             }
-            fprintf(stderr, "tiptap sweep: -j: '%s' is not a number of threads from 1 to 4096\n", optarg);
             cli_args_free(&args);
             free(vary);
             return CLI_USAGE;

@@ -77,7 +77,7 @@ static int plot(const char *path, const tt_decimate *D, const tt_decimate *P, co
     snprintf(title, sizeof title, "Trace%s%s", ramp ? ": ramp of " : "", ramp ? ramp : "");
     tt_figure *f = tt_figure_alloc(3, title);
     if (!f)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the plot %s", path);
     tt_figure_axes(f, 0, "time (us)", "position (nm)");
     tt_figure_line(f, 0, t, tt_decimate_line(D, 1), n, "base", 1);
     tt_figure_line(f, 0, t, tt_decimate_line(D, 2), n, "tip", 2);
@@ -140,8 +140,9 @@ int cmd_trace(int argc, char **argv)
     tt_decimate *S = NULL, *Pk = NULL; /* samples; each cycle's located peak */
     long done_cycles = 0;
     int rc;
+    /* the trace's own checks name the file that set the key, as the scene's do */
     if ((rc = tt_setup_alloc(&st, scene)) || (rc = tt_config_trace(scene, &p)) ||
-        (rc = tt_trace_alloc(&tr, st, &p)))
+        (rc = tt_scene_locate(scene, tt_trace_alloc(&tr, st, &p))))
         goto done;
     {
         tt_estimate e;

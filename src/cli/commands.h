@@ -38,6 +38,22 @@ enum { CLI_OK = 0, CLI_FAIL = 1, CLI_USAGE = 2, CLI_INTERRUPTED = 130 };
  * exit code matching status. */
 int cli_fail(int status, const char *msg);
 
+/* Numbers given to options, parsed strictly in the C locale: the whole text is a
+ * decimal number (no blanks, no trailing text such as "20abc", no hexadecimal, inf or
+ * nan). cli_whole takes a whole number from min to max in any decimal form ("1e3" is
+ * 1000); what names the kind in the message ("a whole number" when NULL). cli_real
+ * takes a finite number from lo to hi (DBL_MIN for "above 0"); expected is the message's phrase
+ * ("a positive number"). Each prints one line naming the command and option and
+ * returns CLI_USAGE, or returns CLI_OK with *out set. */
+int cli_whole(const char *cmd, const char *opt, const char *text, long min, long max,
+              const char *what, long *out);
+int cli_real(const char *cmd, const char *opt, const char *text, double lo, double hi,
+             const char *expected, double *out);
+
+/* A command that takes no operands (or no more) refuses argv[first..argc) with one line
+ * naming them and why: CLI_USAGE, or CLI_OK when there are none. */
+int cli_no_operands(const char *cmd, int argc, char **argv, int first, const char *why);
+
 /* The option skeleton every command shares: the options it picks from the common
  * ones (CLI_OPT_*; --help always), merged with its own into one getopt table, and the
  * --set assignments collected for the scene files that follow the options.

@@ -83,7 +83,7 @@ static int header_line(reader *r, char *p)
         p[--n] = '\0';
     char *copy = malloc(n + 1);
     if (!copy)
-        return tt_error(TT_ENOMEM, "%s: out of memory reading the scene", r->origin);
+        return tt_error_nomem("the section header on line %ld of %s (%zu bytes)", r->line, r->origin, n);
     memcpy(copy, p, n + 1);
     free(r->section);
     r->section = copy;
@@ -155,7 +155,7 @@ int tt_ini_parse(const char *text, size_t len, const char *origin, tt_ini_handle
             size_t ncap = 2 * (end - pos + 1);
             char *nb = realloc(buf, ncap);
             if (!nb) {
-                rc = tt_error(TT_ENOMEM, "%s: out of memory reading the scene", origin);
+                rc = tt_error_nomem("line %ld of %s (%zu bytes)", r.line, origin, end - pos);
                 break;
             }
             buf = nb;

@@ -57,6 +57,47 @@ static int parse_map_value(const char *v, int *rgb, long *grey)
     return -1;
 }
 
+/* A derived lambda out of range is refused on a key the user set, never on a default
+ * (interatomic_distance named in a scene that never set it): of the keys set, the one
+ * that pushes lambda furthest out, judged by its exponent in eq. 3 (K^(-2/3), w^(2/3),
+ * 1/xi0) and its distance from a typical value; the message gives the others and the
+ * values of that key that would do. */
+static int derived_lambda_fail(const tt_scene *s, const char *name, const tt_contact_params *p,
+                               double lambda)
+{
+    const char *modulus = tt_scene_has(s, "material", name, "reduced_modulus") ? "reduced_modulus"
+                                                                              : "youngs_modulus";
+    const struct {
+        const char *key;
+        double value, typical, exponent;
+    } c[] = {{modulus, p->K, 3e9, -2.0 / 3}, {"adhesion_energy", p->w, 0.1, 2.0 / 3},
+             {"interatomic_distance", p->xi0, 0.265e-9, -1}};
+    double side = lambda > 1e4 ? 1 : -1, best = -INFINITY;
+    size_t k = 1; /* adhesion_energy is set whenever lambda is derived (w > 0) */
+    for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+        double push = side * c[i].exponent * log(c[i].value / c[i].typical);
+        if (tt_scene_has(s, "material", name, c[i].key) && push > best) {
+            best = push;
+            k = i;
+        }
+    }
+    /* lambda goes as value^exponent: the range of this key that brings it within 1e-4 to 1e4 */
+    double lo = c[k].value * pow(1e-4 / lambda, 1 / c[k].exponent);
+    double hi = c[k].value * pow(1e4 / lambda, 1 / c[k].exponent);
+    char fix[160];
+    const char *unit[] = {"Pa", "J/m^2", "nm"};
+    double scale = k == 2 ? 1e9 : 1;
+    snprintf(fix, sizeof fix, "%s would have to lie from %.3g to %.3g %s", k == 0 ? "the reduced modulus" : c[k].key,
+             fmin(lo, hi) * scale, fmax(lo, hi) * scale, unit[k]);
+    return tt_scene_fail(s, "material", name, c[k].key,
+                         "%s gives lambda = %.3g (Burnham et al. eq. 3, from the reduced modulus "
+                         "%.3g Pa, adhesion_energy %g J/m^2, interatomic_distance %g nm and [tip] "
+                         "radius %g nm), outside 1e-4 to 1e4: %s; or use model = dmt or jkr for "
+                         "the limits",
+                         tt_scene_get_string(s, "material", name, c[k].key), lambda, p->K, p->w,
+                         p->xi0 * 1e9, p->R * 1e9, fix);
+}
+
 /* The contact law's model and its lambda: given (Maugis needs it within 1e-4 to 1e4)
  * or derived from xi0 by Burnham et al. eq. 3 (the same range). */
 static int read_model(const tt_scene *s, const char *name, tt_contact_params *p)
@@ -79,10 +120,7 @@ static int read_model(const tt_scene *s, const char *name, tt_contact_params *p)
                              p->lambda);
     double derived = tt_material_lambda(p);
     if (!given && !(derived >= 1e-4 && derived <= 1e4))
-        return tt_scene_fail(s, "material", name, "interatomic_distance",
-                             "gives lambda = %.3g (Burnham et al. eq. 3), outside 1e-4 to 1e4; "
-                             "use model = dmt or jkr for the limits",
-                             derived);
+        return derived_lambda_fail(s, name, p, derived);
     return TT_OK;
 }
 
@@ -135,7 +173,7 @@ int tt_config_materials(const tt_scene *s, tt_material **out, size_t *n)
     size_t count = tt_scene_count_named(s, "material");
     tt_material *m = calloc(count ? count : 1, sizeof *m);
     if (!m)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the %zu materials of %s", count ? count : 1, tt_scene_origin(s));
     for (size_t i = 0; i < (count ? count : 1) && rc == TT_OK; i++)
         rc = read_material(s, &tip, count ? tt_scene_named(s, "material", i) : "sample", &m[i]);
     if (rc) {

@@ -26,7 +26,7 @@ int tt_config_approach(const tt_scene *s, tt_approach_params *p)
         return rc;
     if (p->points > 1 && p->from == p->to)
         return tt_scene_fail(s, "approach", NULL, "to", "equals 'from'; an approach needs a range");
-    return TT_OK;
+    return tt_config_check_rk4(s, "approach", fmin(p->from, p->to));
 }
 
 int tt_config_accuracy(const tt_scene *s, tt_accuracy_subject *subject)

@@ -61,8 +61,10 @@ static int read_shape(const tt_scene *s, tt_surface_params *p)
         if (!(rc = get_d(s, "period", &p->period)) && !(rc = get_d(s, "duty", &p->duty)) &&
             !(rc = get_d(s, "height", &p->height)) && !(rc = get_d(s, "edge_width", &p->edge_width)) &&
             2 * p->edge_width > p->period * fmin(p->duty, 1 - p->duty) * 2)
-            rc = tt_scene_fail(s, "surface", NULL, "edge_width",
-                               "%g nm is wider than the line or the gap allows", p->edge_width * 1e9);
+            rc = tt_scene_fail_set(s, (const char *const[]){"surface.edge_width", "surface.period", "surface.duty", NULL},
+                                   "edge_width %g nm is wider than the line or the gap allows "
+                                   "(period %g nm, duty %g %%)",
+                                   p->edge_width * 1e9, p->period * 1e9, p->duty * 100);
         return rc;
     case TT_SURFACE_PARTICLES:
         if ((rc = get_d(s, "particle_radius", &p->particle_radius)) ||
@@ -138,8 +140,9 @@ static int read_two_material_map(const tt_scene *s, const tt_material *m, size_t
         (rc = get_d(s, "map_radius", &p->map_radius)))
         return rc;
     if (p->map == TT_MAP_DISKS && 2 * p->map_radius >= p->map_period)
-        return tt_scene_fail(s, "surface", NULL, "map_radius", "disks of radius %g nm overlap at period %g nm",
-                             p->map_radius * 1e9, p->map_period * 1e9);
+        return tt_scene_fail_set(s, (const char *const[]){"surface.map_radius", "surface.map_period", NULL},
+                                 "disks of radius %g nm overlap at period %g nm",
+                                 p->map_radius * 1e9, p->map_period * 1e9);
     if (p->map == TT_MAP_ISLANDS && p->type != TT_SURFACE_PARTICLES)
         return tt_scene_fail(s, "surface", NULL, "map", "islands need type = particles");
     return TT_OK;
@@ -208,8 +211,9 @@ int tt_config_feedback(const tt_scene *s, double A0, tt_feedback_params *p)
                                  "a percentage must lie between 0 and 100 %% (exclusive)");
         p->setpoint *= A0;
     } else if (!(p->setpoint > 0 && p->setpoint < A0)) {
-        return tt_scene_fail(s, "feedback", NULL, "setpoint",
-                             "must lie between 0 and the free amplitude (%g nm)", A0 * 1e9);
+        return tt_scene_fail_set(s, (const char *const[]){"feedback.setpoint", "cantilever.free_amplitude", NULL},
+                                 "setpoint %g nm must lie between 0 and the free amplitude (%g nm)",
+                                 p->setpoint * 1e9, A0 * 1e9);
     }
     return TT_OK;
 }
@@ -268,6 +272,53 @@ static int check_line_rate(const tt_scene *s, const tt_scan_params *p)
     return TT_OK;
 }
 
+/* The first cycle of this direction's line that falls in pixel px (of the trace), as
+ * the raster assigns them (tt_raster_pixel). */
+static long first_cycle(const tt_raster *r, long nc, long px)
+{
+    if (px >= r->pixels)
+        return nc;
+    long k = (long)ceil((double)px * (double)nc / (double)r->pixels);
+    while (k > 0 && tt_raster_pixel(r, 0, nc, k - 1) >= px)
+        k--;
+    while (k < nc && tt_raster_pixel(r, 0, nc, k) < px)
+        k++;
+    return k;
+}
+
+/* The lock-in's amplitude and phase (and the feedback's update) come once a block of
+ * periods_per_block cycles and go to the pixel of the block's last cycle: a pixel of
+ * fewer cycles may get none, a NaN pixel in a run that ends with exit 0. */
+static int check_block(const tt_scene *s, const tt_scan_params *p)
+{
+    const tt_raster *r = &p->raster;
+    long nc = tt_raster_cycles_per_direction(r, p->cantilever.T), fewest = nc;
+    for (long px = 0; px < r->pixels && fewest >= p->lockin.periods_per_block; px++) {
+        long n = first_cycle(r, nc, px + 1) - first_cycle(r, nc, px);
+        if (n < fewest)
+            fewest = n;
+    }
+    if (fewest >= p->lockin.periods_per_block)
+        return TT_OK;
+    double fd = p->cantilever.fd;
+    /* named on a key the scene set: the line rate, else the pixels, the block, the drive */
+    static const char *const keys[] = {"scan.line_rate", "scan.pixels", "lockin.periods_per_block",
+                                       "cantilever.drive_frequency", NULL};
+    char lead[128];
+    if (tt_scene_has(s, "scan", NULL, "line_rate"))
+        snprintf(lead, sizeof lead, "%g Hz gives", r->line_rate);
+    else
+        snprintf(lead, sizeof lead, "[scan] line_rate = %g Hz gives", r->line_rate);
+    return tt_scene_fail_set(s, keys,
+                         "%s a pixel as few as %ld drive cycle%s (%ld each way along a line of [scan] "
+                         "pixels = %ld at %g kHz), fewer than [lockin] periods_per_block = %d: "
+                         "such a pixel may get no lock-in block, so no amplitude or phase; at "
+                         "most %g Hz, fewer pixels or a smaller periods_per_block",
+                         lead, fewest, fewest == 1 ? "" : "s", nc, r->pixels, fd * 1e-3,
+                         p->lockin.periods_per_block,
+                         fd / (2.0 * (double)r->pixels * p->lockin.periods_per_block));
+}
+
 /* A sphere narrower than a pixel falls between the lines or within one pixel: the
  * image cannot show it (and a radius of picometres sized a grid of gigabytes). */
 static int check_particles(const tt_scene *s, const tt_scan_params *p)
@@ -279,7 +330,8 @@ static int check_particles(const tt_scene *s, const tt_scan_params *p)
     double ln = (r->fast_y ? r->size_x : r->size_y) / (double)r->lines;
     double pitch = fmax(px, ln);
     if (!(2 * p->surface.particle_radius >= pitch))
-        return tt_scene_fail(s, "surface", NULL, "particle_radius",
+        return tt_scene_fail_set(s, (const char *const[]){"surface.particle_radius", "scan.size", "scan.size_y",
+                                                          "scan.pixels", "scan.lines", NULL},
                              "spheres of %g nm across are narrower than a pixel of the image "
                              "(%g nm); it cannot resolve them: the radius must be at least %g nm, "
                              "or scan a smaller [scan] size or more pixels and lines",
@@ -339,7 +391,7 @@ int tt_config_scan(const tt_scene *s, tt_scan_params *p)
     p->materials = m;
     p->nmaterials = n;
     if ((rc = tt_config_raster(s, &p->raster)) || (rc = check_line_rate(s, p)) ||
-        (rc = tt_config_lockin(s, &p->lockin)) || (rc = read_scan_keys(s, p)) || (rc = read_noise(s, p)) ||
+        (rc = tt_config_lockin(s, &p->lockin)) || (rc = check_block(s, p)) || (rc = read_scan_keys(s, p)) || (rc = read_noise(s, p)) ||
         (rc = tt_config_feedback(s, p->cantilever.A0, &p->feedback)) ||
         (rc = tt_config_surface(s, m, n, &p->surface)) || (rc = check_particles(s, p)) ||
         (rc = tt_config_tip_shape(s, &p->tip)) || (rc = tt_config_instrument(s, &p->instrument))) {

@@ -1,9 +1,12 @@
 /* The [trace] section (see include/tiptap/config/read_trace.h). */
 #include "tiptap/config/read_trace.h"
 
+#include <math.h>
+
 #include <stdio.h>
 #include <string.h>
 
+#include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 
 /* Parse text as a value of the ramped key "section.key" or "section.name.key": the
@@ -15,7 +18,23 @@ static int ramp_value(const tt_scene *s, const char *ramp, const char *text, dou
     if (!d1)
         return tt_error(TT_EINVAL, "'%s': expected section.key or material.NAME.key", ramp);
     snprintf(section, sizeof section, "%.*s", (int)(d1 - ramp), ramp);
-    return tt_scene_parse_value(s, section, d2 + 1, text, value);
+    int rc = tt_scene_parse_value(s, section, d2 + 1, text, value);
+    if (rc)
+        return rc;
+    /* what the run can change between cycles (tt_setup_apply), checked before it starts */
+    if (strcmp(section, "cantilever") != 0 && strcmp(section, "tip") != 0 &&
+        strcmp(section, "material") != 0)
+        return tt_error(TT_EINVAL, "%s: only [cantilever], [tip] and [material] keys can be ramped",
+                        ramp);
+    if (strcmp(section, "material") == 0) {
+        char name[256];
+        snprintf(name, sizeof name, "%.*s", d2 > d1 ? (int)(d2 - d1 - 1) : 0, d1 + 1);
+        int have = tt_scene_count_named(s, "material") ? tt_scene_has_section(s, "material", name)
+                                                        : strcmp(name, "sample") == 0;
+        if (!have)
+            return tt_error(TT_EINVAL, "%s: no [material %s] in the scene", ramp, name);
+    }
+    return TT_OK;
 }
 
 int tt_config_trace(const tt_scene *s, tt_trace_params *p)
@@ -32,6 +51,8 @@ int tt_config_trace(const tt_scene *s, tt_trace_params *p)
     p->separation_end = p->separation;
     if (tt_scene_has(s, "trace", NULL, "separation_end") &&
         (rc = tt_scene_get_double(s, "trace", NULL, "separation_end", &p->separation_end)))
+        return rc;
+    if ((rc = tt_config_check_rk4(s, "trace", fmin(p->separation, p->separation_end))))
         return rc;
     if (!p->ramp)
         return TT_OK;

@@ -40,6 +40,36 @@ int tt_scene_fail(const tt_scene *s, const char *section, const char *name, cons
     return tt_error(TT_EINVAL, "%s: [%s]: %s", origin_of(s, section, name, key), label, msg);
 }
 
+/* "section.key" into its parts; 0 when it has no dot. */
+static int split_dotted(const char *dotted, char *section, size_t slen, char *key, size_t klen)
+{
+    const char *dot = strchr(dotted, '.');
+    if (!dot)
+        return 0;
+    snprintf(section, slen, "%.*s", (int)(dot - dotted), dotted);
+    snprintf(key, klen, "%s", dot + 1);
+    return 1;
+}
+
+int tt_scene_fail_set(const tt_scene *s, const char *const *keys, const char *fmt, ...)
+{
+    char msg[700], section[64], key[64];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    size_t pick = 0;
+    for (size_t i = 0; keys[i]; i++)
+        if (s && split_dotted(keys[i], section, sizeof section, key, sizeof key) &&
+            tt_scene_has(s, section, NULL, key)) {
+            pick = i;
+            break;
+        }
+    if (!split_dotted(keys[pick], section, sizeof section, key, sizeof key))
+        return tt_error(TT_EINVAL, "%s", msg);
+    return tt_scene_fail(s, section, NULL, key, "%s", msg);
+}
+
 int tt_scene_locate(const tt_scene *s, int rc)
 {
     const char *m = tt_error_message();

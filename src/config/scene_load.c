@@ -25,7 +25,7 @@ static int split_header(const char *header, char **buf, const char **section, co
     size_t n = strlen(header);
     char *b = malloc(n + 1);
     if (!b)
-        return tt_error(TT_ENOMEM, "out of memory reading the scene");
+        return tt_error_nomem("the section header [%.64s]", header);
     memcpy(b, header, n + 1);
     char *p = b;
     while (*p && !isspace((unsigned char)*p))
@@ -79,7 +79,7 @@ static int load_text(tt_scene *s, const char *text, size_t len, const char *orig
     if (rc)
         return rc;
     if (!s->origin && !(s->origin = tt_strdup(origin)))
-        return tt_error(TT_ENOMEM, "out of memory reading the scene");
+        return tt_error_nomem("the scene read from %s", origin);
     return TT_OK;
 }
 
@@ -95,7 +95,7 @@ int tt_scene_load(tt_scene *s, const char *path)
     char *text = NULL;
     size_t len = 0;
     if (!(text = malloc((size_t)size + 1)))
-        rc = tt_error(TT_ENOMEM, "%s: out of memory reading the scene", path);
+        rc = tt_error_nomem("the text of %s (%lld bytes)", path, (long long)size);
     while (!rc && len <= (size_t)size) {
         ssize_t got = read(fd, text + len, (size_t)size + 1 - len);
         if (got < 0 && errno == EINTR)
@@ -160,7 +160,7 @@ int tt_scene_set(tt_scene *s, const char *assignment)
     size_t n = (size_t)(eq - assignment);
     char *lhs = malloc(n + 1);
     if (!lhs)
-        return tt_error(TT_ENOMEM, "out of memory reading --set");
+        return tt_error_nomem("--set %s", shown);
     memcpy(lhs, assignment, n);
     lhs[n] = '\0';
     while (n > 0 && isspace((unsigned char)lhs[n - 1]))
@@ -175,7 +175,7 @@ int tt_scene_set(tt_scene *s, const char *assignment)
     char *d1 = strchr(lhs, '.');
     int rc = TT_OK;
     if (!val)
-        rc = tt_error(TT_ENOMEM, "out of memory reading --set");
+        rc = tt_error_nomem("--set %s", shown);
     else if (!d1)
         rc = tt_error(TT_EINVAL, "--set %s: expected section.key=value", shown);
     if (!rc) {

@@ -45,7 +45,7 @@ static int index_reserve(hash_index *h, size_t n, const void *items, size_t size
         cap *= 2;
     size_t *slot = calloc(cap, sizeof *slot);
     if (!slot)
-        return tt_error(TT_ENOMEM, "out of memory reading the scene");
+        return tt_error_nomem("the scene's key index (%zu slots)", cap);
     for (size_t i = 0; i < n; i++) {
         size_t j = hash((const char *)items + i * size) & (cap - 1);
         while (slot[j])
@@ -114,14 +114,14 @@ static int names_add(tt_scene *s, const char *section, size_t use)
         tt_scene_schema(&n);
         s->names = calloc(n, sizeof *s->names);
         if (!s->names)
-            return tt_error(TT_ENOMEM, "out of memory reading the scene");
+            return tt_error_nomem("the scene's section names");
     }
     name_list *l = names_of(s, section);
     if (l->n == l->cap) {
         size_t cap = l->cap ? 2 * l->cap : 8;
         size_t *u = realloc(l->use, cap * sizeof *u);
         if (!u)
-            return tt_error(TT_ENOMEM, "out of memory reading the scene");
+            return tt_error_nomem("the names of the scene's [%s] sections", section);
         l->use = u;
         l->cap = cap;
     }
@@ -170,7 +170,7 @@ int scene_note_section(tt_scene *s, const char *section, const char *name, const
         size_t cap = s->capuses ? 2 * s->capuses : 8;
         section_use *u = realloc(s->uses, cap * sizeof *u);
         if (!u)
-            return tt_error(TT_ENOMEM, "out of memory reading the scene");
+            return tt_error_nomem("the sections of the scene (at [%s%s%s] from %s)", section, name ? " " : "", name ? name : "", origin);
         s->uses = u;
         s->capuses = cap;
     }
@@ -185,7 +185,7 @@ int scene_note_section(tt_scene *s, const char *section, const char *name, const
         free(u->section);
         free(u->name);
         free(u->origin);
-        return tt_error(TT_ENOMEM, "out of memory reading the scene");
+        return tt_error_nomem("the sections of the scene (at [%s%s%s] from %s)", section, name ? " " : "", name ? name : "", origin);
     }
     if (name && (rc = names_add(s, section, s->nuses))) {
         free(u->section);
@@ -207,7 +207,8 @@ int scene_store(tt_scene *s, const char *origin, unsigned load, const char *sect
     if (!v || !o) {
         free(v);
         free(o);
-        return tt_error(TT_ENOMEM, "out of memory reading the scene");
+        return tt_error_nomem("[%s%s%s] %s from %s (a value of %zu bytes)", section, name ? " " : "",
+                              name ? name : "", key, origin, strlen(value));
     }
     if (e) {
         free(e->value);
@@ -222,7 +223,7 @@ int scene_store(tt_scene *s, const char *origin, unsigned load, const char *sect
         size_t cap = s->cap ? 2 * s->cap : 32;
         entry *ne = realloc(s->entries, cap * sizeof *ne);
         if (!ne)
-            rc = tt_error(TT_ENOMEM, "out of memory reading the scene");
+            rc = tt_error_nomem("[%s%s%s] %s from %s", section, name ? " " : "", name ? name : "", key, origin);
         else {
             s->entries = ne;
             s->cap = cap;
@@ -237,7 +238,7 @@ int scene_store(tt_scene *s, const char *origin, unsigned load, const char *sect
             free(e->section);
             free(e->name);
             free(e->key);
-            rc = tt_error(TT_ENOMEM, "out of memory reading the scene");
+            rc = tt_error_nomem("[%s%s%s] %s from %s", section, name ? " " : "", name ? name : "", key, origin);
         }
     }
     if (rc) {

@@ -35,7 +35,7 @@ static int build_materials(tt_setup *st, const char *which)
     }
     if (!st->contacts && !(st->contacts = calloc(n, sizeof *st->contacts))) {
         free(m);
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the force laws of %zu materials", n);
     }
     free(st->materials);
     st->materials = m;
@@ -58,7 +58,7 @@ int tt_setup_alloc(tt_setup **out, tt_scene *scene)
     *out = NULL;
     tt_setup *st = calloc(1, sizeof *st);
     if (!st)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the run's setup of %s", tt_scene_origin(scene));
     st->scene = scene;
     st->current = -1;
     int rc;

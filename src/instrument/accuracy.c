@@ -153,7 +153,7 @@ static int add_row(tt_accuracy *A, tt_accuracy_role role, row_kind k, double val
 {
     tt_accuracy_row *r = realloc(A->rows, (A->nrows + 1) * sizeof *r);
     if (!r)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the accuracy study's rows");
     A->rows = r;
     r = &A->rows[A->nrows++];
     memset(r, 0, sizeof *r);
@@ -266,7 +266,7 @@ static int make_segment(tt_accuracy *A, const tt_scan_params *scan)
         return tt_error(TT_EINVAL, "a scan line needs at least 2 pixels (got %ld)", P);
     A->materials = malloc(scan->nmaterials * sizeof *A->materials);
     if (!A->materials)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the accuracy study's %zu materials", scan->nmaterials);
     memcpy(A->materials, scan->materials, scan->nmaterials * sizeof *A->materials);
     A->scan = *scan;
     A->scan.materials = A->materials;
@@ -290,7 +290,7 @@ int tt_accuracy_alloc(tt_accuracy **out, const tt_accuracy_subject *subject,
     *out = NULL;
     tt_accuracy *A = calloc(1, sizeof *A);
     if (!A)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the accuracy study");
     A->p = *p;
     A->cantilever = subject->cantilever;
     A->solver = subject->solver;
@@ -405,7 +405,7 @@ static int run_line(tt_accuracy *A, run_result *res)
         free(res->profile);
         res->profile = malloc(2 * A->nprofile * sizeof *res->profile);
         if (!res->profile)
-            rc = tt_error(TT_ENOMEM, "out of memory");
+            rc = tt_error_nomem("the accuracy study's profile of %zu pixels", 2 * A->nprofile);
     }
     if (!rc) {
         /* height then phase, each trace then retrace (channel indices: the bit's place) */

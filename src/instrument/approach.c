@@ -32,7 +32,7 @@ int tt_approach_alloc(tt_approach **out, tt_sim *sim, const tt_approach_params *
         return tt_error(TT_EINVAL, "[approach] from/to: must be finite");
     tt_approach *a = calloc(1, sizeof *a);
     if (!a)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the approach");
     a->sim = sim;
     a->p = *p;
     a->rows = (size_t)p->points * (p->retract ? 2 : 1);

@@ -58,14 +58,14 @@ int tt_lockin_alloc(tt_lockin **out, const tt_lockin_params *p)
                         p->harmonics, 2 * p->harmonics);
     tt_lockin *l = calloc(1, sizeof *l);
     if (!l)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the lock-in");
     l->p = *p;
     l->n = p->samples_per_period * p->periods_per_block;
     l->in = fftw_alloc_real((size_t)l->n);
     l->out = fftw_alloc_complex((size_t)l->n / 2 + 1);
     if (!l->in || !l->out) {
         tt_lockin_free(l);
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the lock-in's block of %d samples", p->samples_per_period * p->periods_per_block);
     }
     /* FFTW's planner is not thread-safe; execution on separate arrays is. */
 #pragma omp critical(tt_fftw_planner)
@@ -76,7 +76,7 @@ int tt_lockin_alloc(tt_lockin **out, const tt_lockin_params *p)
     }
     if (component_matrix(l)) {
         tt_lockin_free(l);
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the lock-in's block of %d samples", p->samples_per_period * p->periods_per_block);
     }
     double Tb = p->periods_per_block / p->drive_frequency;
     /* exact discretisation of a first-order section for a block-held input */

@@ -84,7 +84,7 @@ static int build_contacts(tt_scan *S, const tt_material *m, size_t n)
     S->names = calloc(n, sizeof *S->names);
     S->indent = calloc(n, sizeof *S->indent);
     if (!S->contacts || !S->Qi || !S->contact_R || !S->names || !S->indent)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the force laws of %zu materials", n);
     for (size_t i = 0; i < n; i++) {
         S->Qi[i] = m[i].Qi;
         S->contact_R[i] = m[i].contact.R;
@@ -164,7 +164,7 @@ int tt_scan_alloc(tt_scan **out, const tt_scan_params *p)
     *out = NULL;
     tt_scan *S = calloc(1, sizeof *S);
     if (!S)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the scan");
     int rc;
     if ((rc = take_params(S, p)) ||
         (rc = tt_surface_alloc(&S->surface, &p->surface, p->materials, p->nmaterials,
@@ -187,7 +187,7 @@ int tt_scan_alloc(tt_scan **out, const tt_scan_params *p)
             S->img[r][c] = malloc(n * sizeof(double));
             if (!S->img[r][c]) {
                 tt_scan_free(S);
-                return tt_error(TT_ENOMEM, "out of memory for the images");
+                return tt_error_nomem("the scan's images of %zu pixels", n);
             }
             for (size_t i = 0; i < n; i++)
                 S->img[r][c][i] = NAN;
@@ -195,7 +195,7 @@ int tt_scan_alloc(tt_scan **out, const tt_scan_params *p)
     S->line_done = calloc((size_t)S->raster.lines, 1);
     if (!S->line_done) {
         tt_scan_free(S);
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the scan's %ld lines", S->raster.lines);
     }
     *out = S;
     return TT_OK;
@@ -273,7 +273,7 @@ static int envelope_alloc(tt_scan *S, worker *W)
     W->y_save = calloc(n, sizeof *W->y_save);
     W->obs = calloc(2 * (size_t)tt_envelope_size(W->env), sizeof *W->obs);
     if (!W->y_save || !W->obs)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("a scan thread's envelope tier");
     return TT_OK;
 }
 
@@ -290,7 +290,7 @@ static int worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)
     W->y = calloc(n, sizeof *W->y);
     W->indent = malloc(S->nmaterials * sizeof *W->indent);
     if (!W->samples || !W->y || !W->indent)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("a scan thread's lock-in samples");
     for (size_t i = 0; i < S->nmaterials; i++)
         W->indent[i] = -INFINITY;
     return envelope_usable(S, solver) ? envelope_alloc(S, W) : TT_OK;
@@ -426,7 +426,7 @@ int tt_scan_line_run(tt_scan *S, worker *W, long line, const line_out *out, scan
     tt_sim_track_peaks(W->sim, (S->channels & (TT_CH_PEAK_FORCE | TT_CH_INDENTATION)) != 0);
     tt_sim_noise_key(W->sim, tt_noise_key(S->noise.seed, TT_NOISE_THERMAL, line));
     L.pix = calloc((size_t)R->pixels * 2, sizeof *L.pix);
-    int rc = L.pix ? TT_OK : tt_error(TT_ENOMEM, "out of memory");
+    int rc = L.pix ? TT_OK : tt_error_nomem("the pixel sums of line %ld", line);
     /* Phase 0 settles at the first pixel; phases 1 and 2 are trace and retrace. */
     long settle_blocks = carry ? 0 : (S->settle_cycles + L.P - 1) / L.P;
     /* continuous lines retrace whether recorded or not: the next line starts there */
@@ -510,7 +510,7 @@ int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done,
         threads = 1; /* continuous lines follow one another */
     worker *W = calloc((size_t)threads, sizeof *W);
     if (!W)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("%d scan threads", threads);
     int rc = TT_OK;
     for (int i = 0; i < threads && rc == TT_OK; i++)
         rc = worker_alloc(S, &W[i], &S->solver);
@@ -604,7 +604,7 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
     const int dirs = S->raster.retrace ? 2 : 1;
     double *buf = calloc((size_t)(12 * px), sizeof *buf);
     if (!buf)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the companion line's profile");
     tt_solver tight = companion_solver(&S->solver);
     int rc[2] = {TT_OK, TT_OK};
     char why[2][512]; /* a worker thread's message is its own: carried back here */

@@ -298,7 +298,7 @@ int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out,
     controller c = {.m = M_MIN, .wait = WAIT_MIN};
     c.sn.pix = calloc((size_t)S->raster.pixels, sizeof *c.sn.pix);
     if (!c.sn.pix)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the envelope tier's pixels of a line ([scan] pixels = %ld)", S->raster.pixels);
     int rc = tt_scan_line_run(S, W, line, out, envelope_phase, &c, cycles, worst, clamped);
     *integrated += c.integrated;
     free(c.sn.pix);

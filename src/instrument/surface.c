@@ -258,7 +258,7 @@ static int build_particles(tt_surface *S, const tt_surface_params *p)
     if (!S->px || !S->py || !head || !next || !S->cell_start || !S->cell_list) {
         free(head);
         free(next);
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the particles' placement grid");
     }
     for (size_t c = 0; c < nc; c++)
         head[c] = -1;
@@ -289,7 +289,7 @@ static int build_particles(tt_surface *S, const tt_surface_params *p)
         S->cell_start[c + 1] += S->cell_start[c];
     int *fill = calloc(nc, sizeof *fill);
     if (!fill)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the particles' placement grid");
     for (long j = 0; j < S->np; j++) {
         size_t c = particle_cell(S, S->px[j], S->py[j]);
         S->cell_list[S->cell_start[c] + fill[c]++] = (int)j;
@@ -338,7 +338,7 @@ static int build_rough(tt_surface *S, const tt_surface_params *sp)
     fftw_complex *F = fftw_alloc_complex((size_t)n * (n / 2 + 1));
     if (!S->grid || !F) {
         fftw_free(F);
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the rough surface's grid of %d x %d points", n, n);
     }
     fftw_plan p;
 #pragma omp critical(tt_fftw_planner)
@@ -382,7 +382,7 @@ static int build_png_height(tt_surface *S, const tt_surface_params *p)
     S->grid = fftw_alloc_real((size_t)S->gw * S->gh);
     if (!S->grid) {
         free(pix);
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the height map's grid");
     }
     for (size_t k = 0; k < (size_t)S->gw * S->gh; k++)
         S->grid[k] = range * ((double)pix[k] / maxv); /* the brightest pixel is range exactly */
@@ -636,11 +636,11 @@ static int build_png_map(tt_surface *S, const tt_surface_params *p, const tt_mat
     if (!S->mgrid) {
         free(key);
         free(pix);
-        return rc ? rc : tt_error(TT_ENOMEM, "out of memory");
+        return rc ? rc : tt_error_nomem("the material map's grid");
     }
     if (!S->mgrid) {
         free(pix);
-        return rc ? rc : tt_error(TT_ENOMEM, "out of memory");
+        return rc ? rc : tt_error_nomem("the material map's grid");
     }
     for (size_t k = 0; k < (size_t)S->mw * S->mh && rc == TT_OK; k++) {
         unsigned long long c = (unsigned long long)pix[3 * k] << 32 |
@@ -672,7 +672,7 @@ int tt_surface_alloc(tt_surface **out, const tt_surface_params *p, const tt_mate
     *out = NULL;
     tt_surface *S = calloc(1, sizeof *S);
     if (!S)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the surface");
     S->sx = size_x;
     S->sy = size_y;
     S->type = (shape)p->type;

@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "tiptap/physics/material.h"
 #include "tiptap/util/error.h"
@@ -18,6 +19,21 @@ struct tt_trace {
     tt_sample *raw;          /* the sim's samples of the current cycle */
     tt_trace_sample *out;    /* the same with force and pressure */
 };
+
+/* Set the ramped key to one end's value; a refusal names that end ("[trace] ramp_to:
+ * ..."). tt_setup_apply sets it as a --set would: that origin is dropped, since the
+ * user wrote the value into [trace]. */
+static int apply_end(tt_setup *st, const tt_trace_params *p, const char *key, double value)
+{
+    if (tt_setup_apply(st, p->ramp, value) == TT_OK)
+        return TT_OK;
+    const char *m = tt_error_message();
+    if (strncmp(m, "--set: ", 7) == 0)
+        m += 7;
+    char why[1024];
+    snprintf(why, sizeof why, "%s", m);
+    return tt_error(TT_EINVAL, "[trace] %s: %s", key, why);
+}
 
 int tt_trace_alloc(tt_trace **out, tt_setup *st, const tt_trace_params *p)
 {
@@ -33,16 +49,16 @@ int tt_trace_alloc(tt_trace **out, tt_setup *st, const tt_trace_params *p)
     if ((rc = tt_setup_find_material(st, p->material, "trace", "material", &mat)) ||
         (rc = tt_setup_use_material(st, mat)))
         return rc;
-    if (p->ramp && tt_setup_apply(st, p->ramp, p->ramp_from)) {
-        char why[1024];
-        snprintf(why, sizeof why, "%s", tt_error_message());
-        return tt_error(TT_EINVAL, "[trace] ramp: %s", why);
-    }
+    /* Both ends before the first cycle, so that a ramp_to the scene cannot take is
+     * refused before anything runs, not at the last cycle; the run starts at ramp_from. */
+    if (p->ramp && ((rc = apply_end(st, p, "ramp_to", p->ramp_to)) ||
+                    (rc = apply_end(st, p, "ramp_from", p->ramp_from))))
+        return rc;
     tt_trace *t = calloc(1, sizeof *t);
     size_t n = (size_t)p->samples_per_cycle;
     if (!t || !(t->raw = calloc(n, sizeof *t->raw)) || !(t->out = calloc(n, sizeof *t->out))) {
         tt_trace_free(t);
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("[trace] samples_per_cycle = %ld samples", p->samples_per_cycle);
     }
     t->st = st;
     t->p = *p;

@@ -21,9 +21,9 @@ int tt_decimate_alloc(tt_decimate **out, size_t lines, double total, size_t budg
     if (!d || lines < 1 || budget < 2 || !(d->v = calloc(lines, sizeof *d->v)) ||
         !(d->lo = calloc(lines, sizeof *d->lo)) || !(d->hi = calloc(lines, sizeof *d->hi))) {
         tt_decimate_free(d);
-        return tt_error(lines < 1 || budget < 2 ? TT_EINVAL : TT_ENOMEM,
-                        lines < 1 || budget < 2 ? "decimate: needs a line and a budget of 2"
-                                                : "out of memory");
+        if (lines < 1 || budget < 2)
+            return tt_error(TT_EINVAL, "decimate: needs a line and a budget of 2");
+        return tt_error_nomem("a plot's %zu lines", lines);
     }
     d->lines = lines;
     d->budget = budget;
@@ -52,7 +52,7 @@ static int append(tt_decimate *d, const double *v)
         for (size_t i = 0; i < d->lines; i++) {
             double *nw = realloc(d->v[i], cap * sizeof *nw);
             if (!nw)
-                return tt_error(TT_ENOMEM, "out of memory");
+                return tt_error_nomem("a plot's points");
             d->v[i] = nw;
         }
         d->cap = cap;

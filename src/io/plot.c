@@ -151,7 +151,7 @@ int tt_figure_line(tt_figure *f, int i, const double *x, const double *y, size_t
         return tt_error(TT_EINVAL, "plot: no panel %d", i);
     series *ns = realloc(p->s, (p->ns + 1) * sizeof *ns);
     if (!ns)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("a plot's lines");
     p->s = ns;
     series *s = &p->s[p->ns];
     memset(s, 0, sizeof *s);
@@ -160,7 +160,7 @@ int tt_figure_line(tt_figure *f, int i, const double *x, const double *y, size_t
     if (!s->x || !s->y) {
         free(s->x);
         free(s->y);
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("a plot line of %zu points", n);
     }
     if (n) {
         memcpy(s->x, x, n * sizeof(double));
@@ -179,7 +179,7 @@ static int add_ref(double **arr, size_t *n, double v)
 {
     double *a = realloc(*arr, (*n + 1) * sizeof *a);
     if (!a)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("a plot's reference lines");
     a[(*n)++] = v;
     *arr = a;
     return TT_OK;
@@ -206,13 +206,13 @@ int tt_figure_text(tt_figure *f, int i, double x, double y, const char *text)
         return tt_error(TT_EINVAL, "plot: no panel %d", i);
     note *n = realloc(p->notes, (p->nnotes + 1) * sizeof *n);
     if (!n)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("a plot's notes");
     p->notes = n;
     n[p->nnotes].x = x;
     n[p->nnotes].y = y;
     n[p->nnotes].text = tt_strdup(text);
     if (!n[p->nnotes].text)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("a plot's notes");
     p->nnotes++;
     return TT_OK;
 }

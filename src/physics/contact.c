@@ -547,7 +547,7 @@ int tt_contact_alloc(tt_contact **out, const tt_contact_params *p)
         return bad("unknown contact model");
     struct tt_contact *c = calloc(1, sizeof *c);
     if (!c)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("a contact force law");
     c->p = *p;
     if (p->w == 0 || p->model == TT_CONTACT_HERTZ) {
         /* No adhesion: Hertz in physical units exactly (docs/physics.md: w = 0 is singular) */
@@ -614,7 +614,7 @@ int tt_contact_alloc_normalised(tt_contact **out, tt_contact_model model, double
         return tt_error(TT_EINVAL, "contact: the normalised xi0 must be positive");
     struct tt_contact *c = calloc(1, sizeof *c);
     if (!c)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("a contact force law");
     /* F* = d* = a* = 1: R = 1, w = 1/pi, K = 1 */
     c->p.model = model;
     c->p.K = 1;
@@ -647,7 +647,7 @@ int tt_contact_alloc_custom(tt_contact **out,
         return tt_error(TT_EINVAL, "contact: a custom law needs load, energy and jumpout <= jumpin");
     struct tt_contact *c = calloc(1, sizeof *c);
     if (!c)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("a contact force law");
     c->custom = 1;
     c->cload = load;
     c->cenergy = energy;

@@ -32,7 +32,7 @@ int tt_envelope_alloc(tt_envelope **out, const tt_cantilever *c, int n)
     *out = NULL;
     tt_envelope *e = calloc(1, sizeof *e);
     if (!e)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the envelope tier's cycle map");
     e->n = n;
     e->no = n + TT_ENV_EXTRA;
     e->T = c->T;
@@ -43,7 +43,7 @@ int tt_envelope_alloc(tt_envelope **out, const tt_cantilever *c, int n)
     e->C = calloc((size_t)e->no * NIN, sizeof *e->C);
     if (!e->oscale || !e->oa || !e->C) {
         tt_envelope_free(e);
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the envelope tier's cycle map");
     }
     for (int i = 0; i < n; i++)
         e->oscale[i] = c->A0;
@@ -83,7 +83,7 @@ int tt_envelope_reduce(tt_envelope *e, int m, const double *R)
     e->ra = calloc(nr, sizeof *e->ra);
     e->Cr = calloc(nr * NIN, sizeof *e->Cr);
     if (!e->R || !e->ra || !e->Cr)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the envelope tier's cycle map");
     memcpy(e->R, R, (size_t)m * (size_t)e->n * sizeof *R);
     return TT_OK;
 }

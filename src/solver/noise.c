@@ -52,7 +52,7 @@ int tt_sim_set_thermal(tt_sim *S, double temperature, int points)
                         S->solver.steps_per_cycle, points);
     S->nz_f = calloc((size_t)points + 1, sizeof *S->nz_f);
     if (!S->nz_f)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the thermal force, [noise] points = %d", points);
     S->nz_n = points;
     S->nz_dt = S->c.T / points;
     /* white noise of two-sided density 2 c kB T drawn every dt: variance 2 c kB T / dt */

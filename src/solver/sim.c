@@ -48,7 +48,7 @@ int tt_sim_alloc(tt_sim **out, const tt_cantilever *c, const tt_solver *solver)
         return tt_error(TT_EINVAL, "solver tolerance must lie between 0 and 1");
     tt_sim *S = calloc(1, sizeof *S);
     if (!S)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return tt_error_nomem("the solver's state");
     S->c = *c;
     S->inv_m = 1.0 / c->m;
     S->solver = *solver;

@@ -33,3 +33,13 @@ int tt_error(int status, const char *fmt, ...)
     va_end(ap);
     return status;
 }
+
+int tt_error_nomem(const char *fmt, ...)
+{
+    char what[768];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    return tt_error(TT_ENOMEM, "out of memory for %s", what);
+}

@@ -89,6 +89,20 @@ int tt_config_surface_alloc(tt_surface **out, const tt_scene *s, double size_x, 
 void tt_config_note_inputs(const tt_scene *s);
 int tt_config_accuracy_alloc(tt_accuracy **out, const tt_scene *s, const tt_accuracy_params *p);
 
+/* rk4 at [solver] steps_per_cycle against the stiffest contact the run can reach: the
+ * contact stiffness at the depth where the contact's potential equals the energy of the
+ * free oscillation (1/2 k A^2, A the free amplitude plus how far s_min, the lowest rest
+ * separation of the run, lies inside the sample), and the interaction damping's rate.
+ * Refused ("[solver] steps_per_cycle: ...") before the run starts, instead of by the
+ * solver at the first step too coarse, after the run's first lines. section: the run's
+ * section whose `material` key picks the material ("trace", "approach": run by
+ * tt_config_trace and tt_config_approach); NULL checks every material (tiptap scan runs
+ * it after tt_config_scan, which the accuracy study also reads, and that study tries
+ * coarse settings on purpose). TT_OK for the other methods. The depth is what the energy
+ * allows, an upper bound in steady tapping; the solver's own check stays, for the
+ * stages of a step that overshoot deeper. */
+int tt_config_check_rk4(const tt_scene *s, const char *section, double s_min);
+
 /* What a run will cost, told before it starts: the drive cycles it simulates, the wall
  * time on one thread (an order of magnitude from the solver and f0 / fd: an adaptive
  * step resolves the resonance, so a drive far below it costs f0 / fd times more a

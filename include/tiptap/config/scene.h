@@ -127,6 +127,16 @@ int tt_scene_fail(const tt_scene *s, const char *section, const char *name, cons
 #endif
     ;
 
+/* tt_scene_fail for a rule between keys of unnamed sections: named on the first of
+ * keys ("section.key", NULL-ended, in order of preference) that the scene set, else on
+ * the first, so that a refusal never names a key the scene left at its default while
+ * it set another that the rule involves. */
+int tt_scene_fail_set(const tt_scene *s, const char *const *keys, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
 /* A module's error "[section] key: what" (or "[section NAME]: what"), the last one
  * reported (error.h), told again with the file that set that key in front, as
  * tt_scene_fail would have written it; rc is returned. Other messages stay as they are. */

@@ -38,6 +38,16 @@ int tt_error(int status, const char *fmt, ...)
 #endif
     ;
 
+/* An allocation failed: TT_ENOMEM with "out of memory for WHAT", WHAT (printf format)
+ * naming what was being allocated and, where one applies, the file, section or key it
+ * was for ("the scan's images, 16384 x 16384 pixels"; "[material glass]'s force law").
+ * Every allocation failure reports through it, so that none says only "out of memory". */
+int tt_error_nomem(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
 /* Clear this thread's message. */
 void tt_error_clear(void);
 
