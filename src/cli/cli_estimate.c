@@ -32,7 +32,7 @@ static void knob(const tt_solver *s, char *buf, size_t len)
 }
 
 int cli_warn_estimate(const char *cmd, const tt_solver *s, double A0, double height_m,
-                      double amplitude_rel, double phase_deg)
+                      const char *what, double amplitude_rel, double phase_deg)
 {
     double h = height_m / A0;
     int bad_h = h > CLI_WARN_AMPLITUDE_REL, bad_a = amplitude_rel > CLI_WARN_AMPLITUDE_REL,
@@ -45,8 +45,8 @@ int cli_warn_estimate(const char *cmd, const tt_solver *s, double A0, double hei
         n += (size_t)snprintf(parts + n, sizeof parts - n, "%.2g nm in height (%.1e of the free "
                               "amplitude)", height_m * 1e9, h);
     if (bad_a && n < sizeof parts)
-        n += (size_t)snprintf(parts + n, sizeof parts - n, "%s%.1e of the free amplitude in "
-                              "amplitude", n ? ", " : "", amplitude_rel);
+        n += (size_t)snprintf(parts + n, sizeof parts - n, "%s%.1e of the free amplitude in %s",
+                              n ? ", " : "", amplitude_rel, what);
     if (bad_p && n < sizeof parts)
         snprintf(parts + n, sizeof parts - n, "%s%.2g deg in phase", n ? " and " : "", phase_deg);
     knob(s, k, sizeof k);

@@ -311,7 +311,7 @@ int cmd_approach(int argc, char **argv)
                         e.amplitude_rel, e.phase_deg, e.used, n,
                         rk4 ? "steps_per_cycle" : "tolerance",
                         rk4 ? (double)e.tight.steps_per_cycle : e.tight.tolerance);
-                cli_warn_estimate("approach", sv, A0, NAN, e.amplitude_rel, e.phase_deg);
+                cli_warn_estimate("approach", sv, A0, NAN, "amplitude", e.amplitude_rel, e.phase_deg);
             }
         }
         if (p.mode == TT_APPROACH_STEADY && p.steady == TT_STEADY_SHOOTING)

@@ -340,7 +340,7 @@ int cmd_scan(int argc, char **argv)
                     rk4 ? (double)tt_companion_solver(&params.solver).steps_per_cycle : est.tolerance);
         if (have_est)
             cli_warn_estimate("scan", &params.solver, params.cantilever.A0, est.height_max,
-                              est.amplitude_max, est.phase_max);
+                              "amplitude", est.amplitude_max, est.phase_max);
         fprintf(stderr, "output = %s: %d files (scan.gwy: every channel, trace and retrace; "
                         "CHANNEL_trace/retrace.gsf and .png; profile.csv; scene.ini)\n",
                 dir, written);

@@ -281,8 +281,9 @@ int cmd_trace(int argc, char **argv)
                         "# from a companion run at %s %.3g beside it; run_time_s excludes it\n",
                 est.deflection_rel, est.amplitude_rel, est.phase_deg, rk4 ? "steps_per_cycle" : "tolerance",
                 rk4 ? (double)est.tight.steps_per_cycle : est.tight.tolerance);
-        cli_warn_estimate("trace", sv, est.A0, NAN, fmax(est.deflection_rel, est.amplitude_rel),
-                          est.phase_deg);
+        int defl = est.deflection_rel >= est.amplitude_rel;
+        cli_warn_estimate("trace", sv, est.A0, NAN, defl ? "deflection" : "amplitude",
+                          defl ? est.deflection_rel : est.amplitude_rel, est.phase_deg);
     }
     if (!quiet && done_cycles > 0)
         fprintf(stderr, "output = %s (%ld cycles x %ld samples)%s%s\n", out, done_cycles,
