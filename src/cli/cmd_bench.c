@@ -200,7 +200,7 @@ static void image_error(const imaging_run *a, const imaging_run *ref, int c, siz
  * error measured against the reference, per setting: [h rms, h max, ph rms, ph max]. */
 static void print_estimates(const setting *set, size_t nset, double (*est)[4], double (*meas)[4])
 {
-    printf("\n# error estimate (a companion run of one line at a 10x tighter setting) against the "
+    printf("\n# error estimate (a companion run of one line at a 100x tighter setting) against the "
            "measured error\n");
     printf("%-28s %11s %11s %11s %11s %11s %11s %11s %11s\n", "setting", "h_rms_est", "h_rms_meas",
            "h_max_est", "h_max_meas", "ph_rms_est", "ph_rms_meas", "ph_max_est", "ph_max_meas");

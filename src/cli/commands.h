@@ -148,6 +148,19 @@ double cli_memory_available(void);
 void cli_report_estimate(const char *cmd, double cycles, double seconds, int upper_bound,
                          int threads, double f0, double fd, int quiet);
 
+/* The run's own error estimate (cli_estimate.c). The scene at the companion setting
+ * (tt_companion_solver, returned in tight); NULL when out of memory. */
+tt_scene *cli_companion_scene(const tt_scene *scene, const tt_solver *s, tt_solver *tight);
+/* One warning line on stderr when the estimate says the run is wrong: height (m, NAN:
+ * none) or what (amplitude, deflection) above CLI_WARN_AMPLITUDE_REL of the free
+ * amplitude A0, or phase
+ * above CLI_WARN_PHASE_DEG, naming the key that tightens the run. Returns whether it
+ * warned. */
+#define CLI_WARN_AMPLITUDE_REL 1e-3
+#define CLI_WARN_PHASE_DEG 0.1
+int cli_warn_estimate(const char *cmd, const tt_solver *s, double A0, double height_m,
+                      const char *what, double amplitude_rel, double phase_deg);
+
 /* Hold DIR/.tiptap.lock (flock) for the rest of the process: a second run into DIR is
  * refused at once, naming the pid of the first. Returns the descriptor, or -1 after
  * printing why. */

@@ -9,6 +9,10 @@
 
 #include "tiptap/util/error.h"
 
+/* The drive frequencies a scene may set, relative to the resonance (see below). */
+#define TT_DRIVE_RATIO_MIN 0.1
+#define TT_DRIVE_RATIO_MAX 10.0
+
 int tt_config_cantilever(const tt_scene *s, tt_cantilever *c)
 {
     double k, f0, Q, A0, fd;
@@ -22,6 +26,22 @@ int tt_config_cantilever(const tt_scene *s, tt_cantilever *c)
     if (tt_scene_has(s, "cantilever", NULL, "drive_frequency") &&
         (rc = tt_scene_get_double(s, "cantilever", NULL, "drive_frequency", &fd)))
         return rc;
+    /* Tapping drives near resonance. Beyond a factor of 10 below it the base must swing
+     * over 100 free amplitudes (a_d = A0 |1 - r^2| / r^2), which crushes the sample as a
+     * force curve would, each drive cycle costs f0 / fd resonance periods, and the
+     * energy balance loses its scale (the drive work falls with fd): at 100 Hz it read
+     * 2.7e11. Beyond 10 above it the tip stands still (it swings A0 / (r^2 - 1), under
+     * 1 % of A0) and does not tap. */
+    if (tt_scene_has(s, "cantilever", NULL, "drive_frequency") && f0 > 0 &&
+        !(fd >= TT_DRIVE_RATIO_MIN * f0 && fd <= TT_DRIVE_RATIO_MAX * f0)) {
+        /* in Hz below 1 kHz: a mHz drive reads as such */
+        double u = fd < 1e3 ? 1 : 1e3;
+        return tt_scene_fail(s, "cantilever", NULL, "drive_frequency",
+                             "%.4g %s is outside %.4g to %.4g kHz (%g to %g times the "
+                             "resonance_frequency: tapping drives near resonance, docs/physics.md)",
+                             fd / u, u > 1 ? "kHz" : "Hz", TT_DRIVE_RATIO_MIN * f0 * 1e-3,
+                             TT_DRIVE_RATIO_MAX * f0 * 1e-3, TT_DRIVE_RATIO_MIN, TT_DRIVE_RATIO_MAX);
+    }
     const char *drive = tt_scene_get_string(s, "cantilever", NULL, "drive");
     tt_drive d = (drive && strcmp(drive, "force") == 0) ? TT_DRIVE_FORCE : TT_DRIVE_BASE;
     if (tt_cantilever_init(c, k, f0, Q, A0, fd, d) != TT_OK)

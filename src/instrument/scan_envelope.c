@@ -112,18 +112,24 @@ typedef struct {
     int prev_touch;
     int rebuild;     /* the Jacobians must be taken anew before the model runs */
     snapshot sn;
-    long integrated; /* cycles integrated, rolled-back ones too */
+    long integrated; /* cycles of the run integrated, each once */
+    char *seen;      /* the phase's cycles integrated so far: a cycle integrated again
+                      * (rolled back, a failed check) or a Jacobian's is not counted */
+    long nseen;
 } controller;
 
 /* Integrate cycle k from the sim's state: its observables and end state (st->x). */
 static int integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_cycle *cy,
-                     double *obs, int *c1, long *integrated)
+                     double *obs, int *c1, controller *c)
 {
     tt_sim *sim = L->W->sim;
     int rc = tt_scan_integrate(L, st, in, cy);
     if (rc)
         return rc;
-    (*integrated)++;
+    if (in->k >= 0 && in->k < c->nseen && !c->seen[in->k]) {
+        c->seen[in->k] = 1;
+        c->integrated++;
+    }
     tt_envelope_observe(L->W->env, tt_sim_samples(sim), cy, obs);
     tt_sim_get_state(sim, &st->x[0], &st->x[1], c1);
     return TT_OK;
@@ -133,7 +139,7 @@ static int integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_c
  * model's own prediction of it. 1: the stretch stands (the model is re-anchored); 0: it
  * does not, or the run was cancelled (*rc = TT_EINTR). */
 static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *obs,
-                 long *integrated, int *rc)
+                 controller *c, int *rc)
 {
     tt_envelope *env = L->W->env;
     const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
@@ -144,7 +150,7 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
     tt_sim_set_state(L->W->sim, x0[0], x0[1], c0);
     tt_cycle cy;
     int c1;
-    int irc = integrate(L, st, in, &cy, obs, &c1, integrated);
+    int irc = integrate(L, st, in, &cy, obs, &c1, c);
     if (irc == TT_EINTR) {
         *rc = irc;
         return 0;
@@ -167,7 +173,7 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
  * edge, a change of contact or a failure on the shortest stretch, once the cycles have
  * been quiet long enough. 1: the model is on. */
 static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in *in, int edge,
-                double *obs, long *integrated, int *rc)
+                double *obs, int *rc)
 {
     tt_sim *sim = L->W->sim;
     tt_envelope *env = L->W->env;
@@ -175,7 +181,7 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
     int c0, c1;
     tt_sim_get_state(sim, &x0[0], &x0[1], &c0);
     tt_cycle cy;
-    if ((*rc = integrate(L, st, in, &cy, obs, &c1, integrated)))
+    if ((*rc = integrate(L, st, in, &cy, obs, &c1, c)))
         return 0;
     int touch = tt_envelope_touched(&cy);
     int quiet = !edge && !in->edge_next && touch == c->prev_touch && c1 == c0;
@@ -194,7 +200,8 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
     }
     if (c->quiet < c->wait)
         return 0;
-    if (tt_envelope_build(env, sim, x0, c0, in->sa, sdot, &cy, obs, integrated)) {
+    long jacobian = 0; /* its cycles are not the run's */
+    if (tt_envelope_build(env, sim, x0, c0, in->sa, sdot, &cy, obs, &jacobian)) {
         c->rebuild = 0;
         return 1;
     }
@@ -241,7 +248,7 @@ static int model_step(const line_ctx *L, line_state *st, const controller *c,
 }
 
 /* The cycles of one phase. */
-static int run_phase(const line_ctx *L, line_state *st, controller *c, long *integrated)
+static int run_phase(const line_ctx *L, line_state *st, controller *c)
 {
     double *obs = L->W->obs;
     int rc = TT_OK;
@@ -259,7 +266,7 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c, long *int
         if (reduced) {
             c->left--;
         } else if (c->model) {
-            if (!check(L, st, &in, obs, integrated, &rc)) {
+            if (!check(L, st, &in, obs, c, &rc)) {
                 if (rc)
                     return rc;
                 fail(L, st, c, in.k);
@@ -271,7 +278,7 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c, long *int
             c->quiet = 0;
             snap = c->model;
         } else {
-            c->model = snap = full(L, st, c, &in, edge, obs, integrated, &rc);
+            c->model = snap = full(L, st, c, &in, edge, obs, &rc);
             if (rc)
                 return rc;
         }
@@ -289,7 +296,12 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c, long *int
 static int envelope_phase(const line_ctx *L, line_state *st, void *tier)
 {
     controller *c = tier;
-    return run_phase(L, st, c, &c->integrated);
+    free(c->seen);
+    c->nseen = L->ncyc;
+    c->seen = calloc((size_t)(L->ncyc > 0 ? L->ncyc : 1), 1);
+    if (!c->seen)
+        return tt_error_nomem("the envelope tier's record of %ld cycles", L->ncyc);
+    return run_phase(L, st, c);
 }
 
 int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
@@ -301,6 +313,7 @@ int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out,
         return tt_error_nomem("the envelope tier's pixels of a line ([scan] pixels = %ld)", S->raster.pixels);
     int rc = tt_scan_line_run(S, W, line, out, envelope_phase, &c, cycles, worst, clamped);
     *integrated += c.integrated;
+    free(c.seen);
     free(c.sn.pix);
     return rc;
 }

@@ -15,6 +15,7 @@ _Static_assert(TT_CH_COUNT <= 8 * sizeof(unsigned), "a channel mask holds every 
 /* One thread's workspace: its own simulation, lock-in and sample buffer. */
 typedef struct {
     tt_sim *sim;
+    double tolerance; /* its solver's: the companion's is tighter than the scan's */
     tt_lockin *lockin;
     tt_sample *samples;
     double *y; /* the lock-in block's periods: samples, or on the envelope tier each
