@@ -89,6 +89,9 @@ static void bad_specifications(void **st)
     assert_int_equal(tt_sweep_vary(g, "cantilever.free_amplitude=log:0nm:20nm:3"), TT_EINVAL);
     assert_int_equal(tt_sweep_vary(g, "approach.material=a:b:3"), TT_EINVAL);
     assert_int_equal(tt_sweep_vary(g, "cantilever.free_amplitude"), TT_EINVAL);
+    /* N is digits only, as the grid's count reads it: a sign would count one value */
+    assert_int_equal(tt_sweep_vary(g, "cantilever.free_amplitude=10nm:20nm:+3"), TT_EINVAL);
+    assert_int_equal(tt_sweep_vary(g, "cantilever.free_amplitude=10nm:20nm:3x"), TT_EINVAL);
     assert_int_equal(tt_sweep_keys(g), 0);
     /* a value the scene refuses names the combination and the key */
     assert_int_equal(tt_sweep_vary(g, "cantilever.quality_factor=400,-1"), TT_OK);
@@ -172,7 +175,7 @@ static void ranges_distinct_with_both_ends(void **st)
     assert_int_equal(tt_sweep_vary(g, "material.hard.youngs_modulus=1GPa:1e308GPa:3"), TT_EINVAL);
     assert_int_equal(tt_sweep_keys(g), 0);
     /* one value is fine when the ends agree; whole numbers exact and descending */
-    assert_int_equal(tt_sweep_vary(g, "cantilever.free_amplitude=10nm:10nm:1"), TT_OK);
+    assert_int_equal(tt_sweep_vary(g, "cantilever.free_amplitude=10nm:10nm: 1 "), TT_OK);
     assert_int_equal(tt_sweep_vary(g, "approach.points=9007199254740992:9007199254740000:3"), TT_OK);
     assert_string_equal(tt_sweep_text(g, 0, 1), "9007199254740992");
     assert_string_equal(tt_sweep_text(g, 1, 1), "9007199254740496");

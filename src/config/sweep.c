@@ -193,13 +193,14 @@ static int add_range(axis *a, const tt_scene_key *k, const char *spec, int logsc
     if (!c2 || strchr(c2 + 1, ':') || (k->kind != TT_KEY_QUANTITY && k->kind != TT_KEY_INT))
         return tt_error(TT_EINVAL, "--vary %s: a range is FROM:TO:N of a number-valued key", a->key);
     char *from = trimmed(spec, (size_t)(c1 - spec)), *to = trimmed(c1 + 1, (size_t)(c2 - c1 - 1));
-    char *end, why[256];
+    char *count = trimmed(c2 + 1, strlen(c2 + 1)), *end = NULL, why[256];
     errno = 0;
-    long n = strtol(c2 + 1, &end, 10);
+    /* digits only, as spec_levels counts them ("+5" would pass it as one value) */
+    long n = count && isdigit((unsigned char)count[0]) ? strtol(count, &end, 10) : 0;
     double lo, hi;
     int whole = k->kind == TT_KEY_INT;
-    int rc = (!from || !to) ? tt_error(TT_ENOMEM, "out of memory") : TT_OK;
-    if (!rc && (*end || end == c2 + 1 || errno == ERANGE || n < 1 || n > TT_SWEEP_MAX_COMBINATIONS))
+    int rc = (!from || !to || !count) ? tt_error(TT_ENOMEM, "out of memory") : TT_OK;
+    if (!rc && (!end || *end || errno == ERANGE || n < 1 || n > TT_SWEEP_MAX_COMBINATIONS))
         rc = tt_error(TT_EINVAL, "--vary %s: N in FROM:TO:N must be a whole number from 1 to %d", a->key,
                       TT_SWEEP_MAX_COMBINATIONS);
     if (!rc && !(rc = parse_one(a, k, from, &lo)))
@@ -235,6 +236,7 @@ static int add_range(axis *a, const tt_scene_key *k, const char *spec, int logsc
     }
     free(from);
     free(to);
+    free(count);
     return rc;
 }
 
