@@ -189,8 +189,23 @@ static offset *offsets(const tt_dilation *D, long m, double range, tile **tiles,
     return o;
 }
 
+/* The highest of TILE values onwards from each (clipped at the end), along one axis:
+ * the rows when step is 1, the columns when it is the row length w. */
+static void run_max(const double *in, double *out, long w, long h, long step)
+{
+    long len = step == 1 ? w : h;
+    for (long j = 0; j < h; j++)
+        for (long i = 0; i < w; i++) {
+            long at = j * w + i, pos = step == 1 ? i : j;
+            double v = in[at];
+            for (long k = 1; k < TILE && pos + k < len; k++)
+                v = fmax(v, in[at + k * step]);
+            out[at] = v;
+        }
+}
+
 /* The highest sample over each node's square of TILE by TILE nodes onwards (clipped at
- * the sample's end), for the squares of offsets. */
+ * the sample's end), for the squares of offsets: the maximum along rows, then columns. */
 static double *tile_max(const double *g, long w, long h)
 {
     double *r = malloc((size_t)w * (size_t)h * sizeof *r), *G = malloc((size_t)w * (size_t)h * sizeof *G);
@@ -199,20 +214,8 @@ static double *tile_max(const double *g, long w, long h)
         free(G);
         return NULL;
     }
-    for (long j = 0; j < h; j++)
-        for (long i = 0; i < w; i++) {
-            double v = g[j * w + i];
-            for (long k = i + 1; k < i + TILE && k < w; k++)
-                v = fmax(v, g[j * w + k]);
-            r[j * w + i] = v;
-        }
-    for (long j = 0; j < h; j++)
-        for (long i = 0; i < w; i++) {
-            double v = r[j * w + i];
-            for (long k = j + 1; k < j + TILE && k < h; k++)
-                v = fmax(v, r[k * w + i]);
-            G[j * w + i] = v;
-        }
+    run_max(g, r, w, h, 1);
+    run_max(r, G, w, h, w);
     free(r);
     return G;
 }
