@@ -61,5 +61,19 @@ grep -q "^jumpout_load = -0.833333333" "$tmp/jkr.txt" && echo "ok   JKR displace
 head -1 "$tmp/c.csv" | grep -qx "A,Delta,P,stable" && echo "ok   CSV header" || { echo "FAIL CSV header"; fail=1; }
 [ -s "$tmp/c.png" ] && echo "ok   plot written" || { echo "FAIL plot"; fail=1; }
 "$tiptap" --version | grep -q "^tiptap " && echo "ok   --version" || { echo "FAIL --version"; fail=1; }
+# a value that overflows once in SI units, and a modulus past any material (1e300 Pa
+# once gave a depth scale of 1e-200 m and a trace cycle that never ended)
+printf '[material hard]\nreduced_modulus = 1e308 GPa\n' >"$tmp/huge.ini"
+printf '[material hard]\nreduced_modulus = 1e300 Pa\n' >"$tmp/stiff.ini"
+for f in huge stiff; do
+  msg=$("$tiptap" trace "$tmp/$f.ini" -o "$tmp/$f.csv" 2>&1 >/dev/null); rc=$?
+  want="tiptap: $tmp/$f.ini: [material hard] reduced_modulus: "
+  [ $rc -eq 1 ] && [ "$(wc -l <<<"$msg")" -eq 1 ] && grep -qF "$want" <<<"$msg" && [ ! -e "$tmp/$f.csv" ] &&
+    echo "ok   $f modulus refused" || { echo "FAIL $f modulus: rc $rc '$msg'"; fail=1; }
+done
+grep -qF "beyond the largest number in SI units" <<<"$("$tiptap" trace "$tmp/huge.ini" 2>&1)" &&
+  echo "ok   overflow in SI named" || { echo "FAIL overflow message"; fail=1; }
+grep -qF "out of range; expected at most 1e+15 Pa" <<<"$("$tiptap" trace "$tmp/stiff.ini" 2>&1)" &&
+  echo "ok   modulus bound named" || { echo "FAIL modulus bound message"; fail=1; }
 "$tiptap" frobnicate 2>/dev/null; [ $? -eq 2 ] && echo "ok   unknown command exit 2" || { echo "FAIL unknown command"; fail=1; }
 exit $fail

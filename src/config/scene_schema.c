@@ -27,9 +27,14 @@ static const tt_scene_key cantilever_keys[] = {
      "base: the base moves, as in Burnham et al. (eq. 2); force: a force on the tip"},
 };
 
+/* Moduli up to a thousand times diamond's (1.2 TPa): far past any material, and short of
+ * where the force law's scales underflow (a reduced modulus of 1e300 Pa gave a depth
+ * scale of 1e-200 m and a cycle that never ended). */
+#define TT_MODULUS_MAX 1e15
+
 static const tt_scene_key tip_keys[] = {
     {"radius", Q(TT_DIM_LENGTH), "10 nm", 0, INF, POS, NULL, "tip radius R_tip"},
-    {"youngs_modulus", Q(TT_DIM_PRESSURE), "169 GPa", 0, INF, POS, NULL,
+    {"youngs_modulus", Q(TT_DIM_PRESSURE), "169 GPa", 0, TT_MODULUS_MAX, POS, NULL,
      "tip Young's modulus (silicon: 169 GPa)"},
     {"poisson_ratio", Q(TT_DIM_NONE), "0.27", -1, 0.5, 0, NULL, "tip Poisson ratio"},
     {"shape", TT_KEY_ENUM, 0, "point", 0, 0, 0, "point|sphere|cone",
@@ -41,10 +46,10 @@ static const tt_scene_key tip_keys[] = {
 };
 
 static const tt_scene_key material_keys[] = {
-    {"youngs_modulus", Q(TT_DIM_PRESSURE), "2 GPa", 0, INF, POS, NULL,
+    {"youngs_modulus", Q(TT_DIM_PRESSURE), "2 GPa", 0, TT_MODULUS_MAX, POS, NULL,
      "sample Young's modulus (ignored when reduced_modulus is given)"},
     {"poisson_ratio", Q(TT_DIM_NONE), "0.35", -1, 0.5, 0, NULL, "sample Poisson ratio"},
-    {"reduced_modulus", Q(TT_DIM_PRESSURE), NULL, 0, INF, POS, NULL,
+    {"reduced_modulus", Q(TT_DIM_PRESSURE), NULL, 0, TT_MODULUS_MAX, POS, NULL,
      "reduced modulus K of the tip-sample pair, given directly"},
     {"adhesion_energy", Q(TT_DIM_SURFACE_ENERGY), "0 J/m^2", 0, INF, 0, NULL,
      "Dupre work of adhesion w; 0 means Hertz contact, no van der Waals, no hysteresis"},

@@ -198,6 +198,11 @@ int tt_units_parse(const char *text, unsigned dims, double *value, tt_dim *found
             snprintf(why, whylen, "unknown unit '%s'; expected %s", unit, tt_units_describe(dims));
         return -1;
     }
+    if (!isfinite(v * factor)) {
+        snprintf(why, whylen, "'%s' is beyond the largest number in SI units; expected %s", text,
+                 tt_units_describe(dims));
+        return -1;
+    }
     *value = v * factor;
     if (found)
         *found = dim;
