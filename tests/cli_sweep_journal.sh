@@ -79,4 +79,15 @@ grep -q "resuming o.csv.partial: $(($(records journal) - 1)) of 12" resume.err &
 )
 [ "$(cat w.rc)" = 1 ] && grep -qx "tiptap: w.csv.partial: cannot write: File too large" w.err &&
   ok "journal write failure: file and errno text" || bad "write failure: rc $(cat w.rc), $(cat w.err)"
+# two sweeps with one -o: the second is refused at once, the first's journal untouched
+"$tiptap" sweep "$blend" --set solver.method=rk4 --vary "solver.steps_per_cycle=512,10000000" -j 1 -q \
+  -o two.csv 2>two-a.err &
+pid=$!
+for _ in $(seq 600); do [ "$(records two.csv.partial)" -ge 1 ] && break; sleep 0.05; done
+cp two.csv.partial two-before
+msg=$("$tiptap" sweep "$blend" --set solver.method=rk4 --vary "solver.steps_per_cycle=512,10000000" -j 1 -q \
+  -o two.csv 2>&1 >/dev/null); rc=$?
+kill -TERM $pid; wait $pid
+[ $rc -eq 1 ] && [ "$msg" = "tiptap: two.csv.partial is in use by another tiptap sweep" ] && cmp -s two-before two.csv.partial &&
+  ok "a second sweep on one journal refused" || bad "second sweep: rc $rc '$msg'"
 exit $fail

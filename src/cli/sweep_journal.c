@@ -4,6 +4,7 @@
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include "commands.h"
@@ -14,6 +15,18 @@
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 
+/* One sweep at a time on a journal: a second one with the same -o would add its records
+ * to the first's, and truncate what it took for a record cut short. The lock ends with
+ * the process, however it ends. */
+static int journal_lock(FILE *f, const char *path)
+{
+    if (flock(fileno(f), LOCK_EX | LOCK_NB) == 0)
+        return TT_OK;
+    if (errno == EWOULDBLOCK)
+        return tt_error(TT_EIO, "%s is in use by another tiptap sweep", path);
+    return tt_error(TT_EIO, "%s: cannot lock: %s", path, strerror(errno));
+}
+
 /* Resume an existing journal of the same sweep; -1 when there was none. */
 static int resume(sweep_results *r, unsigned long long hash)
 {
@@ -21,6 +34,10 @@ static int resume(sweep_results *r, unsigned long long hash)
     int rc = tt_file_update(r->journal_path, "sweep journal", TT_INPUT_MAX_BYTES, &f);
     if (rc || !f)
         return rc ? rc : -1;
+    if ((rc = journal_lock(f, r->journal_path))) {
+        fclose(f);
+        return rc;
+    }
     char *buf = NULL;
     size_t len = 0, cap = 0, got;
     char chunk[65536];
@@ -68,7 +85,8 @@ int sweep_results_open(sweep_results *r, size_t n, const char *out, unsigned lon
     r->resumed = r->done;
     if (rc != -1)
         return rc;
-    if ((rc = tt_file_create(r->journal_path, "sweep journal", &r->journal)))
+    if ((rc = tt_file_create(r->journal_path, "sweep journal", &r->journal)) ||
+        (rc = journal_lock(r->journal, r->journal_path)))
         return rc;
     journal_sweep sw = {TT_VERSION, hash, n};
     if (journal_write_header(r->journal, &sw) != 0 || fflush(r->journal) != 0)
