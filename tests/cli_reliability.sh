@@ -21,7 +21,7 @@ INI
 
 # 3: 1e12 Hz ran at 18.75 kHz without a word; 1e-13 Hz ran for ever
 expect_error "line rate too fast" \
-  "[scan] line_rate: 1e+12 Hz is faster than the raster can run: a line of 16 pixels needs at least one drive cycle a pixel each way, at 300 kHz a line rate of at most 9375 Hz" \
+  "[scan] line_rate: 1e+12 Hz is faster than the raster can run: a line of 16 pixels needs at least one drive cycle a pixel each way, at 300 kHz a line rate of at most 9375 Hz (it would be 9.37e-09 cycles a pixel); for [lockin] periods_per_block = 4 a pixel needs that many: at most 2343.75 Hz" \
   "$tiptap" scan "$tmp/s.ini" -o "$tmp/fast" --set "scan.line_rate=1e12 Hz"
 expect_error "line rate too slow" "[scan] line_rate: 1e-13 Hz is slower than the raster can run" \
   timeout 20 "$tiptap" scan "$tmp/s.ini" -o "$tmp/slow" --set "scan.line_rate=1e-13 Hz"

@@ -261,9 +261,11 @@ static int check_line_rate(const tt_scene *s, const tt_scan_params *p)
         return tt_scene_fail(s, "scan", NULL, "line_rate",
                              "%g Hz is faster than the raster can run: a line of %ld pixels "
                              "needs at least one drive cycle a pixel each way, at %g kHz a line "
-                             "rate of at most %g Hz (it would be %.3g cycles a pixel)",
+                             "rate of at most %g Hz (it would be %.3g cycles a pixel); "
+                             "for [lockin] periods_per_block = %d a pixel needs that many: at most %g Hz",
                              r->line_rate, r->pixels, fd * 1e-3, fastest,
-                             cycles / (double)r->pixels);
+                             cycles / (double)r->pixels, p->lockin.periods_per_block,
+                             fastest / (p->lockin.periods_per_block > 1 ? p->lockin.periods_per_block : 1));
     if (!(cycles <= TT_MAX_CYCLES_PER_DIRECTION))
         return tt_scene_fail(s, "scan", NULL, "line_rate",
                              "%g Hz is slower than the raster can run: %.3g drive cycles each way "
@@ -390,8 +392,10 @@ int tt_config_scan(const tt_scene *s, tt_scan_params *p)
         return rc;
     p->materials = m;
     p->nmaterials = n;
-    if ((rc = tt_config_raster(s, &p->raster)) || (rc = check_line_rate(s, p)) ||
-        (rc = tt_config_lockin(s, &p->lockin)) || (rc = check_block(s, p)) || (rc = read_scan_keys(s, p)) || (rc = read_noise(s, p)) ||
+    /* the lock-in first: the line rate's bound names its block */
+    if ((rc = tt_config_raster(s, &p->raster)) || (rc = tt_config_lockin(s, &p->lockin)) ||
+        (rc = check_line_rate(s, p)) || (rc = check_block(s, p)) || (rc = read_scan_keys(s, p)) ||
+        (rc = read_noise(s, p)) ||
         (rc = tt_config_feedback(s, p->cantilever.A0, &p->feedback)) ||
         (rc = tt_config_surface(s, m, n, &p->surface)) || (rc = check_particles(s, p)) ||
         (rc = tt_config_tip_shape(s, &p->tip)) || (rc = tt_config_instrument(s, &p->instrument))) {
