@@ -62,4 +62,13 @@ cmp -s "$tmp/out/profile.csv" "$tmp/profile.orig" && ok "the profile kept" || ba
 cp "$tmp/s.ini" "$tmp/out/mine.ini"
 "$tiptap" scan "$tmp/out/mine.ini" -o "$tmp/out" -q --set "surface.map_png=$tmp/map.png" 2>/dev/null &&
   cmp -s "$tmp/out/mine.ini" "$tmp/s.ini" && ok "a scene beside the outputs" || bad "a scene beside the outputs refused"
+# -o and --plot naming one file (by another name, or through a link to its folder): a
+# usage error before anything runs, for every command that takes both
+ln -s "$tmp" "$tmp/here"
+for cmd in trace approach contact; do
+  arg=("$tmp/s.ini"); [ $cmd = contact ] && arg=(--lambda 1)
+  out=$("$tiptap" $cmd "${arg[@]}" -o "$tmp/both.png" --plot "$tmp/here/./both.png" 2>&1 >/dev/null); rc=$?
+  [ $rc -eq 2 ] && [ "$out" = "tiptap $cmd: --plot $tmp/here/./both.png: the same file as -o $tmp/both.png; give each its own name" ] &&
+    [ ! -e "$tmp/both.png" ] && ok "$cmd: -o and --plot into one file refused" || bad "$cmd -o = --plot: rc $rc '$out'"
+done
 exit $fail

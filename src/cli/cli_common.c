@@ -1,6 +1,7 @@
 /* Helpers shared by the subcommands: errors, scene loading, progress, interrupts. */
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <math.h>
 #include <signal.h>
 #include <stdatomic.h>
@@ -153,6 +154,23 @@ static void build_table(const cli_spec *spec, cli_args *a)
     memset(&a->table[n], 0, sizeof a->table[n]);
 }
 
+/* Whether two output paths name one file: the same file if both exist, else the same
+ * name in the same folder (the folder resolved, links included). */
+static int same_output(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    if (stat(a, &sa) == 0 && stat(b, &sb) == 0)
+        return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    const char *na = strrchr(a, '/'), *nb = strrchr(b, '/');
+    const char *base_a = na ? na + 1 : a, *base_b = nb ? nb + 1 : b;
+    if (strcmp(base_a, base_b) != 0)
+        return 0;
+    char da[PATH_MAX], db[PATH_MAX], ra[PATH_MAX], rb[PATH_MAX];
+    snprintf(da, sizeof da, "%.*s", na ? (int)(na - a) + 1 : 1, na ? a : ".");
+    snprintf(db, sizeof db, "%.*s", nb ? (int)(nb - b) + 1 : 1, nb ? b : ".");
+    return realpath(da, ra) && realpath(db, rb) && strcmp(ra, rb) == 0;
+}
+
 int cli_getopt(const cli_spec *spec, cli_args *a, int argc, char **argv)
 {
     if (!a->table[0].name)
@@ -160,7 +178,14 @@ int cli_getopt(const cli_spec *spec, cli_args *a, int argc, char **argv)
     for (;;) {
         int c = getopt_long(argc, argv, a->shorts, a->table, NULL);
         switch (c) {
-        case -1: return CLI_END;
+        case -1:
+            if (!(a->output && a->plot && same_output(a->output, a->plot)))
+                return CLI_END;
+            /* -o and --plot into one file: the plot would replace the table */
+            fprintf(stderr, "tiptap %s: --plot %s: the same file as -o %s; give each its own name\n",
+                    spec->cmd, a->plot, a->output);
+            a->exit = CLI_USAGE;
+            break;
         case 'o': a->output = optarg; continue;
         case 'q': a->quiet = 1; continue;
         case CLI_CODE_PLOT: a->plot = optarg; continue;
@@ -195,6 +220,7 @@ void cli_args_free(cli_args *a)
 
 tt_scene *cli_args_scene(const cli_spec *spec, cli_args *a, int argc, char **argv, int *exit_code)
 {
+
     tt_scene *scene = cli_scene_args(spec->cmd, argc, argv, optind, a->sets, a->nsets, exit_code);
     a->sets = NULL;
     a->nsets = 0;
