@@ -71,4 +71,10 @@ for cmd in trace approach contact; do
   [ $rc -eq 2 ] && [ "$out" = "tiptap $cmd: --plot $tmp/here/./both.png: the same file as -o $tmp/both.png; give each its own name" ] &&
     [ ! -e "$tmp/both.png" ] && ok "$cmd: -o and --plot into one file refused" || bad "$cmd -o = --plot: rc $rc '$out'"
 done
+# contact with a scene: refused before its summary is printed
+cp "$tmp/s.ini" "$tmp/c.ini"
+sum=$("$tiptap" contact "$tmp/c.ini" -o "$tmp/c.ini" 2>"$tmp/c.err"); rc=$?
+[ $rc -eq 1 ] && [ -z "$sum" ] && grep -qF "the same file as the scene file $tmp/c.ini" "$tmp/c.err" &&
+  cmp -s "$tmp/c.ini" "$tmp/s.ini" && ok "contact -o its scene: refused before the summary" ||
+  bad "contact -o its scene: rc $rc, stdout '$sum', $(cat "$tmp/c.err")"
 exit $fail

@@ -10,6 +10,7 @@
 #include "tiptap/util/error.h"
 #include "tiptap/config/config.h"
 #include "tiptap/io/outfile.h"
+#include "tiptap/io/files.h"
 #include "tiptap/io/plot.h"
 
 static void help(void)
@@ -226,6 +227,9 @@ int cmd_contact(int argc, char **argv)
         cli_args_free(&args);
         if (!scene)
             return CLI_FAIL;
+        /* an output that is the scene just read is refused before the summary */
+        if ((out && (rc = tt_output_check(out))) || (plotpath && (rc = tt_output_check(plotpath))))
+            goto done;
         tt_material *mats = NULL;
         size_t nmat = 0, pick = 0;
         if ((rc = tt_config_materials(scene, &mats, &nmat)))
