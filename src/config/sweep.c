@@ -133,8 +133,6 @@ static int parse_one(axis *a, const tt_scene_key *k, const char *text, double *s
     tt_dim dim;
     if (tt_units_parse(text, k->dims, si, &dim, why, sizeof why) != 0)
         return tt_error(TT_EINVAL, "--vary %s: '%s': %s", a->key, text, why);
-    if (!isfinite(*si)) /* 1e308 GPa: finite as written, not in SI */
-        return tt_error(TT_EINVAL, "--vary %s: '%s' is not a finite number in SI units", a->key, text);
     const char *u = (dim == TT_DIM_NONE || dim == TT_DIM_FRACTION) ? "1" : tt_units_symbol(dim);
     if (a->n > 0 && strcmp(a->unit, u) != 0)
         return tt_error(TT_EINVAL, "--vary %s: '%s' has another unit than the first value", a->key, text);
