@@ -1,9 +1,8 @@
 /* The envelope tier ([solver] tier = envelope) against the every-cycle tier: on a
  * uniform sample, over height and material edges and on the bistable scene its images
  * agree with the every-cycle tier's within the envelope run's own error estimate (the
- * companion line); at low Q and
- * with noise it falls back to every cycle (identical images); and its images are the
- * same on one thread as on two. */
+ * companion line); at low Q it falls back to every cycle (identical images); and its
+ * images are the same on one thread as on two. Noise: tests/test_envelope_noise.c. */
 #include <stdlib.h>
 
 #include "tt_test.h"
@@ -141,12 +140,6 @@ static void high_q_falls_back(void **st)
                   "[surface]\ntype = steps\nstep_height = 0.5 nm\nstep_width = 300 nm\n");
 }
 
-static void noise_falls_back(void **st)
-{
-    (void)st;
-    same_as_every("[scan]\nline_rate = 40 Hz\n[noise]\ndetector = 100 fm/sqrt(Hz)\n");
-}
-
 /* Two lines on one thread and on two: the same images. */
 static void threads_agree(void **st)
 {
@@ -183,7 +176,6 @@ int main(void)
         cmocka_unit_test(bistable),
         cmocka_unit_test(high_q_falls_back),
         cmocka_unit_test(low_q_falls_back),
-        cmocka_unit_test(noise_falls_back),
         cmocka_unit_test(threads_agree),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -42,6 +42,16 @@ static inline void tt_scan_diff(const tt_scan *a, const tt_scan *b, int c, doubl
     *rms = sqrt(s / (double)(2 * n));
 }
 
+/* Channels 0 .. channels-1 of two scans are the same, bit for bit, trace and retrace. */
+static inline void tt_scan_assert_identical(const tt_scan *a, const tt_scan *b, int channels)
+{
+    long n = tt_scan_xres(a) * tt_scan_yres(a);
+    for (int r = 0; r < 2; r++)
+        for (int c = 0; c < channels; c++)
+            assert_memory_equal(tt_scan_image(a, c, r), tt_scan_image(b, c, r),
+                                (size_t)n * sizeof(double));
+}
+
 /* The scene base plus text must be refused, by the loader or by tt_scan_alloc, with a
  * message containing fragment. */
 static inline void tt_expect_scan_refused(const char *base, const char *text, const char *fragment)

@@ -238,11 +238,12 @@ static void worker_free(worker *W)
  * transient's Q / pi cycles; below Q 30 there are too few to skip), at very high Q
  * (above 3000 the envelope drifts over stretches by more than the check of their last
  * cycle sees: at Q 1e4 the images erred 1.4 times the estimate, tests/test_envelope.c)
- * and with noise on (the cycles are not smooth in the cycle index). */
+ * and with z piezo noise: a draw per cycle moves the sample by 0.1 nm (0.3 pm/sqrt(Hz)),
+ * and the map's response to it is far from linear (docs/dynamics.md, "Noise on the
+ * envelope tier"). Thermal and detector noise run on it to first order. */
 static int envelope_allowed(const tt_cantilever *c, const tt_scan_noise *n)
 {
-    return c->Q >= 30 && c->Q <= 3000 && n->temperature == 0 && n->detector == 0 &&
-           n->z_piezo == 0;
+    return c->Q >= 30 && c->Q <= 3000 && n->z_piezo == 0;
 }
 
 int tt_scan_envelope_tier(const tt_scan_params *p)
@@ -270,6 +271,12 @@ static int envelope_alloc(tt_scan *S, worker *W)
                             tt_lockin_component_matrix(W->lockin));
     if (rc)
         return rc;
+    /* noise to first order in the model's cycles: the thermal force's PSD (2 c kB T) and
+     * the detector's per-sample rms; the sim integrates without the thermal force */
+    const tt_cantilever *c = &S->cantilever;
+    rc = tt_envelope_set_noise(W->env, 2 * c->c * TT_BOLTZMANN * S->noise.temperature, S->sd);
+    if (rc)
+        return rc;
     W->y_save = calloc(n, sizeof *W->y_save);
     W->obs = calloc(2 * (size_t)tt_envelope_size(W->env), sizeof *W->obs);
     if (!W->y_save || !W->obs)
@@ -283,7 +290,8 @@ static int worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)
     W->tolerance = solver->tolerance;
     int rc;
     if ((rc = tt_sim_alloc(&W->sim, &S->cantilever, solver)) ||
-        (rc = tt_sim_set_thermal(W->sim, S->noise.temperature, S->noise.points)) ||
+        (rc = tt_sim_set_thermal(W->sim, envelope_usable(S, solver) ? 0 : S->noise.temperature,
+                                 S->noise.points)) ||
         (rc = tt_lockin_alloc(&W->lockin, &S->lockin)))
         return rc;
     size_t n = (size_t)S->lockin.samples_per_period * (size_t)S->lockin.periods_per_block;
@@ -407,10 +415,18 @@ static line_ctx line_context(tt_scan *S, worker *W, long line)
      * integration, or the model's error (at setpoint-10 100 times the integration's in
      * amplitude) would cancel out of the companion's difference */
     L.tol = 10 * W->tolerance;
+    /* With noise on, the state and the sample wander from the anchor by the noise (the
+     * thermal force alone moves the state by 1.25 pm a cycle, 2000 times the tolerance
+     * at the default), and the model's error grows with the square of that reach: it is
+     * held to 1e-3 of the reach as well at the default tolerance (proportional to it),
+     * so the noise the model carries is right to 0.1 % (docs/dynamics.md, "Noise on the
+     * envelope tier"). Without noise, the tolerance alone. */
+    L.rel = S->noise.temperature > 0 || S->sd > 0 ? 5e5 * W->tolerance : 0;
     L.edge = 1e-3 * S->A0;
     /* the noise of this line: keyed by (seed, line), counted in cycles from its start */
     L.kd = tt_noise_key(S->noise.seed, TT_NOISE_DETECTOR, line);
     L.kz = tt_noise_key(S->noise.seed, TT_NOISE_PIEZO, line);
+    L.ke = tt_noise_key(S->noise.seed, TT_NOISE_ENVELOPE, line);
     return L;
 }
 

@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "scan_private.h"
+#include "tiptap/solver/noise.h"
 #include "tiptap/util/error.h"
 
 enum {
@@ -38,10 +39,34 @@ static int edge_ahead(const line_ctx *L, const cycle_in *in)
     return in->mat_next != in->mat || fabs(in->hb - in->ha) > L->edge;
 }
 
-/* A cycle's observables into the block's and the pixel's sums; the cycle ends
- * (tt_scan_cycle_end). The block keeps each period as the lock-in's components
- * (tt_lockin_transform): obs holds them already after a model cycle (reduced), else
- * the cycle's samples. */
+/* Noise on the envelope tier (docs/dynamics.md, "Noise on the envelope tier"): every
+ * cycle, integrated or the model's, is run without the thermal force, and gets the
+ * thermal force's linear response in its end state and lock-in components and the
+ * detector's noise in its components, from normals that are a pure function of (seed,
+ * line, cycle): a stretch run again after a rollback, and the error estimate's
+ * companion line, draw what the run drew. */
+enum { NOISE_MAX = 2 + 1 + 2 * 16 + 1 };
+
+/* The cycle's noise added to its components and its end state st->x. */
+static void add_noise(const line_ctx *L, line_state *st, double *comp)
+{
+    const tt_envelope *env = L->W->env;
+    const int nn = tt_envelope_noise_size(env);
+    if (!nn)
+        return;
+    double g[NOISE_MAX + 1], dx[2];
+    const uint64_t base = (uint64_t)st->cycles * (uint64_t)((nn + 1) / 2);
+    for (int i = 0; i < nn && i < NOISE_MAX; i += 2)
+        tt_noise_pair(L->ke, base + (uint64_t)(i / 2), g + i);
+    tt_envelope_noise(env, g, dx, comp);
+    st->x[0] += dx[0];
+    st->x[1] += dx[1];
+}
+
+/* A cycle's observables into the block's and the pixel's sums, with its noise; the
+ * cycle ends (tt_scan_cycle_end). The block keeps each period as the lock-in's
+ * components (tt_lockin_transform): obs holds them already after a model cycle
+ * (reduced), else the cycle's samples, whose end state is then where the sim goes on. */
 static int record(const line_ctx *L, line_state *st, const cycle_in *in, const double *obs,
                   int reduced)
 {
@@ -52,6 +77,16 @@ static int record(const line_ctx *L, line_state *st, const cycle_in *in, const d
         memcpy(slot, obs, (size_t)nc * sizeof *obs);
     else
         tt_lockin_transform(li, obs, slot);
+    if (tt_envelope_noise_size(L->W->env)) {
+        add_noise(L, st, slot);
+        if (!reduced) {
+            tt_sim *sim = L->W->sim;
+            int cf;
+            double d, v;
+            tt_sim_get_state(sim, &d, &v, &cf);
+            tt_sim_set_state(sim, st->x[0], st->x[1], cf);
+        }
+    }
     const double *x = obs + (reduced ? nc : L->N);
     return tt_scan_cycle_end(L, st, in, x[TT_ENV_PEAK], x[TT_ENV_INDENT], x[TT_ENV_ETS]);
 }
@@ -111,6 +146,7 @@ typedef struct {
     long redo;       /* integrate every cycle up to this one (a rolled-back stretch) */
     int prev_touch;
     int rebuild;     /* the Jacobians must be taken anew before the model runs */
+    int fails;       /* failed shortest stretches since a check passed (noise on) */
     snapshot sn;
     long integrated; /* cycles of the run integrated, each once */
     char *seen;      /* the phase's cycles integrated so far: a cycle integrated again
@@ -162,7 +198,7 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
         return 0;
     }
     double err = tt_envelope_error(env, xp, pred, st->x, obs);
-    if (!(err <= L->tol) || c1 != c0 || tt_envelope_touched(&cy) != tt_envelope_anchor_touched(env))
+    if (!(err <= L->tol + L->rel * tt_envelope_reach(env, x0, in->sa, sdot)) || c1 != c0 || tt_envelope_touched(&cy) != tt_envelope_anchor_touched(env))
         return 0;
     tt_envelope_anchor(env, x0, in->sa, sdot, st->x, &cy, obs);
     return 1;
@@ -224,6 +260,14 @@ static void fail(const line_ctx *L, line_state *st, controller *c, long k)
     c->model = 0;
     c->quiet = 0;
     c->redo = k + 1;
+    /* With noise on, a short stretch fails where the noise took the state too far for
+     * the model (its error grows with the square of the reach), not where the Jacobians
+     * went stale: the model is anchored again on the next cycle, twice in a row before
+     * they are taken anew after a wait. */
+    if (L->rel > 0 && c->fails < 2) {
+        c->fails++;
+        return;
+    }
     c->rebuild = 1;
     c->wait = c->wait * 2 < WAIT_MAX ? c->wait * 2 : WAIT_MAX;
 }
@@ -274,6 +318,7 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c)
             }
             c->m = 2 * c->m < M_MAX ? 2 * c->m : M_MAX;
             c->wait = WAIT_MIN;
+            c->fails = 0;
             c->model = !edge && !in.edge_next;
             c->quiet = 0;
             snap = c->model;
@@ -308,6 +353,7 @@ int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out,
                           long *integrated, double *worst, int *clamped)
 {
     controller c = {.m = M_MIN, .wait = WAIT_MIN};
+    tt_envelope_noise_reset(W->env);
     c.sn.pix = calloc((size_t)S->raster.pixels, sizeof *c.sn.pix);
     if (!c.sn.pix)
         return tt_error_nomem("the envelope tier's pixels of a line ([scan] pixels = %ld)", S->raster.pixels);

@@ -134,7 +134,9 @@ typedef struct {
     int phase, dir, P, N, piezo;
     double s_ref;
     double tol, edge; /* the envelope tier's error per cycle and edge height */
+    double rel;       /* and with noise on, its error per reach of the inputs from the anchor */
     uint64_t kd, kz;  /* the every-cycle tier's detector and z piezo noise keys */
+    uint64_t ke;      /* the envelope tier's noise key (thermal and detector, per cycle) */
     pixel_acc *pix;   /* [direction][pixel] */
 } line_ctx;
 

@@ -13,6 +13,7 @@ enum { NIN = 3 };
 struct tt_envelope {
     int n, no;            /* samples per cycle; observables (n + TT_ENV_EXTRA) */
     double T, L, V;       /* period; length and velocity scales (A0, w A0) */
+    double mass, w0, sig; /* the cantilever's effective mass, resonance and decay rate */
     double *oscale;       /* per observable: its scale */
     /* the anchor: a cycle integrated from xa with the sample at sa (mid-cycle) */
     double xa[2], sa, x1[2];
@@ -25,6 +26,16 @@ struct tt_envelope {
      * observables ra (m + TT_ENV_EXTRA) and their Jacobian Cr, by columns */
     int m;
     double *R, *ra, *Cr;
+    /* noise (tt_envelope_set_noise): the thermal force's two-sided PSD and the
+     * detector's per-sample rms; the tip's states at the samples of the four cycles
+     * perturbed in d and d' (the flow's Jacobian along the cycle); the lower Cholesky
+     * factors, by rows, of the joint covariance of the end state's and the reduced
+     * samples' noise per cycle (nn = 2 + m; thermal and detector) and of the
+     * detector's alone (m) */
+    double psd, sd;
+    int nn;
+    double *trk, *Lj, *Ld, *phi; /* phi: the flow's Jacobian at the samples and the end */
+    double *Lf;                  /* Lj for the free cantilever, until a model is built */
 };
 
 int tt_envelope_alloc(tt_envelope **out, const tt_cantilever *c, int n)
@@ -38,6 +49,9 @@ int tt_envelope_alloc(tt_envelope **out, const tt_cantilever *c, int n)
     e->T = c->T;
     e->L = c->A0;
     e->V = c->wd * c->A0;
+    e->mass = c->m;
+    e->w0 = c->w0;
+    e->sig = 0.5 * c->c / c->m;
     e->oscale = malloc((size_t)e->no * sizeof *e->oscale);
     e->oa = calloc((size_t)e->no, sizeof *e->oa);
     e->C = calloc((size_t)e->no * NIN, sizeof *e->C);
@@ -67,6 +81,11 @@ void tt_envelope_free(tt_envelope *e)
     free(e->R);
     free(e->ra);
     free(e->Cr);
+    free(e->trk);
+    free(e->Lj);
+    free(e->Ld);
+    free(e->phi);
+    free(e->Lf);
     free(e);
 }
 
@@ -113,6 +132,12 @@ double tt_envelope_sample_offset(const tt_envelope *e, double s, double sdot)
     return s + 0.5 * sdot * e->T - e->sa;
 }
 
+double tt_envelope_reach(const tt_envelope *e, const double x[2], double s, double sdot)
+{
+    double u = fmax(fabs(x[0] - e->xa[0]) / e->L, fabs(x[1] - e->xa[1]) / e->V);
+    return fmax(u, fabs(tt_envelope_sample_offset(e, s, sdot)) / e->L);
+}
+
 void tt_envelope_observe(const tt_envelope *e, const tt_sample *samples, const tt_cycle *cy,
                          double *obs)
 {
@@ -139,7 +164,8 @@ void tt_envelope_anchor(tt_envelope *e, const double x0[2], double s, double sdo
 /* One perturbed cycle from x0 + dx with the sample at s + ds: end state and
  * observables; 0 if it failed or left the anchor's branch (touch, end contact flag). */
 static int perturbed(tt_envelope *e, tt_sim *sim, const double x0[2], int c0, double s,
-                     double sdot, const double dx[NIN], int c1, double x1[2], double *obs)
+                     double sdot, const double dx[NIN], int c1, double x1[2], double *obs,
+                     double *trk)
 {
     tt_cycle cy;
     int c;
@@ -154,7 +180,197 @@ static int perturbed(tt_envelope *e, tt_sim *sim, const double x0[2], int c0, do
         return 0;
     const tt_sample *smp = tt_sim_samples(sim);
     tt_envelope_observe(e, smp, &cy, obs);
+    for (int q = 0; trk && q < e->n; q++) {
+        trk[2 * q] = smp[q].d;
+        trk[2 * q + 1] = smp[q].v;
+    }
     return 1;
+}
+
+/* The lower Cholesky factor L (by rows) of a symmetric positive semidefinite n x n
+ * matrix A: a pivot at rounding's level of its diagonal leaves its column zero, as a
+ * noise fully fixed by the ones before it has no part of its own. */
+static void cholesky(int n, const double *A, double *L)
+{
+    for (int j = 0; j < n; j++) {
+        double d = A[j * n + j];
+        for (int k = 0; k < j; k++)
+            d -= L[j * n + k] * L[j * n + k];
+        const int pos = d > 1e-12 * A[j * n + j] && d > 0;
+        L[j * n + j] = pos ? sqrt(d) : 0;
+        for (int i = j + 1; i < n; i++) {
+            double a = A[i * n + j];
+            for (int k = 0; k < j; k++)
+                a -= L[i * n + k] * L[j * n + k];
+            L[i * n + j] = pos ? a / L[j * n + j] : 0;
+        }
+        for (int k = j + 1; k < n; k++)
+            L[j * n + k] = 0;
+    }
+}
+
+/* The detector's covariance of the reduced samples, sd^2 R R^T, into the lower right
+ * m x m block of the nn x nn matrix A (whose first rows are the end state's). */
+static void detector_block(const tt_envelope *e, double *A)
+{
+    const int n = e->n, m = e->m, nn = e->nn;
+    for (int i = 0; i < m; i++)
+        for (int k = 0; k < m; k++) {
+            double sum = 0;
+            for (int q = 0; q < n; q++)
+                sum += e->R[(size_t)i * (size_t)n + (size_t)q] * e->R[(size_t)k * (size_t)n + (size_t)q];
+            A[(2 + i) * nn + 2 + k] += e->sd * e->sd * sum;
+        }
+}
+
+/* The flow's Jacobian Phi(t_q, 0) (2 x 2 by rows, e->phi + 4 q) at the cycle's samples
+ * (q < n) from the cycles perturbed by h in d and d', and at its end (q = n) the map's. */
+static void flow_measured(tt_envelope *e, const double h[NIN])
+{
+    for (int q = 0; q <= e->n; q++)
+        for (int j = 0; j < 2; j++)
+            for (int i = 0; i < 2; i++) {
+                const double *tp = e->trk + (size_t)(4 * j) * (size_t)e->n, *tm = tp + 2 * e->n;
+                e->phi[4 * q + 2 * i + j] =
+                    q == e->n ? e->J[i][j] : (tp[2 * q + i] - tm[2 * q + i]) / (2 * h[j]);
+            }
+}
+
+/* The same for the free cantilever, exp(A t_q): the covariance until a model is built. */
+static void flow_free(tt_envelope *e)
+{
+    const double wd = sqrt(fmax(e->w0 * e->w0 - e->sig * e->sig, 0.0));
+    for (int q = 0; q <= e->n; q++) {
+        const double t = e->T * q / e->n, E = exp(-e->sig * t), C = cos(wd * t), S = sin(wd * t);
+        double *P = e->phi + 4 * q;
+        P[0] = E * (C + e->sig / wd * S);
+        P[1] = E * S / wd;
+        P[2] = -E * e->w0 * e->w0 / wd * S;
+        P[3] = E * (C - e->sig / wd * S);
+    }
+}
+
+/* The thermal force's linear response over one cycle (the linear-noise approximation):
+ * white force of two-sided PSD psd on the tip, so the end state's and the reduced
+ * samples' noise is psd * integral of w w^T, w(t) = (Phi(T, t) b, sum_q R_q [t < t_q]
+ * e1 Phi(t_q, t) b), b = (0, 1/m) and Phi(t_q, t) = Phi(t_q, 0) Phi(t, 0)^-1: the
+ * trapezoid rule on the samples (the integrand is nearly periodic out of contact, where
+ * it is then exact to rounding). Plus the detector's block; factored into e->Lj. */
+static int thermal_covariance(tt_envelope *e)
+{
+    const int n = e->n, m = e->m, nn = e->nn;
+    double *A = calloc((size_t)nn * (size_t)nn + 2 * (size_t)m + (size_t)nn, sizeof *A);
+    if (!A)
+        return 0;
+    double *S = A + nn * nn, *w = S + 2 * m; /* suffix sums of R_q e1 Phi(t_q, 0) */
+    const double *J = e->phi + 4 * n;
+    for (int p = n; p >= 0; p--) {
+        const double *P = e->phi + 4 * p;
+        const double det = P[0] * P[3] - P[1] * P[2];
+        if (!(fabs(det) > 0)) {
+            free(A);
+            return 0;
+        }
+        /* a = Phi(t_p, 0)^-1 b */
+        const double a0 = -P[1] / (e->mass * det), a1 = P[0] / (e->mass * det);
+        w[0] = J[0] * a0 + J[1] * a1;
+        w[1] = J[2] * a0 + J[3] * a1;
+        for (int i = 0; i < m; i++)
+            w[2 + i] = S[2 * i] * a0 + S[2 * i + 1] * a1;
+        const double wt = (p == 0 || p == n ? 0.5 : 1.0) * e->T / n * e->psd;
+        for (int i = 0; i < nn; i++)
+            for (int k = 0; k <= i; k++)
+                A[i * nn + k] += wt * w[i] * w[k];
+        for (int i = 0; p < n && i < m; i++) {
+            const double r = e->R[(size_t)i * (size_t)n + (size_t)p];
+            S[2 * i] += r * P[0];
+            S[2 * i + 1] += r * P[1];
+        }
+    }
+    for (int i = 0; i < nn; i++)
+        for (int k = i + 1; k < nn; k++)
+            A[i * nn + k] = A[k * nn + i];
+    detector_block(e, A);
+    cholesky(nn, A, e->Lj);
+    free(A);
+    return 1;
+}
+
+int tt_envelope_set_noise(tt_envelope *e, double psd, double sd)
+{
+    free(e->trk);
+    free(e->Lj);
+    free(e->Ld);
+    free(e->phi);
+    free(e->Lf);
+    e->trk = e->Lj = e->Ld = e->phi = e->Lf = NULL;
+    e->psd = psd;
+    e->sd = sd;
+    e->nn = 2 + e->m;
+    if (!(psd > 0) && !(sd > 0))
+        return TT_OK;
+    const int m = e->m, nn = e->nn;
+    e->Lj = calloc((size_t)nn * (size_t)nn, sizeof *e->Lj);
+    e->Ld = calloc((size_t)m * (size_t)m, sizeof *e->Ld);
+    e->Lf = calloc((size_t)nn * (size_t)nn, sizeof *e->Lf);
+    e->trk = psd > 0 ? malloc(8 * (size_t)e->n * sizeof *e->trk) : NULL;
+    e->phi = psd > 0 ? malloc(4 * ((size_t)e->n + 1) * sizeof *e->phi) : NULL;
+    double *A = calloc((size_t)nn * (size_t)nn, sizeof *A);
+    if (!e->Lj || !e->Ld || !e->Lf || (psd > 0 && (!e->trk || !e->phi)) || !A) {
+        free(A);
+        return tt_error_nomem("the envelope tier's noise");
+    }
+    detector_block(e, A);
+    cholesky(nn, A, e->Lj);
+    /* the detector's own factor: the joint one's lower right block while no thermal
+     * force is on (its first two rows and columns are zero) */
+    for (int i = 0; i < m; i++)
+        for (int k = 0; k < m; k++)
+            e->Ld[i * m + k] = e->Lj[(2 + i) * nn + 2 + k];
+    free(A);
+    /* until a model is built, the free cantilever's response */
+    if (psd > 0) {
+        flow_free(e);
+        if (!thermal_covariance(e))
+            return tt_error_nomem("the envelope tier's noise");
+    }
+    memcpy(e->Lf, e->Lj, (size_t)nn * (size_t)nn * sizeof *e->Lf);
+    return TT_OK;
+}
+
+void tt_envelope_noise_reset(tt_envelope *e)
+{
+    if (e->Lf)
+        memcpy(e->Lj, e->Lf, (size_t)e->nn * (size_t)e->nn * sizeof *e->Lj);
+}
+
+int tt_envelope_noise_size(const tt_envelope *e) { return e->Lj ? e->nn : 0; }
+
+void tt_envelope_noise(const tt_envelope *e, const double *g, double dx[2], double *dc)
+{
+    const int nn = e->nn;
+    for (int i = 0; i < nn; i++) {
+        const double *row = e->Lj + (size_t)i * (size_t)nn;
+        double sum = 0;
+        for (int k = 0; k <= i; k++)
+            sum += row[k] * g[k];
+        if (i < 2)
+            dx[i] = sum;
+        else
+            dc[i - 2] += sum;
+    }
+}
+
+void tt_envelope_detector_noise(const tt_envelope *e, const double *g, double *dc)
+{
+    const int m = e->m;
+    for (int i = 0; i < m; i++) {
+        const double *row = e->Ld + (size_t)i * (size_t)m;
+        double sum = 0;
+        for (int k = 0; k <= i; k++)
+            sum += row[k] * g[k];
+        dc[i] += sum;
+    }
 }
 
 int tt_envelope_build(tt_envelope *e, tt_sim *sim, const double x0[2], int c0, double s,
@@ -178,8 +394,11 @@ int tt_envelope_build(tt_envelope *e, tt_sim *sim, const double x0[2], int c0, d
         double dp[NIN] = {0}, dm[NIN] = {0};
         dp[j] = h[j];
         dm[j] = -h[j];
-        ok = perturbed(e, sim, x0, c0, s, sdot, dp, c1, xp, op) &&
-             perturbed(e, sim, x0, c0, s, sdot, dm, c1, xm, om);
+        /* the states along the cycles perturbed in d and d' give the flow's Jacobian for
+         * the thermal noise's covariance */
+        double *tp = e->trk && j < 2 ? e->trk + (size_t)(4 * j) * (size_t)e->n : NULL;
+        ok = perturbed(e, sim, x0, c0, s, sdot, dp, c1, xp, op, tp) &&
+             perturbed(e, sim, x0, c0, s, sdot, dm, c1, xm, om, tp ? tp + 2 * e->n : NULL);
         *cycles += 2;
         for (int i = 0; i < 2 && ok; i++)
             e->J[i][j] = (xp[i] - xm[i]) / (2 * h[j]);
@@ -189,6 +408,10 @@ int tt_envelope_build(tt_envelope *e, tt_sim *sim, const double x0[2], int c0, d
     free(op);
     for (int j = 0; j < NIN && ok; j++)
         reduce(e, e->C + (size_t)j * (size_t)e->no, e->Cr + (size_t)j * (size_t)(e->m + TT_ENV_EXTRA));
+    if (ok && e->trk) {
+        flow_measured(e, h);
+        ok = thermal_covariance(e);
+    }
     tt_sim_set_state(sim, x1[0], x1[1], c1);
     return ok;
 }

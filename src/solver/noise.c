@@ -68,6 +68,14 @@ void tt_sim_noise_key(tt_sim *S, uint64_t key)
     S->nz_cycle = 0;
 }
 
+void tt_noise_pair(uint64_t key, uint64_t index, double g[2])
+{
+    double u1 = uniform(key, 2 * index), u2 = uniform(key, 2 * index + 1);
+    double r = sqrt(-2.0 * log(u1)), a = 2.0 * M_PI * u2;
+    g[0] = r * cos(a);
+    g[1] = r * sin(a);
+}
+
 void tt_noise_cycle(tt_sim *S)
 {
     /* the cycle's points 0..n; point n is the next cycle's point 0, drawn again there */

@@ -80,6 +80,25 @@ int tt_envelope_reduce(tt_envelope *e, int m, const double *R);
 void tt_envelope_predict_reduced(const tt_envelope *e, const double x[2], double s, double sdot,
                                  double x1[2], double *red);
 
+/* Noise of the model's cycles (docs/dynamics.md, "Noise on the envelope tier"): the
+ * thermal force (two-sided PSD psd, N^2/Hz; 0: none) and detector noise of rms sd (m)
+ * on each deflection sample, both to first order, as a draw per cycle of the end
+ * state's noise and the reduced samples' (jointly Gaussian, covariance from the
+ * flow's Jacobian along the anchor's cycle, taken by tt_envelope_build; the free
+ * cantilever's until a model is built). Call it after tt_envelope_reduce; the cycles
+ * tt_envelope_build runs must be noiseless. */
+int tt_envelope_set_noise(tt_envelope *e, double psd, double sd);
+/* Back to the free cantilever's covariance (a line's start, so that a line's noise does
+ * not depend on the lines its thread ran before). */
+void tt_envelope_noise_reset(tt_envelope *e);
+/* Standard normal numbers a cycle's draw takes (2 + m; 0: no noise). */
+int tt_envelope_noise_size(const tt_envelope *e);
+/* A cycle's noise from the normals g: the end state's dx, the reduced samples' added to
+ * dc (m). */
+void tt_envelope_noise(const tt_envelope *e, const double *g, double dx[2], double *dc);
+/* The detector's noise alone added to the reduced samples dc, from the normals g (m). */
+void tt_envelope_detector_noise(const tt_envelope *e, const double *g, double *dc);
+
 /* The largest scaled difference between two versions of one cycle (model and
  * integration): end states and observables, relative to the free amplitude. */
 double tt_envelope_error(const tt_envelope *e, const double xa[2], const double *oa,
@@ -91,6 +110,9 @@ int tt_envelope_anchor_touched(const tt_envelope *e);
 int tt_envelope_anchor_contact(const tt_envelope *e);
 /* How far the sample at s moving at sdot is from the anchor's (mid-cycle), m. */
 double tt_envelope_sample_offset(const tt_envelope *e, double s, double sdot);
+/* How far a cycle's inputs (state x, sample at s moving at sdot) are from the anchor's,
+ * the largest in units of the free amplitude (d, s) and of w A0 (d'). */
+double tt_envelope_reach(const tt_envelope *e, const double x[2], double s, double sdot);
 
 #ifdef __cplusplus
 }

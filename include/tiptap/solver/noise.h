@@ -30,12 +30,16 @@ extern "C" {
 #define TT_BOLTZMANN 1.380649e-23 /* J/K */
 
 /* The streams of a key: each kind of noise draws from its own. */
-enum { TT_NOISE_THERMAL = 1, TT_NOISE_DETECTOR = 2, TT_NOISE_PIEZO = 3 };
+enum { TT_NOISE_THERMAL = 1, TT_NOISE_DETECTOR = 2, TT_NOISE_PIEZO = 3, TT_NOISE_ENVELOPE = 4 };
 
 /* The key of (seed, stream, line). */
 uint64_t tt_noise_key(uint64_t seed, unsigned stream, long line);
 /* A standard normal number, a pure function of (key, index). */
 double tt_noise_gauss(uint64_t key, uint64_t index);
+
+/* Two independent standard normal numbers, a pure function of (key, index): both
+ * outputs of one Box-Muller pair (the envelope tier's draws, where half the cost counts). */
+void tt_noise_pair(uint64_t key, uint64_t index, double g[2]);
 
 /* Thermal force noise at temperature (K) on `points` times per cycle (temperature 0:
  * off, the default). TT_EINVAL when points < 4, or for rk4 when its steps_per_cycle
