@@ -31,7 +31,6 @@ typedef struct {
     tt_scan_params p;
     const tt_material *own; /* what tt_config_scan allocated */
     tt_material mat[2];
-    char tier[16];          /* [solver] tier as the scene gives it */
 } bench_params;
 
 typedef struct bench_sample bench_sample;
@@ -82,6 +81,9 @@ int bench_imaging_figure(const bench_sample *s, const bench_row *rows, size_t n,
  * scene at Q 1e4 (examples/extreme/vacuum-q1e4.ini's quality factor) over 0.5 nm steps. */
 int bench_edge_sample(const tt_scene *s, const bench_lines *l, bench_params *bp);
 int bench_plain_sample(const tt_scene *s, const bench_lines *l, bench_params *bp);
+/* The schema's default of [solver] tier ("envelope"): the tier of the bench's scenes,
+ * which do not set it. */
+const char *bench_default_tier(void);
 /* The README main job's scene: scans/quick.ini followed by surfaces/polymer-blend.ini. */
 const char *bench_blend_scene(void);
 

@@ -21,13 +21,21 @@ int bench_params_make(const bench_sample *s, const char *const *row_set, bench_p
         rc = tt_scene_set(c, s->set[i]);
     for (size_t i = 0; row_set && row_set[i] && !rc; i++)
         rc = tt_scene_set(c, row_set[i]);
-    if (!rc) {
-        const char *t = tt_scene_get_string(c, "solver", NULL, "tier");
-        snprintf(bp->tier, sizeof bp->tier, "%s", t ? t : "?");
+    if (!rc)
         rc = s->make(c, &s->lines, bp);
-    }
     tt_scene_free(c);
     return rc;
+}
+
+const char *bench_default_tier(void)
+{
+    size_t n;
+    const tt_scene_section *sec = tt_scene_schema(&n);
+    for (size_t i = 0; i < n; i++)
+        for (size_t k = 0; strcmp(sec[i].name, "solver") == 0 && k < sec[i].nkeys; k++)
+            if (strcmp(sec[i].keys[k].key, "tier") == 0 && sec[i].keys[k].def)
+                return sec[i].keys[k].def;
+    return "default tier";
 }
 
 void bench_params_free(bench_params *bp)

@@ -20,7 +20,7 @@ typedef struct {
     double *mean[2], *var[2]; /* [height, phase][unit] */
     double wall, cpu, inst;
     long cycles, integrated;
-    char tier[16];
+    int every; /* the every-cycle tier; else the default */
 } tier_stats;
 
 /* The mean of x[0..n) and its standard error (0 for fewer than two). */
@@ -75,10 +75,10 @@ static const char *pm(char *buf, size_t len, double v, double se, double scale)
 static void print_tier(const char *noise, const tier_stats *t, size_t units)
 {
     char label[64], b[4][40];
-    if (strcmp(t->tier, "every") == 0)
+    if (t->every)
         snprintf(label, sizeof label, "%s, every cycle", noise);
     else
-        snprintf(label, sizeof label, "%s, %s (default)", noise, t->tier);
+        snprintf(label, sizeof label, "%s, %s (default)", noise, bench_default_tier());
     double sd[2], sd_se[2], sh[2], sh_se[2];
     for (int c = 0; c < 2; c++) {
         double v, v_se;
@@ -167,7 +167,7 @@ static int noise_set(const bench_sample *s, const bench_run *ref, const char *co
             if (!rc)
                 rc = bench_run_scan(&bp.p, 2, 0, 0, &run[k]);
             if (!rc) {
-                snprintf(t[k].tier, sizeof t[k].tier, "%s", bp.tier);
+                t[k].every = k == 0;
                 t[k].wall += run[k].wall;
                 t[k].cpu += run[k].cpu;
                 t[k].inst += run[k].inst;
@@ -220,7 +220,8 @@ int bench_noise_figure(const bench_sample *s, const bench_run *ref, int seeds)
     }
     if (!rc) {
         printf("# +-: the standard error of the average over the lines (from their spread)\n");
-        printf("\n# the default tier (%s) against every cycle at the same seeds, line by line\n", t[0][1].tier);
+        printf("\n# the default tier (%s) against every cycle at the same seeds, line by line\n",
+               bench_default_tier());
         printf("%-16s %17s %17s %19s %19s %13s %13s\n", "noise", "h_sd_ratio", "ph_sd_ratio",
                "h_shift_diff_pm", "ph_shift_diff_deg", "h_rms_diff_pm", "ph_rms_diff_deg");
         for (size_t i = 0; i < NN; i++)

@@ -153,9 +153,8 @@ static int bench_images(const tt_scene *scene, const bench_lines *lines, int ima
         /* refused by a build without the averaged tier: a row that says so */
         {"averaged dopri5 tol 1e-8", {"solver.tier=averaged", "solver.method=dopri5", "solver.tolerance=1e-8"}, 1},
     };
-    const char *tier = tt_scene_get_string(scene, "solver", NULL, "tier");
     char deflabel[48];
-    snprintf(deflabel, sizeof deflabel, "%s (default) tol 1e-8", tier ? tier : "default tier");
+    snprintf(deflabel, sizeof deflabel, "%s (default) tol 1e-8", bench_default_tier());
     const bench_row scene_rows[] = {
         {"reference dopri5 tol 1e-10", {"solver.tier=every", "solver.tolerance=1e-10"}, 0},
         {"every cycle dopri5 tol 1e-8", {"solver.tier=every"}, 0},
