@@ -1,0 +1,112 @@
+#!/usr/bin/env bash
+# tiptap bench's imaging, noise and scene figures come out whole and sane (nothing is
+# timed here: --quick runs each figure once on lines of 16 pixels at 32 Hz): every row
+# present with finite figures, each error estimate at or above the error measured
+# against the reference, the envelope tier skipping cycles on the edge sample, the full
+# noise set moving the images more than the detector's noise alone, the default tier's
+# noise statistics those of every cycle within their sampling error, the averaged row
+# either measured or 'not available', and the blend figure's scene the README main
+# job's (scans/quick.ini with surfaces/polymer-blend.ini).
+# usage: cli_bench.sh path/to/tiptap source_dir
+set -u
+tiptap=$1
+src=$2
+source "$(dirname "$0")/tt_cli.sh"
+
+if diff <("$tiptap" bench --print-blend-scene) <(cat "$src/scans/quick.ini" "$src/surfaces/polymer-blend.ini") \
+  >"$tmp/diff"; then
+  ok "the blend figure's scene is scans/quick.ini + surfaces/polymer-blend.ini"
+else
+  bad "the blend figure's scene differs from scans/quick.ini + surfaces/polymer-blend.ini: $(head -5 "$tmp/diff")"
+fi
+
+err=$("$tiptap" bench --seeds 0 2>&1 >/dev/null)
+[ "$err" = "tiptap bench: --seeds: '0' is not a whole number from 1 to 100" ] && ok "--seeds 0 refused" ||
+  bad "--seeds 0: '$err'"
+
+out=$tmp/bench.txt
+if ! "$tiptap" bench --quick --no-steady --seeds 2 >"$out" 2>"$tmp/err"; then
+  bad "bench --quick failed: $(tail -1 "$tmp/err")"
+  exit 1
+fi
+
+# The imaging tables: per figure, its rows' labels and figures (wall_j1 to integr_%);
+# '-' where a row has none, 'not available' for a tier the build lacks.
+awk '
+  function num(x) { return x ~ /^-?[0-9.]+(e[-+]?[0-9]+)?$/ }
+  /^setting +wall_j1/ { fig++; inrow = 1; next }
+  /^#/ || /^$/ { inrow = 0; next }
+  inrow && /not available: / { sub(/ +not available: .*/, ""); print fig "|" $0 "|na"; next }
+  inrow {
+    n = NF; bad = ""
+    for (i = n - 10; i <= n; i++) if ($i != "-" && !num($i)) bad = bad " " $i
+    lab = $1; for (i = 2; i < n - 10; i++) lab = lab " " $i
+    print fig "|" lab "|" (bad == "" ? "ok " $n : "bad" bad)
+  }' "$out" >"$tmp/rows"
+want="1|reference dopri5 tol 1e-10
+1|dopri5 tol 1e-6
+1|dopri5 tol 1e-7
+1|dopri5 tol 1e-8
+1|envelope dopri5 tol 1e-8
+1|averaged dopri5 tol 1e-8
+2|reference dopri5 tol 1e-10
+2|every cycle dopri5 tol 1e-8
+2|default tol 1e-8
+3|reference dopri5 tol 1e-10
+3|every cycle dopri5 tol 1e-8
+3|default tol 1e-8"
+got=$(cut -d'|' -f1,2 "$tmp/rows" | sed 's/|[a-z]* (default) /|default /')
+[ "$got" = "$want" ] && ok "imaging, blend and Q 1e4 figures: every row present" ||
+  bad "rows: got
+$got"
+while IFS='|' read -r fig lab res; do
+  case $res in
+    na) grep -q "^$lab *not available: .*tier" "$out" && ok "$lab: not available (a tier this build lacks)" ||
+          bad "$lab: not available for another reason: $(grep "^$lab" "$out")" ;;
+    ok\ *) awk -v x="${res#ok }" 'BEGIN { exit !(x > 0 && x <= 100) }' && ok "figure $fig, $lab: finite, ${res#ok }% integrated" ||
+             bad "figure $fig, $lab: integrated ${res#ok }%" ;;
+    *) bad "figure $fig, $lab: not a number:$res" ;;
+  esac
+done <"$tmp/rows"
+# the envelope tier skips cycles over the edge sample's terraces
+env_int=$(grep -m1 '^1|envelope dopri5' "$tmp/rows" | sed 's/.*|ok //')
+awk -v x="$env_int" 'BEGIN { exit !(x < 100) }' && ok "the envelope tier integrated $env_int % of the edge lines' cycles" ||
+  bad "the envelope tier integrated $env_int % of the edge lines' cycles"
+
+# Each estimate at or above the measured error (the companion line against the reference).
+awk '/^setting +h_rms_est/ { t = 1; next } /^#/ || /^$/ { t = 0; next }
+  t { n = NF; lab = $1; for (i = 2; i <= n - 8; i++) lab = lab " " $i
+      for (i = n - 7; i <= n; i += 2) if (!($i + 0 >= $(i + 1) + 0)) print lab ": estimate " $i " below " $(i + 1)
+      rows++ }
+  END { print rows " rows" }' "$out" >"$tmp/est"
+if [ "$(cat "$tmp/est")" = "$(( $(grep -c '|ok' "$tmp/rows") - 3 )) rows" ]; then
+  ok "every estimate at or above the measured error ($(cat "$tmp/est"))"
+else
+  bad "estimates: $(cat "$tmp/est")"
+fi
+
+# The noise figure: four rows, positive finite sds, the full set above the detector alone.
+awk '/^setting +rtf_j2/ { t = 1; next } /^#/ || /^$/ { t = 0; next }
+  t { lab = $1; for (i = 2; i <= NF - 7; i++) lab = lab " " $i
+      split($(NF - 3), h, /\+-/); split($(NF - 1), p, /\+-/)
+      print lab "|" h[1] "|" p[1] }' "$out" >"$tmp/noise"
+labels=$(cut -d'|' -f1 "$tmp/noise" | sed 's/(default)/D/; s/, [a-z]* D$/, default/')
+[ "$labels" = "full noise, every cycle
+full noise, default
+detector noise, every cycle
+detector noise, default" ] && ok "noise figure: four rows" || bad "noise rows: $labels"
+awk -F'|' '{ if (!($2 > 0 && $2 < 1e6 && $3 > 0 && $3 < 180)) { print "row " NR ": sd " $2 " pm, " $3 " deg"; b = 1 } }
+  NR <= 2 { fh[NR] = $2; fp[NR] = $3 } NR > 2 { if (!(fh[NR - 2] > $2 && fp[NR - 2] > $3)) { print "full set not above the detector: " $0; b = 1 } }
+  END { exit b }' "$tmp/noise" >"$tmp/noise.bad" && ok "noise: sds positive and finite; the full set's above the detector's alone" ||
+  bad "noise: $(cat "$tmp/noise.bad")"
+# the default tier against every cycle at the same seeds: sd ratios within 4 standard
+# errors (and 0.1) of 1
+awk '/^noise +h_sd_ratio/ { t = 1; next } /^#/ || /^$/ { t = 0; next }
+  t { for (i = NF - 5; i <= NF - 4; i++) { split($i, r, /\+-/)
+        d = r[1] - 1; if (d < 0) d = -d
+        if (!(d <= 4 * r[2] + 0.1)) { print $0; b = 1 } }
+      rows++ }
+  END { if (rows != 2) { print rows " rows"; b = 1 } exit b }' "$out" >"$tmp/ratio.bad" &&
+  ok "noise: the default tier's sds those of every cycle within sampling error" || bad "noise ratios: $(cat "$tmp/ratio.bad")"
+
+exit $fail
