@@ -85,7 +85,7 @@ else
   bad "estimates: $(cat "$tmp/est")"
 fi
 
-# The noise figure: four rows, positive finite sds, the full set above the detector alone.
+# The noise figure: six rows, positive finite sds, the full set above the detector alone.
 awk '/^setting +rtf_j2/ { t = 1; next } /^#/ || /^$/ { t = 0; next }
   t { lab = $1; for (i = 2; i <= NF - 7; i++) lab = lab " " $i
       split($(NF - 3), h, /\+-/); split($(NF - 1), p, /\+-/)
@@ -93,10 +93,12 @@ awk '/^setting +rtf_j2/ { t = 1; next } /^#/ || /^$/ { t = 0; next }
 labels=$(cut -d'|' -f1 "$tmp/noise" | sed 's/(default)/D/; s/, [a-z]* D$/, default/')
 [ "$labels" = "full noise, every cycle
 full noise, default
+thermal + detector, every cycle
+thermal + detector, default
 detector noise, every cycle
-detector noise, default" ] && ok "noise figure: four rows" || bad "noise rows: $labels"
+detector noise, default" ] && ok "noise figure: six rows" || bad "noise rows: $labels"
 awk -F'|' '{ if (!($2 > 0 && $2 < 1e6 && $3 > 0 && $3 < 180)) { print "row " NR ": sd " $2 " pm, " $3 " deg"; b = 1 } }
-  NR <= 2 { fh[NR] = $2; fp[NR] = $3 } NR > 2 { if (!(fh[NR - 2] > $2 && fp[NR - 2] > $3)) { print "full set not above the detector: " $0; b = 1 } }
+  NR <= 2 { fh[NR] = $2; fp[NR] = $3 } NR > 4 { if (!(fh[NR - 4] > $2 && fp[NR - 4] > $3)) { print "full set not above the detector: " $0; b = 1 } }
   END { exit b }' "$tmp/noise" >"$tmp/noise.bad" && ok "noise: sds positive and finite; the full set's above the detector's alone" ||
   bad "noise: $(cat "$tmp/noise.bad")"
 # the default tier against every cycle at the same seeds: sd ratios within 4 standard
@@ -106,7 +108,7 @@ awk '/^noise +h_sd_ratio/ { t = 1; next } /^#/ || /^$/ { t = 0; next }
         d = r[1] - 1; if (d < 0) d = -d
         if (!(d <= 4 * r[2] + 0.1)) { print $0; b = 1 } }
       rows++ }
-  END { if (rows != 2) { print rows " rows"; b = 1 } exit b }' "$out" >"$tmp/ratio.bad" &&
+  END { if (rows != 3) { print rows " rows"; b = 1 } exit b }' "$out" >"$tmp/ratio.bad" &&
   ok "noise: the default tier's sds those of every cycle within sampling error" || bad "noise ratios: $(cat "$tmp/ratio.bad")"
 
 exit $fail
