@@ -294,6 +294,25 @@ static void warn_unused(const tt_scan_params *p)
 
 /* A contact the force laws do not describe: once per material, from the greatest
  * indentation of the whole run. */
+/* The averaged tier's pixels where its model is wrong: the oscillation collapsed onto
+ * the sample (the tip stuck, or the amplitude under a quarter of the free amplitude),
+ * or the tip's amplitude or penetration left the table. */
+static void warn_averaged(const tt_scan *scan)
+{
+    long line, px, n = tt_scan_averaged_collapsed(scan, &line, &px), out = tt_scan_averaged_outside(scan);
+    if (n > 0)
+        fprintf(stderr, "tiptap scan: warning: the oscillation collapsed in %ld pixel%s (first: "
+                        "line %ld, pixel %ld): an impact that stops the tapping, which the "
+                        "averaged tier cannot show; its images are wrong there: scan them with "
+                        "[solver] tier = envelope (docs/dynamics.md, Tiers)\n",
+                n, n > 1 ? "s" : "", line, px);
+    if (out > 0)
+        fprintf(stderr, "tiptap scan: warning: in %ld pixel%s the tip's amplitude passed 1.5 "
+                        "free amplitudes or its penetration one, beyond the averaged tier's "
+                        "table (its forces held at the table's edge there)\n",
+                out, out > 1 ? "s" : "");
+}
+
 static void warn_contact(const tt_scan *scan)
 {
     for (size_t i = 0; i < tt_scan_materials(scan); i++) {
@@ -399,6 +418,7 @@ int cmd_scan(int argc, char **argv)
     rc = tt_scan_run(scan, threads, quiet ? NULL : show_progress, &prog);
     cli_progress_end(&prog);
     warn_contact(scan);
+    warn_averaged(scan);
     int written = 1; /* scene.ini */
     if (tt_scan_lines_done(scan) > 0) {
         char saved[1024];
@@ -431,6 +451,12 @@ int cmd_scan(int argc, char **argv)
         fprintf(stderr, "cycles_integrated = %ld (%.1f %%; envelope tier%s)\n", done,
                 all > 0 ? 100.0 * (double)done / (double)all : 0.0, why);
     }
+    if (!quiet && params.solver.tier == TT_TIER_AVERAGED)
+        fprintf(stderr, "averaged_tables_s = %.3f (averaged tier: the force's harmonics of %zu "
+                        "material%s tabulated once, in run_time_s; table error %.2g of k A0; no "
+                        "cycle integrated)\n",
+                tt_scan_averaged_build_seconds(scan), tt_scan_materials(scan),
+                tt_scan_materials(scan) > 1 ? "s" : "", tt_scan_averaged_table_error(scan));
     if (!quiet) {
         fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f\ninstrument_time_s = %.3f\n"
                         "real_time_factor = %.3f\nenergy_balance = %.3g (largest energy-balance "
