@@ -7,6 +7,7 @@
  * or leaves the table, the pixel is marked (tt_scan_averaged_collapsed). */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "scan_private.h"
 #include "tiptap/util/cancel.h"
@@ -15,6 +16,7 @@
 typedef struct {
     tt_averaged_state st;
     char *mark; /* [direction][pixel]: 1 collapsed, 2 outside the table */
+    double *s;  /* the sample's position in each cycle of a block */
 } avg_line;
 
 /* The per-cycle channels of cycles k0 .. k0 + n - 1 into their pixels' sums: za0 and
@@ -47,25 +49,59 @@ static void cycle_sums(const line_ctx *L, long k0, int n, double za0, double dz,
     }
 }
 
-/* The sample's mean position over the block's n cycles (the z piezo's actual height
- * advanced through them), the surface linear from a to b. */
+/* The sample's position (rest separation) over each of the block's n cycles, its
+ * mean returned: the z piezo's actual height advanced through them, the surface linear
+ * from a to b. */
 static double block_sample(const line_ctx *L, line_state *st, const surf_pt *a, const surf_pt *b,
-                           int n)
+                           int n, double *s)
 {
-    const double P = L->P, dz = (st->z_to - st->z_from) / P;
-    double z;
-    if (!L->piezo) {
-        z = st->z_from + dz * 0.5 * n;
-    } else {
-        double sum = 0;
-        for (int j = 0; j < n; j++) {
+    const double P = L->P, dz = (st->z_to - st->z_from) / P, z0 = st->z_from + dz * (double)(st->k % L->P);
+    double mean = 0;
+    for (int j = 0; j < n; j++) {
+        double z = z0 + dz * (j + 0.5);
+        if (L->piezo) {
             double pa = st->z_act;
-            st->z_act = tt_piezo_advance(&st->pz, st->z_from + dz * (j + 1), L->S->cantilever.T);
-            sum += 0.5 * (pa + st->z_act);
+            st->z_act = tt_piezo_advance(&st->pz, z0 + dz * (j + 1), L->S->cantilever.T);
+            z = 0.5 * (pa + st->z_act);
         }
-        z = sum / n;
+        s[j] = L->s_ref - (a->h + (b->h - a->h) * (j + 0.5) / n) + z;
+        mean += s[j];
     }
-    return L->s_ref - 0.5 * (a->h + b->h) + z;
+    return mean / n;
+}
+
+/* The slow flow through the block: one step, or where it changed the state by more
+ * than SUB_TOL of the free amplitude (an edge, a transient), one step a cycle from
+ * the block's start again; each cycle's components into the block's periods. */
+#define SUB_TOL 1e-3
+static void block_flow(const line_ctx *L, avg_line *t, const tt_averaged *tab, long k0, int n,
+                       const double *s, double smean, tt_averaged_out *o)
+{
+    worker *W = L->W;
+    const int nc = tt_lockin_components(W->lockin);
+    const double T = L->S->cantilever.T;
+    tt_averaged_state start = t->st;
+    tt_averaged_step(tab, &t->st, smean, n * T, o);
+    if (o->change > SUB_TOL && n > 1) {
+        t->st = start;
+        tt_averaged_out c, sum;
+        memset(&sum, 0, sizeof sum);
+        for (int j = 0; j < n; j++) {
+            tt_averaged_step(tab, &t->st, s[j], T, &c);
+            for (int q = 0; q < nc; q++)
+                W->y[(size_t)((k0 + j) % L->P) * (size_t)nc + (size_t)q] = c.comp[q];
+            sum.peak += c.peak / n;
+            sum.indent += c.indent / n;
+            sum.ets += c.ets / n;
+            sum.collapsed |= c.collapsed;
+            sum.outside |= c.outside;
+        }
+        *o = sum;
+        return;
+    }
+    for (int j = 0; j < n; j++)
+        for (int q = 0; q < nc; q++)
+            W->y[(size_t)((k0 + j) % L->P) * (size_t)nc + (size_t)q] = o->comp[q];
 }
 
 /* One block of n cycles from cycle k0, the surface at its start a and end b. */
@@ -76,13 +112,9 @@ static int block(const line_ctx *L, line_state *st, avg_line *t, const surf_pt *
     worker *W = L->W;
     const long k0 = st->k;
     const double za0 = st->z_from + (st->z_to - st->z_from) * (double)(k0 % L->P) / L->P;
-    const double s = block_sample(L, st, a, b, n);
+    const double smean = block_sample(L, st, a, b, n, t->s);
     tt_averaged_out o;
-    tt_averaged_step(S->avg[a->mat], &t->st, s, n * S->cantilever.T, &o);
-    const int nc = tt_lockin_components(W->lockin);
-    for (int j = 0; j < n; j++)
-        for (int q = 0; q < nc; q++)
-            W->y[(size_t)((k0 + j) % L->P) * (size_t)nc + (size_t)q] = o.comp[q];
+    block_flow(L, t, S->avg[a->mat], k0, n, t->s, smean, &o);
     if (L->phase > 0) {
         if (!(S->channels & (TT_CH_PEAK_FORCE | TT_CH_INDENTATION))) /* as untracked cycles */
             o.peak = o.indent = NAN;
@@ -125,8 +157,12 @@ int tt_scan_line_averaged(tt_scan *S, worker *W, long line, const line_out *out,
     avg_line t;
     const long px = S->raster.pixels;
     t.mark = calloc((size_t)(2 * px), 1);
-    if (!t.mark)
+    t.s = malloc((size_t)S->lockin.periods_per_block * sizeof *t.s);
+    if (!t.mark || !t.s) {
+        free(t.mark);
+        free(t.s);
         return tt_error_nomem("the averaged tier's marks of a line ([scan] pixels = %ld)", px);
+    }
     if (S->continuous && W->engaged)
         t.st = W->avg;
     else
@@ -143,6 +179,7 @@ int tt_scan_line_averaged(tt_scan *S, worker *W, long line, const line_out *out,
         outside += (t.mark[i] & 2) != 0;
     }
     free(t.mark);
+    free(t.s);
     if (rc == TT_OK && (col || outside)) {
 #pragma omp critical(tt_scan_averaged)
         {

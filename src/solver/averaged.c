@@ -445,4 +445,5 @@ void tt_averaged_step(const tt_averaged *a, tt_averaged_state *st, double s, dou
     o->ets = M_PI * e.B * e.F.gs[0];
     o->outside = e.F.outside;
     o->collapsed = st->stuck || e.B < 0.25 * a->c.A0;
+    o->change = fmax(fabs(dX), fabs(dY)) / a->c.A0;
 }

@@ -77,10 +77,11 @@ void tt_averaged_state_free(const tt_cantilever *c, tt_averaged_state *st);
  * 1 + 2 harmonics values), the peak force (N), the greatest penetration (m), the
  * tip-sample loss per cycle (J), and collapsed: the tip stuck (no tapping branch) or
  * the amplitude below a quarter of the free amplitude, where the averaged model is
- * wrong. */
+ * wrong; change: the step's largest change of X or Y over the free amplitude (the
+ * caller's measure of whether h was short enough). */
 typedef struct {
     double comp[1 + 2 * TT_AVG_HMAX];
-    double peak, indent, ets;
+    double peak, indent, ets, change;
     int collapsed, outside;
 } tt_averaged_out;
 
