@@ -451,6 +451,10 @@ int cmd_scan(int argc, char **argv)
         fprintf(stderr, "cycles_integrated = %ld (%.1f %%; envelope tier%s)\n", done,
                 all > 0 ? 100.0 * (double)done / (double)all : 0.0, why);
     }
+    const tt_scan_noise *nz = &params.noise;
+    if (params.solver.tier == TT_TIER_AVERAGED && (nz->temperature > 0 || nz->detector > 0 || nz->z_piezo > 0))
+        fprintf(stderr, "tiptap scan: warning: [noise] is not modelled on the averaged tier: its "
+                        "images are noiseless\n");
     if (!quiet && params.solver.tier == TT_TIER_AVERAGED)
         fprintf(stderr, "averaged_tables_s = %.3f (averaged tier: the force's harmonics of %zu "
                         "material%s tabulated once, in run_time_s; table error %.2g of k A0; no "
@@ -466,18 +470,20 @@ int cmd_scan(int argc, char **argv)
                 tt_scan_instrument_time(scan) * (double)tt_scan_lines_done(scan) /
                     (double)tt_scan_lines(scan) / wall,
                 tt_scan_error_estimate(scan));
-        int rk4 = params.solver.method == TT_METHOD_RK4;
+        int rk4 = params.solver.method == TT_METHOD_RK4, avg = params.solver.tier == TT_TIER_AVERAGED;
         if (have_est)
             fprintf(stderr, "error_estimate_height_m = %.2g (rms; max %.2g)\n"
                             "error_estimate_phase_deg = %.2g (rms; max %.2g)\n"
                             "error_estimate_amplitude_rel = %.2g (rms; max %.2g)\n"
-                            "# from a companion run of line %ld at %s %.3g; run_time_s "
+                            "# from a companion run of line %ld %s %s %.3g; run_time_s "
                             "excludes it\n",
                     est.height_rms, est.height_max, est.phase_rms, est.phase_max, est.amplitude_rms,
                     est.amplitude_max, est.line,
+                    avg ? "on the envelope tier (the averaged model's error) at" : "at",
                     rk4 ? "steps_per_cycle" : "tolerance",
                     rk4 ? (double)tt_companion_solver(&params.solver).steps_per_cycle : est.tolerance);
-        if (have_est)
+        /* no tolerance moves the averaged tier's error: its model's */
+        if (have_est && !avg)
             cli_warn_estimate("scan", &params.solver, params.cantilever.A0, est.height_max,
                               "amplitude", est.amplitude_max, est.phase_max);
         fprintf(stderr, "output = %s: %d files (scan.gwy: every channel, trace and retrace; "
