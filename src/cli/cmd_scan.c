@@ -307,9 +307,9 @@ static void warn_averaged(const tt_scan *scan)
                         "[solver] tier = envelope (docs/dynamics.md, Tiers)\n",
                 n, n > 1 ? "s" : "", line, px);
     if (out > 0)
-        fprintf(stderr, "tiptap scan: warning: in %ld pixel%s the tip's amplitude passed 1.5 "
-                        "free amplitudes or its penetration one, beyond the averaged tier's "
-                        "table (its forces held at the table's edge there)\n",
+        fprintf(stderr, "tiptap scan: note: in %ld pixel%s the tip's amplitude passed 1.5 "
+                        "free amplitudes or its penetration one free amplitude, beyond the "
+                        "averaged tier's table: its forces there came from quadrature (slower)\n",
                 out, out > 1 ? "s" : "");
 }
 

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <stdio.h>
 
 #include "tiptap/util/error.h"
 
@@ -320,6 +321,10 @@ void tt_averaged_force_at(const tt_averaged *a, double B, double x, int stuck, i
         return;
     }
     lookup(a, B, x, f);
+    if (f->outside) { /* past the table (a tip pressed into a wall): its forces still */
+        direct_force(a, B, x, 0, f);
+        f->outside = 1;
+    }
 }
 
 double tt_averaged_table_error(const tt_averaged *a)
@@ -422,8 +427,10 @@ static void harmonic(const tt_averaged *a, const slow *o, int h, double *X, doub
     *Y = -yi;
 }
 
-void tt_averaged_step(const tt_averaged *a, tt_averaged_state *st, double s, double h,
-                      tt_averaged_out *o)
+/* One linearly implicit step: (I - gamma h J) dx = h f; gamma 1/2 (second order, A-
+ * stable) or 1 (first order, L-stable: the halved steps of an impact). */
+static void one_step(const tt_averaged *a, tt_averaged_state *st, double s, double h, double gamma,
+                     tt_averaged_out *o)
 {
     slow e;
     /* the branch: a touching tip whose far point stays past pull-off cannot leave */
@@ -434,8 +441,7 @@ void tt_averaged_step(const tt_averaged *a, tt_averaged_state *st, double s, dou
     else if (st->stuck && x - 2 * B <= a->jout)
         st->stuck = 0;
     slow_eval(a, st, s, &e);
-    /* (I - h/2 J) dx = h f */
-    double g = 0.5 * h;
+    double g = gamma * h;
     double m00 = 1 - g * e.J[0][0], m01 = -g * e.J[0][1], m10 = -g * e.J[1][0], m11 = 1 - g * e.J[1][1];
     double det = m00 * m11 - m01 * m10;
     double r0 = h * e.f[0], r1 = h * e.f[1];
@@ -454,4 +460,39 @@ void tt_averaged_step(const tt_averaged *a, tt_averaged_state *st, double s, dou
     o->outside = e.F.outside;
     o->collapsed = st->stuck || e.B < 0.25 * a->c.A0;
     o->change = fmax(fabs(dX), fabs(dY)) / a->c.A0;
+    if (!(o->change < INFINITY))
+        o->change = INFINITY;
+}
+
+/* A step whose linearisation moved the state by more than BIG of the free amplitude
+ * (an impact: the sample rose by more than the oscillation can take in a cycle) is
+ * taken again as two halves, L-stable, down to DEPTH halvings: the model is wrong
+ * there (collapse), but its state stays bounded for the feedback to recover. */
+#define BIG 0.02
+#define DEPTH 8
+static void advance(const tt_averaged *a, tt_averaged_state *st, double s, double h, int depth,
+                    tt_averaged_out *o)
+{
+    tt_averaged_state start = *st;
+    one_step(a, st, s, h, depth ? 1 : 0.5, o);
+    if (o->change <= BIG || depth >= DEPTH)
+        return;
+    *st = start;
+    tt_averaged_out p, q;
+    advance(a, st, s, 0.5 * h, depth + 1, &p);
+    advance(a, st, s, 0.5 * h, depth + 1, &q);
+    for (int i = 0; i < 1 + 2 * a->H; i++)
+        o->comp[i] = 0.5 * (p.comp[i] + q.comp[i]);
+    o->peak = fmax(p.peak, q.peak);
+    o->indent = fmax(p.indent, q.indent);
+    o->ets = 0.5 * (p.ets + q.ets);
+    o->collapsed = 1; /* an impact the averaged model cannot follow */
+    o->outside = p.outside | q.outside;
+    o->change = BIG; /* the caller's measure: the step was resolved */
+}
+
+void tt_averaged_step(const tt_averaged *a, tt_averaged_state *st, double s, double h,
+                      tt_averaged_out *o)
+{
+    advance(a, st, s, h, 0, o);
 }

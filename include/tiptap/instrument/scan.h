@@ -162,7 +162,8 @@ long tt_scan_cycles_integrated(const tt_scan *s);
  * direct quadrature (relative to k A0); the pixels (trace and retrace) where the
  * oscillation collapsed onto the sample (the tip stuck, or the amplitude below a
  * quarter of the free amplitude), where the averaged model is wrong, with the first
- * line and pixel of them (-1: none), and those whose tip left the table. */
+ * line and pixel of them (-1: none), and those whose tip left the table (its forces
+ * then from quadrature). */
 double tt_scan_averaged_build_seconds(const tt_scan *s);
 double tt_scan_averaged_table_error(const tt_scan *s);
 long tt_scan_averaged_collapsed(const tt_scan *s, long *line, long *pixel);

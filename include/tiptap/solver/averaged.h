@@ -43,7 +43,9 @@ void tt_averaged_free(tt_averaged *a);
  * phase; F the force on the cantilever, - load - interaction damping), the mean, the
  * peak of load + damping (N), the shift of the closest approach by the higher
  * harmonics of the motion they drive (m), and the partial derivatives of the first three in B and
- * x. direct: by quadrature, not from the table. outside: (B, x) beyond the table. */
+ * x. direct: by quadrature, not from the table. outside: (B, x) beyond the table
+ * (amplitude above 1.5 A0, or penetration more than A0 past jump-in), where the
+ * values come from quadrature as well, at about 100 times the cost. */
 typedef struct {
     double gc[TT_AVG_HMAX], gs[TT_AVG_HMAX];
     double mean, peak;
