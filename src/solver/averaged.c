@@ -464,11 +464,11 @@ static void one_step(const tt_averaged *a, tt_averaged_state *st, double s, doub
         o->change = INFINITY;
 }
 
-/* A step whose linearisation moved the state by more than BIG of the free amplitude
+/* A step whose linearisation moved the state by more than a tenth of the free amplitude
  * (an impact: the sample rose by more than the oscillation can take in a cycle) is
  * taken again as two halves, L-stable, down to DEPTH halvings: the model is wrong
  * there (collapse), but its state stays bounded for the feedback to recover. */
-#define BIG 0.02
+#define BIG 0.1
 #define DEPTH 8
 static void advance(const tt_averaged *a, tt_averaged_state *st, double s, double h, int depth,
                     tt_averaged_out *o)
