@@ -50,7 +50,12 @@ static void help(void)
            "free oscillation's drive work per cycle: a check) and the error estimate of height,\n"
            "phase and amplitude: twice their difference from a companion run of the profile\n"
            "line at a 100 times tighter tolerance (rk4: 4 times the steps); a warning when it\n"
-           "exceeds 1e-3 of the free amplitude or 0.1 deg.\n");
+           "exceeds 1e-3 of the free amplitude or 0.1 deg.\n"
+           "[solver] tier: envelope (default; most cycles from the cycle map's model under\n"
+           "error control), every (every cycle integrated) or averaged (a preview: the\n"
+           "averaged slow flow of amplitude and phase, no cycle integrated, about 50 times\n"
+           "real time on one core; its error estimate's companion runs on the envelope tier,\n"
+           "and pixels where an impact collapsed the oscillation are named; docs/dynamics.md).\n");
 }
 
 static void show_progress(void *user, long done, long total)
