@@ -444,7 +444,8 @@ int cmd_scan(int argc, char **argv)
                       tt_scan_lines(scan));
     else if (rc == TT_OK && !quiet && !have_est)
         fprintf(stderr, "tiptap: no error estimate: %s\n", tt_error_message());
-    if (!quiet && params.solver.tier == TT_TIER_ENVELOPE) {
+    if (!quiet && (params.solver.tier == TT_TIER_ENVELOPE ||
+                   (params.solver.tier == TT_TIER_AVERAGED && !tt_scan_averaged_tier(&params)))) {
         long all = tt_scan_cycles(scan), done = tt_scan_cycles_integrated(scan);
         /* the reason from the scan's own test: a tier that ran yet integrated every
          * cycle (a grazing tip) is not a fallback */
@@ -457,10 +458,16 @@ int cmd_scan(int argc, char **argv)
                 all > 0 ? 100.0 * (double)done / (double)all : 0.0, why);
     }
     const tt_scan_noise *nz = &params.noise;
-    if (params.solver.tier == TT_TIER_AVERAGED && (nz->temperature > 0 || nz->detector > 0 || nz->z_piezo > 0))
+    if (tt_scan_averaged_tier(&params) && (nz->temperature > 0 || nz->detector > 0 || nz->z_piezo > 0))
         fprintf(stderr, "tiptap scan: warning: [noise] is not modelled on the averaged tier: its "
                         "images are noiseless\n");
-    if (!quiet && params.solver.tier == TT_TIER_AVERAGED)
+    if (params.solver.tier == TT_TIER_AVERAGED && !tt_scan_averaged_tier(&params))
+        fprintf(stderr, "tiptap scan: note: the averaged tier needs a quality factor of 30 or "
+                        "more and the drive within 5 %% of resonance (here Q %g, drive at %g of "
+                        "resonance): the scan ran on the envelope tier's terms "
+                        "(docs/dynamics.md, Averaged)\n",
+                params.cantilever.Q, params.cantilever.fd / params.cantilever.f0);
+    if (!quiet && tt_scan_averaged_tier(&params))
         fprintf(stderr, "averaged_tables_s = %.3f (averaged tier: the force's harmonics of %zu "
                         "material%s tabulated once, in run_time_s; table error %.2g of k A0; no "
                         "cycle integrated)\n",
@@ -475,7 +482,7 @@ int cmd_scan(int argc, char **argv)
                 tt_scan_instrument_time(scan) * (double)tt_scan_lines_done(scan) /
                     (double)tt_scan_lines(scan) / wall,
                 tt_scan_error_estimate(scan));
-        int rk4 = params.solver.method == TT_METHOD_RK4, avg = params.solver.tier == TT_TIER_AVERAGED;
+        int rk4 = params.solver.method == TT_METHOD_RK4, avg = tt_scan_averaged_tier(&params);
         if (have_est)
             fprintf(stderr, "error_estimate_height_m = %.2g (rms; max %.2g)\n"
                             "error_estimate_phase_deg = %.2g (rms; max %.2g)\n"

@@ -57,7 +57,7 @@ void tt_config_scan_estimate(const tt_scan_params *p, tt_estimate *e)
     double dirs = r->retrace ? 2 : 1;
     e->cycles = (double)r->lines * (settle + dirs * ceil(nc / P) * P);
     finish(e, &p->cantilever, &p->solver);
-    if (p->solver.tier == TT_TIER_AVERAGED) {
+    if (tt_scan_averaged_tier(p)) {
         e->cycle_seconds = AVERAGED_CYCLE_SECONDS;
         e->seconds = e->seconds_low =
             e->cycles * AVERAGED_CYCLE_SECONDS + AVERAGED_TABLE_SECONDS * (double)p->nmaterials;

@@ -250,15 +250,43 @@ static int envelope_allowed(const tt_cantilever *c, const tt_scan_noise *n)
            n->z_piezo == 0;
 }
 
-int tt_scan_envelope_tier(const tt_scan_params *p)
+/* The averaged tier takes the drive, the damping and the tip-sample force for small
+ * against the cantilever's own forces at the drive frequency (Krylov-Bogoliubov): below
+ * Q 30 (a liquid's Q 1 gave NaN before this bound) or with the drive more than 5 % from
+ * resonance (the detuning k - m w^2 over a tenth of k; at twice and half the resonance
+ * its images were wrong by 100 nm) the scan runs on the envelope tier instead. */
+static int averaged_allowed(const tt_cantilever *c)
 {
-    return p->solver.tier == TT_TIER_ENVELOPE && envelope_allowed(&p->cantilever, &p->noise);
+    double detune = 1 - (c->fd / c->f0) * (c->fd / c->f0);
+    return c->Q >= 30 && fabs(detune) <= 0.1;
 }
 
-/* Whether a solver setting runs on the envelope tier here. */
+int tt_scan_averaged_tier(const tt_scan_params *p)
+{
+    return p->solver.tier == TT_TIER_AVERAGED && averaged_allowed(&p->cantilever);
+}
+
+int tt_scan_envelope_tier(const tt_scan_params *p)
+{
+    int tier = p->solver.tier == TT_TIER_AVERAGED && !averaged_allowed(&p->cantilever)
+                   ? TT_TIER_ENVELOPE
+                   : p->solver.tier;
+    return tier == TT_TIER_ENVELOPE && envelope_allowed(&p->cantilever, &p->noise);
+}
+
+/* Whether a solver setting runs on the averaged tier here. */
+static int averaged_usable(const tt_scan *S, const tt_solver *solver)
+{
+    return solver->tier == TT_TIER_AVERAGED && averaged_allowed(&S->cantilever);
+}
+
+/* Whether a solver setting runs on the envelope tier here (the averaged tier's
+ * fallback included). */
 static int envelope_usable(const tt_scan *S, const tt_solver *solver)
 {
-    return solver->tier == TT_TIER_ENVELOPE && envelope_allowed(&S->cantilever, &S->noise);
+    int tier = solver->tier == TT_TIER_AVERAGED && !averaged_usable(S, solver) ? TT_TIER_ENVELOPE
+                                                                              : solver->tier;
+    return tier == TT_TIER_ENVELOPE && envelope_allowed(&S->cantilever, &S->noise);
 }
 
 static int envelope_alloc(tt_scan *S, worker *W)
@@ -330,7 +358,7 @@ static int worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)
         return tt_error_nomem("a scan thread's lock-in samples");
     for (size_t i = 0; i < S->nmaterials; i++)
         W->indent[i] = -INFINITY;
-    if (solver->tier == TT_TIER_AVERAGED) {
+    if (averaged_usable(S, solver)) {
         W->averaged = 1;
         return averaged_tables(S);
     }
@@ -657,11 +685,12 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
     tt_solver tight = tt_companion_solver(&S->solver);
     /* the averaged tier's error is its model's, which no tolerance moves: its companion
      * is the envelope tier at the run's tolerance (as accurate as every cycle) */
-    if (S->solver.tier == TT_TIER_AVERAGED) {
+    const int avg = averaged_usable(S, &S->solver);
+    if (avg) {
         tight = S->solver;
         tight.tier = TT_TIER_ENVELOPE;
     }
-    int trc = S->solver.tier == TT_TIER_AVERAGED ? averaged_tables(S) : TT_OK;
+    int trc = avg ? averaged_tables(S) : TT_OK;
     if (trc) {
         free(buf);
         return trc;

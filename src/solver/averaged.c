@@ -357,6 +357,7 @@ void tt_averaged_state_free(const tt_cantilever *c, tt_averaged_state *st)
 typedef struct {
     double f[2], J[2][2];
     double B, cp, sp, x, m0;
+    int bad; /* forces beyond the averaging's premise: the model is wrong here */
     tt_averaged_force F;
 } slow;
 
@@ -378,7 +379,18 @@ static void slow_eval(const tt_averaged *a, const tt_averaged_state *st, double 
     tt_averaged_force *F = &o->F;
     tt_averaged_force_at(a, B, x0, st->stuck, 0, F);
     double gx = fmin(F->d_x[2], 0.5 * k);
+    /* Averaging takes the tip-sample force as a perturbation of the cantilever's: where
+     * its mean would bend the lever by a tenth of A0, or its harmonics move the closest
+     * approach by a tenth of B, the premise fails (a soft lever on a stiff sample, a
+     * tip captured by adhesion); the shift and the mean deflection's change per step
+     * are then bounded (the state stays finite) and the step is marked. */
+    const double lim = 0.1 * c->A0;
+    o->bad = !(fabs(F->mean) <= lim * k) || !(fabs(F->shift) <= 0.1 * B);
+    if (!(fabs(F->shift) <= 0.1 * B))
+        F->shift = F->shift > 0 ? 0.1 * B : -0.1 * B;
     double m0 = (F->mean - gx * (st->m0 - F->shift)) / (k - gx);
+    if (!(fabs(m0 - st->m0) <= lim))
+        m0 = m0 > st->m0 ? st->m0 + lim : st->m0 - lim;
     /* and the closest approach moved by the higher harmonics' cusp */
     double dx = m0 - st->m0 + F->shift;
     F->gc[0] += F->d_x[0] * dx;
@@ -429,7 +441,7 @@ static void harmonic(const tt_averaged *a, const slow *o, int h, double *X, doub
 /* One linearly implicit step: (I - gamma h J) dx = h f; gamma 1/2 (second order, A-
  * stable) or 1 (first order, L-stable: the halved steps of an impact). */
 static void one_step(const tt_averaged *a, tt_averaged_state *st, double s, double h, double gamma,
-                     tt_averaged_out *o)
+                     double cap, tt_averaged_out *o)
 {
     slow e;
     /* the branch: a touching tip whose far point stays past pull-off cannot leave */
@@ -445,6 +457,14 @@ static void one_step(const tt_averaged *a, tt_averaged_state *st, double s, doub
     double det = m00 * m11 - m01 * m10;
     double r0 = h * e.f[0], r1 = h * e.f[1];
     double dX = (m11 * r0 - m01 * r1) / det, dY = (m00 * r1 - m10 * r0) / det;
+    /* the last halving of an impact moves the state by at most cap of A0 */
+    double big = fmax(fabs(dX), fabs(dY)) / a->c.A0;
+    if (!(big <= cap)) {
+        double r = big < INFINITY ? cap / big : 0;
+        dX = r > 0 ? dX * r : 0;
+        dY = r > 0 ? dY * r : 0;
+        e.bad = 1;
+    }
     o->comp[0] = 0.5 * (st->m0 + e.m0);
     o->comp[1] = st->X + 0.5 * dX;
     o->comp[2] = st->Y + 0.5 * dY;
@@ -452,12 +472,20 @@ static void one_step(const tt_averaged *a, tt_averaged_state *st, double s, doub
         harmonic(a, &e, hh, &o->comp[2 * hh - 1], &o->comp[2 * hh]);
     st->X += dX;
     st->Y += dY;
+    /* nor does the amplitude pass twice the free one, which no drive near resonance
+     * reaches: only a model gone wrong does */
+    double Bn = hypot(st->X, st->Y);
+    if (Bn > 2 * a->c.A0) {
+        st->X *= 2 * a->c.A0 / Bn;
+        st->Y *= 2 * a->c.A0 / Bn;
+        e.bad = 1;
+    }
     st->m0 = e.m0;
     o->peak = e.F.peak;
     o->indent = e.x;
     o->ets = M_PI * e.B * e.F.gs[0];
     o->outside = e.F.outside;
-    o->collapsed = st->stuck || e.B < 0.25 * a->c.A0;
+    o->collapsed = st->stuck || e.B < 0.25 * a->c.A0 || e.bad;
     o->change = fmax(fabs(dX), fabs(dY)) / a->c.A0;
     if (!(o->change < INFINITY))
         o->change = INFINITY;
@@ -473,7 +501,7 @@ static void advance(const tt_averaged *a, tt_averaged_state *st, double s, doubl
                     tt_averaged_out *o)
 {
     tt_averaged_state start = *st;
-    one_step(a, st, s, h, depth ? 1 : 0.5, o);
+    one_step(a, st, s, h, depth ? 1 : 0.5, depth >= DEPTH ? BIG : INFINITY, o);
     if (o->change <= BIG || depth >= DEPTH)
         return;
     *st = start;

@@ -171,6 +171,10 @@ long tt_scan_averaged_outside(const tt_scan *s);
 /* Whether a scan of these parameters runs on the envelope tier: [solver] tier asks for
  * it and the scan allows it (Q from 30 to 3000, no noise); else every cycle. */
 int tt_scan_envelope_tier(const tt_scan_params *p);
+/* Whether it runs on the averaged tier: [solver] tier asks for it and the scan allows
+ * it (Q 30 or more, the drive within 5 % of resonance); else on the envelope tier's
+ * terms (tt_scan_envelope_tier). */
+int tt_scan_averaged_tier(const tt_scan_params *p);
 double tt_scan_error_estimate(const tt_scan *s);
 
 /* The setting of the companion run every command's error estimate comes from: a
