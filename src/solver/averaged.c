@@ -361,30 +361,22 @@ typedef struct {
     tt_averaged_force F;
 } slow;
 
-static void slow_eval(const tt_averaged *a, const tt_averaged_state *st, double s, slow *o)
+/* The mean deflection, quasi-static: one Newton step of k m0 = mean(B, m0 + B - s)
+ * from the last, the force's values (looked up at the last m0, in o->F) carried to
+ * it and to the higher harmonics' shift of the closest approach along their
+ * derivatives. Returns d x / d B through m0. */
+static double mean_deflection(const tt_averaged *a, const tt_averaged_state *st, double x0,
+                              slow *o)
 {
-    const tt_cantilever *c = &a->c;
-    const double k = c->k, w = c->wd, M = 2 * c->m * w, kap = k - c->m * w * w, cw = c->c * w;
-    const double ad = c->drive == TT_DRIVE_BASE ? c->a_d : 0;
-    const double fdrv = c->drive == TT_DRIVE_BASE ? c->m * w * w * c->a_d : c->F0;
-    /* the tip's first harmonic: the deflection's plus the base's */
-    double Xd = st->X + ad, Yd = st->Y, B = hypot(Xd, Yd);
-    double Bs = fmax(B, 1e-9 * c->A0);
-    o->cp = B > 0 ? Xd / B : 1;
-    o->sp = B > 0 ? Yd / B : 0;
-    o->B = B;
-    /* the mean deflection, quasi-static: one Newton step of k m0 = mean(B, m0 + B - s)
-     * from the last, the force's values carried to it along their derivatives */
-    double x0 = st->m0 + B - s;
+    const double k = a->c.k, B = o->B;
     tt_averaged_force *F = &o->F;
-    tt_averaged_force_at(a, B, x0, st->stuck, 0, F);
     double gx = fmin(F->d_x[2], 0.5 * k);
     /* Averaging takes the tip-sample force as a perturbation of the cantilever's: where
      * its mean would bend the lever by a tenth of A0, or its harmonics move the closest
      * approach by a tenth of B, the premise fails (a soft lever on a stiff sample, a
      * tip captured by adhesion); the shift and the mean deflection's change per step
      * are then bounded (the state stays finite) and the step is marked. */
-    const double lim = 0.1 * c->A0;
+    const double lim = 0.1 * a->c.A0;
     o->bad = !(fabs(F->mean) <= lim * k) || !(fabs(F->shift) <= 0.1 * B);
     if (!(fabs(F->shift) <= 0.1 * B))
         F->shift = F->shift > 0 ? 0.1 * B : -0.1 * B;
@@ -400,8 +392,27 @@ static void slow_eval(const tt_averaged *a, const tt_averaged_state *st, double 
     o->x = x0 + dx;
     if (o->x >= a->jin) /* the peak load moves with the deepest point */
         F->peak = fmax(F->peak, tt_contact_load(a->contact, o->x, 1, NULL, NULL));
-    /* the closest penetration moves with B also through m0 */
-    double dxdb = (1 + F->d_b[2] / k) / (1 - gx / k);
+    return (1 + F->d_b[2] / k) / (1 - gx / k);
+}
+
+static void slow_eval(const tt_averaged *a, const tt_averaged_state *st, double s, slow *o)
+{
+    const tt_cantilever *c = &a->c;
+    const double k = c->k, w = c->wd, M = 2 * c->m * w, kap = k - c->m * w * w, cw = c->c * w;
+    const double ad = c->drive == TT_DRIVE_BASE ? c->a_d : 0;
+    const double fdrv = c->drive == TT_DRIVE_BASE ? c->m * w * w * c->a_d : c->F0;
+    /* the tip's first harmonic: the deflection's plus the base's */
+    double Xd = st->X + ad, Yd = st->Y, B = hypot(Xd, Yd);
+    double Bs = fmax(B, 1e-9 * c->A0);
+    o->cp = B > 0 ? Xd / B : 1;
+    o->sp = B > 0 ? Yd / B : 0;
+    o->B = B;
+    double x0 = st->m0 + B - s;
+    tt_averaged_force *F = &o->F;
+    tt_averaged_force_at(a, B, x0, st->stuck, 0, F);
+    double dxdb = mean_deflection(a, st, x0, o);
+    /* the force in the drive's frame, (Fx, Fy) = (Gc, Gs) turned by psi, and its
+     * derivatives in (X, Y) through B (at fixed psi) and psi (at fixed B) */
     double Gc = F->gc[0], Gs = F->gs[0];
     double Gcb = F->d_b[0] + F->d_x[0] * dxdb, Gsb = F->d_b[1] + F->d_x[1] * dxdb;
     double cp = o->cp, sp = o->sp;
