@@ -77,9 +77,12 @@ void tt_averaged_state_free(const tt_cantilever *c, tt_averaged_state *st);
  * stable) and the step's outputs: per period the lock-in's components (the mean, then
  * per harmonic the in-phase and quadrature parts, averaged over the step: comp holds
  * 1 + 2 harmonics values), the peak force (N), the greatest penetration (m), the
- * tip-sample loss per cycle (J), and collapsed: the tip stuck (no tapping branch) or
- * the amplitude below a quarter of the free amplitude, where the averaged model is
- * wrong; change: the step's largest change of X or Y over the free amplitude (the
+ * tip-sample loss per cycle (J), and collapsed: where the averaged model is wrong:
+ * the tip stuck (no tapping branch), the amplitude below a quarter of the free
+ * amplitude, an impact (a step that would move X or Y by a tenth of A0, taken again
+ * as L-stable halves) or forces beyond the averaging's premise (their mean over a
+ * tenth of k A0, their harmonics' shift of the closest approach over a tenth of B),
+ * the state then kept bounded; change: the step's largest change of X or Y over the free amplitude (the
  * caller's measure of whether h was short enough). */
 typedef struct {
     double comp[1 + 2 * TT_AVG_HMAX];
