@@ -32,14 +32,16 @@ static void help(void)
            "    reference.\n"
            "Each setting of each ladder (dopri5: tolerance 1e-4 .. 1e-11; rk4: 32 .. 2048\n"
            "steps per cycle; radau: tolerance; on a scan line also envelope: the envelope\n"
-           "tier over dopri5 at each tolerance) runs from the same state for the same cycles,\n"
+           "tier over dopri5 at each tolerance, and averaged: the averaged preview tier, one\n"
+           "row) runs from the same state for the same cycles,\n"
            "timed (wall clock and CPU time; a run under 0.5 s is timed in each of --repeats\n"
            "passes over the ladders and keeps its best time), against a reference that\n"
            "integrates every cycle with dopri5 at tolerance 1e-13. The floor, the reference's\n"
            "own error, is its difference from a second reference at 1e-12: smaller errors\n"
            "cannot be measured.\n\n"
            "  -o, --output FILE   CSV, one row per run (default accuracy.csv): method, tier\n"
-           "                      (every, envelope), knob, value, run_time_s (wall clock),\n"
+           "                      (every, envelope, averaged), knob, value, run_time_s (wall\n"
+           "                      clock),\n"
            "                      cpu_time_s, steps_per_cycle (accepted steps; NaN for a\n"
            "                      line), integrated (line: the fraction of cycles integrated;\n"
            "                      NaN for a point), the errors (point: amplitude_err_rel,\n"
@@ -55,7 +57,8 @@ static void help(void)
            "                      transient has decayed to 1e-8)\n"
            "      --pixels N      line: pixels of the segment (default 8)\n"
            "      --methods LIST  ladders to study, comma-separated: dopri5, envelope, rk4,\n"
-           "                      radau (default: all; envelope on scan lines only)\n"
+           "                      radau, averaged (default: all; envelope and averaged on\n"
+           "                      scan lines only)\n"
            "      --repeats N     timing passes (default 3; 1: every setting runs once)\n"
            "      --clock C       wall (default) or cpu: the run time the plot and the summary\n"
            "                      use; CPU time is steadier on a machine shared with others\n"
@@ -64,7 +67,7 @@ static void help(void)
            "      --set S.K=V     override a scene key (material.NAME.key for named sections)\n"
            "  -q, --quiet         no table and summary\n\n"
            "The default setting is the scene's [solver] (dopri5, tolerance 1e-8 unless set; on a\n"
-           "scan line the envelope tier unless [solver] tier = every).\n"
+           "scan line the envelope tier unless [solver] tier = every or averaged).\n"
            "stdout: the table. stderr: for each method the cheapest setting meeting the target\n"
            "(its loosest from which on every tighter setting meets it too, so that a lucky\n"
            "cancellation of errors does not count), the run time of the default and of the\n"
@@ -82,7 +85,10 @@ static const char *role_name(tt_accuracy_role r)
     return r == TT_ACCURACY_REFERENCE ? "reference" : r == TT_ACCURACY_FLOOR ? "floor" : "setting";
 }
 
-static const char *tier_name(tt_tier t) { return t == TT_TIER_ENVELOPE ? "envelope" : "every"; }
+static const char *tier_name(tt_tier t)
+{
+    return t == TT_TIER_ENVELOPE ? "envelope" : t == TT_TIER_AVERAGED ? "averaged" : "every";
+}
 
 /* "dopri5 tolerance 1e-08", or with the ladder's own name "envelope (dopri5) tolerance 1e-08" */
 static void describe(char *buf, size_t n, const tt_accuracy_row *r)

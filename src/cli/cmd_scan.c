@@ -50,7 +50,12 @@ static void help(void)
            "free oscillation's drive work per cycle: a check) and the error estimate of height,\n"
            "phase and amplitude: twice their difference from a companion run of the profile\n"
            "line at a 100 times tighter tolerance (rk4: 4 times the steps); a warning when it\n"
-           "exceeds 1e-3 of the free amplitude or 0.1 deg.\n");
+           "exceeds 1e-3 of the free amplitude or 0.1 deg.\n"
+           "[solver] tier: envelope (default; most cycles from the cycle map's model under\n"
+           "error control), every (every cycle integrated) or averaged (a preview: the\n"
+           "averaged slow flow of amplitude and phase, no cycle integrated, about 50 times\n"
+           "real time on one core; its error estimate's companion runs on the envelope tier,\n"
+           "and pixels where an impact collapsed the oscillation are named; docs/dynamics.md).\n");
 }
 
 static void show_progress(void *user, long done, long total)
@@ -294,6 +299,25 @@ static void warn_unused(const tt_scan_params *p)
 
 /* A contact the force laws do not describe: once per material, from the greatest
  * indentation of the whole run. */
+/* The averaged tier's pixels where its model is wrong: the oscillation collapsed onto
+ * the sample (the tip stuck, or the amplitude under a quarter of the free amplitude),
+ * or the tip's amplitude or penetration left the table. */
+static void warn_averaged(const tt_scan *scan)
+{
+    long line, px, n = tt_scan_averaged_collapsed(scan, &line, &px), out = tt_scan_averaged_outside(scan);
+    if (n > 0)
+        fprintf(stderr, "tiptap scan: warning: the oscillation collapsed in %ld pixel%s (first: "
+                        "line %ld, pixel %ld): an impact that stops the tapping, which the "
+                        "averaged tier cannot show; its images are wrong there: scan them with "
+                        "[solver] tier = envelope (docs/dynamics.md, Tiers)\n",
+                n, n > 1 ? "s" : "", line, px);
+    if (out > 0)
+        fprintf(stderr, "tiptap scan: note: in %ld pixel%s the tip's amplitude passed 1.5 "
+                        "free amplitudes or its penetration one free amplitude, beyond the "
+                        "averaged tier's table: its forces there came from quadrature (slower)\n",
+                out, out > 1 ? "s" : "");
+}
+
 static void warn_contact(const tt_scan *scan)
 {
     for (size_t i = 0; i < tt_scan_materials(scan); i++) {
@@ -399,6 +423,7 @@ int cmd_scan(int argc, char **argv)
     rc = tt_scan_run(scan, threads, quiet ? NULL : show_progress, &prog);
     cli_progress_end(&prog);
     warn_contact(scan);
+    warn_averaged(scan);
     int written = 1; /* scene.ini */
     if (tt_scan_lines_done(scan) > 0) {
         char saved[1024];
@@ -419,7 +444,8 @@ int cmd_scan(int argc, char **argv)
                       tt_scan_lines(scan));
     else if (rc == TT_OK && !quiet && !have_est)
         fprintf(stderr, "tiptap: no error estimate: %s\n", tt_error_message());
-    if (!quiet && params.solver.tier == TT_TIER_ENVELOPE) {
+    if (!quiet && (params.solver.tier == TT_TIER_ENVELOPE ||
+                   (params.solver.tier == TT_TIER_AVERAGED && !tt_scan_averaged_tier(&params)))) {
         long all = tt_scan_cycles(scan), done = tt_scan_cycles_integrated(scan);
         /* the reason from the scan's own test: a tier that ran yet integrated every
          * cycle (a grazing tip) is not a fallback */
@@ -431,6 +457,22 @@ int cmd_scan(int argc, char **argv)
         fprintf(stderr, "cycles_integrated = %ld (%.1f %%; envelope tier%s)\n", done,
                 all > 0 ? 100.0 * (double)done / (double)all : 0.0, why);
     }
+    const tt_scan_noise *nz = &params.noise;
+    if (tt_scan_averaged_tier(&params) && (nz->temperature > 0 || nz->detector > 0 || nz->z_piezo > 0))
+        fprintf(stderr, "tiptap scan: warning: [noise] is not modelled on the averaged tier: its "
+                        "images are noiseless\n");
+    if (params.solver.tier == TT_TIER_AVERAGED && !tt_scan_averaged_tier(&params))
+        fprintf(stderr, "tiptap scan: note: the averaged tier needs a quality factor of 30 or "
+                        "more and the drive within 5 %% of resonance (here Q %g, drive at %g of "
+                        "resonance): the scan ran on the envelope tier's terms "
+                        "(docs/dynamics.md, Averaged)\n",
+                params.cantilever.Q, params.cantilever.fd / params.cantilever.f0);
+    if (!quiet && tt_scan_averaged_tier(&params))
+        fprintf(stderr, "averaged_tables_s = %.3f (averaged tier: the force's harmonics of %zu "
+                        "material%s tabulated once, in run_time_s; table error %.2g of k A0; no "
+                        "cycle integrated)\n",
+                tt_scan_averaged_build_seconds(scan), tt_scan_materials(scan),
+                tt_scan_materials(scan) > 1 ? "s" : "", tt_scan_averaged_table_error(scan));
     if (!quiet) {
         fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f\ninstrument_time_s = %.3f\n"
                         "real_time_factor = %.3f\nenergy_balance = %.3g (largest energy-balance "
@@ -440,18 +482,20 @@ int cmd_scan(int argc, char **argv)
                 tt_scan_instrument_time(scan) * (double)tt_scan_lines_done(scan) /
                     (double)tt_scan_lines(scan) / wall,
                 tt_scan_error_estimate(scan));
-        int rk4 = params.solver.method == TT_METHOD_RK4;
+        int rk4 = params.solver.method == TT_METHOD_RK4, avg = tt_scan_averaged_tier(&params);
         if (have_est)
             fprintf(stderr, "error_estimate_height_m = %.2g (rms; max %.2g)\n"
                             "error_estimate_phase_deg = %.2g (rms; max %.2g)\n"
                             "error_estimate_amplitude_rel = %.2g (rms; max %.2g)\n"
-                            "# from a companion run of line %ld at %s %.3g; run_time_s "
+                            "# from a companion run of line %ld %s %s %.3g; run_time_s "
                             "excludes it\n",
                     est.height_rms, est.height_max, est.phase_rms, est.phase_max, est.amplitude_rms,
                     est.amplitude_max, est.line,
+                    avg ? "on the envelope tier (the averaged model's error) at" : "at",
                     rk4 ? "steps_per_cycle" : "tolerance",
                     rk4 ? (double)tt_companion_solver(&params.solver).steps_per_cycle : est.tolerance);
-        if (have_est)
+        /* no tolerance moves the averaged tier's error: its model's */
+        if (have_est && !avg)
             cli_warn_estimate("scan", &params.solver, params.cantilever.A0, est.height_max,
                               "amplitude", est.amplitude_max, est.phase_max);
         fprintf(stderr, "output = %s: %d files (scan.gwy: every channel, trace and retrace; "

@@ -112,9 +112,11 @@ static const tt_scene_key solver_keys[] = {
      "adaptive methods (dopri5, radau): local error tolerance relative to the free amplitude"},
     {"steps_per_cycle", TT_KEY_INT, 0, "512", 8, 1e7, 0, NULL,
      "rk4: fixed steps per drive cycle"},
-    {"tier", TT_KEY_ENUM, 0, "envelope", 0, 0, 0, "every|envelope",
+    {"tier", TT_KEY_ENUM, 0, "envelope", 0, 0, 0, "every|envelope|averaged",
      "scans: every: integrate every drive cycle; envelope: integrate some cycles and follow "
-     "the others on the cycle map's local linear model, under error control (docs/dynamics.md)"},
+     "the others on the cycle map's local linear model, under error control; averaged: a "
+     "preview from the averaged slow flow of amplitude and phase, integrating none, errors "
+     "stated against every cycle (docs/dynamics.md)"},
 };
 
 /* [surface], [lockin], [feedback]: imaging (tiptap scan). */

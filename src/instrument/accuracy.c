@@ -16,6 +16,7 @@
  * accurate" lands near a measured setting. */
 static const double dopri5_tolerances[] = {1e-4, 3e-5, 1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 3e-8,
                                            1e-8, 3e-9, 1e-9, 3e-10, 1e-10, 3e-11, 1e-11};
+static const double averaged_tolerance[] = {1e-8};
 static const double rk4_steps[] = {32, 64, 128, 256, 512, 1024, 2048};
 
 /* One row per method and tier: a new method joins the study here. The envelope tier's
@@ -27,6 +28,8 @@ static const tt_accuracy_ladder ladders[] = {
      "envelope"},
     {TT_METHOD_RK4, "steps_per_cycle", rk4_steps, COUNT(rk4_steps), TT_TIER_EVERY, NULL},
     {TT_METHOD_RADAU, "tolerance", dopri5_tolerances, COUNT(dopri5_tolerances), TT_TIER_EVERY, NULL},
+    /* the averaged tier integrates nothing: one row, its model's error on the line */
+    {TT_METHOD_DOPRI5, "tolerance", averaged_tolerance, 1, TT_TIER_AVERAGED, "averaged"},
 };
 
 const tt_accuracy_ladder *tt_accuracy_ladders(size_t *count)
@@ -179,7 +182,9 @@ static int own_setting(const tt_solver *own, tt_tier tier, const tt_accuracy_lad
     k->method = own->method;
     k->tier = tier;
     k->knob = NULL;
-    k->name = tier == TT_TIER_ENVELOPE ? "envelope" : tt_method_name(own->method);
+    k->name = tier == TT_TIER_ENVELOPE   ? "envelope"
+              : tier == TT_TIER_AVERAGED ? "averaged"
+                                         : tt_method_name(own->method);
     *value = NAN;
     size_t n;
     const tt_accuracy_ladder *all = tt_accuracy_ladders(&n);
@@ -248,7 +253,7 @@ static int plan(tt_accuracy *A)
         }
     }
     if (!kept)
-        return tt_error(TT_EINVAL, "the ladders chosen are of the envelope tier, which a steady "
+        return tt_error(TT_EINVAL, "the ladders chosen are of the envelope or averaged tier, which a steady "
                                    "point does not have (it is judged on scan lines)");
     /* a method left out of the ladders still has its own setting judged */
     if (!placed && (rc = add_row(A, TT_ACCURACY_SETTING, dk, dval, 1)))

@@ -8,6 +8,7 @@
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "tiptap/solver/noise.h"
 #include "tiptap/util/cancel.h"
@@ -192,6 +193,7 @@ int tt_scan_alloc(tt_scan **out, const tt_scan_params *p)
             for (size_t i = 0; i < n; i++)
                 S->img[r][c][i] = NAN;
         }
+    S->collapse_line = S->collapse_px = -1;
     S->line_done = calloc((size_t)S->raster.lines, 1);
     if (!S->line_done) {
         tt_scan_free(S);
@@ -211,6 +213,9 @@ void tt_scan_free(tt_scan *S)
     free(S->line_done);
     tt_dilation_free(S->dilation);
     tt_surface_free(S->surface);
+    for (size_t i = 0; i < S->nmaterials && S->avg; i++)
+        tt_averaged_free(S->avg[i]);
+    free(S->avg);
     for (size_t i = 0; i < S->nmaterials && S->contacts; i++)
         tt_contact_free(S->contacts[i]);
     free(S->contacts);
@@ -246,15 +251,43 @@ static int envelope_allowed(const tt_cantilever *c, const tt_scan_noise *n)
     return c->Q >= 30 && c->Q <= 3000 && n->z_piezo == 0;
 }
 
-int tt_scan_envelope_tier(const tt_scan_params *p)
+/* The averaged tier takes the drive, the damping and the tip-sample force for small
+ * against the cantilever's own forces at the drive frequency (Krylov-Bogoliubov): below
+ * Q 30 (a liquid's Q 1 gave NaN before this bound) or with the drive more than 5 % from
+ * resonance (the detuning k - m w^2 over a tenth of k; at twice and half the resonance
+ * its images were wrong by 100 nm) the scan runs on the envelope tier instead. */
+static int averaged_allowed(const tt_cantilever *c)
 {
-    return p->solver.tier == TT_TIER_ENVELOPE && envelope_allowed(&p->cantilever, &p->noise);
+    double detune = 1 - (c->fd / c->f0) * (c->fd / c->f0);
+    return c->Q >= 30 && fabs(detune) <= 0.1;
 }
 
-/* Whether a solver setting runs on the envelope tier here. */
+int tt_scan_averaged_tier(const tt_scan_params *p)
+{
+    return p->solver.tier == TT_TIER_AVERAGED && averaged_allowed(&p->cantilever);
+}
+
+int tt_scan_envelope_tier(const tt_scan_params *p)
+{
+    int tier = p->solver.tier == TT_TIER_AVERAGED && !averaged_allowed(&p->cantilever)
+                   ? TT_TIER_ENVELOPE
+                   : p->solver.tier;
+    return tier == TT_TIER_ENVELOPE && envelope_allowed(&p->cantilever, &p->noise);
+}
+
+/* Whether a solver setting runs on the averaged tier here. */
+static int averaged_usable(const tt_scan *S, const tt_solver *solver)
+{
+    return solver->tier == TT_TIER_AVERAGED && averaged_allowed(&S->cantilever);
+}
+
+/* Whether a solver setting runs on the envelope tier here (the averaged tier's
+ * fallback included). */
 static int envelope_usable(const tt_scan *S, const tt_solver *solver)
 {
-    return solver->tier == TT_TIER_ENVELOPE && envelope_allowed(&S->cantilever, &S->noise);
+    int tier = solver->tier == TT_TIER_AVERAGED && !averaged_usable(S, solver) ? TT_TIER_ENVELOPE
+                                                                              : solver->tier;
+    return tier == TT_TIER_ENVELOPE && envelope_allowed(&S->cantilever, &S->noise);
 }
 
 static int envelope_alloc(tt_scan *S, worker *W)
@@ -284,6 +317,37 @@ static int envelope_alloc(tt_scan *S, worker *W)
     return TT_OK;
 }
 
+/* This thread's CPU time, s: what a table costs one core, whatever else runs. */
+static double thread_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The averaged tier's tables, once per scan (before any thread runs a line): every
+ * material's, with the harmonics the lock-in keeps. */
+static int averaged_tables(tt_scan *S)
+{
+    if (S->avg)
+        return TT_OK;
+    double t0 = thread_seconds();
+    S->avg = calloc(S->nmaterials, sizeof *S->avg);
+    if (!S->avg)
+        return tt_error_nomem("the averaged tier's tables of %zu materials", S->nmaterials);
+    for (size_t i = 0; i < S->nmaterials; i++) {
+        int rc = tt_averaged_alloc(&S->avg[i], &S->cantilever, S->contacts[i], S->Qi[i],
+                                   S->lockin.harmonics);
+        if (rc)
+            return rc;
+        double e = tt_averaged_table_error(S->avg[i]);
+        if (e > S->avg_error)
+            S->avg_error = e;
+    }
+    S->avg_seconds = thread_seconds() - t0; /* with the check */
+    return TT_OK;
+}
+
 static int worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)
 {
     memset(W, 0, sizeof *W);
@@ -302,6 +366,10 @@ static int worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)
         return tt_error_nomem("a scan thread's lock-in samples");
     for (size_t i = 0; i < S->nmaterials; i++)
         W->indent[i] = -INFINITY;
+    if (averaged_usable(S, solver)) {
+        W->averaged = 1;
+        return averaged_tables(S);
+    }
     return envelope_usable(S, solver) ? envelope_alloc(S, W) : TT_OK;
 }
 
@@ -514,6 +582,8 @@ static int run_line(tt_scan *S, worker *W, long line, const line_out *out, long 
 {
     if (W->env)
         return tt_scan_line_envelope(S, W, line, out, cycles, integrated, worst, clamped);
+    if (W->averaged)
+        return tt_scan_line_averaged(S, W, line, out, cycles, worst, clamped);
     int rc = tt_scan_line_run(S, W, line, out, every_phase, NULL, cycles, worst, clamped);
     *integrated = *cycles;
     return rc;
@@ -629,6 +699,18 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
     if (!buf)
         return tt_error_nomem("the companion line's profile");
     tt_solver tight = tt_companion_solver(&S->solver);
+    /* the averaged tier's error is its model's, which no tolerance moves: its companion
+     * is the envelope tier at the run's tolerance (as accurate as every cycle) */
+    const int avg = averaged_usable(S, &S->solver);
+    if (avg) {
+        tight = S->solver;
+        tight.tier = TT_TIER_ENVELOPE;
+    }
+    int trc = avg ? averaged_tables(S) : TT_OK;
+    if (trc) {
+        free(buf);
+        return trc;
+    }
     int rc[2] = {TT_OK, TT_OK};
     char why[2][512]; /* a worker thread's message is its own: carried back here */
 #pragma omp parallel for num_threads(2) schedule(static, 1)
@@ -680,6 +762,18 @@ long tt_scan_lines_done(const tt_scan *S) { return S->lines_done; }
 long tt_scan_profile_line(const tt_scan *S) { return S->profile_line; }
 long tt_scan_cycles(const tt_scan *S) { return S->cycles; }
 long tt_scan_cycles_integrated(const tt_scan *S) { return S->integrated; }
+double tt_scan_averaged_build_seconds(const tt_scan *S) { return S->avg_seconds; }
+double tt_scan_averaged_table_error(const tt_scan *S) { return S->avg_error; }
+long tt_scan_averaged_outside(const tt_scan *S) { return S->outside; }
+
+long tt_scan_averaged_collapsed(const tt_scan *S, long *line, long *pixel)
+{
+    if (line)
+        *line = S->collapse_line;
+    if (pixel)
+        *pixel = S->collapse_px;
+    return S->collapsed;
+}
 double tt_scan_error_estimate(const tt_scan *S) { return S->worst_residual; }
 int tt_scan_clamped(const tt_scan *S) { return S->clamped; }
 const tt_dilation *tt_scan_dilation(const tt_scan *S) { return S->dilation; }

@@ -8,7 +8,7 @@
 #include "tiptap/util/error.h"
 
 /* The surface at the start of cycle k (settling: the line's first pixel). */
-static surf_pt surface_at(const line_ctx *L, long k)
+surf_pt tt_scan_surface_at(const line_ctx *L, long k)
 {
     const tt_scan *S = L->S;
     const long kk = L->phase ? k : 0;
@@ -31,7 +31,7 @@ static surf_pt surface_cached(const line_ctx *L, const line_state *st, long k)
     for (int i = 0; i < 2; i++)
         if (st->ahead[i].k == k)
             return st->ahead[i];
-    return surface_at(L, k);
+    return tt_scan_surface_at(L, k);
 }
 
 int tt_scan_cycle_begin(const line_ctx *L, line_state *st, cycle_in *in)
@@ -95,14 +95,14 @@ static pixel_acc *pixel_of(const line_ctx *L, long k)
     return &L->pix[(size_t)L->dir * (size_t)R->pixels + (size_t)px];
 }
 
-/* The end of lock-in block b: demodulate, update the feedback, and (trace, retrace)
- * add the lock-in's outputs to the pixel of the block's last cycle. */
-static int block_end(const line_ctx *L, line_state *st, long b)
+int tt_scan_block_end(const line_ctx *L, line_state *st, long b)
 {
     tt_scan *S = L->S;
     tt_lockin *li = L->W->lockin;
-    /* the envelope tier keeps the block's periods as the lock-in's components */
-    int rc = L->W->env ? tt_lockin_push_components(li, L->W->y) : tt_lockin_push(li, L->W->y);
+    /* the envelope and averaged tiers keep the block's periods as the lock-in's
+     * components */
+    int rc = L->W->env || L->W->averaged ? tt_lockin_push_components(li, L->W->y)
+                                          : tt_lockin_push(li, L->W->y);
     if (rc)
         return rc;
     const int P = L->P;
@@ -147,6 +147,6 @@ int tt_scan_cycle_end(const line_ctx *L, line_state *st, const cycle_in *in, dou
     st->cycles++;
     st->k = in->k + 1;
     if (in->j == L->P - 1 || in->k == L->ncyc - 1)
-        return block_end(L, st, in->k / L->P);
+        return tt_scan_block_end(L, st, in->k / L->P);
     return TT_OK;
 }

@@ -7,6 +7,7 @@
 #include <stdint.h>
 
 #include "tiptap/instrument/scan.h"
+#include "tiptap/solver/averaged.h"
 #include "tiptap/solver/envelope.h"
 
 enum { NHARM = TT_CH_HARMONIC_MAX - 1 }; /* harmonic channels of each kind */
@@ -33,6 +34,9 @@ typedef struct {
     double *y_save, *obs;
     /* the greatest indentation of the trace and retrace cycles, per material */
     double *indent;
+    /* the averaged tier (averaged: on): its slow state where the last line ended */
+    int averaged;
+    tt_averaged_state avg;
 } worker;
 
 struct tt_scan {
@@ -68,6 +72,11 @@ struct tt_scan {
     long integrated; /* cycles integrated (the envelope tier skips some) */
     double worst_residual;
     int clamped;
+    /* the averaged tier: each material's table, and the pixels where the tip collapsed
+     * onto the sample or left the table (first: the first such line and pixel) */
+    tt_averaged **avg;
+    double avg_seconds, avg_error;
+    long collapsed, outside, collapse_line, collapse_px;
     /* the first failure of any thread */
     int status;
     char message[1024];
@@ -160,6 +169,18 @@ int tt_scan_integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_
  * feedback and the block's outputs into the pixel of its last cycle; on to the next. */
 int tt_scan_cycle_end(const line_ctx *L, line_state *st, const cycle_in *in, double peak,
                       double indent, double ets);
+
+/* The surface at the start of cycle k of the phase (scan_cycle.c). */
+surf_pt tt_scan_surface_at(const line_ctx *L, long k);
+/* The end of lock-in block b (its periods in W->y: samples, or components on the
+ * envelope and averaged tiers): demodulate, update the feedback, and (trace, retrace)
+ * add the lock-in's outputs to the pixel of the block's last cycle (scan_cycle.c). */
+int tt_scan_block_end(const line_ctx *L, line_state *st, long b);
+
+/* One line on the averaged tier (scan_averaged.c), through tt_scan_line_run; it
+ * integrates no cycle. */
+int tt_scan_line_averaged(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
+                          double *worst, int *clamped);
 
 /* One line on the envelope tier (scan_envelope.c), through tt_scan_line_run;
  * *integrated counts the cycles integrated, the rest followed the model. */

@@ -154,11 +154,27 @@ double tt_scan_instrument_time(const tt_scan *s);
  * worst residual of a cycle relative to the free drive work per cycle. It checks the
  * integration, but it is not the error of the images (tt_scan_estimate_error is). */
 long tt_scan_cycles(const tt_scan *s);
-/* Cycles integrated: all of them on the every-cycle tier, fewer on the envelope tier. */
+/* Cycles integrated: all of them on the every-cycle tier, fewer on the envelope tier,
+ * none on the averaged tier. */
 long tt_scan_cycles_integrated(const tt_scan *s);
+/* The averaged tier ([solver] tier = averaged; docs/dynamics.md): the CPU seconds its
+ * tables took to build (once per scan, all materials) and their largest error against
+ * direct quadrature (relative to k A0); the pixels (trace and retrace) where the
+ * oscillation collapsed onto the sample (the tip stuck, or the amplitude below a
+ * quarter of the free amplitude), where the averaged model is wrong, with the first
+ * line and pixel of them (-1: none), and those whose tip left the table (its forces
+ * then from quadrature). */
+double tt_scan_averaged_build_seconds(const tt_scan *s);
+double tt_scan_averaged_table_error(const tt_scan *s);
+long tt_scan_averaged_collapsed(const tt_scan *s, long *line, long *pixel);
+long tt_scan_averaged_outside(const tt_scan *s);
 /* Whether a scan of these parameters runs on the envelope tier: [solver] tier asks for
  * it and the scan allows it (Q from 30 to 3000, no noise); else every cycle. */
 int tt_scan_envelope_tier(const tt_scan_params *p);
+/* Whether it runs on the averaged tier: [solver] tier asks for it and the scan allows
+ * it (Q 30 or more, the drive within 5 % of resonance); else on the envelope tier's
+ * terms (tt_scan_envelope_tier). */
+int tt_scan_averaged_tier(const tt_scan_params *p);
 double tt_scan_error_estimate(const tt_scan *s);
 
 /* The setting of the companion run every command's error estimate comes from: a

@@ -32,9 +32,11 @@ extern "C" {
 
 typedef enum { TT_METHOD_DOPRI5 = 0, TT_METHOD_RK4 = 1, TT_METHOD_RADAU = 2 } tt_method;
 
-/* Which cycles a scan integrates (docs/dynamics.md, Tiers): every one, or those the
- * envelope tier's error control asks for (tiptap/solver/envelope.h). */
-typedef enum { TT_TIER_EVERY = 0, TT_TIER_ENVELOPE = 1 } tt_tier;
+/* Which cycles a scan integrates (docs/dynamics.md, Tiers): every one, those the
+ * envelope tier's error control asks for (tiptap/solver/envelope.h), or none: the
+ * averaged preview tier follows the slow flow of amplitude and phase instead
+ * (tiptap/solver/averaged.h). */
+typedef enum { TT_TIER_EVERY = 0, TT_TIER_ENVELOPE = 1, TT_TIER_AVERAGED = 2 } tt_tier;
 
 typedef struct {
     tt_method method;

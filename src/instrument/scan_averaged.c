@@ -1,0 +1,195 @@
+/* One scan line on the averaged preview tier (docs/dynamics.md, Tiers, Averaged): no
+ * cycle is integrated; each lock-in block is one step of the averaged slow flow
+ * (tiptap/solver/averaged.h) with the sample at the block's mean position, and its
+ * periods reach the lock-in as components, so the lock-in, the feedback, the piezo and
+ * the pixels' sums are the other tiers' code. The surface is looked up once a block
+ * (at its first cycle), linear between blocks. Where the tip collapses onto the sample
+ * or leaves the table, the pixel is marked (tt_scan_averaged_collapsed). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scan_private.h"
+#include "tiptap/util/cancel.h"
+#include "tiptap/util/error.h"
+
+typedef struct {
+    tt_averaged_state st;
+    char *mark; /* [direction][pixel]: 1 collapsed, 2 outside the table */
+    double *s;  /* the sample's position in each cycle of a block */
+} avg_line;
+
+/* The per-cycle channels of cycles k0 .. k0 + n - 1 into their pixels' sums: za0 and
+ * dz the height command's first value and step, t0 and dt the topography's. */
+static void cycle_sums(const line_ctx *L, long k0, int n, double za0, double dz, double t0,
+                       double dt, const tt_averaged_out *o)
+{
+    const tt_raster *R = &L->S->raster;
+    pixel_acc *pix = L->pix + (size_t)L->dir * (size_t)R->pixels;
+    long p0 = tt_raster_pixel(R, L->dir, L->nc, k0), p1 = tt_raster_pixel(R, L->dir, L->nc, k0 + n - 1);
+    if (p0 == p1) {
+        pixel_acc *a = &pix[p0];
+        double tri = 0.5 * n * (n - 1);
+        a->sum[0] += n * za0 + dz * tri;
+        a->sum[3] += n * o->peak;
+        a->sum[4] += n * o->indent;
+        a->sum[5] += n * o->ets;
+        a->sum[6] += n * t0 + dt * tri;
+        a->n += n;
+        return;
+    }
+    for (int j = 0; j < n; j++) {
+        pixel_acc *a = &pix[tt_raster_pixel(R, L->dir, L->nc, k0 + j)];
+        a->sum[0] += za0 + dz * j;
+        a->sum[3] += o->peak;
+        a->sum[4] += o->indent;
+        a->sum[5] += o->ets;
+        a->sum[6] += t0 + dt * j;
+        a->n++;
+    }
+}
+
+/* The sample's position (rest separation) over each of the block's n cycles, its
+ * mean returned: the z piezo's actual height advanced through them, the surface linear
+ * from a to b. */
+static double block_sample(const line_ctx *L, line_state *st, const surf_pt *a, const surf_pt *b,
+                           int n, double *s)
+{
+    const double P = L->P, dz = (st->z_to - st->z_from) / P, z0 = st->z_from + dz * (double)(st->k % L->P);
+    double mean = 0;
+    for (int j = 0; j < n; j++) {
+        double z = z0 + dz * (j + 0.5);
+        if (L->piezo) {
+            double pa = st->z_act;
+            st->z_act = tt_piezo_advance(&st->pz, z0 + dz * (j + 1), L->S->cantilever.T);
+            z = 0.5 * (pa + st->z_act);
+        }
+        s[j] = L->s_ref - (a->h + (b->h - a->h) * (j + 0.5) / n) + z;
+        mean += s[j];
+    }
+    return mean / n;
+}
+
+/* The slow flow through the block: one step, or where it changed the state by more
+ * than SUB_TOL of the free amplitude (an edge, a transient), one step a cycle from
+ * the block's start again; each cycle's components into the block's periods. */
+#define SUB_TOL 1e-3
+static void block_flow(const line_ctx *L, avg_line *t, const tt_averaged *tab, long k0, int n,
+                       const double *s, double smean, tt_averaged_out *o)
+{
+    worker *W = L->W;
+    const int nc = tt_lockin_components(W->lockin);
+    const double T = L->S->cantilever.T;
+    tt_averaged_state start = t->st;
+    tt_averaged_step(tab, &t->st, smean, n * T, o);
+    if (o->change > SUB_TOL && n > 1) {
+        t->st = start;
+        tt_averaged_out c, sum;
+        memset(&sum, 0, sizeof sum);
+        for (int j = 0; j < n; j++) {
+            tt_averaged_step(tab, &t->st, s[j], T, &c);
+            for (int q = 0; q < nc; q++)
+                W->y[(size_t)((k0 + j) % L->P) * (size_t)nc + (size_t)q] = c.comp[q];
+            sum.peak += c.peak / n;
+            sum.indent += c.indent / n;
+            sum.ets += c.ets / n;
+            sum.collapsed |= c.collapsed;
+            sum.outside |= c.outside;
+        }
+        *o = sum;
+        return;
+    }
+    for (int j = 0; j < n; j++)
+        for (int q = 0; q < nc; q++)
+            W->y[(size_t)((k0 + j) % L->P) * (size_t)nc + (size_t)q] = o->comp[q];
+}
+
+/* One block of n cycles from cycle k0, the surface at its start a and end b. */
+static int block(const line_ctx *L, line_state *st, avg_line *t, const surf_pt *a,
+                 const surf_pt *b, int n)
+{
+    const tt_scan *S = L->S;
+    worker *W = L->W;
+    const long k0 = st->k;
+    const double za0 = st->z_from + (st->z_to - st->z_from) * (double)(k0 % L->P) / L->P;
+    const double smean = block_sample(L, st, a, b, n, t->s);
+    tt_averaged_out o;
+    block_flow(L, t, S->avg[a->mat], k0, n, t->s, smean, &o);
+    if (L->phase > 0) {
+        if (!(S->channels & (TT_CH_PEAK_FORCE | TT_CH_INDENTATION))) /* as untracked cycles */
+            o.peak = o.indent = NAN;
+        cycle_sums(L, k0, n, za0, (st->z_to - st->z_from) / L->P, a->topo, (b->topo - a->topo) / n, &o);
+        if (o.indent > W->indent[a->mat])
+            W->indent[a->mat] = o.indent;
+        if (o.collapsed || o.outside) {
+            long px = tt_raster_pixel(&S->raster, L->dir, L->nc, k0 + n - 1);
+            char *m = &t->mark[(size_t)L->dir * (size_t)S->raster.pixels + (size_t)px];
+            *m |= (char)(o.collapsed ? 1 : 2);
+        }
+    }
+    st->cycles += n;
+    st->k = k0 + n;
+    return tt_scan_block_end(L, st, (k0 + n - 1) / L->P);
+}
+
+/* The averaged tier's cycles of one phase (a scan_phase_fn; tier: the line's state). */
+static int averaged_phase(const line_ctx *L, line_state *st, void *tier)
+{
+    avg_line *t = tier;
+    surf_pt a = tt_scan_surface_at(L, 0);
+    while (st->k < L->ncyc) {
+        if ((st->k / L->P) % 64 == 0 && tt_cancel_requested())
+            return TT_EINTR;
+        long left = L->ncyc - st->k, in_block = L->P - st->k % L->P;
+        int n = (int)(left < in_block ? left : in_block);
+        surf_pt b = tt_scan_surface_at(L, st->k + n);
+        int rc = block(L, st, t, &a, &b, n);
+        if (rc)
+            return rc;
+        a = b;
+    }
+    return TT_OK;
+}
+
+int tt_scan_line_averaged(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
+                          double *worst, int *clamped)
+{
+    avg_line t;
+    const long px = S->raster.pixels;
+    t.mark = calloc((size_t)(2 * px), 1);
+    t.s = malloc((size_t)S->lockin.periods_per_block * sizeof *t.s);
+    if (!t.mark || !t.s) {
+        free(t.mark);
+        free(t.s);
+        return tt_error_nomem("the averaged tier's marks of a line ([scan] pixels = %ld)", px);
+    }
+    if (S->continuous && W->engaged)
+        t.st = W->avg;
+    else
+        tt_averaged_state_free(&S->cantilever, &t.st);
+    int rc = tt_scan_line_run(S, W, line, out, averaged_phase, &t, cycles, worst, clamped);
+    W->avg = t.st;
+    long col = 0, outside = 0, first = -1;
+    for (long i = 0; i < 2 * px; i++) {
+        if (t.mark[i] & 1) {
+            col++;
+            if (first < 0)
+                first = i % px;
+        }
+        outside += (t.mark[i] & 2) != 0;
+    }
+    free(t.mark);
+    free(t.s);
+    if (rc == TT_OK && (col || outside)) {
+#pragma omp critical(tt_scan_averaged)
+        {
+            S->collapsed += col;
+            S->outside += outside;
+            if (col && (S->collapse_line < 0 || line < S->collapse_line)) {
+                S->collapse_line = line;
+                S->collapse_px = first;
+            }
+        }
+    }
+    return rc;
+}
