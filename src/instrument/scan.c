@@ -233,6 +233,7 @@ static void worker_free(worker *W)
     free(W->samples);
     free(W->y);
     tt_envelope_free(W->env);
+    tt_graze_free(W->graze);
     tt_lockin_free(W->lockin_save);
     free(W->y_save);
     free(W->obs);
@@ -294,6 +295,31 @@ static int envelope_alloc(tt_scan *S, worker *W)
 {
     size_t n = (size_t)S->lockin.samples_per_period * (size_t)S->lockin.periods_per_block;
     int rc = tt_envelope_alloc(&W->env, &S->cantilever, S->lockin.samples_per_period);
+    /* the gaps around the closest approach, from which a grazing tip's branch and the
+     * time of its jump-in are predicted (tiptap/solver/graze.h) */
+    if (!rc)
+        rc = tt_envelope_set_probes(W->env, TT_GRAZE_PROBES);
+    if (!rc) {
+        const int m = tt_lockin_components(W->lockin);
+        double *scale = calloc(2 * ((size_t)m + TT_ENV_EXTRA), sizeof *scale);
+        if (!scale)
+            return tt_error_nomem("a scan thread's envelope tier");
+        double *floor = scale + m + TT_ENV_EXTRA;
+        const tt_cantilever *c = &S->cantilever;
+        for (int i = 0; i < m; i++)
+            scale[i] = c->A0;
+        scale[m + TT_ENV_PEAK] = c->k * c->A0;
+        scale[m + TT_ENV_INDENT] = c->A0;
+        scale[m + TT_ENV_ETS] = c->k * c->A0 * c->A0;
+        /* a touch's peak force and greatest indentation scatter from one grazing touch
+         * to the next by up to 4e-5 k A0 and 1e-6 A0 (the maximum sought on each step's
+         * samples; the blend's matrix): held to 1e-4 and 1e-5 of their scales, 8 pN and
+         * 0.2 pm on the standard cantilever, which a pixel's hundreds of cycles average */
+        floor[m + TT_ENV_PEAK] = 1e-4;
+        floor[m + TT_ENV_INDENT] = 1e-5;
+        rc = tt_graze_alloc(&W->graze, &S->cantilever, m + TT_ENV_EXTRA, scale, floor);
+        free(scale);
+    }
     if (!rc)
         rc = tt_lockin_alloc(&W->lockin_save, &S->lockin);
     if (rc)
