@@ -138,6 +138,13 @@ static void snap_restore(const line_ctx *L, const snapshot *sn, line_state *st)
     tt_sim_set_state(W->sim, st->x[0], st->x[1], sn->contact);
 }
 
+/* The last branch called in the grazing mode and its inputs (valid while the models
+ * are unchanged). */
+typedef struct {
+    double x[2], s0, sdot, tc, reach;
+    int b, ok, valid;
+} lookahead;
+
 /* The tier's controller within a phase. */
 typedef struct {
     int model;       /* the model runs; else every cycle is integrated */
@@ -154,6 +161,7 @@ typedef struct {
     int prev_branch; /* the last integrated cycle could be on a branch of the grazing model */
     int exact;       /* the tip's state is an integrated cycle's end (no model cycle since) */
     long same;       /* integrated cycles in a row on the last one's branch (grazing) */
+    lookahead la;
     double *red, *pred; /* a check's reduced observables and their prediction */
     snapshot sn;
     long integrated; /* cycles of the run integrated, each once */
@@ -170,6 +178,7 @@ static int integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_c
     int rc = tt_scan_integrate(L, st, in, cy);
     if (rc)
         return rc;
+    c->la.valid = 0; /* the models may change on this cycle */
     if (in->k >= 0 && in->k < c->nseen && !c->seen[in->k]) {
         c->seen[in->k] = 1;
         c->integrated++;
@@ -380,30 +389,43 @@ static void free_indent(const line_ctx *L, double *red, double reach)
 /* The branch of a cycle from the tip's state x with the sample at s0 at its start
  * moving at sdot, and whether the model can follow it: a free cycle, or a touch the
  * fit covers. */
-static int graze_call(const line_ctx *L, const double x[2], double s0, double sdot, double *tc,
-                      double *reach, int *b)
+static int graze_call(const line_ctx *L, lookahead *la, const double x[2], double s0,
+                      double sdot, double *tc, double *reach, int *b)
 {
     worker *W = L->W;
-    double d[TT_GRAZE_PROBES];
-    tt_envelope_predict_probes(W->env, x, s0, sdot, d);
-    *b = tt_graze_branch(W->graze, d, s0, sdot, tc, reach);
-    int ok = *b == TT_GRAZE_FREE ||
-           (*b == TT_GRAZE_TOUCH &&
-            tt_graze_covers(W->graze, x, s0 + 0.5 * sdot * L->S->cantilever.T, *tc));
-    return ok;
+    /* a model cycle calls its successor's branch as it ends: the next cycle's call is
+     * the same when its inputs are */
+    if (!(la->valid && la->x[0] == x[0] && la->x[1] == x[1] && la->s0 == s0 && la->sdot == sdot)) {
+        double d[TT_GRAZE_PROBES];
+        tt_envelope_predict_probes(W->env, x, s0, sdot, d);
+        la->b = tt_graze_branch(W->graze, d, s0, sdot, &la->tc, &la->reach);
+        la->ok = la->b == TT_GRAZE_FREE ||
+                 (la->b == TT_GRAZE_TOUCH &&
+                  tt_graze_covers(W->graze, x, s0 + 0.5 * sdot * L->S->cantilever.T, la->tc));
+        la->x[0] = x[0];
+        la->x[1] = x[1];
+        la->s0 = s0;
+        la->sdot = sdot;
+        la->valid = 1;
+    }
+    *b = la->b;
+    *tc = la->tc;
+    *reach = la->reach;
+    return la->ok;
 }
 
 /* A model cycle in the grazing mode. 0 when the model cannot follow this cycle or the
  * next (too close to call, or a touch outside the fit): the stretch then ends with a
  * check on this cycle, so that the next starts from an integrated state and is
  * integrated as it is (c->exact). */
-static int graze_step(const line_ctx *L, line_state *st, const cycle_in *in, double *obs)
+static int graze_step(const line_ctx *L, line_state *st, controller *c, const cycle_in *in,
+                      double *obs)
 {
     worker *W = L->W;
     const double T = L->S->cantilever.T, sdot = (in->sb - in->sa) / T;
     double tc, reach, x1[2];
     int b;
-    if (!graze_call(L, st->x, in->sa, sdot, &tc, &reach, &b))
+    if (!graze_call(L, &c->la, st->x, in->sa, sdot, &tc, &reach, &b))
         return 0;
     if (b == TT_GRAZE_FREE) {
         tt_envelope_predict_reduced(W->env, st->x, in->sa, sdot, x1, obs);
@@ -411,7 +433,7 @@ static int graze_step(const line_ctx *L, line_state *st, const cycle_in *in, dou
     } else {
         tt_graze_predict(W->graze, st->x, sample_mid(in), tc, x1, obs);
     }
-    if (!graze_call(L, x1, in->sb, sdot, &tc, &reach, &b))
+    if (!graze_call(L, &c->la, x1, in->sb, sdot, &tc, &reach, &b))
         return 0;
     st->x[0] = x1[0];
     st->x[1] = x1[1];
@@ -573,7 +595,7 @@ static void fail(const line_ctx *L, line_state *st, controller *c, long k)
  * the sample is out of the anchor's reach, or it is the phase's last (the next phase
  * starts integrating from the sim's state): then a check. 1: the model ran the cycle,
  * its samples reduced to the lock-in's components in obs. */
-static int model_step(const line_ctx *L, line_state *st, const controller *c,
+static int model_step(const line_ctx *L, line_state *st, controller *c,
                       const cycle_in *in, int edge, double *obs)
 {
     const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
@@ -582,7 +604,7 @@ static int model_step(const line_ctx *L, line_state *st, const controller *c,
         !(fabs(tt_envelope_sample_offset(L->W->env, in->sa, sdot)) <= L->edge))
         return 0;
     if (c->graze)
-        return graze_step(L, st, in, obs);
+        return graze_step(L, st, c, in, obs);
     double x1[2];
     tt_envelope_predict_reduced(L->W->env, st->x, in->sa, sdot, x1, obs);
     st->x[0] = x1[0];

@@ -43,11 +43,18 @@ static void observe_samples(tt_sim *S, double th)
             break;
         observe_at(S, ts, &S->samples[S->next_sample++]);
     }
+    /* a probe needs the tip's position only: no drive evaluation */
     while (S->next_probe < S->nprobe) {
         double ts = S->probe_tau[S->next_probe];
         if (ts > end)
             break;
-        observe_at(S, ts, &S->probes[S->next_probe++]);
+        tt_sample *smp = &S->probes[S->next_probe++];
+        double f = S->step_h > 0 ? (ts - S->step_tau) / S->step_h : 0;
+        tt_step_dense(S, f < 0 ? 0 : f, &smp->d, &smp->v);
+        smp->t = tt_sim_time(S) + ts;
+        smp->z = NAN;
+        smp->s = S->s0 + S->sdot * ts;
+        smp->contact = S->contact_state;
     }
 }
 

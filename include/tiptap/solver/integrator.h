@@ -104,7 +104,8 @@ const tt_sample *tt_sim_samples(const tt_sim *sim);
 
 /* Record the state at n more times within each cycle, tau[0] < ... < tau[n-1] in
  * [0, T) from the cycle's start, into buf (buf or tau NULL: none): the envelope tier's
- * probes of the tip's closest approach (tiptap/solver/graze.h). The sim keeps both
+ * probes of the tip's closest approach (tiptap/solver/graze.h); their base position z
+ * is not computed (NAN). The sim keeps both
  * pointers; they must outlive their use. */
 void tt_sim_set_probes(tt_sim *sim, int n, const double *tau, tt_sample *buf);
 /* The buffer the probes go to (NULL: none). */
