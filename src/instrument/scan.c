@@ -378,6 +378,7 @@ static int worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)
 {
     memset(W, 0, sizeof *W);
     W->tolerance = solver->tolerance;
+    W->model_tol = 10 * solver->tolerance;
     int rc;
     if ((rc = tt_sim_alloc(&W->sim, &S->cantilever, solver)) ||
         (rc = tt_sim_set_thermal(W->sim, envelope_usable(S, solver) ? 0 : S->noise.temperature,
@@ -505,10 +506,10 @@ static line_ctx line_context(tt_scan *S, worker *W, long line)
      * the stepper's tolerance, below what the integration itself errs per cycle (13 to
      * 16 times the tolerance at 1e-8 on the standard scene, 5 to 20 times at 1e-6 and
      * 1e-7: one cycle against one at 1e-12 from the same state). The worker's own
-     * tolerance: the error estimate's companion line tightens the model with the
+     * model tolerance: the error estimate's companion line tightens the model with the
      * integration, or the model's error (at setpoint-10 100 times the integration's in
      * amplitude) would cancel out of the companion's difference */
-    L.tol = 10 * W->tolerance;
+    L.tol = W->model_tol;
     /* With noise on, the state and the sample wander from the anchor by the noise (the
      * thermal force alone moves the state by 1.25 pm a cycle, 2000 times the tolerance
      * at the default), and the model's error grows with the square of that reach: it is
@@ -696,6 +697,13 @@ static int companion_line(tt_scan *S, const tt_solver *solver, double *buf)
         for (int r = 0; r < (S->raster.retrace ? 2 : 1); r++)
             out.img[r][c] = buf + (size_t)(2 * c + r) * (size_t)px;
     int rc = worker_alloc(S, &W, solver);
+    /* The tight line's model is held ten times tighter than the run's, as its steps are
+     * (a hundred times: see tt_companion_solver), so that the difference of the two is
+     * the run's error, the model's included; a hundred times tighter is below what the
+     * grazing touches' model can follow (1e-9 of A0 over the blend's orbit), and the
+     * tight line would integrate every grazing cycle at 1e-10 (16 G instructions, a
+     * fifth of the README job's) */
+    W.model_tol = fmax(W.model_tol, S->solver.tolerance);
     if (!rc)
         rc = run_line(S, &W, S->profile_line, &out, &cycles, &integrated, &worst, &clamped);
     worker_free(&W);

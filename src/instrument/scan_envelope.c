@@ -28,7 +28,7 @@ enum {
     M_MIN = 4,       /* a stretch's first length, and the least after a failure */
     M_MAX = 1024,    /* its longest: the checks then cost about a thousandth of the cycles */
     WAIT_MIN = 16,   /* quiet integrated cycles before the model is tried */
-    WAIT_MAX = 1024  /* the same after repeated failures (doubling) */
+    WAIT_MAX = 128  /* the same after repeated failures (doubling) */
 };
 
 /* The surface at the cycle's end differs from its start's: the cycle crosses an edge,

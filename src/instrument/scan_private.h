@@ -18,6 +18,7 @@ _Static_assert(TT_CH_COUNT <= 8 * sizeof(unsigned), "a channel mask holds every 
 typedef struct {
     tt_sim *sim;
     double tolerance; /* its solver's: the companion's is tighter than the scan's */
+    double model_tol; /* the envelope tier's model's per cycle, relative to A0 */
     tt_lockin *lockin;
     tt_sample *samples;
     double *y; /* the lock-in block's periods: samples, or on the envelope tier each

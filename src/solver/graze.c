@@ -145,6 +145,8 @@ int tt_graze_aim(tt_graze *g, tt_sim *sim, const tt_sample *smp, int n)
     return 1;
 }
 
+double tt_graze_probe_time(const tt_graze *g, int i) { return g->tau[i]; }
+
 void tt_graze_disarm(tt_graze *g, tt_sim *sim)
 {
     (void)g;

@@ -58,6 +58,8 @@ void tt_graze_reset(tt_graze *g, double jumpin);
  * from then on, and the free model must be built with them. 0 when the window does
  * not fit within one cycle (the sim's probes are then off). */
 int tt_graze_aim(tt_graze *g, tt_sim *sim, const tt_sample *samples, int n);
+/* Probe i's time from the cycle's start (s), once aimed. */
+double tt_graze_probe_time(const tt_graze *g, int i);
 /* Turn the sim's probes off. */
 void tt_graze_disarm(tt_graze *g, tt_sim *sim);
 
