@@ -241,15 +241,13 @@ static void worker_free(worker *W)
 }
 
 /* The envelope tier falls back to every cycle at low Q (the envelope follows the free
- * transient's Q / pi cycles; below Q 30 there are too few to skip), at very high Q
- * (above 3000 the envelope drifts over stretches by more than the check of their last
- * cycle sees: at Q 1e4 the images erred 1.4 times the estimate, tests/test_envelope.c)
- * and with z piezo noise: a draw per cycle moves the sample by 0.1 nm (0.3 pm/sqrt(Hz)),
+ * transient's Q / pi cycles; below Q 30 there are too few to skip; above Q 3000 its
+ * checks bound a stretch's drift instead, scan_envelope.c) and with z piezo noise: a draw per cycle moves the sample by 0.1 nm (0.3 pm/sqrt(Hz)),
  * and the map's response to it is far from linear (docs/dynamics.md, "Noise on the
  * envelope tier"). Thermal and detector noise run on it to first order. */
 static int envelope_allowed(const tt_cantilever *c, const tt_scan_noise *n)
 {
-    return c->Q >= 30 && c->Q <= 3000 && n->z_piezo == 0;
+    return c->Q >= 30 && n->z_piezo == 0;
 }
 
 /* The averaged tier takes the drive, the damping and the tip-sample force for small

@@ -169,7 +169,7 @@ double tt_scan_averaged_table_error(const tt_scan *s);
 long tt_scan_averaged_collapsed(const tt_scan *s, long *line, long *pixel);
 long tt_scan_averaged_outside(const tt_scan *s);
 /* Whether a scan of these parameters runs on the envelope tier: [solver] tier asks for
- * it and the scan allows it (Q from 30 to 3000, no noise); else every cycle. */
+ * it and the scan allows it (Q 30 or more, no z piezo noise); else every cycle. */
 int tt_scan_envelope_tier(const tt_scan_params *p);
 /* Whether it runs on the averaged tier: [solver] tier asks for it and the scan allows
  * it (Q 30 or more, the drive within 5 % of resonance); else on the envelope tier's
