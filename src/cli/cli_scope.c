@@ -127,7 +127,8 @@ void cli_scope_warn(const char *cmd, const tt_scan *scan, const tt_scan_scope *s
                    (double)(tt_scan_fast_y(scan) ? tt_scan_yres(scan) : tt_scan_xres(scan))));
     if (isfinite(o.ki_suggested))
         fprintf(stderr, "tiptap %s: note: integral_gain %.4g Hz has a phase margin of %.0f deg "
-                        "on the loop's model fitted to the ring (plant gain %.2f); %.3g Hz gives "
-                        "60 deg (docs/imaging.md, The scope)\n",
-                cmd, loop.ki, o.phase_margin, o.plant_gain, o.ki_suggested);
+                        "on the loop's model fitted to the ring (plant gain %.2f, amplitude time "
+                        "constant %.3g ms); %.0f Hz gives 60 deg (docs/imaging.md, The scope)\n",
+                cmd, loop.ki, o.phase_margin + 0.0, o.plant_gain, o.amplitude_time * 1e3,
+                o.ki_suggested);
 }
