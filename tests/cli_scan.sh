@@ -48,6 +48,11 @@ ls "$tmp/out" | grep -q "\.tmp\." && bad "temporary files left" || ok "no tempor
   bad "profiles overlay"
 "$tiptap" profiles -q -o "$tmp/prof.png" "$tmp/nowhere" 2>/dev/null && bad "profiles of a missing folder" ||
   ok "profiles refuses a missing folder"
+# a profile line the scan never finished (NaN) gets a note in its panel and on stderr
+mkdir "$tmp/nan" && printf 'position_nm,height_trace_m,height_retrace_m\n10,nan,nan\n20,nan,nan\n' >"$tmp/nan/profile.csv"
+"$tiptap" profiles -q -o "$tmp/nan.png" "$tmp/nan" "$tmp/out" 2>"$tmp/nan.err" && [ -s "$tmp/nan.png" ] &&
+  grep -q "^tiptap profiles: $tmp/nan: the profile line holds no height" "$tmp/nan.err" &&
+  ok "a NaN profile line is named" || bad "NaN profile: $(cat "$tmp/nan.err")"
 # the effective scene runs again from anywhere and gives the same height image
 (cd / && "$tiptap" scan "$tmp/out/scene.ini" -o "$tmp/again" -q) || bad "effective scene re-runs"
 cmp -s "$tmp/out/height_trace.gsf" "$tmp/again/height_trace.gsf" && ok "effective scene reproduces the image" || bad "re-run differs"

@@ -150,6 +150,19 @@ int cmd_profiles(int argc, char **argv)
             rc = tt_figure_line(f, i, p.col[0], p.col[1], p.n, i == 0 ? "trace" : NULL, 1 | TT_PLOT_THICK);
         if (rc == TT_OK && p.have[2])
             rc = tt_figure_line(f, i, p.col[0], p.col[2], p.n, i == 0 ? "retrace" : NULL, 2 | TT_PLOT_THICK);
+        /* a line the scan never finished (interrupted) is NaN: said in its panel, not
+         * left an empty frame */
+        int any = 0;
+        for (size_t k = 0; k < p.n; k++)
+            any |= isfinite(p.col[1][k]) || (p.have[2] && isfinite(p.col[2][k]));
+        if (rc == TT_OK && !any && p.n > 0) {
+            tt_figure_ylim(f, i, 0, 1);
+            rc = tt_figure_text(f, i, p.col[0][0], 0.5,
+                                "no height on this line: the scan did not finish it (an "
+                                "interrupted run; its lines_finished < lines_total)");
+            fprintf(stderr, "tiptap profiles: %s: the profile line holds no height (the scan did not "
+                            "finish it)\n", argv[optind + i]);
+        }
         profile_free(&p);
     }
     cli_catch_interrupt(); /* the figure is finished, not left half-written */
