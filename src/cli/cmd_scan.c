@@ -440,10 +440,8 @@ int cmd_scan(int argc, char **argv)
         char saved[1024];
         snprintf(saved, sizeof saved, "%s", tt_error_message());
         int wrc = cli_scan_write_outputs(scan, scene, dir, &written);
-        tt_feedback_params fb;
-        tt_scan_get_feedback(scan, &fb);
         if (!wrc)
-            wrc = cli_scope_write(scope, fb.setpoint, dir, &written);
+            wrc = cli_scope_write(scan, scope, dir, &written);
         cli_scope_warn("scan", scan, scope);
         if (wrc && !rc)
             rc = wrc;
