@@ -63,11 +63,22 @@ static tt_oscillation check(double ki, const char *extra, double *pixel_pp)
     return o;
 }
 
+/* The hidden ring's check, made once for the two tests that read it. */
+static tt_oscillation hidden_ring(double *pp)
+{
+    static tt_oscillation o;
+    static double spread = NAN;
+    if (isnan(spread))
+        o = check(6000, "", &spread);
+    *pp = spread;
+    return o;
+}
+
 static void hidden_ring_is_found(void **st)
 {
     (void)st;
     double pp;
-    tt_oscillation o = check(6000, "", &pp);
+    tt_oscillation o = hidden_ring(&pp);
     assert_true(o.rings);
     /* one period a pixel (1.95 ms): about 500 Hz, many nanometres in z */
     assert_between(o.frequency, 400, 700);
@@ -117,7 +128,7 @@ static void suggestion_is_the_plants(void **st)
 {
     (void)st;
     double pp;
-    tt_oscillation a = check(4500, "", &pp), b = check(6000, "", &pp);
+    tt_oscillation a = check(4500, "", &pp), b = hidden_ring(&pp);
     assert_true(a.rings && b.rings);
     assert_between(a.ki_suggested / b.ki_suggested, 1 / 1.5, 1.5);
     assert_between(a.plant_gain, 0.5, 2);
