@@ -101,11 +101,11 @@ function status(m) {
     b.onclick = () => window.tiptapSet("feedback.integral_gain", Math.round(m.suggest_ki).toString());
   }
   if (state.frame) {
-    const nl = state.frame.lines;
-    $("reproduce").textContent = m.passes > 0 || m.lines_done === nl ?
-      (m.first_line_as_set === 0 ? "The frame is complete at the current settings: tiptap scan scene.ini gives these files byte for byte." :
-        "Lines before " + m.first_line_as_set + " ran at other settings.") :
-      m.lines_done + " of " + nl + " lines done (an export holds these; the rest are NaN).";
+    $("reproduce").textContent = m.reproducible ?
+      "A whole frame ran at the current settings: tiptap scan scene.ini writes these files byte for byte." :
+      "Line " + m.line + " of " + state.frame.lines + (m.first_line_as_set > 0 ? "; lines from " + m.first_line_as_set +
+        " at the current settings" : "") + ": an export holds the image as it stands; scene.ini is the current settings, " +
+      "which tiptap scan reproduces once a whole frame has run at them.";
   }
 }
 function fmt(x, unit) {

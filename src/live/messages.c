@@ -150,9 +150,10 @@ void tt_live_msg_status(tt_live_buf *b, const tt_live_view *v, int clients)
 {
     tt_live_buf_printf(b, "{\"type\":\"status\",\"frame\":%ld,\"line\":%ld,\"lines_done\":%ld,"
                           "\"passes\":%ld,\"first_line_as_set\":%ld,\"tier\":\"%s\",\"clients\":%d,"
-                          "\"oscillating\":%s,\"realtime\":",
+                          "\"oscillating\":%s,\"reproducible\":%s,\"realtime\":",
                        v->frame, v->line, v->lines_done, v->passes, v->first_line_as_set,
-                       tier_name(v->tier), clients, v->oscillating ? "true" : "false");
+                       tier_name(v->tier), clients, v->oscillating ? "true" : "false",
+                       v->reproducible ? "true" : "false");
     num(b, v->realtime);
     tt_live_buf_printf(b, ",\"line_s\":");
     num(b, v->line_seconds);

@@ -58,7 +58,10 @@ typedef struct {
     long line;                        /* the line running or next */
     long first_line_as_set;           /* the first line of this frame run at the current
                                        * settings (0: the whole frame) */
-    long passes;                      /* how many times the frame's lines wrapped around */
+    long passes;                      /* how many times the frame's lines wrapped around
+                                       * (each pass engages afresh at line 0) */
+    int reproducible;                 /* a whole pass ran at the current settings: the
+                                       * images are tiptap scan's of the current scene */
     /* the scope: the last line published, decimated (min and max per bucket) */
     unsigned long scope_version;
     long scope_line;
