@@ -152,15 +152,13 @@ function frame(m) {
   ex.textContent = "";
   const names = ["scan.gwy", "scene.ini"];
   for (const c of m.channels) for (const d of m.retrace ? ["trace", "retrace"] : ["trace"])
-    names.push((c.name === "error" ? errorName() : c.name) + "_" + d + ".gsf");
+    names.push(c.file + "_" + d + ".gsf");
   for (const n of names) {
     const a = document.createElement("a");
     a.href = "/export/" + n; a.textContent = n; a.download = n;
     ex.appendChild(a);
   }
 }
-// the scan's file name of the error channel (before the rename it was "amplitude")
-function errorName() { return state.errorFile || "error"; }
 
 function row(m) {
   if (!state.frame || m.frame !== state.frame.frame) return;

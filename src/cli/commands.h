@@ -29,6 +29,7 @@ int cli_scan_check_outputs(const char *dir);
  * made, and locked for command cmd (tt_folder_lock; *lock for cli_unlock_folder). */
 int cli_scan_folder_take(const char *cmd, const char *dir, int *lock);
 int cmd_profiles(int argc, char **argv);
+int cmd_live(int argc, char **argv);
 
 /* Exit codes: 0 success, 1 bad input or failure, 2 usage, 130 interrupted (Ctrl-C);
  * 143 stopped by SIGTERM (main turns CLI_INTERRUPTED into 128 + the signal). */

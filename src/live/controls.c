@@ -436,8 +436,9 @@ const char *tt_live_controls_value(const tt_live_controls *c, size_t i, char *bu
     const tt_scan_params *p = &c->params;
     if (i >= NKNOBS || !c->have_params)
         return "";
+    int si = tt_live_controls_sample_index(c);
     if (i == K_SAMPLE)
-        snprintf(buf, len, "%s", c->sample >= 0 ? c->samples[c->sample] : "");
+        snprintf(buf, len, "%s", si >= 0 ? c->samples[si] : "");
     else if (i == K_NOISE)
         snprintf(buf, len, "%s", c->noise_off ? "off" : "on");
     else if (strcmp(table[i].name, "noise.seed") == 0)

@@ -141,6 +141,8 @@ void tt_live_msg_frame(tt_live_buf *b, const tt_live_view *v)
         str(b, v->channel_name[c]);
         tt_live_buf_printf(b, ",\"unit\":");
         str(b, v->channel_unit[c]);
+        tt_live_buf_printf(b, ",\"file\":");
+        str(b, v->channel_file[c]);
         tt_live_buf_printf(b, "}");
     }
     tt_live_buf_printf(b, "]}");

@@ -47,6 +47,7 @@ typedef struct {
     int fast_y, retrace;
     const char *channel_name[TT_LIVE_NCH]; /* NULL: not recorded by the scene */
     const char *channel_unit[TT_LIVE_NCH];
+    const char *channel_file[TT_LIVE_NCH]; /* the scan's name of it, as in its files */
     unsigned long version;       /* of the last publication, of any kind */
     unsigned long frame_version; /* when the frame began */
     /* rows: line l's pixels of channel c, direction r (0 trace, 1 retrace), along the
