@@ -32,10 +32,11 @@ static const tt_live_control table[] = {
 };
 enum { NKNOBS = sizeof table / sizeof table[0], NSAMPLES_MAX = 64 };
 
-/* The noise that "noise = on" gives a scene without any: a good instrument's
- * (examples/feedback-tuning/common.ini). */
-static const char good_noise[] = "temperature = 300 K\ndetector = 100 fm/sqrt(Hz)\n"
-                                 "z_piezo = 0.3 pm/sqrt(Hz)\n";
+/* The noise that "noise = on" gives a scene without any: a good instrument's thermal
+ * and detector noise (examples/feedback-tuning/common.ini), which the envelope tier
+ * carries; not its z piezo's, which would put every cycle on the integrator
+ * (docs/dynamics.md) for 0.3 pm/sqrt(Hz) that no image shows. */
+static const char good_noise[] = "temperature = 300 K\ndetector = 100 fm/sqrt(Hz)\n";
 
 struct tt_live_controls {
     char **files;

@@ -34,9 +34,22 @@ struct tt_live_engine {
     /* what runs: owned by the thread */
     tt_scene *scene;
     tt_scan_params params;
-    tt_scan *scan, *preview;
+    tt_scan *scan;
     tt_scan_scope *scope;
     double *line_buf;
+    int running; /* the thread is inside a line (under mu) */
+    /* the preview thread: the averaged tier's twin of the scan, its own scope and line,
+     * and the latest change for it (a copy of the engine's) */
+    pthread_t pthread;
+    int pstarted;
+    tt_scan *pscan;
+    tt_scan_scope *pscope;
+    double *pline;
+    long ppixels;
+    tt_scan_params pnext;
+    int pnext_have, prestart;
+    double pat;
+    unsigned long pwant, pdone, pchange;
     /* exports */
     int (*write)(void *, const tt_scan *, const tt_scene *, const char *);
     void *write_user;
@@ -57,6 +70,14 @@ static double now_s(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* This thread's CPU time: the line's own cost, whatever else the machine runs. */
+static double cpu_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
@@ -145,7 +166,8 @@ static int frame_publish(tt_live_engine *e)
 }
 
 /* The averaged tier's twin of a scan on a slower tier, for the preview lines; NULL
- * where the scene is on the averaged tier already or the averaged tier refuses it. */
+ * where the scene is on the averaged tier already (its own line is as quick as a
+ * preview) or the averaged tier refuses it. */
 static tt_scan *preview_alloc(const tt_scan_params *p)
 {
     tt_scan_params q = *p;
@@ -191,7 +213,7 @@ static int take_change(tt_live_engine *e, tt_scene *scene, tt_scan_params *p, in
 {
     /* the console says which of its knobs need a new scan (controls.h) */
     int fresh = restart || !e->scan;
-    if (!fresh && (apply_live(e->scan, p) || (e->preview && apply_live(e->preview, p))))
+    if (!fresh && apply_live(e->scan, p))
         fresh = 1;
     if (fresh) {
         tt_scan *s = NULL;
@@ -205,9 +227,7 @@ static int take_change(tt_live_engine *e, tt_scene *scene, tt_scan_params *p, in
             return 0;
         }
         tt_scan_free(e->scan);
-        tt_scan_free(e->preview);
         e->scan = s;
-        e->preview = preview_alloc(p);
     }
     tt_scene_free(e->scene);
     if (e->scene)
@@ -232,21 +252,21 @@ static int take_change(tt_live_engine *e, tt_scene *scene, tt_scan_params *p, in
     return 1;
 }
 
-/* The line's scope record, decimated for a screen, into the view (under mu). */
-static void publish_scope(tt_live_engine *e, long line, int tier)
+/* A scope record, decimated for a screen, into the view (under mu). */
+static void publish_scope(tt_live_engine *e, const tt_scan_scope *sc, long line, int tier)
 {
     static const int q[TT_LIVE_NS] = {TT_SCOPE_POSITION, TT_SCOPE_Z, TT_SCOPE_ERROR,
                                       TT_SCOPE_AMPLITUDE, TT_SCOPE_PHASE, TT_SCOPE_SURFACE};
     for (int r = 0; r < 2; r++) {
-        long n = tt_scan_scope_points(e->scope, r);
+        long n = tt_scan_scope_points(sc, r);
         tt_decimate *d = NULL;
         e->v.scope_n[r] = 0;
         if (n <= 0 || tt_decimate_alloc(&d, TT_LIVE_NS, (double)n, TT_LIVE_SCOPE_BUDGET))
             continue;
         const double *src[TT_LIVE_NS];
         for (int k = 0; k < TT_LIVE_NS; k++)
-            src[k] = tt_scan_scope_series(e->scope, r, q[k]);
-        const double *t = tt_scan_scope_series(e->scope, r, TT_SCOPE_TIME);
+            src[k] = tt_scan_scope_series(sc, r, q[k]);
+        const double *t = tt_scan_scope_series(sc, r, TT_SCOPE_TIME);
         for (long i = 0; i < n; i++) {
             double v[TT_LIVE_NS];
             for (int k = 0; k < TT_LIVE_NS; k++)
@@ -270,42 +290,49 @@ static void publish_scope(tt_live_engine *e, long line, int tier)
     }
     e->v.scope_line = line;
     e->v.scope_tier = tier;
-    e->v.scope_rate = tt_scan_scope_rate(e->scope);
+    e->v.scope_rate = tt_scan_scope_rate(sc);
     e->v.scope_version = e->v.version;
 }
 
-/* Run line `line` on scan s (the scan's own tier, or the preview) and publish it. */
-static int run_line(tt_live_engine *e, tt_scan *s, long line, int tier, double changed_at)
+/* Line `line`'s pixels from scan s (buf: a line's room) into the published rows, as
+ * tier's (under mu). */
+static void publish_row(tt_live_engine *e, const tt_scan *s, double *buf, long line, int tier)
 {
-    double t0 = now_s();
-    int rc = tt_scan_step(s, line, e->scope);
-    double t1 = now_s();
-    if (rc)
-        return rc;
     long px = e->v.pixels;
-    pthread_mutex_lock(&e->mu);
     unsigned long ver = ++e->v.version;
     for (int c = 0; c < TT_LIVE_NCH; c++)
         for (int r = 0; r < 2; r++)
-            if (e->rows[c][r] && tt_scan_line_values(s, e->ch_index[c], r, line, e->line_buf) == TT_OK)
-                memcpy(e->rows[c][r] + line * px, e->line_buf, (size_t)px * sizeof(double));
+            if (e->rows[c][r] && tt_scan_line_values(s, e->ch_index[c], r, line, buf) == TT_OK)
+                memcpy(e->rows[c][r] + line * px, buf, (size_t)px * sizeof(double));
     e->row_version[line] = ver;
     e->row_tier[line] = (unsigned char)tier;
-    publish_scope(e, line, tier);
-    if (changed_at > 0) {
-        double ms = 1e3 * (t1 - changed_at);
-        if (s == e->preview)
-            e->v.preview_ms = ms;
-        else
-            e->v.accurate_ms = ms;
-    }
-    if (s == e->scan) {
-        e->v.line_seconds = t1 - t0;
-        e->v.realtime = (1.0 / e->params.raster.line_rate) / (t1 - t0);
-        if (e->v.passes == 0)
-            e->v.lines_done = line + 1;
-    }
     e->v.status_version = ver;
+}
+
+/* Run line `line` on the scan's own tier and publish it. */
+static int run_line(tt_live_engine *e, long line, double changed_at)
+{
+    pthread_mutex_lock(&e->mu);
+    e->running = 1;
+    pthread_mutex_unlock(&e->mu);
+    double t0 = now_s(), c0 = cpu_s();
+    int rc = tt_scan_step(e->scan, line, e->scope);
+    double t1 = now_s(), c1 = cpu_s();
+    pthread_mutex_lock(&e->mu);
+    e->running = 0;
+    if (rc) {
+        pthread_mutex_unlock(&e->mu);
+        return rc;
+    }
+    publish_row(e, e->scan, e->line_buf, line, (int)e->params.solver.tier);
+    publish_scope(e, e->scope, line, (int)e->params.solver.tier);
+    if (changed_at > 0)
+        e->v.accurate_ms = 1e3 * (t1 - changed_at);
+    e->v.line_seconds = t1 - t0;
+    e->v.realtime = (1.0 / e->params.raster.line_rate) / (t1 - t0);
+    e->v.realtime_cpu = (1.0 / e->params.raster.line_rate) / (c1 - c0);
+    if (e->v.passes == 0)
+        e->v.lines_done = line + 1;
     pthread_mutex_unlock(&e->mu);
     e->wake(e->user);
     return TT_OK;
@@ -373,8 +400,7 @@ static void pace(tt_live_engine *e, double until)
 static void *engine_main(void *arg)
 {
     tt_live_engine *e = arg;
-    double changed_at = now_s();
-    int previewed = 0;
+    double changed_at = 0;
     for (;;) {
         pthread_mutex_lock(&e->mu);
         int stop = e->stop, have = e->have_next, restart = e->next_restart;
@@ -393,24 +419,14 @@ static void *engine_main(void *arg)
         }
         /* an export asked for before the change shows the image and scene it was asked of */
         do_export(e);
-        if (have && take_change(e, scene, &p, restart)) {
+        if (have && take_change(e, scene, &p, restart))
             changed_at = at;
-            previewed = 0;
-        }
         if (!e->scan || !e->line_buf) {
             pace(e, now_s() + 1);
             continue;
         }
-        long line = e->v.line;
         double t0 = now_s();
-        if (changed_at > 0 && !previewed && e->preview) {
-            previewed = 1;
-            /* its own chain of lines is stale: it engages afresh at the line's start */
-            tt_scan_disengage(e->preview);
-            if (run_line(e, e->preview, line, TT_TIER_AVERAGED, changed_at) == TT_EINTR)
-                break;
-        }
-        int rc = run_line(e, e->scan, line, (int)e->params.solver.tier, changed_at);
+        int rc = run_line(e, e->v.line, changed_at);
         if (rc == TT_EINTR)
             break;
         if (rc)
@@ -427,12 +443,68 @@ static void *engine_main(void *arg)
         }
         int wrapped = e->v.line == 0;
         pthread_mutex_unlock(&e->mu);
-        if (wrapped) {
+        if (wrapped)
             tt_scan_disengage(e->scan);
-            if (e->preview)
-                tt_scan_disengage(e->preview);
-        }
         pace(e, t0 + 1.0 / e->params.raster.line_rate);
+    }
+    return NULL;
+}
+
+/* The preview: a change's next line on the averaged tier, at once, on a thread of its
+ * own, while the scan's own tier finishes the line under way. It runs the line the
+ * instrument will run next (the one after the line under way), engaged afresh at its
+ * first pixel, and publishes it unless the scan's own tier got there first. A change
+ * that starts a new frame is previewed by nothing: its frame comes with its first line. */
+static void preview_line(tt_live_engine *e, unsigned long change, double at)
+{
+    pthread_mutex_lock(&e->mu);
+    long line = e->running ? (e->v.line + 1) % e->v.lines : e->v.line, frame = e->v.frame;
+    int fits = e->v.pixels == e->ppixels && e->v.lines == tt_scan_lines(e->pscan);
+    pthread_mutex_unlock(&e->mu);
+    if (!fits)
+        return;
+    tt_scan_disengage(e->pscan);
+    if (tt_scan_step(e->pscan, line, e->pscope))
+        return;
+    pthread_mutex_lock(&e->mu);
+    if (e->v.frame == frame && e->row_version[line] < change) {
+        publish_row(e, e->pscan, e->pline, line, TT_TIER_AVERAGED);
+        publish_scope(e, e->pscope, line, TT_TIER_AVERAGED);
+        e->v.preview_ms = 1e3 * (now_s() - at);
+    }
+    pthread_mutex_unlock(&e->mu);
+    e->wake(e->user);
+}
+
+static void *preview_main(void *arg)
+{
+    tt_live_engine *e = arg;
+    for (;;) {
+        pthread_mutex_lock(&e->mu);
+        while (!e->stop && e->pwant == e->pdone)
+            pthread_cond_wait(&e->cv, &e->mu);
+        if (e->stop) {
+            pthread_mutex_unlock(&e->mu);
+            break;
+        }
+        tt_scan_params p = e->pnext;
+        int restart = e->prestart;
+        double at = e->pat;
+        unsigned long change = e->pchange;
+        e->pnext_have = 0;
+        e->prestart = 0;
+        e->pdone = e->pwant;
+        pthread_mutex_unlock(&e->mu);
+        if (restart || !e->pscan || apply_live(e->pscan, &p)) {
+            tt_scan_free(e->pscan);
+            e->pscan = preview_alloc(&p);
+            free(e->pline);
+            e->ppixels = e->pscan ? (p.raster.fast_y ? tt_scan_yres(e->pscan) : tt_scan_xres(e->pscan)) : 0;
+            e->pline = e->pscan ? malloc((size_t)e->ppixels * sizeof(double)) : NULL;
+        }
+        if (!restart && e->pscan && e->pline)
+            preview_line(e, change, at);
+        tt_config_scan_free(&p);
     }
     return NULL;
 }
@@ -451,6 +523,19 @@ int tt_live_engine_alloc(tt_live_engine **out, tt_scene *scene, tt_scan_params *
     e->wake = wake;
     e->user = user;
     int rc = tt_scan_scope_alloc(&e->scope);
+    if (!rc)
+        rc = tt_scan_scope_alloc(&e->pscope);
+    /* the preview thread makes its scan at once (not previewed: the first change's
+     * preview then costs a line, not the averaged tier's tables too) */
+    tt_material *m = rc ? NULL : malloc((p->nmaterials ? p->nmaterials : 1) * sizeof *m);
+    if (m) {
+        memcpy(m, p->materials, p->nmaterials * sizeof *m);
+        e->pnext = *p;
+        e->pnext.materials = m;
+        e->pnext_have = 1;
+        e->prestart = 1;
+        e->pwant = 1;
+    }
     if (!rc && !take_change(e, scene, p, 1))
         rc = tt_error(TT_EINVAL, "%s", e->v.note);
     else if (rc) {
@@ -466,6 +551,10 @@ int tt_live_engine_alloc(tt_live_engine **out, tt_scene *scene, tt_scan_params *
             rc = tt_error(TT_ENOMEM, "cannot start the console's instrument thread");
         else
             e->started = 1;
+        if (!rc && pthread_create(&e->pthread, NULL, preview_main, e) != 0)
+            rc = tt_error(TT_ENOMEM, "cannot start the console's preview thread");
+        else if (!rc)
+            e->pstarted = 1;
         pthread_sigmask(SIG_SETMASK, &old, NULL);
     }
     if (rc) {
@@ -486,6 +575,13 @@ void tt_live_engine_free(tt_live_engine *e)
     pthread_mutex_unlock(&e->mu);
     if (e->started)
         pthread_join(e->thread, NULL);
+    if (e->pstarted)
+        pthread_join(e->pthread, NULL);
+    if (e->pnext_have)
+        tt_config_scan_free(&e->pnext);
+    tt_scan_free(e->pscan);
+    tt_scan_scope_free(e->pscope);
+    free(e->pline);
     if (e->have_next) {
         tt_scene_free(e->next_scene);
         tt_config_scan_free(&e->next_params);
@@ -498,7 +594,6 @@ void tt_live_engine_free(tt_live_engine *e)
             free(e->series[r][k]);
     tt_scan_scope_free(e->scope);
     tt_scan_free(e->scan);
-    tt_scan_free(e->preview);
     if (e->scene) {
         tt_scene_free(e->scene);
         tt_config_scan_free(&e->params);
@@ -522,8 +617,22 @@ void tt_live_engine_submit(tt_live_engine *e, tt_scene *scene, tt_scan_params *p
     e->next_restart = restart;
     e->have_next = 1;
     e->next_at = now_s();
+    /* the preview thread's own copy (the materials are plain values) */
+    tt_material *m = malloc((p->nmaterials ? p->nmaterials : 1) * sizeof *m);
+    if (m) {
+        if (e->pnext_have)
+            tt_config_scan_free(&e->pnext);
+        memcpy(m, p->materials, p->nmaterials * sizeof *m);
+        e->pnext = *p;
+        e->pnext.materials = m;
+        e->pnext_have = 1;
+        e->prestart |= restart;
+        e->pat = e->next_at;
+        e->pwant++;
+    }
     e->v.reproducible = 0; /* the image is no longer the current scene's */
     e->v.status_version = ++e->v.version;
+    e->pchange = e->v.version;
     pthread_cond_broadcast(&e->cv);
     pthread_mutex_unlock(&e->mu);
 }

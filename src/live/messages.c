@@ -157,6 +157,8 @@ void tt_live_msg_status(tt_live_buf *b, const tt_live_view *v, int clients)
                        tier_name(v->tier), clients, v->oscillating ? "true" : "false",
                        v->reproducible ? "true" : "false");
     num(b, v->realtime);
+    tt_live_buf_printf(b, ",\"realtime_cpu\":");
+    num(b, v->realtime_cpu);
     tt_live_buf_printf(b, ",\"line_s\":");
     num(b, v->line_seconds);
     tt_live_buf_printf(b, ",\"preview_ms\":");

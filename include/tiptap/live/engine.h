@@ -74,6 +74,8 @@ typedef struct {
     /* the loop */
     unsigned long status_version;
     double realtime;       /* instrument time / wall time of the last line's work, >= 1: keeps up */
+    double realtime_cpu;   /* the same per CPU second of the engine's thread: what a
+                            * core of its own would give on a shared machine */
     double line_seconds;   /* wall time of the last accurate line's work */
     double preview_ms;     /* from the last change's arrival to its first published line */
     double accurate_ms;    /* and to its line on the scan's own tier */
