@@ -18,7 +18,7 @@ static const char *base =
     "interaction_quality_factor = 10\n"
     "[material stiff]\nyoungs_modulus = 3 GPa\nadhesion_energy = 40 mJ/m^2\n"
     "[scan]\nsize = 1 um\npixels = 32\nlines = 1\nline_rate = 8 Hz\nsettle_cycles = 2000\n"
-    "channels = height, amplitude, phase, peak_force\n"
+    "channels = height, error, phase, peak_force\n"
     "[feedback]\nsetpoint = 80 %\nintegral_gain = 3000 Hz\n";
 
 static tt_scan *scan_with(const char *b, const char *extra, const char *solver, tt_scene **sc)
@@ -97,7 +97,7 @@ static void bistable(void **st)
         "[material silicon]\nyoungs_modulus = 100 GPa\npoisson_ratio = 0.27\n"
         "adhesion_energy = 40 mJ/m^2\n"
         "[scan]\nsize = 1 um\npixels = 32\nlines = 1\nline_rate = 8 Hz\nsettle_cycles = 2000\n"
-        "channels = height, amplitude, phase\n"
+        "channels = height, error, phase\n"
         "[feedback]\nsetpoint = 60 %\nintegral_gain = 3000 Hz\n";
     agrees(b, "[surface]\ntype = steps\nstep_height = 0.5 nm\nstep_width = 300 nm\n", 0.3);
 }

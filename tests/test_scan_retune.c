@@ -16,7 +16,7 @@ static const char *base =
     "free_amplitude = 20 nm\n"
     "[material stiff]\nyoungs_modulus = 100 GPa\n"
     "[scan]\nsize = 1 um\npixels = 16\nlines = 3\nline_rate = 40 Hz\nsettle_cycles = 1000\n"
-    "channels = height, amplitude, phase\n"
+    "channels = height, error, phase\n"
     "[surface]\ntype = steps\nstep_height = 4 nm\nstep_width = 300 nm\n"
     "[feedback]\nsetpoint = 80 %\nintegral_gain = 3000 Hz\n";
 

@@ -16,7 +16,7 @@ static const char *base =
     "free_amplitude = 20 nm\n"
     "[material stiff]\nyoungs_modulus = 100 GPa\n"
     "[scan]\nsize = 1 um\npixels = 16\nlines = 3\nline_rate = 40 Hz\nsettle_cycles = 1000\n"
-    "channels = height, amplitude, phase, topography\n"
+    "channels = height, error, phase, topography, amplitude\n"
     "[lockin]\nperiods_per_block = 4\n"
     "[surface]\ntype = steps\nstep_height = 4 nm\nstep_width = 300 nm\n"
     "[feedback]\nsetpoint = 80 %\nintegral_gain = 3000 Hz\n";
@@ -58,18 +58,20 @@ static void record_agrees_with_pixels(const char *extra)
             assert_close(x[i], dir ? 1e-6 * (1 - k / 3750.0) : 1e-6 * k / 3750.0, 1e-15);
             assert_close(e[i], a[i] - 16e-9, 1e-20);
         }
-        double height[PX], err[PX], phase[PX], topo[PX];
+        double height[PX], err[PX], phase[PX], topo[PX], amp[PX];
         assert_int_equal(tt_scan_line_values(s, 0, dir, 1, height), TT_OK);
         assert_int_equal(tt_scan_line_values(s, 1, dir, 1, err), TT_OK);
         assert_int_equal(tt_scan_line_values(s, 2, dir, 1, phase), TT_OK);
         assert_int_equal(tt_scan_line_values(s, 6, dir, 1, topo), TT_OK);
+        assert_int_equal(tt_scan_line_values(s, 7, dir, 1, amp), TT_OK);
         for (int p = 0; p < PX; p++) {
-            double se = 0, sp = 0, sz = 0, sh = 0, dz = 0;
+            double sa = 0, se = 0, sp = 0, sz = 0, sh = 0, dz = 0;
             long m = 0;
             for (long i = 0; i < n; i++) {
                 if (pix[i] != p)
                     continue;
                 se += e[i];
+                sa += a[i];
                 sp += ph[i];
                 sz += z[i];
                 sh += hs[i];
@@ -80,6 +82,8 @@ static void record_agrees_with_pixels(const char *extra)
             assert_true(m >= 58); /* 234 or 235 cycles a pixel, a point each 4 */
             /* the lock-in's channels: the means of the pixel's points */
             assert_close(err[p], se / m, 1e-21);
+            assert_close(amp[p], sa / m, 1e-21);
+            assert_close(amp[p] - err[p], 16e-9, 1e-20); /* the error is amplitude - setpoint */
             assert_close(phase[p], sp / m, 1e-11);
             /* the height: the mean of the command, which ramps between the points: off
              * their mean by at most one block's move */

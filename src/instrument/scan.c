@@ -17,8 +17,8 @@
 static const struct {
     const char *name, *unit;
 } channel_info[TT_CH_COUNT] = {
-    {"height", "m"},     {"amplitude", "m"},   {"phase", "deg"},       {"peak_force", "N"},
-    {"indentation", "m"}, {"dissipation", "J"}, {"topography", "m"},
+    {"height", "m"},     {"error", "m"},       {"phase", "deg"},       {"peak_force", "N"},
+    {"indentation", "m"}, {"dissipation", "J"}, {"topography", "m"},   {"amplitude", "m"},
     {"harmonic2", "m"},  {"harmonic3", "m"},   {"harmonic4", "m"},     {"harmonic5", "m"},
     {"harmonic6", "m"},  {"harmonic7", "m"},   {"harmonic8", "m"},
     {"harmonic2_phase", "deg"}, {"harmonic3_phase", "deg"}, {"harmonic4_phase", "deg"},
@@ -31,7 +31,7 @@ const char *tt_scan_channel_unit(int i) { return i >= 0 && i < TT_CH_COUNT ? cha
 
 int tt_scan_channel_harmonic(int i)
 {
-    if (i == 1 || i == 2)
+    if (i == 1 || i == 2 || i == 7)
         return 1;
     if (i >= TT_CH_HARMONIC_INDEX && i < TT_CH_HARMONIC_INDEX + NHARM)
         return i - TT_CH_HARMONIC_INDEX + 2;
@@ -59,8 +59,8 @@ int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t l
                 found = i;
         if (found < 0) {
             snprintf(why, len,
-                     "unknown channel '%.*s'; channels are height, amplitude, phase, peak_force, "
-                     "indentation, dissipation, topography, harmonic2 to harmonic%d, "
+                     "unknown channel '%.*s'; channels are height, error, amplitude, phase, "
+                     "peak_force, indentation, dissipation, topography, harmonic2 to harmonic%d, "
                      "harmonic2_phase to harmonic%d_phase",
                      (int)(e - p), p, TT_CH_HARMONIC_MAX, TT_CH_HARMONIC_MAX);
             return -1;

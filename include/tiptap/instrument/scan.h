@@ -46,27 +46,28 @@ extern "C" {
 /* Channels (bit flags). */
 enum {
     TT_CH_HEIGHT = 1 << 0,      /* feedback height, m */
-    TT_CH_AMPLITUDE = 1 << 1,   /* amplitude error: lock-in amplitude - setpoint, m */
+    TT_CH_ERROR = 1 << 1,       /* the error signal: lock-in amplitude - setpoint, m */
     TT_CH_PHASE = 1 << 2,       /* lock-in phase lag, deg */
     TT_CH_PEAK_FORCE = 1 << 3,  /* greatest tip-sample force per cycle, N */
     TT_CH_INDENTATION = 1 << 4, /* greatest penetration per cycle, m */
     TT_CH_DISSIPATION = 1 << 5, /* tip-sample energy lost per cycle, J */
     TT_CH_TOPOGRAPHY = 1 << 6,  /* the true surface height under the tip's axis, m
                                  * (reference: no dilation, tilt or z drift) */
+    TT_CH_AMPLITUDE = 1 << 7,   /* the lock-in amplitude (filtered), m */
     /* Higher harmonics of the deflection, h = 2 to TT_CH_HARMONIC_MAX: channel index
      * TT_CH_HARMONIC_INDEX + h - 2 is "harmonicH", the lock-in amplitude of harmonic h
      * (m), and TT_CH_HARMONIC_PHASE_INDEX + h - 2 is "harmonicH_phase", its lag behind
      * cos(h w t) (deg). */
     TT_CH_HARMONIC_MAX = 8,
-    TT_CH_HARMONIC_INDEX = 7,
-    TT_CH_HARMONIC_PHASE_INDEX = 14,
-    TT_CH_COUNT = 21
+    TT_CH_HARMONIC_INDEX = 8,
+    TT_CH_HARMONIC_PHASE_INDEX = 15,
+    TT_CH_COUNT = 22
 };
 
 /* Name ("height"), unit ("m", "deg", "N", "J") and title of channel index i. */
 const char *tt_scan_channel_name(int i);
 const char *tt_scan_channel_unit(int i);
-/* The harmonic a channel index demodulates: 1 for amplitude and phase, h for
+/* The harmonic a channel index demodulates: 1 for error, phase and amplitude, h for
  * harmonicH and harmonicH_phase, 0 for the others. */
 int tt_scan_channel_harmonic(int i);
 /* Parse "height, phase" into a channel mask; -1 with a message naming the channel. */
