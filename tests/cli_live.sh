@@ -29,7 +29,7 @@ start() {
 }
 
 # A small teaching scene: 32 pixels, 4 lines at 8 Hz (a frame in half a second).
-scene=("$src/examples/feedback-tuning/common.ini" "$src/surfaces/grating.ini"
+scene=("$src/examples/feedback-tuning/common.ini" "$src/surfaces/grating.ini" --set "noise.z_piezo=0 m/sqrt(Hz)"
        --set scan.pixels=32 --set scan.lines=4 --set scan.line_rate=8Hz --set scan.size=1um)
 start "${scene[@]}"
 if [ -z "$port" ]; then

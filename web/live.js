@@ -84,7 +84,7 @@ function reply(m) {
 // ---- status, warning
 function status(m) {
   state.status = m;
-  const rt = m.realtime ? m.realtime.toFixed(2) + "x real time" : "";
+  const rt = m.realtime ? m.realtime.toFixed(2) + "x real time (" + m.realtime_cpu.toFixed(2) + "x per CPU second)" : "";
   const lat = m.preview_ms != null ? ", last change: " + m.preview_ms.toFixed(0) + " ms (preview), " +
     (m.accurate_ms != null ? m.accurate_ms.toFixed(0) + " ms (" + m.tier + ")" : "") : "";
   $("status").textContent = "frame " + m.frame + ", line " + m.line + ", " + m.tier + " tier, " + rt + lat +
@@ -138,6 +138,8 @@ function frame(m) {
     const cv = document.createElement("canvas");
     cv.id = "img-" + c.name + "-" + dir;
     cv.width = m.pixels; cv.height = m.lines;
+    // drawn in the scan's own proportions, as an instrument shows a frame
+    cv.style.aspectRatio = (m.fast_y ? m.size_slow / m.size_fast : m.size_fast / m.size_slow).toString();
     const cap = document.createElement("figcaption");
     cap.id = "cap-" + c.name + "-" + dir;
     cap.textContent = c.name + " (" + dir + ")";

@@ -24,7 +24,7 @@ static const tt_live_control table[] = {
     {"feedback.integral_gain", "I gain", "Hz", 0},
     {"scan.line_rate", "line rate", "Hz", 0},
     {"scan.size", "scan size", "nm", 1},
-    {"scan.fast_axis", "fast axis (scan angle 0 or 90 deg)", "", 1},
+    {"scan.fast_axis", "fast axis (angle)", "", 1},
     {"scan.pixels", "pixels", "", 1},
     {"scan.lines", "lines", "", 1},
     {"cantilever.free_amplitude", "free amplitude", "nm", 0},

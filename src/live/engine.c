@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "tiptap/config/config.h"
+#include "tiptap/instrument/scan_oscillation.h"
 #include "tiptap/instrument/scan_scope.h"
 #include "tiptap/io/decimate.h"
 #include "tiptap/util/error.h"
@@ -109,8 +110,7 @@ static void frame_free(tt_live_engine *e)
 /* The published frame of the running scan: its raster, channels and empty rows. */
 static int frame_publish(tt_live_engine *e)
 {
-    static const char *const names[TT_LIVE_NCH][2] = {
-        {"height", NULL}, {"error", "amplitude"}, {"phase", NULL}};
+    static const char *const names[TT_LIVE_NCH] = {"height", "error", "phase"};
     const tt_scan *s = e->scan;
     long px = tt_scan_fast_y(s) ? tt_scan_yres(s) : tt_scan_xres(s), nl = tt_scan_lines(s);
     size_t n = (size_t)px * (size_t)nl;
@@ -129,11 +129,9 @@ static int frame_publish(tt_live_engine *e)
     if (!e->row_version || !e->row_tier)
         rc = tt_error_nomem("the console's image, %ld lines", nl);
     for (int c = 0; c < TT_LIVE_NCH; c++) {
-        int k = channel_by_name(names[c][0]);
-        if (k < 0 && names[c][1])
-            k = channel_by_name(names[c][1]);
+        int k = channel_by_name(names[c]);
         e->ch_index[c] = k >= 0 && tt_scan_image(s, k, 0) ? k : -1;
-        e->v.channel_name[c] = e->ch_index[c] >= 0 ? names[c][0] : NULL;
+        e->v.channel_name[c] = e->ch_index[c] >= 0 ? names[c] : NULL;
         e->v.channel_unit[c] = e->ch_index[c] >= 0 ? tt_scan_channel_unit(k) : NULL;
         e->v.channel_file[c] = e->ch_index[c] >= 0 ? tt_scan_channel_name(k) : NULL;
         for (int r = 0; r < 2 && e->ch_index[c] >= 0 && !rc; r++) {
@@ -309,6 +307,22 @@ static void publish_row(tt_live_engine *e, const tt_scan *s, double *buf, long l
     e->v.status_version = ver;
 }
 
+/* The oscillation warning and the gain suggestion, from the line's record on the scan's
+ * own tier (instrument/scan_oscillation.h): z and the error at the loop's rate, not the
+ * pixel means, which hide a ring of a period a pixel (under mu). */
+static void judge_loop(tt_live_engine *e)
+{
+    tt_loop loop;
+    tt_oscillation o;
+    tt_scan_loop(e->scan, &loop);
+    if (tt_scan_oscillation(e->scope, &loop, &o) != TT_OK)
+        return;
+    e->v.oscillating = o.rings;
+    e->v.ring_hz = o.rings ? o.frequency : 0;
+    e->v.ring_nm = o.rings ? o.z_peak_to_peak : 0;
+    e->v.suggest_ki = o.rings && isfinite(o.ki_suggested) && o.ki_suggested > 0 ? o.ki_suggested : 0;
+}
+
 /* Run line `line` on the scan's own tier and publish it. */
 static int run_line(tt_live_engine *e, long line, double changed_at)
 {
@@ -326,6 +340,7 @@ static int run_line(tt_live_engine *e, long line, double changed_at)
     }
     publish_row(e, e->scan, e->line_buf, line, (int)e->params.solver.tier);
     publish_scope(e, e->scope, line, (int)e->params.solver.tier);
+    judge_loop(e);
     if (changed_at > 0)
         e->v.accurate_ms = 1e3 * (t1 - changed_at);
     e->v.line_seconds = t1 - t0;
