@@ -8,6 +8,7 @@ set -u
 tiptap=$(realpath "$1")
 src=$2
 source "$(dirname "$0")/tt_cli.sh"
+source "$(dirname "$0")/tt_live.sh"
 py=/usr/bin/python3
 
 expect_error "no scene" "needs a scene file" "$tiptap" live
@@ -15,23 +16,10 @@ expect_error "a bad port" "--port: 'abc'" "$tiptap" live --port abc "$src/scans/
 expect_error "a bad scene" "[feedback] integral_gain" "$tiptap" live "$src/scans/quick.ini" \
   --set feedback.integral_gain=-1Hz
 
-# start SCENE...: the server on a port the system picks; sets pid and port
-start() {
-  "$tiptap" live --port 0 "$@" >"$tmp/out" 2>"$tmp/err" &
-  pid=$!
-  port=""
-  for _ in $(seq 600); do
-    port=$(sed -n 's|^tiptap live: http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$tmp/out")
-    [ -n "$port" ] && break
-    kill -0 "$pid" 2>/dev/null || break
-    sleep 0.1
-  done
-}
-
 # A small teaching scene: 32 pixels, 4 lines at 8 Hz (a frame in half a second).
 scene=("$src/examples/feedback-tuning/common.ini" "$src/surfaces/grating.ini" --set "noise.z_piezo=0 m/sqrt(Hz)"
        --set scan.pixels=32 --set scan.lines=4 --set scan.line_rate=8Hz --set scan.size=1um)
-start "${scene[@]}"
+live_start "${scene[@]}"
 if [ -z "$port" ]; then
   bad "the server did not start: $(cat "$tmp/err")"
   exit 1

@@ -9,6 +9,7 @@ set -u
 tiptap=$(realpath "$1")
 src=$2
 source "$(dirname "$0")/tt_cli.sh"
+source "$(dirname "$0")/tt_live.sh"
 chromium=$(command -v chromium || command -v chromium-browser || true)
 if [ -z "$chromium" ] || [ ! -x /usr/bin/python3 ]; then
   echo "skip: the browser test needs Debian's chromium and python3 (apt-get install chromium python3)"
@@ -18,16 +19,8 @@ shots=${TT_LIVE_SHOTS:-$tmp}
 mkdir -p "$shots"
 # the teaching scene: the 20 nm grating, 64 pixels, 16 lines at 4 Hz, thermal and
 # detector noise (the z piezo's would put every cycle on the integrator: slower)
-"$tiptap" live --port 0 "$src/examples/feedback-tuning/common.ini" "$src/surfaces/grating.ini" \
-  --set scan.lines=16 --set scan.line_rate=4Hz --set "noise.z_piezo=0 m/sqrt(Hz)" >"$tmp/out" 2>"$tmp/err" &
-pid=$!
-port=""
-for _ in $(seq 600); do
-  port=$(sed -n 's|^tiptap live: http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$tmp/out")
-  [ -n "$port" ] && break
-  kill -0 "$pid" 2>/dev/null || break
-  sleep 0.1
-done
+live_start "$src/examples/feedback-tuning/common.ini" "$src/surfaces/grating.ini" \
+  --set scan.lines=16 --set scan.line_rate=4Hz --set "noise.z_piezo=0 m/sqrt(Hz)"
 if [ -z "$port" ]; then
   bad "the server did not start: $(cat "$tmp/err")"
   exit 1

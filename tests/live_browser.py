@@ -120,7 +120,7 @@ def main():
         b.call("Page.enable")
         b.call("Runtime.enable")
         b.call("Emulation.setDeviceMetricsOverride",
-               {"width": 1320, "height": 1180, "deviceScaleFactor": 1, "mobile": False})
+               {"width": 1320, "height": 1320, "deviceScaleFactor": 1, "mobile": False})
         b.call("Page.navigate", {"url": url})
         wait_for(b, "window.tiptapLive && tiptapLive.controls.length > 0 && tiptapLive.scopes > 1 "
                     "&& tiptapLive.rows > 1 && tiptapLive.status != null", "the page's first scope")

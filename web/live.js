@@ -132,7 +132,8 @@ function frame(m) {
   state.tiers = new Array(m.lines).fill(null);
   const box = $("images");
   box.textContent = "";
-  for (const c of m.channels) for (const dir of m.retrace ? ["trace", "retrace"] : ["trace"]) {
+  // a row of channels for the trace, one for the retrace
+  for (const dir of m.retrace ? ["trace", "retrace"] : ["trace"]) for (const c of m.channels) {
     state.images[c.name + "_" + dir] = new Float64Array(m.pixels * m.lines).fill(NaN);
     const fig = document.createElement("figure");
     const cv = document.createElement("canvas");
@@ -146,8 +147,7 @@ function frame(m) {
     fig.append(cv, cap);
     box.appendChild(fig);
   }
-  // side by side: trace and retrace of a channel in one row
-  box.style.gridTemplateColumns = "repeat(" + (m.retrace ? 2 : 1) + ", minmax(0, 1fr))";
+  box.style.gridTemplateColumns = "repeat(" + m.channels.length + ", minmax(0, 1fr))";
   $("imageinfo").textContent = m.pixels + " x " + m.lines + " pixels, " + fmt(m.size_fast * 1e9, "nm") +
     (m.fast_y ? " along y (fast)" : " along x (fast)");
   const ex = $("exports");
