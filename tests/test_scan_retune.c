@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "tt_test.h"
+#include "tt_scan_test.h"
 #include "tiptap/config/config.h"
 #include "tiptap/instrument/scan.h"
 #include "tiptap/instrument/scan_scope.h"
@@ -20,17 +21,7 @@ static const char *base =
     "[surface]\ntype = steps\nstep_height = 4 nm\nstep_width = 300 nm\n"
     "[feedback]\nsetpoint = 80 %\nintegral_gain = 3000 Hz\n";
 
-static tt_scan *make(const char *extra, tt_scene **sc)
-{
-    *sc = tt_scene_alloc();
-    assert_int_equal(tt_scene_load_string(*sc, base, "base"), TT_OK);
-    if (tt_scene_load_string(*sc, extra, "extra") != TT_OK)
-        fail_msg("%s", tt_error_message());
-    tt_scan *s;
-    if (tt_config_scan_alloc(&s, *sc) != TT_OK)
-        fail_msg("%s", tt_error_message());
-    return s;
-}
+static tt_scan *make(const char *extra, tt_scene **sc) { return tt_make_scan(base, extra, sc); }
 
 static void step(tt_scan *s, long line, tt_scan_scope *r)
 {
