@@ -184,18 +184,19 @@ function drawImages(line) {
     let lo = Infinity, hi = -Infinity;
     for (const v of img) if (isFinite(v)) { if (v < lo) lo = v; if (v > hi) hi = v; }
     if (c.name === "error") { const a = Math.max(Math.abs(lo), Math.abs(hi)); lo = -a; hi = a; }
+    // the sample's orientation: line l is row l with x fast, column l with y fast
+    const W = f.fast_y ? f.lines : f.pixels, H = f.fast_y ? f.pixels : f.lines;
+    if (cv.width !== W || cv.height !== H) { cv.width = W; cv.height = H; }
     const ctx = cv.getContext("2d");
-    const data = ctx.createImageData(f.pixels, f.lines);
+    const data = ctx.createImageData(W, H);
     for (let l = 0; l < f.lines; l++) for (let i = 0; i < f.pixels; i++) {
       const v = img[l * f.pixels + i];
-      // the sample's orientation: row l is line l (fast x), column l when fast y
       const x = f.fast_y ? l : i, y = f.fast_y ? i : l;
-      const o = 4 * (y * (f.fast_y ? f.lines : f.pixels) + x);
+      const o = 4 * (y * W + x);
       if (!isFinite(v)) { data.data[o + 3] = 0; continue; }
       const rgb = colour(cmaps[c.name] || cmaps.phase, hi > lo ? (v - lo) / (hi - lo) : 0.5);
       data.data[o] = rgb[0]; data.data[o + 1] = rgb[1]; data.data[o + 2] = rgb[2]; data.data[o + 3] = 255;
     }
-    if (f.fast_y) { cv.width = f.lines; cv.height = f.pixels; }
     ctx.putImageData(data, 0, 0);
     const unit = c.unit === "m" ? "nm" : c.unit, sc = c.unit === "m" ? 1e9 : 1;
     $("cap-" + c.name + "-" + dir).textContent = c.name + " (" + dir + "): " +

@@ -348,7 +348,20 @@ static int run_line(tt_live_engine *e, long line, double changed_at)
     e->v.realtime_cpu = (1.0 / e->params.raster.line_rate) / (c1 - c0);
     if (e->v.passes == 0)
         e->v.lines_done = line + 1;
+    /* the next line, in the same lock as the end of this one: the preview thread reads
+     * "not running" and the line to run next together */
+    int wrapped = ++e->v.line >= e->v.lines;
+    if (wrapped) {
+        /* the next pass engages afresh at line 0, as a new tiptap scan would */
+        e->v.reproducible = e->v.passes >= e->clean_pass && !e->have_next;
+        e->v.line = 0;
+        e->v.passes++;
+        e->v.first_line_as_set = 0;
+        e->v.status_version = ++e->v.version;
+    }
     pthread_mutex_unlock(&e->mu);
+    if (wrapped)
+        tt_scan_disengage(e->scan);
     e->wake(e->user);
     return TT_OK;
 }
@@ -447,19 +460,6 @@ static void *engine_main(void *arg)
         if (rc)
             note(e, tt_error_message());
         changed_at = 0;
-        pthread_mutex_lock(&e->mu);
-        if (++e->v.line >= e->v.lines) {
-            /* the next pass engages afresh at line 0, as a new tiptap scan would */
-            e->v.reproducible = e->v.passes >= e->clean_pass && !e->have_next;
-            e->v.line = 0;
-            e->v.passes++;
-            e->v.first_line_as_set = 0;
-            e->v.status_version = ++e->v.version;
-        }
-        int wrapped = e->v.line == 0;
-        pthread_mutex_unlock(&e->mu);
-        if (wrapped)
-            tt_scan_disengage(e->scan);
         pace(e, t0 + 1.0 / e->params.raster.line_rate);
     }
     return NULL;
