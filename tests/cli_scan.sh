@@ -38,7 +38,7 @@ fi
 grep -q "^scan: 4/4 lines" "$tmp/log.err" && ! grep -q $'\r' "$tmp/log.err" && ok "plain progress line" || bad "progress in a log"
 grep -q "^output = $tmp/log: 33 files (scan.gwy" "$tmp/log.err" && ok "summary names the output" || bad "summary output line"
 # the profile line's full-rate record: a point per lock-in block, trace and retrace
-head -1 "$tmp/log/scope.csv" | grep -qx "direction,time_s,position_m,z_m,error_m,amplitude_m,phase_deg,surface_m,pixel" &&
+head -1 "$tmp/log/scope.csv" | grep -qx "direction,time_s,position_m,z_m,error_m,amplitude_m,phase_deg,surface_m,pixel,material" &&
   [ "$(grep -c "^trace," "$tmp/log/scope.csv")" -gt 100 ] && [ "$(grep -c "^retrace," "$tmp/log/scope.csv")" -gt 100 ] &&
   head -c 8 "$tmp/log/scope.png" | grep -q PNG && ok "scope.csv and scope.png" || bad "scope files"
 head -1 "$tmp/out/profile.csv" | grep -q "^position_nm,height_trace_m" && ok "profile" || bad "profile header"

@@ -20,7 +20,7 @@ static const struct {
     const char *name, *unit;
 } info[TT_SCOPE_COUNT] = {
     {"time", "s"}, {"position", "m"}, {"z", "m"},         {"error", "m"},
-    {"amplitude", "m"}, {"phase", "deg"}, {"surface", "m"}, {"pixel", ""},
+    {"amplitude", "m"}, {"phase", "deg"}, {"surface", "m"}, {"pixel", ""}, {"material", ""},
 };
 
 const char *tt_scan_scope_name(int q) { return q >= 0 && q < TT_SCOPE_COUNT ? info[q].name : "?"; }
@@ -123,6 +123,8 @@ void tt_scan_scope_put(const line_ctx *L, const line_state *st, long b, double A
     v[TT_SCOPE_ERROR][b] = A - S->setpoint;
     v[TT_SCOPE_AMPLITUDE][b] = A;
     v[TT_SCOPE_PHASE][b] = ph * 180 / M_PI;
-    v[TT_SCOPE_SURFACE][b] = tt_scan_surface_at(L, k).topo;
+    const surf_pt at = tt_scan_surface_at(L, k);
+    v[TT_SCOPE_SURFACE][b] = at.topo;
+    v[TT_SCOPE_MATERIAL][b] = (double)at.mat;
     v[TT_SCOPE_PIXEL][b] = (double)tt_raster_pixel(&S->raster, L->dir, L->nc, k - 1);
 }

@@ -130,7 +130,8 @@ void tt_scan_free(tt_scan *s);
  * called (from one thread at a time) after each finished line with the number of
  * lines done. Stops early with TT_EINTR when cancellation is requested (cancel.h);
  * finished lines keep their data, the others stay NaN. A scope attached with
- * tt_scan_scope_attach receives its line's record. */
+ * tt_scan_scope_attach receives its line's record. It runs the lines not done yet: a
+ * line finished before, by an earlier tt_scan_run or by tt_scan_step, is skipped. */
 int tt_scan_run(tt_scan *s, int threads, void (*progress)(void *user, long done, long total),
                 void *user);
 
@@ -145,8 +146,11 @@ int tt_scan_run(tt_scan *s, int threads, void (*progress)(void *user, long done,
  * each start settled at their first pixel; continuous lines carry on from where the
  * last stepped line's retrace ended (the cantilever, lock-in, feedback and piezo), the
  * first of them (and the first after tt_scan_disengage) engaging and settling. The
- * stepped lines keep their own state, apart from tt_scan_run's. TT_EINTR when
- * cancellation is requested (the line's pixels then keep their earlier values). */
+ * stepped lines keep their own state, apart from tt_scan_run's; the scan owns that
+ * workspace (made at the first step, freed by tt_scan_free). A line's cycles, energy
+ * check and clamping add to the scan's totals (tt_scan_cycles, ...) however often it
+ * runs. Not for two threads at once on one scan. TT_EINTR when cancellation is
+ * requested (the line's pixels then keep their earlier values). */
 typedef struct tt_scan_scope tt_scan_scope;
 int tt_scan_step(tt_scan *s, long line, tt_scan_scope *scope);
 /* The next stepped line engages afresh at its first pixel and settles, as a scan's

@@ -21,6 +21,7 @@
  *              signal (no dilation, tilt or drift)
  *   pixel      the pixel (0 .. pixels - 1, counted along the trace) whose lock-in
  *              channels the point goes into: that of the block's last cycle
+ *   material   the material under the tip (its index in the scan's materials)
  *
  * It costs nothing unless asked for: a scope passed to tt_scan_step, or attached to a
  * line of tt_scan_run, is filled; without one the line loops do not look.
@@ -50,10 +51,11 @@ enum {
     TT_SCOPE_PHASE,
     TT_SCOPE_SURFACE,
     TT_SCOPE_PIXEL,
+    TT_SCOPE_MATERIAL,
     TT_SCOPE_COUNT
 };
 
-/* Name ("time", "z", ...) and SI unit ("s", "m", "deg"; "" for the pixel) of a quantity. */
+/* Name ("time", "z", ...) and SI unit ("s", "m", "deg"; "" for the pixel and the material) of a quantity. */
 const char *tt_scan_scope_name(int quantity);
 const char *tt_scan_scope_unit(int quantity);
 
