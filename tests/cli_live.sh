@@ -17,7 +17,7 @@ expect_error "a bad scene" "[feedback] integral_gain" "$tiptap" live "$src/scans
   --set feedback.integral_gain=-1Hz
 
 # A small teaching scene: 32 pixels, 4 lines at 8 Hz (a frame in half a second).
-scene=("$src/examples/feedback-tuning/common.ini" "$src/surfaces/grating.ini" --set "noise.z_piezo=0 m/sqrt(Hz)"
+scene=("$src/examples/feedback-tuning/common.ini" "$src/surfaces/grating.ini"
        --set scan.pixels=32 --set scan.lines=4 --set scan.line_rate=8Hz --set scan.size=1um)
 live_start "${scene[@]}"
 if [ -z "$port" ]; then

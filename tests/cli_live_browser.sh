@@ -18,9 +18,9 @@ fi
 shots=${TT_LIVE_SHOTS:-$tmp}
 mkdir -p "$shots"
 # the teaching scene: the 20 nm grating, 64 pixels, 16 lines at 4 Hz, thermal and
-# detector noise (the z piezo's would put every cycle on the integrator: slower)
+# detector noise
 live_start "$src/examples/feedback-tuning/common.ini" "$src/surfaces/grating.ini" \
-  --set scan.lines=16 --set scan.line_rate=4Hz --set "noise.z_piezo=0 m/sqrt(Hz)"
+  --set scan.lines=16 --set scan.line_rate=4Hz
 if [ -z "$port" ]; then
   bad "the server did not start: $(cat "$tmp/err")"
   exit 1
