@@ -2,7 +2,7 @@
 # tiptap live: its refusals before it listens, the server under abuse and in use
 # (tests/live_robust.py: bad messages, other origins, four pages with a flood, a mute
 # one and a killed one, bounded memory, exports that tiptap scan reproduces byte for
-# byte), and Ctrl-C ending it cleanly (exit 130, within a second and a half).
+# byte), and Ctrl-C ending it cleanly (exit 130, within 3 s).
 # usage: cli_live.sh path/to/tiptap source_dir
 set -u
 tiptap=$(realpath "$1")
@@ -44,7 +44,9 @@ wait "$pid"
 rc=$?
 t1=$(date +%s.%N)
 dt=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f", b - a }')
-if [ $rc -eq 130 ] && grep -q "tiptap live: stopped" "$tmp/err" && awk -v d="$dt" 'BEGIN { exit !(d < 1.5) }'; then
+# 3 s: 0.03 to 0.16 s measured on the normal build, 1.4 to 2.4 s under the sanitizers on
+# a machine at load 12
+if [ $rc -eq 130 ] && grep -q "tiptap live: stopped" "$tmp/err" && awk -v d="$dt" 'BEGIN { exit !(d < 3) }'; then
   ok "Ctrl-C stops it in $dt s, exit 130"
 else
   bad "Ctrl-C: exit $rc after $dt s; stderr: $(cat "$tmp/err")"

@@ -101,12 +101,13 @@ while time.time() < t_end:  # 6 s of flood: far more than 20 messages a second
     sent += 1
     if sent % 200 == 0:
         calm.recv()  # the calm page reads as a browser does
-scopes = 0
-t_end = time.time() + 8
-while time.time() < t_end:
+scopes, t0 = 0, time.time()
+t_end = t0 + float(os.environ.get("TT_LIVE_WAIT", "300"))
+while time.time() < t_end and scopes < 3:  # three lines' scopes after the flood
     m = calm.recv()
     scopes += m["type"] == "scope"
-ok(scopes >= 2, "a calm page kept its scope updates through the flood (%d in 8 s)" % scopes)
+ok(scopes >= 3, "a calm page kept its scope updates through the flood (%d in %.1f s)"
+   % (scopes, time.time() - t0))
 replies, dropped = 0, 0
 t_end = time.time() + 20
 while time.time() < t_end and dropped == 0:  # the pages' own stream goes on meanwhile
@@ -139,7 +140,7 @@ exp = os.path.join(work, "export")
 os.makedirs(exp, exist_ok=True)
 names = ["scene.ini", "scan.gwy", "height_trace.gsf", "height_retrace.gsf", "phase_trace.gsf"]
 for n in names:
-    with urllib.request.urlopen("http://127.0.0.1:%d/export/%s" % (port, n), timeout=60) as r:
+    with urllib.request.urlopen("http://127.0.0.1:%d/export/%s" % (port, n), timeout=300) as r:
         with open(os.path.join(exp, n), "wb") as f:
             f.write(r.read())
 try:

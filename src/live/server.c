@@ -4,6 +4,9 @@
 
 #include <errno.h>
 #include <libwebsockets.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,7 +22,8 @@ enum {
     RX_MAX = 16384,         /* bytes of one message from a page */
     RATE = 20, BURST = 40,  /* messages a second from one page, and its burst */
     OUT_MAX = 64 << 20,     /* the largest message sent (a row of 16384 pixels is ~1 MB) */
-    EXPORT_MAX = 1 << 30    /* the largest exported file served */
+    EXPORT_MAX = 1 << 30,   /* the largest exported file served */
+    EXPORT_WAIT_S = 300     /* how long an export may wait for the line under way */
 };
 
 typedef struct pss pss;
@@ -302,6 +306,8 @@ static int http_request(server *s, pss *p, const char *uri)
         snprintf(p->export_name, sizeof p->export_name, "%s", uri + 8);
         p->export_id = tt_live_engine_export(s->engine);
         p->waiting = 1;
+        /* the engine writes it between two lines: give it a slow line's time */
+        lws_set_timeout(p->wsi, PENDING_TIMEOUT_HTTP_CONTENT, EXPORT_WAIT_S);
         return 0; /* answered when the engine has written it (http_export) */
     }
     const tt_live_asset *a = find_asset(uri);
@@ -345,6 +351,7 @@ static int http_export(server *s, pss *p)
         fclose(f);
     tt_live_engine_unlock(s->engine);
     p->waiting = 0;
+    lws_set_timeout(p->wsi, NO_PENDING_TIMEOUT, 0);
     if (!p->owned || msg[0]) {
         free(p->owned);
         p->owned = NULL;
@@ -456,6 +463,28 @@ static void log_line(int level, const char *line)
     }
 }
 
+/* A port another program holds, told in one line before libwebsockets tries it (which
+ * would log its own lines, and keeps a few bytes when its context fails). */
+static int port_free(int port)
+{
+    if (port == 0)
+        return TT_OK;
+    int fd = socket(AF_INET, SOCK_STREAM, 0), one = 1, rc = TT_OK;
+    struct sockaddr_in a;
+    memset(&a, 0, sizeof a);
+    a.sin_family = AF_INET;
+    a.sin_port = htons((unsigned short)port);
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (fd >= 0)
+        setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+    if (fd >= 0 && bind(fd, (struct sockaddr *)&a, sizeof a) != 0)
+        rc = tt_error(TT_EIO, "cannot listen on 127.0.0.1:%d: %s%s", port, strerror(errno),
+                      errno == EADDRINUSE ? " (another program's; --port picks another)" : "");
+    if (fd >= 0)
+        close(fd);
+    return rc;
+}
+
 int tt_live_serve(tt_live_controls *c, const tt_live_options *o)
 {
     server s;
@@ -477,6 +506,10 @@ int tt_live_serve(tt_live_controls *c, const tt_live_options *o)
     info.uid = -1;
     info.options = LWS_SERVER_OPTION_DISABLE_IPV6;
     info.timeout_secs = 30;
+    info.timeout_secs_ah_idle = EXPORT_WAIT_S; /* an export's request waits for a line */
+    int rc = port_free(o->port);
+    if (rc)
+        return rc;
     lws_last[0] = '\0';
     s.ctx = lws_create_context(&info);
     if (!s.ctx)
@@ -486,7 +519,7 @@ int tt_live_serve(tt_live_controls *c, const tt_live_options *o)
     s.port = lws_get_vhost_listen_port(lws_get_vhost_by_name(s.ctx, "default"));
     tt_scene *scene = NULL;
     tt_scan_params prm;
-    int rc = tt_live_controls_scene(c, &scene, &prm);
+    rc = tt_live_controls_scene(c, &scene, &prm);
     if (!rc)
         rc = tt_live_engine_alloc(&s.engine, scene, &prm, wake, &s);
     if (rc) {
