@@ -25,7 +25,7 @@ out=$("$tiptap" scan "$tmp/s.ini" -o "$tmp/out" -q --set scan.channels=height 2>
 want="tiptap: $tmp/out: removed 8 files of an earlier run with channels this run does not write: error_trace.gsf, error_trace.png, error_retrace.gsf, error_retrace.png, phase_trace.gsf, phase_trace.png, phase_retrace.gsf, phase_retrace.png"
 [ $rc -eq 0 ] && [ "$out" = "$want" ] && ok "stale files named" || bad "rc $rc, '$out'"
 left=$(cd "$tmp/out" && ls -A | tr '\n' ' ')
-[ "$left" = "height_retrace.gsf height_retrace.png height_trace.gsf height_trace.png phase_notes.txt phase_trace.gsf.bak profile.csv scan.gwy scene.ini " ] &&
+[ "$left" = "height_retrace.gsf height_retrace.png height_trace.gsf height_trace.png phase_notes.txt phase_trace.gsf.bak profile.csv scan.gwy scene.ini scope.csv scope.png " ] &&
   ok "the folder holds this run's files and the user's" || bad "left: $left"
 [ "$(cat "$tmp/precious")" = precious ] && ok "a stale link removed, its target kept" || bad "precious"
 # the same in a sweep's combination folders
