@@ -29,6 +29,7 @@ int cli_scan_check_outputs(const char *dir);
  * made, and locked for command cmd (tt_folder_lock; *lock for cli_unlock_folder). */
 int cli_scan_folder_take(const char *cmd, const char *dir, int *lock);
 int cmd_profiles(int argc, char **argv);
+int cmd_live(int argc, char **argv);
 /* A line's full-rate record of scan into dir (cli_scope.c): scope.csv (every quantity,
  * SI) and scope.png (z and the true surface, error, amplitude against the setpoint,
  * phase against time, and a zoom on the ring or the largest error); nothing when the
