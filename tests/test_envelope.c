@@ -117,7 +117,7 @@ static void grazing_touches(void **st)
         "adhesion_energy = 60 mJ/m^2\ninteratomic_distance = 0.3 nm\n"
         "interaction_quality_factor = 10\n"
         "[scan]\nsize = 1 um\npixels = 32\nlines = 1\nline_rate = 8 Hz\nsettle_cycles = 2000\n"
-        "channels = height, amplitude, phase, peak_force\n"
+        "channels = height, error, phase, peak_force\n"
         "[feedback]\nsetpoint = 80 %\nintegral_gain = 3000 Hz\n";
     agrees(b, "[surface]\nmap = uniform\n", 0.9);
 }
