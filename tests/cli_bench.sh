@@ -52,6 +52,7 @@ want="1|reference dopri5 tol 1e-10
 2|reference dopri5 tol 1e-10
 2|every cycle dopri5 tol 1e-8
 2|default tol 1e-8
+2|envelope tol 3e-8 (the scene's)
 3|reference dopri5 tol 1e-10
 3|every cycle dopri5 tol 1e-8
 3|default tol 1e-8"
