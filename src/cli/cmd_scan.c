@@ -18,6 +18,7 @@
 #include "tiptap/io/outfile.h"
 #include "tiptap/config/config.h"
 #include "tiptap/instrument/scan.h"
+#include "tiptap/version.h"
 
 static void help(void)
 {
@@ -149,7 +150,7 @@ int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const cha
     char path[4096], title[TT_CH_COUNT][2][128];
     long xres = tt_scan_xres(scan), yres = tt_scan_yres(scan);
     char v[3][64];
-    snprintf(v[0], sizeof v[0], "%s", TT_VERSION);
+    snprintf(v[0], sizeof v[0], "%s", TIPTAP_VERSION_STRING);
     snprintf(v[1], sizeof v[1], "%ld", tt_scan_lines_done(scan));
     snprintf(v[2], sizeof v[2], "%ld", tt_scan_lines(scan));
     const char *keys[] = {"tiptap_version", "lines_finished", "lines_total"};

@@ -13,6 +13,7 @@
 #include "tiptap/io/plot.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
+#include "tiptap/version.h"
 
 static void help(void)
 {
@@ -97,7 +98,7 @@ static unsigned long long fingerprint(const tt_scene *scene, const sweep_job *jo
     size_t len = 0;
     FILE *f = open_memstream(&buf, &len);
     if (f) {
-        fprintf(f, "tiptap %s\nrun %d\n%s", TT_VERSION, (int)job->kind, header);
+        fprintf(f, "tiptap %s\nrun %d\n%s", TIPTAP_VERSION_STRING, (int)job->kind, header);
         tt_scene_write(scene, f, NULL);
         fclose(f);
     }

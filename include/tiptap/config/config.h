@@ -16,6 +16,7 @@
 
 #include <stddef.h>
 
+#include "tiptap/export.h"
 #include "tiptap/config/scene.h"
 #include "tiptap/instrument/accuracy.h"
 #include "tiptap/config/solver_scene.h"
@@ -27,9 +28,7 @@
 #include "tiptap/physics/cantilever.h"
 #include "tiptap/physics/material.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 /* [cantilever], its derived constants filled (tt_cantilever_init). */
 int tt_config_cantilever(const tt_scene *s, tt_cantilever *c);
@@ -132,7 +131,5 @@ void tt_config_approach_estimate(const tt_cantilever *c, const tt_solver *s,
  * map_value). Fills idx with up to max indices; returns how many there are. */
 size_t tt_config_scan_unused(const tt_scan_params *p, size_t *idx, size_t max);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -18,11 +18,10 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "tiptap/export.h"
 #include "tiptap/config/units.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 typedef enum {
     TT_KEY_QUANTITY, /* a number with a unit (dims says which) */
@@ -147,7 +146,5 @@ int tt_scene_locate(const tt_scene *s, int rc);
  * "|"-separated list such as "cantilever|tip|material|scan". */
 int tt_scene_write(const tt_scene *s, FILE *out, const char *sections);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -38,13 +38,12 @@
 
 #include <stddef.h>
 
+#include "tiptap/export.h"
 #include "tiptap/instrument/scan.h"
 #include "tiptap/physics/material.h"
 #include "tiptap/solver/integrator.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 /* One method's ladder: the [solver] key it varies and its values, loosest first. */
 typedef struct {
@@ -191,7 +190,5 @@ double tt_accuracy_reference_drift(const tt_accuracy *a);
  * retrace (deg); n values in all. */
 const double *tt_accuracy_reference_profile(const tt_accuracy *a, size_t *n);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -29,6 +29,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "tiptap/export.h"
 #include "tiptap/instrument/feedback.h"
 #include "tiptap/instrument/lockin.h"
 #include "tiptap/instrument/piezo.h"
@@ -39,9 +40,7 @@
 #include "tiptap/physics/material.h"
 #include "tiptap/solver/integrator.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 /* Channels (bit flags). */
 enum {
@@ -219,7 +218,5 @@ typedef struct {
  * greatest over every line, whichever thread ran it. */
 int tt_scan_contact_extent(const tt_scan *s, size_t i, tt_contact_extent *e);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

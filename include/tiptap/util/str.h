@@ -5,14 +5,12 @@
 #ifndef TIPTAP_STR_H
 #define TIPTAP_STR_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 /* A malloc'd copy of s; NULL when s is NULL or memory runs out (C11 has no strdup). */
 char *tt_strdup(const char *s);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif
