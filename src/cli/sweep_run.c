@@ -140,15 +140,11 @@ static void combo_close(combo *c)
 
 static int combo_open(const sweep_job *job, size_t i, combo *c)
 {
-    size_t mat = 0;
     memset(c, 0, sizeof *c);
     int rc;
     if ((rc = tt_sweep_scene(job->grid, i, &c->scene)))
         return rc;
-    if ((rc = tt_setup_alloc(&c->st, c->scene)) || (rc = tt_config_approach(c->scene, &c->p)) ||
-        (rc = tt_config_material_index(c->scene, "approach", tt_setup_material(c->st, 0),
-                                       tt_setup_materials(c->st), &mat)) ||
-        (rc = tt_setup_use_material(c->st, mat))) {
+    if ((rc = tt_setup_alloc(&c->st, c->scene)) || (rc = tt_config_approach_setup(c->st, c->scene, &c->p))) {
         combo_close(c);
         return name_combination(job, i, rc);
     }
