@@ -47,6 +47,7 @@
 
 #include "tiptap/config/config.h"
 #include "tiptap/config/ini.h"
+#include "tiptap/config/meta.h"
 #include "tiptap/config/read_trace.h"
 #include "tiptap/config/scene.h"
 #include "tiptap/config/setup.h"

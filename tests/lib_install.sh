@@ -4,9 +4,9 @@
 # package and the docs; the C example outside the tree (examples/c-api) builds against
 # the installed library through pkg-config and through find_package(tiptap), and its
 # numbers equal the installed program's for the same scene.
-# usage: lib_install.sh build_dir source_dir sanitize(0|1)
+# usage: lib_install.sh build_dir source_dir sanitize(0|1) [python]
 set -u
-build=$1 src=$2 sanitize=${3:-0}
+build=$1 src=$2 sanitize=${3:-0} python=${4:-}
 source "$(dirname "$0")/tt_cli.sh"
 prefix=$build/install-test
 rm -rf "$prefix"
@@ -22,6 +22,8 @@ for f in "$libdir/libtiptap.so" "$prefix/include/tiptap.h" "$prefix/include/tipt
          "$prefix/bin/tiptap" "$prefix/share/doc/tiptap/README.md" "$prefix/share/doc/tiptap/library.md"; do
   [ -e "$f" ] && ok "installed ${f#$prefix/}" || bad "not installed: ${f#$prefix/}"
 done
+init=$(find "$prefix" -path '*/tiptap/__init__.py' | head -1)
+[ -n "$init" ] && ok "installed the Python package (${init#$prefix/})" || bad "no Python package under $prefix"
 [ -z "$(find "$prefix" -name '*.a')" ] && ok "no static library installed" || bad "a static library installed"
 
 version=$("$prefix/bin/tiptap" --version)
@@ -33,6 +35,15 @@ installed=$(realpath "$libdir"/libtiptap.so.*.*.*)
 # the installed program runs with the installed library (RUNPATH $ORIGIN/../lib)
 [ "$(loads "$prefix/bin/tiptap")" = "$installed" ] && ok "the installed program loads the installed library" ||
   bad "installed program: $(ldd "$prefix/bin/tiptap" | grep tiptap)"
+
+# the installed Python package finds the installed library by itself (not under the
+# sanitizers: the interpreter would need their runtimes preloaded, as ctest's py_ tests do)
+if [ -n "$python" ] && [ -n "$init" ] && [ "$sanitize" != 1 ]; then
+  got=$(cd "$tmp" && env -u TIPTAP_LIBRARY PYTHONPATH="$(dirname "$(dirname "$init")")" "$python" -c \
+        'import os, tiptap, tiptap._lib as l; print(tiptap.version, os.path.realpath(l._library_path()))' 2>&1)
+  [ "$got" = "${version#tiptap } $installed" ] &&
+    ok "import tiptap loads the installed library" || bad "import tiptap: $got"
+fi
 
 # the example, copied out of the tree, built twice against the installed library
 cp -r "$src/examples/c-api" "$tmp/example"

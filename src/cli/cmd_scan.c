@@ -17,6 +17,7 @@
 #include "tiptap/io/lock.h"
 #include "tiptap/io/outfile.h"
 #include "tiptap/config/config.h"
+#include "tiptap/config/meta.h"
 #include "tiptap/instrument/scan.h"
 #include "tiptap/version.h"
 
@@ -155,8 +156,8 @@ int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const cha
     snprintf(v[2], sizeof v[2], "%ld", tt_scan_lines(scan));
     const char *keys[] = {"tiptap_version", "lines_finished", "lines_total"};
     const char *vals[] = {v[0], v[1], v[2]};
-    cli_meta meta;
-    int rc = cli_meta_scene(&meta, scene, keys, vals, 3);
+    tt_meta meta;
+    int rc = tt_meta_scene(&meta, scene, keys, vals, 3);
     if (rc)
         return rc;
     tt_gwy_channel gch[2 * TT_CH_COUNT];
@@ -189,7 +190,7 @@ int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const cha
         (rc = tt_gwy_write(path, gch, ng, (const char *const *)meta.keys,
                            (const char *const *)meta.values, meta.n)) == TT_OK)
         (*written)++;
-    cli_meta_free(&meta);
+    tt_meta_free(&meta);
     if (rc)
         return rc;
     /* the line profile along the fast axis */

@@ -184,17 +184,4 @@ void cli_progress_show(cli_progress *p, long done, long total);
 /* Ends the rewritten line on a terminal. */
 void cli_progress_end(const cli_progress *p);
 
-/* The run's parameters as key/value metadata for the files it writes (cli_meta.c):
- * first the given pairs, then every key of the effective scene but its approach and
- * trace sections, as "section.key" (or "material.NAME.key", as --set spells it) = the
- * value with its unit.
- * The strings belong to m; cli_meta_free frees them. */
-typedef struct {
-    char **keys, **values;
-    size_t n, cap;
-} cli_meta;
-int cli_meta_scene(cli_meta *m, const tt_scene *scene, const char *const *first_keys,
-                   const char *const *first_values, size_t nfirst);
-void cli_meta_free(cli_meta *m);
-
 #endif

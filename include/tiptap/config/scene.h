@@ -145,6 +145,9 @@ int tt_scene_locate(const tt_scene *s, int rc);
  * as INI that tiptap reads back to the same scene. sections: NULL for all, or a
  * "|"-separated list such as "cantilever|tip|material|scan". */
 int tt_scene_write(const tt_scene *s, FILE *out, const char *sections);
+/* tt_scene_write into a string the caller frees with tt_free (or free); NULL when out
+ * of memory (with the message). */
+char *tt_scene_write_string(const tt_scene *s, const char *sections);
 
 TT_END_DECLS
 #endif

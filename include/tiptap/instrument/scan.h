@@ -70,6 +70,9 @@ const char *tt_scan_channel_unit(int i);
 int tt_scan_channel_harmonic(int i);
 /* Parse "height, phase" into a channel mask; -1 with a message naming the channel. */
 int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t len);
+/* The number of channel indices, TT_CH_COUNT, for a caller that lists every channel by
+ * index without the enum (the Python package). */
+int tt_scan_channel_count(void);
 
 /* The instrument's imperfections ([instrument]); all zero: an ideal instrument. Time t
  * is the instrument's clock: line n starts at n / line_rate, its trace takes the first
