@@ -117,6 +117,13 @@ typedef struct {
     double tolerance;
 } tt_scan_error;
 int tt_scan_estimate_error(tt_scan *s, tt_scan_error *e);
+
+/* io/hdf5.h, instrument/scan_hdf5.h */
+typedef struct tt_h5 tt_h5;
+int tt_h5_create(tt_h5 **out, const char *path);
+int tt_h5_close(tt_h5 *f, int keep);
+int tt_scan_write_hdf5(const char *path, const tt_scan *s, const char *const *keys,
+                       const char *const *values, size_t n, const char *scene);
 """
 
 ffi = cffi.FFI()

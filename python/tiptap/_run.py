@@ -80,7 +80,8 @@ def run(call, progress=None):
     Returns (status, message, interrupted): message is the library's line for a failed
     status, read on the thread that made the call; interrupted says that Ctrl-C or the
     progress callback stopped it (the status is then TT_EINTR, or TT_OK when the run
-    finished first). Exceptions of the call itself propagate.
+    finished first); finish() raises what that calls for. Exceptions of the call itself
+    propagate.
     """
     box = {}
     finished = threading.Event()
@@ -118,16 +119,15 @@ def run(call, progress=None):
         lib.tt_cancel_reset()
     if "exception" in box:
         raise box["exception"]
-    if progress is not None and progress.error is not None and not isinstance(
-        progress.error, KeyboardInterrupt
-    ):
-        raise progress.error
     return box["status"], box["message"], interrupted or box["status"] == lib.TT_EINTR
 
 
-def finish(status, message, interrupted, what, result=None):
-    """Raise what a run's end calls for: Interrupted (with the partial result) or the
-    library's error; nothing when it succeeded."""
+def finish(status, message, interrupted, what, result=None, progress=None):
+    """Raise what a run's end calls for, once its partial results are kept: the progress
+    callback's exception, Interrupted (with the partial result) or the library's error;
+    nothing when it succeeded."""
+    if progress is not None and progress.error is not None:
+        raise progress.error
     if interrupted:
         raise Interrupted(f"{what}: interrupted" + (f" ({message})" if message else ""), result)
     if status != 0:

@@ -18,15 +18,17 @@ def channel_table():
     ]
 
 
-def _meta(scene_p, first):
+def scan_meta(scan_p, scene):
+    """The run's metadata as the library lists it for the program's files (the version,
+    the lines finished and every scene key): a tt_meta the caller frees (tt_meta_free)."""
     m = ffi.new("tt_meta *")
+    first = {"tiptap_version": text(lib.tt_version()),
+             "lines_finished": str(lib.tt_scan_lines_done(scan_p)),
+             "lines_total": str(lib.tt_scan_lines(scan_p))}
     keys = [ffi.new("char[]", k.encode()) for k in first]
     vals = [ffi.new("char[]", v.encode()) for v in first.values()]
-    check(lib.tt_meta_scene(m, scene_p, keys, vals, len(first)))
-    try:
-        return {text(m.keys[i]): text(m.values[i]) for i in range(m.n)}
-    finally:
-        lib.tt_meta_free(m)
+    check(lib.tt_meta_scene(m, scene._p, keys, vals, len(first)))
+    return m
 
 
 class ScanResult:
@@ -66,11 +68,11 @@ class ScanResult:
         self.x = (np.arange(xres) + 0.5) * self.size[0] / xres
         self.y = (np.arange(yres) + 0.5) * self.size[1] / yres
         done, total = lib.tt_scan_lines_done(scan_p), lib.tt_scan_lines(scan_p)
-        self.meta = _meta(scene._p, {
-            "tiptap_version": text(lib.tt_version()),
-            "lines_finished": str(done),
-            "lines_total": str(total),
-        })
+        m = scan_meta(scan_p, scene)
+        try:
+            self.meta = {text(m.keys[i]): text(m.values[i]) for i in range(m.n)}
+        finally:
+            lib.tt_meta_free(m)
         cycles = lib.tt_scan_cycles(scan_p)
         self.run = {
             "lines_finished": done,
@@ -135,7 +137,7 @@ def scan(scene, *, set=None, threads=0, progress=None, error_estimate=False, hdf
         from .hdf5 import write_scan
 
         write_scan(s, scene, hdf5)
-    finish(status, message, interrupted, "scan", result)
+    finish(status, message, interrupted, "scan", result, prog)
     if error_estimate:
         e = ffi.new("tt_scan_error *")
         status, message, interrupted = run(lambda: lib.tt_scan_estimate_error(s, e))

@@ -19,11 +19,13 @@
 #include "tiptap/config/config.h"
 #include "tiptap/config/meta.h"
 #include "tiptap/instrument/scan.h"
+#include "tiptap/instrument/scan_hdf5.h"
 #include "tiptap/version.h"
 
 static void help(void)
 {
-    printf("Usage: tiptap scan SCENE... -o DIR [--set section.key=value]... [--threads N] [-q]\n"
+    printf("Usage: tiptap scan SCENE... -o DIR [--set section.key=value]... [--threads N] [--hdf5]\n"
+           "                   [-q]\n"
            "Closed-loop tapping image of the scene's [surface] under [scan], [lockin] and\n"
            "[feedback].\n\n"
            "  -o, --output DIR   folder for the results (made if missing): scan.gwy (one\n"
@@ -35,6 +37,9 @@ static void help(void)
            "                     (the effective scene, every key)\n"
            "  -j, --threads N    lines computed in parallel (default: all cores); the images\n"
            "                     do not depend on it\n"
+           "      --hdf5         also DIR/scan.h5: every channel, trace and retrace, in float64\n"
+           "                     with x and y in metres as dimension scales, the parameters and\n"
+           "                     the effective scene (docs/hdf5.md; h5py reads it)\n"
            CLI_HELP_SET
            "  -q, --quiet        no progress and summary on stderr\n\n"
            "Channels ([scan] channels): height (m), amplitude (error: amplitude - setpoint, m),\n"
@@ -96,7 +101,7 @@ static void channel_path(char *buf, size_t len, const char *dir, int ch, int r, 
 
 int cli_scan_check_outputs(const char *dir)
 {
-    static const char *const fixed[] = {"scene.ini", "profile.csv", "scan.gwy", ".tiptap.lock"};
+    static const char *const fixed[] = {"scene.ini", "profile.csv", "scan.gwy", "scan.h5", ".tiptap.lock"};
     char path[4200];
     int rc = TT_OK;
     for (size_t i = 0; i < sizeof fixed / sizeof fixed[0] && !rc; i++) {
@@ -121,18 +126,22 @@ int cli_scan_folder_take(const char *cmd, const char *dir, int *lock)
 }
 
 /* The channel files of an earlier run in dir that this one did not write (a run with
- * fewer channels): removed, so that the folder holds one run's images, and named on
- * stderr. Only the names tiptap writes are touched; a link is removed, not followed. */
-static void remove_stale(const tt_scan *scan, const char *dir)
+ * fewer channels, or without --hdf5: its scan.h5): removed, so that the folder holds one
+ * run's images, and named on stderr. Only the names tiptap writes are touched; a link is
+ * removed, not followed. */
+static void remove_stale(const tt_scan *scan, const char *dir, int hdf5)
 {
     char path[4200], names[4096] = "";
     int n = 0;
-    for (int k = 0; k < 4 * TT_CH_COUNT; k++) {
+    for (int k = 0; k <= 4 * TT_CH_COUNT; k++) {
         int ch = k / 4, r = k / 2 % 2;
         struct stat st;
-        if (tt_scan_image(scan, ch, r))
+        if (k == 4 * TT_CH_COUNT ? hdf5 : tt_scan_image(scan, ch, r) != NULL)
             continue;
-        channel_path(path, sizeof path, dir, ch, r, k % 2);
+        if (k == 4 * TT_CH_COUNT)
+            snprintf(path, sizeof path, "%s/scan.h5", dir);
+        else
+            channel_path(path, sizeof path, dir, ch, r, k % 2);
         if (lstat(path, &st) != 0 || !(S_ISREG(st.st_mode) || S_ISLNK(st.st_mode)) ||
             unlink(path) != 0)
             continue;
@@ -144,9 +153,26 @@ static void remove_stale(const tt_scan *scan, const char *dir)
                         "does not write: %s\n", dir, n, n > 1 ? "s" : "", names);
 }
 
+/* DIR/scan.h5 (docs/hdf5.md) with the metadata of the other files and the effective
+ * scene. */
+static int write_hdf5(const tt_scan *scan, const tt_scene *scene, const char *dir, const tt_meta *m)
+{
+    char path[4200];
+    char *text = tt_scene_write_string(scene, NULL);
+    if (!text)
+        return TT_ENOMEM;
+    snprintf(path, sizeof path, "%s/scan.h5", dir);
+    int rc = tt_scan_write_hdf5(path, scan, (const char *const *)m->keys,
+                                (const char *const *)m->values, m->n, text);
+    free(text);
+    return rc;
+}
+
 /* Every channel, trace and retrace, with the run's parameters: GSF and PNG files, and
- * one .gwy holding them all (scan.gwy). *written counts the files. */
-int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int *written)
+ * one .gwy holding them all (scan.gwy); with hdf5 also scan.h5. *written counts the
+ * files. */
+int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int hdf5,
+                           int *written)
 {
     char path[4096], title[TT_CH_COUNT][2][128];
     long xres = tt_scan_xres(scan), yres = tt_scan_yres(scan);
@@ -190,6 +216,8 @@ int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const cha
         (rc = tt_gwy_write(path, gch, ng, (const char *const *)meta.keys,
                            (const char *const *)meta.values, meta.n)) == TT_OK)
         (*written)++;
+    if (rc == TT_OK && hdf5 && (rc = write_hdf5(scan, scene, dir, &meta)) == TT_OK)
+        (*written)++;
     tt_meta_free(&meta);
     if (rc)
         return rc;
@@ -224,7 +252,7 @@ int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const cha
     rc = tt_outfile_close(of, 1);
     *written += rc == TT_OK;
     if (rc == TT_OK)
-        remove_stale(scan, dir);
+        remove_stale(scan, dir, hdf5);
     return rc;
 }
 
@@ -339,11 +367,17 @@ static void warn_contact(const tt_scan *scan)
 
 int cmd_scan(int argc, char **argv)
 {
-    static const struct option opts[] = {{"threads", required_argument, NULL, 'j'}, {NULL, 0, NULL, 0}};
+    static const struct option opts[] = {{"threads", required_argument, NULL, 'j'},
+                                         {"hdf5", no_argument, NULL, 'H'},
+                                         {NULL, 0, NULL, 0}};
     static const cli_spec spec = {"scan", CLI_OPT_OUTPUT | CLI_OPT_SET | CLI_OPT_QUIET, opts, "j:", help};
     cli_args args = {0};
-    int threads = 0, c;
-    while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) { /* 'j', its only own option */
+    int threads = 0, hdf5 = 0, c;
+    while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) { /* 'j' and 'H' */
+        if (c == 'H') {
+            hdf5 = 1;
+            continue;
+        }
         /* atoi read "abc" and "-3" as 0, which means all cores */
         long j;
         if (cli_whole("scan", "-j", optarg, 1, 4096, "a number of threads", &j)) {
@@ -430,7 +464,7 @@ int cmd_scan(int argc, char **argv)
     if (tt_scan_lines_done(scan) > 0) {
         char saved[1024];
         snprintf(saved, sizeof saved, "%s", tt_error_message());
-        int wrc = cli_scan_write_outputs(scan, scene, dir, &written);
+        int wrc = cli_scan_write_outputs(scan, scene, dir, hdf5, &written);
         if (wrc && !rc)
             rc = wrc;
         else if (rc)
@@ -501,8 +535,8 @@ int cmd_scan(int argc, char **argv)
             cli_warn_estimate("scan", &params.solver, params.cantilever.A0, est.height_max,
                               "amplitude", est.amplitude_max, est.phase_max);
         fprintf(stderr, "output = %s: %d files (scan.gwy: every channel, trace and retrace; "
-                        "CHANNEL_trace/retrace.gsf and .png; profile.csv; scene.ini)\n",
-                dir, written);
+                        "CHANNEL_trace/retrace.gsf and .png; profile.csv; scene.ini%s)\n",
+                dir, written, hdf5 ? "; scan.h5" : "");
         if (tt_scan_clamped(scan))
             fprintf(stderr, "warning: the z piezo reached the end of its range ([feedback] z_range)\n");
     }

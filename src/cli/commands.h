@@ -19,9 +19,10 @@ int cmd_accuracy(int argc, char **argv);
 int cmd_sweep(int argc, char **argv);
 
 /* Write a finished scan's images (GSF and PNG per channel and direction, scan.gwy with
- * all of them) and profile into dir, as tiptap scan does (cmd_scan.c), with the scene's
- * keys as metadata; *written counts the files written. */
-int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int *written);
+ * all of them, scan.h5 with hdf5) and profile into dir, as tiptap scan does (cmd_scan.c),
+ * with the scene's keys as metadata; *written counts the files written. */
+int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int hdf5,
+                           int *written);
 /* TT_EINVAL when a file a scan writes into dir (or removes there as an earlier run's
  * channel file) is an input of this run (tt_output_check). */
 int cli_scan_check_outputs(const char *dir);

@@ -344,7 +344,7 @@ static int compute_scan(const sweep_job *job, size_t i, FILE *f)
     rc = tt_scene_write(scene, tt_outfile_stream(of), NULL);
     int crc = tt_outfile_close(of, rc == TT_OK);
     if (rc || (rc = crc) || (rc = tt_scan_run(scan, job->scan_threads, NULL, NULL)) ||
-        (rc = cli_scan_write_outputs(scan, scene, folder, &(int){0})))
+        (rc = cli_scan_write_outputs(scan, scene, folder, 0, &(int){0})))
         goto done;
     const char *slash = strrchr(folder, '/');
     rc = scan_summary(job, i, scene, scan, slash ? slash + 1 : folder, f);
