@@ -14,6 +14,7 @@
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 #include "tiptap/util/str.h"
+#include "tiptap/util/table.h"
 
 #include "tiptap/io/decimate.h"
 #include "tiptap/io/files.h"
@@ -57,5 +58,7 @@
 #include "tiptap/config/standard.h"
 #include "tiptap/config/sweep.h"
 #include "tiptap/config/units.h"
+
+#include "tiptap/run/run.h"
 
 #endif

@@ -118,6 +118,75 @@ typedef struct {
 } tt_scan_error;
 int tt_scan_estimate_error(tt_scan *s, tt_scan_error *e);
 
+/* util/table.h */
+typedef struct tt_table tt_table;
+void tt_table_free(tt_table *t);
+size_t tt_table_columns(const tt_table *t);
+size_t tt_table_rows(const tt_table *t);
+const char *tt_table_name(const tt_table *t, size_t col);
+const char *tt_table_unit(const tt_table *t, size_t col);
+int tt_table_is_text(const tt_table *t, size_t col);
+const double *tt_table_numbers(const tt_table *t, size_t col);
+const char *tt_table_text(const tt_table *t, size_t col, size_t row);
+size_t tt_table_metas(const tt_table *t);
+const char *tt_table_meta_key(const tt_table *t, size_t i);
+const char *tt_table_meta_value(const tt_table *t, size_t i);
+
+/* physics/contact.h */
+typedef enum { TT_CONTACT_MAUGIS = 0, TT_CONTACT_HERTZ, TT_CONTACT_DMT, TT_CONTACT_JKR } tt_contact_model;
+typedef struct {
+    tt_contact_model model;
+    double K;
+    double R;
+    double w;
+    double xi0;
+    double lambda;
+} tt_contact_params;
+typedef struct tt_contact tt_contact;
+int tt_contact_model_parse(const char *name, tt_contact_model *out);
+int tt_contact_alloc_normalised(tt_contact **out, tt_contact_model model, double lambda,
+                                double xi0n);
+void tt_contact_free(tt_contact *c);
+
+/* solver/integrator.h, instrument/accuracy.h */
+typedef enum { TT_METHOD_DOPRI5 = 0, TT_METHOD_RK4 = 1, TT_METHOD_RADAU = 2 } tt_method;
+typedef enum { TT_TIER_EVERY = 0, TT_TIER_ENVELOPE = 1, TT_TIER_AVERAGED = 2 } tt_tier;
+typedef struct {
+    tt_method method;
+    const char *knob;
+    const double *values;
+    size_t nvalues;
+    tt_tier tier;
+    const char *name;
+} tt_accuracy_ladder;
+typedef enum { TT_ACCURACY_AUTO = 0, TT_ACCURACY_POINT = 1, TT_ACCURACY_LINE = 2 } tt_accuracy_kind;
+typedef struct {
+    tt_accuracy_kind kind;
+    double point;
+    long cycles;
+    long line_pixels;
+    int repeats;
+    double repeat_below;
+    int cpu_clock;
+    double ref_tolerance;
+    double check_tolerance;
+    const tt_accuracy_ladder *ladders;
+    size_t nladders;
+} tt_accuracy_params;
+void tt_accuracy_params_default(tt_accuracy_params *p);
+int tt_accuracy_pick(const char *list, tt_accuracy_ladder *out, size_t max, size_t *n);
+
+/* run/run.h */
+typedef void (*tt_progress_fn)(void *user, long done, long total);
+int tt_run_approach(const tt_scene *s, tt_table **out, tt_progress_fn progress, void *user);
+int tt_run_trace(const tt_scene *s, tt_table **out, tt_progress_fn progress, void *user);
+int tt_run_contact_alloc(const tt_scene *s, const char *material, const char *model,
+                         tt_contact **out, tt_contact_params *params, double *Qi);
+int tt_run_contact_table(const tt_contact *c, const tt_contact_params *params, double Qi,
+                         size_t n, double Amax, tt_table **out);
+int tt_run_accuracy(const tt_scene *s, const tt_accuracy_params *p, tt_table **out,
+                    tt_progress_fn progress, void *user);
+
 /* io/hdf5.h, instrument/scan_hdf5.h */
 typedef struct tt_h5 tt_h5;
 int tt_h5_create(tt_h5 **out, const char *path);

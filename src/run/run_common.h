@@ -1,0 +1,22 @@
+/* Shared by the run layer's files (src/run/): a table's columns made from a list. */
+#ifndef TIPTAP_RUN_COMMON_H
+#define TIPTAP_RUN_COMMON_H
+
+#include "tiptap/util/table.h"
+
+typedef struct {
+    const char *name, *unit;
+    int text;
+} run_column;
+
+/* A new table with the n columns of cols; NULL with the message when out of memory. */
+tt_table *run_table(const run_column *cols, size_t n);
+
+/* The number %.17g (reads back to the same double) as the metadata key's value. */
+int run_meta_number(tt_table *t, const char *key, double value);
+
+/* The SI unit of a scene key written "section.key" or "section.NAME.key" ("m", "J/m^2";
+ * "" for plain numbers, fractions, texts and unknown keys). */
+const char *run_key_unit(const char *key);
+
+#endif
