@@ -60,5 +60,6 @@
 #include "tiptap/config/units.h"
 
 #include "tiptap/run/run.h"
+#include "tiptap/run/sweep.h"
 
 #endif

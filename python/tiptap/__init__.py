@@ -13,6 +13,7 @@ from ._errors import (CaptureError, Interrupted, NumericalError, SceneError, Tip
 from ._lib import lib as _clib, text as _text
 from .scan import ScanResult, channel_table, scan
 from .scene import Key, Scene, keys
+from .sweep import sweep
 from .tables import Table, accuracy, approach, contact, trace
 
 __version__ = _text(_clib.tt_version())
@@ -21,5 +22,5 @@ version = __version__
 __all__ = [
     "CaptureError", "Interrupted", "Key", "NumericalError", "ScanResult", "Scene",
     "SceneError", "Table", "TiptapError", "TiptapIOError", "TiptapMemoryError", "accuracy",
-    "approach", "channel_table", "contact", "keys", "scan", "trace", "version",
+    "approach", "channel_table", "contact", "keys", "scan", "sweep", "trace", "version",
 ]

@@ -187,6 +187,20 @@ int tt_run_contact_table(const tt_contact *c, const tt_contact_params *params, d
 int tt_run_accuracy(const tt_scene *s, const tt_accuracy_params *p, tt_table **out,
                     tt_progress_fn progress, void *user);
 
+/* config/sweep.h, run/sweep.h */
+typedef struct tt_sweep tt_sweep;
+int tt_sweep_check_size(const char *const *specs, size_t n);
+int tt_sweep_alloc(tt_sweep **out, const tt_scene *base);
+void tt_sweep_free(tt_sweep *sw);
+int tt_sweep_vary(tt_sweep *sw, const char *spec);
+size_t tt_sweep_count(const tt_sweep *sw);
+typedef enum { TT_SWEEP_STEADY, TT_SWEEP_SETPOINT, TT_SWEEP_APPROACH, TT_SWEEP_SCAN } tt_sweep_kind;
+int tt_sweep_kind_parse(const char *name, tt_sweep_kind *kind);
+int tt_run_sweep(const tt_sweep *grid, tt_sweep_kind kind, int threads, tt_table **out,
+                 tt_progress_fn progress, void *user);
+int tt_run_sweep_hdf5(const char *path, const tt_sweep *grid, tt_sweep_kind kind,
+                      const tt_scene *base, const tt_table *t);
+
 /* io/hdf5.h, instrument/scan_hdf5.h */
 typedef struct tt_h5 tt_h5;
 int tt_h5_create(tt_h5 **out, const char *path);

@@ -120,13 +120,21 @@ static int dataset(tt_h5 *f, const char *path, hid_t type, int rank, const hsize
     return w < 0 ? fail(f, "the dataset", path) : TT_OK;
 }
 
+/* dims as HDF5's type; -1 beyond HDF5's 32 dimensions. */
+static int shape(int rank, const size_t *dims, hsize_t *d)
+{
+    if (rank < 0 || rank > 32)
+        return -1;
+    for (int i = 0; i < rank; i++)
+        d[i] = dims[i];
+    return 0;
+}
+
 int tt_h5_doubles(tt_h5 *f, const char *path, int rank, const size_t *dims, const double *data)
 {
     hsize_t d[32];
-    if (rank < 0 || rank > 32)
+    if (shape(rank, dims, d))
         return fail(f, "a rank beyond 32 for", path);
-    for (int i = 0; i < rank; i++)
-        d[i] = dims[i];
     return dataset(f, path, H5T_IEEE_F64LE, rank, d, data);
 }
 
@@ -135,10 +143,12 @@ int tt_h5_text(tt_h5 *f, const char *path, const char *text)
     return dataset(f, path, f->str, 0, NULL, &text);
 }
 
-int tt_h5_texts(tt_h5 *f, const char *path, size_t n, const char *const *texts)
+int tt_h5_texts(tt_h5 *f, const char *path, int rank, const size_t *dims, const char *const *texts)
 {
-    hsize_t d = n;
-    return dataset(f, path, f->str, 1, &d, texts);
+    hsize_t d[32];
+    if (shape(rank, dims, d))
+        return fail(f, "a rank beyond 32 for", path);
+    return dataset(f, path, f->str, rank, d, texts);
 }
 
 /* Attribute name of type type (a scalar) on object, written from value. */

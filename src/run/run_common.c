@@ -46,3 +46,18 @@ const char *run_key_unit(const char *key)
     }
     return "";
 }
+
+int run_table_append(tt_table *dst, const tt_table *src)
+{
+    int rc = TT_OK;
+    for (size_t r = 0; r < tt_table_rows(src) && !rc; r++) {
+        rc = tt_table_row(dst);
+        for (size_t c = 0; c < tt_table_columns(src) && !rc; c++) {
+            if (tt_table_is_text(src, c))
+                rc = tt_table_set_text(dst, c, tt_table_text(src, c, r));
+            else
+                tt_table_set(dst, c, tt_table_numbers(src, c)[r]);
+        }
+    }
+    return rc;
+}

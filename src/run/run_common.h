@@ -15,6 +15,9 @@ tt_table *run_table(const run_column *cols, size_t n);
 /* The number %.17g (reads back to the same double) as the metadata key's value. */
 int run_meta_number(tt_table *t, const char *key, double value);
 
+/* Append src's rows to dst, which has the same columns. */
+int run_table_append(tt_table *dst, const tt_table *src);
+
 /* The SI unit of a scene key written "section.key" or "section.NAME.key" ("m", "J/m^2";
  * "" for plain numbers, fractions, texts and unknown keys). */
 const char *run_key_unit(const char *key);

@@ -36,9 +36,10 @@ int tt_h5_close(tt_h5 *f, int keep);
 int tt_h5_group(tt_h5 *f, const char *path);
 /* rank dimensions dims[0..rank) (C order), rank * ... values; rank 0 is a scalar. */
 int tt_h5_doubles(tt_h5 *f, const char *path, int rank, const size_t *dims, const double *data);
-/* One text, or n texts as a one-dimensional dataset (labels of a dimension). */
+/* One text, or texts in rank dimensions dims[0..rank) (labels of a dimension, a table's
+ * text column over a grid; NULL texts are ""). */
 int tt_h5_text(tt_h5 *f, const char *path, const char *text);
-int tt_h5_texts(tt_h5 *f, const char *path, size_t n, const char *const *texts);
+int tt_h5_texts(tt_h5 *f, const char *path, int rank, const size_t *dims, const char *const *texts);
 
 /* Attributes of the group or dataset at object. */
 int tt_h5_attr_text(tt_h5 *f, const char *object, const char *name, const char *value);
