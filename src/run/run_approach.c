@@ -39,14 +39,13 @@ static int put(tt_table *t, const tt_approach_point *p)
 
 int tt_run_approach(const tt_scene *s, tt_table **out, tt_progress_fn progress, void *user)
 {
-    tt_setup *st = NULL;
+    tt_setup *st;
+    tt_scene *copy;
     tt_approach *ap = NULL;
     tt_approach_params p;
     *out = NULL;
-    /* the setup may change its scene (tt_setup_apply): it gets a copy */
-    tt_scene *copy = tt_scene_copy(s);
-    int rc = copy ? TT_OK : tt_error_nomem("a copy of the scene %s", tt_scene_origin(s));
-    if (rc || (rc = tt_setup_alloc(&st, copy)) || (rc = tt_config_approach_alloc(&ap, st, copy, &p)))
+    int rc;
+    if ((rc = run_setup(s, &copy, &st)) || (rc = tt_config_approach_alloc(&ap, st, copy, &p)))
         goto done;
     tt_table *t = run_table(columns, NCOL);
     if (!t) {

@@ -61,3 +61,12 @@ int run_table_append(tt_table *dst, const tt_table *src)
     }
     return rc;
 }
+
+int run_setup(const tt_scene *s, tt_scene **copy, tt_setup **st)
+{
+    *st = NULL;
+    *copy = tt_scene_copy(s);
+    if (!*copy)
+        return tt_error_nomem("a copy of the scene %s", tt_scene_origin(s));
+    return tt_setup_alloc(st, *copy);
+}

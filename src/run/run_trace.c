@@ -35,14 +35,14 @@ static int put(tt_table *t, const tt_trace_row *r, int ramp)
 
 int tt_run_trace(const tt_scene *s, tt_table **out, tt_progress_fn progress, void *user)
 {
-    tt_setup *st = NULL;
+    tt_setup *st;
+    tt_scene *copy;
     tt_trace *tr = NULL;
     tt_trace_params p;
     *out = NULL;
-    /* a ramp changes the setup's scene (tt_setup_apply): it gets a copy */
-    tt_scene *copy = tt_scene_copy(s);
-    int rc = copy ? TT_OK : tt_error_nomem("a copy of the scene %s", tt_scene_origin(s));
-    if (rc || (rc = tt_setup_alloc(&st, copy)) || (rc = tt_config_trace(copy, &p)) ||
+    int rc;
+    /* a ramp changes the setup's scene: run_setup's copy */
+    if ((rc = run_setup(s, &copy, &st)) || (rc = tt_config_trace(copy, &p)) ||
         (rc = tt_scene_locate(copy, tt_trace_alloc(&tr, st, &p))))
         goto done;
     tt_table *t = run_table(columns, RAMP);
