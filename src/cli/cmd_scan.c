@@ -153,6 +153,19 @@ static void remove_stale(const tt_scan *scan, const char *dir, int hdf5)
                         "does not write: %s\n", dir, n, n > 1 ? "s" : "", names);
 }
 
+/* DIR/scan.h5 can be written (made and removed again), before the scan runs. */
+static int check_hdf5(const char *dir)
+{
+    char path[4200];
+    struct stat st;
+    tt_h5 *f;
+    snprintf(path, sizeof path, "%s/scan.h5", dir);
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+        return tt_error(TT_EIO, "%s: is a folder; the scan writes a file there", path);
+    int rc = tt_h5_create(&f, path);
+    return rc ? rc : tt_h5_close(f, 0);
+}
+
 /* DIR/scan.h5 (docs/hdf5.md) with the metadata of the other files and the effective
  * scene. */
 static int write_hdf5(const tt_scan *scan, const tt_scene *scene, const char *dir, const tt_meta *m)
@@ -445,6 +458,8 @@ int cmd_scan(int argc, char **argv)
         reported = 1;
         goto done;
     }
+    if (hdf5 && (rc = check_hdf5(dir)))
+        goto done;
     snprintf(path, sizeof path, "%s/scene.ini", dir);
     if ((rc = tt_outfile_open(&of, path)))
         goto done;
