@@ -127,7 +127,8 @@ def contact(scene=None, *, material=None, model=None, lam=None, xi0=0.3, points=
         law = ffi.gc(c[0], lib.tt_contact_free)
         check(lib.tt_run_contact_table(law, ffi.NULL, math.nan, points, amax, out))
     t = table_of(out[0])
-    t.meta["model"] = model or ("maugis" if scene is None else "scene")
+    if model or scene is None:
+        t.meta["model"] = model or "maugis"
     return t
 
 
