@@ -32,6 +32,18 @@ expect_error "the table named .h5" "with --hdf5 the table needs an extension oth
 mkdir "$tmp/v.h5"
 expect_error "FILE.h5 a folder" "$tmp/v.h5: is a folder" "$tiptap" sweep "${sweep[@]}" -o "$tmp/v.csv" --hdf5 -q
 [ ! -e "$tmp/v.csv" ] && ok "no table written when FILE.h5 is refused" || bad "table written"
+# the HDF5 module is loaded from beside the library on the first file: without it, one
+# line, before the scan runs; every other command runs without it
+lib=$(ldd "$tiptap" | sed -n 's/.*libtiptap\.so[^ ]* => \([^ ]*\) .*/\1/p')
+if [ -n "$lib" ]; then
+  mkdir -p "$tmp/nomodule"
+  cp "$(realpath "$lib")" "$tmp/nomodule/$(basename "$lib")"
+  expect_error "no HDF5 module" "libtiptap_hdf5.so" env LD_LIBRARY_PATH="$tmp/nomodule" \
+    "$tiptap" scan "${scan[@]}" -o "$tmp/d" --hdf5 -q
+  [ ! -e "$tmp/d/height_trace.gsf" ] && ok "no scan without the module" || bad "scanned without the module"
+  env LD_LIBRARY_PATH="$tmp/nomodule" "$tiptap" scan "${scan[@]}" -o "$tmp/e" -q 2>/dev/null &&
+    [ -s "$tmp/e/height_trace.gsf" ] && ok "a scan without --hdf5 needs no module" || bad "scan without the module"
+fi
 "$tiptap" scan --help | grep -q -- "--hdf5" && "$tiptap" sweep --help | grep -q -- "--hdf5" &&
   ok "--help lists --hdf5" || bad "--hdf5 not in --help"
 exit $fail

@@ -16,7 +16,7 @@ else
   bad "cmake --install: $(tail -3 "$tmp/install.log")"; exit 1
 fi
 libdir=$(dirname "$(find "$prefix" -name 'libtiptap.so.*.*.*' | head -1)")
-for f in "$libdir/libtiptap.so" "$prefix/include/tiptap.h" "$prefix/include/tiptap/version.h" \
+for f in "$libdir/libtiptap.so" "$libdir/libtiptap_hdf5.so" "$prefix/include/tiptap.h" "$prefix/include/tiptap/version.h" \
          "$prefix/include/tiptap/instrument/scan.h" "$libdir/pkgconfig/tiptap.pc" \
          "$libdir/cmake/tiptap/tiptapConfig.cmake" "$libdir/cmake/tiptap/tiptapConfigVersion.cmake" \
          "$prefix/bin/tiptap" "$prefix/share/doc/tiptap/README.md" "$prefix/share/doc/tiptap/library.md"; do
