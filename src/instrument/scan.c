@@ -234,6 +234,7 @@ static void worker_free(worker *W)
     free(W->samples);
     free(W->y);
     tt_envelope_free(W->env);
+    tt_graze_free(W->graze);
     tt_lockin_free(W->lockin_save);
     free(W->y_save);
     free(W->obs);
@@ -295,6 +296,31 @@ static int envelope_alloc(tt_scan *S, worker *W)
 {
     size_t n = (size_t)S->lockin.samples_per_period * (size_t)S->lockin.periods_per_block;
     int rc = tt_envelope_alloc(&W->env, &S->cantilever, S->lockin.samples_per_period);
+    /* the gaps around the closest approach, from which a grazing tip's branch and the
+     * time of its jump-in are predicted (tiptap/solver/graze.h) */
+    if (!rc)
+        rc = tt_envelope_set_probes(W->env, TT_GRAZE_PROBES);
+    if (!rc) {
+        const int m = tt_lockin_components(W->lockin);
+        double *scale = calloc(2 * ((size_t)m + TT_ENV_EXTRA), sizeof *scale);
+        if (!scale)
+            return tt_error_nomem("a scan thread's envelope tier");
+        double *floor = scale + m + TT_ENV_EXTRA;
+        const tt_cantilever *c = &S->cantilever;
+        for (int i = 0; i < m; i++)
+            scale[i] = c->A0;
+        scale[m + TT_ENV_PEAK] = c->k * c->A0;
+        scale[m + TT_ENV_INDENT] = c->A0;
+        scale[m + TT_ENV_ETS] = c->k * c->A0 * c->A0;
+        /* a touch's peak force and greatest indentation scatter from one grazing touch
+         * to the next by up to 4e-5 k A0 and 1e-6 A0 (the maximum sought on each step's
+         * samples; the blend's matrix): held to 1e-4 and 1e-5 of their scales, 8 pN and
+         * 0.2 pm on the standard cantilever, which a pixel's hundreds of cycles average */
+        floor[m + TT_ENV_PEAK] = 1e-4;
+        floor[m + TT_ENV_INDENT] = 1e-5;
+        rc = tt_graze_alloc(&W->graze, &S->cantilever, m + TT_ENV_EXTRA, scale, floor);
+        free(scale);
+    }
     if (!rc)
         rc = tt_lockin_alloc(&W->lockin_save, &S->lockin);
     if (rc)
@@ -353,6 +379,7 @@ static int worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)
 {
     memset(W, 0, sizeof *W);
     W->tolerance = solver->tolerance;
+    W->model_tol = 10 * solver->tolerance;
     int rc;
     if ((rc = tt_sim_alloc(&W->sim, &S->cantilever, solver)) ||
         (rc = tt_sim_set_thermal(W->sim, envelope_usable(S, solver) ? 0 : S->noise.temperature,
@@ -480,10 +507,10 @@ static line_ctx line_context(tt_scan *S, worker *W, long line)
      * the stepper's tolerance, below what the integration itself errs per cycle (13 to
      * 16 times the tolerance at 1e-8 on the standard scene, 5 to 20 times at 1e-6 and
      * 1e-7: one cycle against one at 1e-12 from the same state). The worker's own
-     * tolerance: the error estimate's companion line tightens the model with the
+     * model tolerance: the error estimate's companion line tightens the model with the
      * integration, or the model's error (at setpoint-10 100 times the integration's in
      * amplitude) would cancel out of the companion's difference */
-    L.tol = 10 * W->tolerance;
+    L.tol = W->model_tol;
     /* With noise on, the state and the sample wander from the anchor by the noise (the
      * thermal force alone moves the state by 1.25 pm a cycle, 2000 times the tolerance
      * at the default), and the model's error grows with the square of that reach: it is
@@ -671,6 +698,13 @@ static int companion_line(tt_scan *S, const tt_solver *solver, double *buf)
         for (int r = 0; r < (S->raster.retrace ? 2 : 1); r++)
             out.img[r][c] = buf + (size_t)(2 * c + r) * (size_t)px;
     int rc = worker_alloc(S, &W, solver);
+    /* The tight line's model is held ten times tighter than the run's, as its steps are
+     * (a hundred times: see tt_companion_solver), so that the difference of the two is
+     * the run's error, the model's included; a hundred times tighter is below what the
+     * grazing touches' model can follow (1e-9 of A0 over the blend's orbit), and the
+     * tight line would integrate every grazing cycle at 1e-10 (16 G instructions, a
+     * fifth of the README job's) */
+    W.model_tol = fmax(W.model_tol, S->solver.tolerance);
     if (!rc)
         rc = run_line(S, &W, S->profile_line, &out, &cycles, &integrated, &worst, &clamped);
     worker_free(&W);

@@ -9,6 +9,7 @@
 #include "tiptap/instrument/scan.h"
 #include "tiptap/solver/averaged.h"
 #include "tiptap/solver/envelope.h"
+#include "tiptap/solver/graze.h"
 
 enum { NHARM = TT_CH_HARMONIC_MAX - 1 }; /* harmonic channels of each kind */
 _Static_assert(TT_CH_COUNT <= 8 * sizeof(unsigned), "a channel mask holds every channel");
@@ -17,6 +18,7 @@ _Static_assert(TT_CH_COUNT <= 8 * sizeof(unsigned), "a channel mask holds every 
 typedef struct {
     tt_sim *sim;
     double tolerance; /* its solver's: the companion's is tighter than the scan's */
+    double model_tol; /* the envelope tier's model's per cycle, relative to A0 */
     tt_lockin *lockin;
     tt_sample *samples;
     double *y; /* the lock-in block's periods: samples, or on the envelope tier each
@@ -30,6 +32,7 @@ typedef struct {
     /* the envelope tier (NULL: every cycle): its model, a snapshot of the lock-in and
      * of the block's periods (y) to roll back to, and two observable vectors */
     tt_envelope *env;
+    tt_graze *graze; /* the touch branch of a grazing tip (the free one: env) */
     tt_lockin *lockin_save;
     double *y_save, *obs;
     /* the greatest indentation of the trace and retrace cycles, per material */
