@@ -32,6 +32,7 @@
 
 #include "tiptap/solver/averaged.h"
 #include "tiptap/solver/envelope.h"
+#include "tiptap/solver/graze.h"
 #include "tiptap/solver/integrator.h"
 #include "tiptap/solver/noise.h"
 #include "tiptap/solver/shooting.h"
