@@ -44,6 +44,8 @@
 #include "tiptap/instrument/piezo.h"
 #include "tiptap/instrument/scan.h"
 #include "tiptap/instrument/scan_hdf5.h"
+#include "tiptap/instrument/scan_oscillation.h"
+#include "tiptap/instrument/scan_scope.h"
 #include "tiptap/instrument/scanner.h"
 #include "tiptap/instrument/surface.h"
 #include "tiptap/instrument/tip.h"

@@ -5,8 +5,10 @@ packages=(build-essential cmake pkg-config libgsl-dev libfftw3-dev libpng-dev
           libcairo2-dev libcmocka-dev fonts-dejavu-core
           openmpi-bin libopenmpi-dev # MPI: CI runs 'mpirun -np 2 tiptap sweep' (tests/cli_sweep.sh)
           libhdf5-dev                # scan --hdf5, sweep --hdf5 (docs/hdf5.md)
-          # the Python package and its tests (docs/python.md), for /usr/bin/python3
-          python3-numpy python3-cffi python3-pytest python3-h5py)
+          libwebsockets-dev          # tiptap live: HTTP and WebSocket (docs/dependencies.md)
+          # python3: the live tests' WebSocket and DevTools clients; the Python package and
+          # its tests (docs/python.md), for /usr/bin/python3
+          python3 python3-numpy python3-cffi python3-pytest python3-h5py)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -100,7 +100,7 @@ static const char *base =
     "[material polymer]\nyoungs_modulus = 1 GPa\nadhesion_energy = 40 mJ/m^2\n"
     "interaction_quality_factor = 5\n"
     "[scan]\nsize = 1 um\npixels = 32\nlines = 2\nline_rate = 8 Hz\nsettle_cycles = 3000\n"
-    "channels = height, amplitude, phase\n"
+    "channels = height, error, phase\n"
     "[feedback]\nsetpoint = 80 %\nintegral_gain = 3000 Hz\n";
 
 enum { SEEDS = 8, CH = 3 };

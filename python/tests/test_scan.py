@@ -17,7 +17,7 @@ def quick():
 
 def test_every_channel_equals_the_programs_gsf_bit_for_bit(quick, quick_cli):
     files = sorted(f for f in os.listdir(quick_cli) if f.endswith(".gsf"))
-    assert len(files) == 2 * len(quick.channels) == 12
+    assert len(files) == 2 * len(quick.channels) == 14
     for name in quick.channels:
         for direction in ("trace", "retrace"):
             header, data = read_gsf(quick_cli / f"{name}_{direction}.gsf")
@@ -42,10 +42,12 @@ def test_metadata_is_the_gsf_header(quick, quick_cli):
 
 
 def test_geometry_and_run_figures(quick):
-    assert quick.channels == ["height", "amplitude", "phase", "peak_force", "indentation",
-                              "dissipation"]
-    assert quick.units == {"height": "m", "amplitude": "m", "phase": "deg", "peak_force": "N",
-                           "indentation": "m", "dissipation": "J"}
+    # the library's order: 'error' is the error signal (amplitude - setpoint), 'amplitude'
+    # the lock-in amplitude itself
+    assert quick.channels == ["height", "error", "phase", "peak_force", "indentation",
+                              "dissipation", "amplitude"]
+    assert quick.units == {"height": "m", "error": "m", "phase": "deg", "peak_force": "N",
+                           "indentation": "m", "dissipation": "J", "amplitude": "m"}
     assert quick.x.shape == (16,) and quick.y.shape == (4,)
     assert quick.x[0] == pytest.approx(quick.size[0] / 32)
     assert quick.run["lines_finished"] == quick.run["lines_total"] == 4
@@ -59,7 +61,8 @@ def test_geometry_and_run_figures(quick):
 def test_channels_follow_the_librarys_table():
     table = tiptap.channel_table()
     names = [n for n, _, _ in table]
-    assert names[:3] == ["height", "amplitude", "phase"]
+    assert names[:3] == ["height", "error", "phase"] and names[7] == "amplitude"
+    assert len(table) == 22
     assert len(set(names)) == len(names)
     r = tiptap.scan(QUICK, set={**QUICK_SET, "scan.lines": "1", "lockin.harmonics": "3",
                                 "scan.channels": "height, harmonic3, harmonic2_phase"},

@@ -189,6 +189,20 @@ static int integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_c
     return TT_OK;
 }
 
+/* How much more than its last cycle's a stretch of m model cycles can drift, past what
+ * the checks were measured to hold (docs/dynamics.md, "Any Q"): each cycle's local
+ * error is carried on, damped over Q / pi cycles, so a stretch's drift is its check's
+ * error times min(m, Q / pi). The tier's control was measured up to Q 3000 with the
+ * check alone; above it (a vacuum cantilever's Q 1e4 and more, whose transients last
+ * the whole line) the check is tightened to the drift of the standard cantilever's
+ * stretches (Q 400: 127 cycles), so that no stretch drifts further than those do. */
+static double drift(const line_ctx *L, long m)
+{
+    const double Q = L->S->cantilever.Q, held = 400 / M_PI;
+    const double n = fmin((double)m, Q / M_PI);
+    return Q > 3000 && n > held ? n / held : 1;
+}
+
 /* The check closing a stretch: cycle k integrated from the model's state, against the
  * model's own prediction of it. 1: the stretch stands (the model is re-anchored); 0: it
  * does not, or the run was cancelled (*rc = TT_EINTR). */
@@ -215,7 +229,7 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
         tt_error_clear();
         return 0;
     }
-    double err = tt_envelope_error(env, xp, pred, st->x, obs);
+    double err = tt_envelope_error(env, xp, pred, st->x, obs) * drift(L, c->m);
     if (!(err <= L->tol + L->rel * tt_envelope_reach(env, x0, in->sa, sdot)) || c1 != c0 || tt_envelope_touched(&cy) != tt_envelope_anchor_touched(env))
         return 0;
     tt_envelope_anchor(env, x0, in->sa, sdot, st->x, &cy, obs);
@@ -492,8 +506,8 @@ static int graze_check(const line_ctx *L, line_state *st, const cycle_in *in, do
         tt_envelope_predict_probes(env, x0, in->sa, sdot, c->pred + nr);
     }
     /* a touch's peak force and indentation to their floors (tt_graze_alloc) */
-    double gerr = touch ? tt_graze_error(W->graze, xp, c->pred, st->x, c->red, L->tol)
-                        : tt_envelope_error_reduced(env, xp, c->pred, st->x, c->red) / L->tol;
+    double gerr = drift(L, c->m) * (touch ? tt_graze_error(W->graze, xp, c->pred, st->x, c->red, L->tol)
+                        : tt_envelope_error_reduced(env, xp, c->pred, st->x, c->red) / L->tol);
     if (touch) /* learnt from, passed or not */
         graze_learn(L, c, in, x0, &cy, st->x);
     if (!(gerr <= 1))
