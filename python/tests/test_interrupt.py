@@ -2,8 +2,12 @@
 callback that raises stops it too; other Python threads run while the library works."""
 
 import os
+import re
 import signal
+import subprocess
+import sys
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -66,3 +70,67 @@ def test_other_threads_run_during_a_scan():
     assert state["result"].run["lines_finished"] == 4
     # a loop that held no GIL would count millions; one starved by it, nearly none
     assert count > 100000
+
+
+# Ctrl-C as a terminal sends it: SIGINT from outside to a Python process running a long
+# scan (2000 lines: minutes), once its first line is done.
+CHILD = r"""
+import sys, tiptap
+from conftest import QUICK, QUICK_SET
+
+def progress(done, total):
+    if done == 1:
+        print("first line", flush=True)
+
+try:
+    tiptap.scan(QUICK, set={**QUICK_SET, "scan.pixels": "32", "scan.lines": "2000"},
+                threads=2, progress=progress)
+except KeyboardInterrupt as e:
+    if sys.argv[1] == "raise":
+        raise
+    r = e.result
+    print("interrupted", r.run["lines_finished"], r.run["lines_total"], flush=True)
+    sys.exit(0)
+print("finished", flush=True)
+sys.exit(3)
+"""
+
+
+def interrupt_child(mode):
+    """Start the child, SIGINT it after its first line; (returncode, stdout lines after
+    the first, stderr, seconds from SIGINT to exit)."""
+    p = subprocess.Popen([sys.executable, "-c", CHILD, mode], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True, cwd=os.path.dirname(__file__))
+    try:
+        first = p.stdout.readline()
+        assert first == "first line\n", (first, p.stderr.read() if p.poll() is not None else "")
+        t0 = time.monotonic()
+        p.send_signal(signal.SIGINT)
+        out, err = p.communicate(timeout=60)
+        return p.returncode, out.split("\n"), err, time.monotonic() - t0
+    finally:
+        if p.poll() is None:
+            p.kill()
+            p.wait()
+
+
+def test_sigint_from_outside_stops_a_long_scan_within_seconds():
+    rc, out, err, seconds = interrupt_child("catch")
+    assert rc == 0, err
+    words = out[0].split()
+    assert words[0] == "interrupted" and 1 <= int(words[1]) < 2000 and words[2] == "2000", out
+    # the run checks the cancellation every few cycles: well under a second on this
+    # scene, a few seconds allowed for a loaded machine and the sanitizers
+    assert seconds < 5, f"{seconds:.1f} s from SIGINT to exit"
+    assert "Sanitizer" not in err and "Traceback" not in err, err
+
+
+def test_an_uncaught_ctrl_c_ends_the_script_with_its_traceback():
+    rc, out, err, seconds = interrupt_child("raise")
+    # exit status 1 (Python dies by SIGINT for KeyboardInterrupt itself only), the last
+    # line the exception with what the run had done
+    assert rc == 1 and out == [""], (rc, out, err)
+    last = err.rstrip().split("\n")[-1]
+    assert re.fullmatch(r"tiptap\.Interrupted: scan: interrupted \(interrupted after \d+ of "
+                        r"2000 lines\)", last), err[-400:]
+    assert "Sanitizer" not in err and seconds < 5, (seconds, err[-400:])

@@ -48,13 +48,20 @@ class CaptureError(TiptapError):
 
 class Interrupted(KeyboardInterrupt):
     """Ctrl-C (or a progress callback that raised) stopped a run. A KeyboardInterrupt, so
-    that it ends a script as Ctrl-C does; e.result holds what the run had finished (a
-    scan's finished lines, an approach's rows), or None."""
+    that `except KeyboardInterrupt` catches it and, uncaught, it ends a script with its
+    traceback (exit status 1: Python gives the status of a death by SIGINT to
+    KeyboardInterrupt itself only); e.result holds what the run had finished (a scan's
+    finished lines, an approach's rows), or None."""
 
     def __init__(self, message, result=None):
         super().__init__(message)
         self.result = result
 
+
+# named as the package exports them (a traceback reads tiptap.SceneError)
+for _c in (TiptapError, SceneError, TiptapMemoryError, TiptapIOError, NumericalError,
+           CaptureError, Interrupted):
+    _c.__module__ = "tiptap"
 
 _CLASSES = {1: SceneError, 2: TiptapMemoryError, 3: TiptapIOError, 4: NumericalError,
             6: CaptureError}
