@@ -36,10 +36,12 @@ installed=$(realpath "$libdir"/libtiptap.so.*.*.*)
 [ "$(loads "$prefix/bin/tiptap")" = "$installed" ] && ok "the installed program loads the installed library" ||
   bad "installed program: $(ldd "$prefix/bin/tiptap" | grep tiptap)"
 
-# the installed Python package finds the installed library by itself (not under the
-# sanitizers: the interpreter would need their runtimes preloaded, as ctest's py_ tests do)
-if [ -n "$python" ] && [ -n "$init" ] && [ "$sanitize" != 1 ]; then
-  got=$(cd "$tmp" && env -u TIPTAP_LIBRARY PYTHONPATH="$(dirname "$(dirname "$init")")" "$python" -c \
+# the installed Python package finds the installed library by itself (under the
+# sanitizers with their runtimes preloaded into the interpreter, as ctest's py_ tests do)
+if [ -n "$python" ] && [ -n "$init" ]; then
+  pyenv=()
+  [ "$sanitize" = 1 ] && pyenv=(LD_PRELOAD="${TT_PY_PRELOAD:-}" ASAN_OPTIONS=detect_leaks=0)
+  got=$(cd "$tmp" && env -u TIPTAP_LIBRARY "${pyenv[@]}" PYTHONPATH="$(dirname "$(dirname "$init")")" "$python" -c \
         'import os, tiptap, tiptap._lib as l; print(tiptap.version, os.path.realpath(l._library_path()))' 2>&1)
   [ "$got" = "${version#tiptap } $installed" ] &&
     ok "import tiptap loads the installed library" || bad "import tiptap: $got"
