@@ -384,10 +384,12 @@ int tt_scan_worker_retune(tt_scan *S, worker *W)
         return TT_OK; /* noiseless (docs/dynamics.md, Averaged) */
     if (!env && W->env) {
         tt_envelope_free(W->env);
+        tt_graze_free(W->graze); /* envelope_alloc makes a new one when the tier returns */
         tt_lockin_free(W->lockin_save);
         free(W->y_save);
         free(W->obs);
         W->env = NULL;
+        W->graze = NULL;
         W->lockin_save = NULL;
         W->y_save = W->obs = NULL;
     }
