@@ -80,15 +80,6 @@ static int use_cpu;
 
 static double cost(const tt_accuracy_row *r) { return use_cpu ? r->cpu_time : r->run_time; }
 
-static const char *role_name(tt_accuracy_role r)
-{
-    return r == TT_ACCURACY_REFERENCE ? "reference" : r == TT_ACCURACY_FLOOR ? "floor" : "setting";
-}
-
-static const char *tier_name(tt_tier t)
-{
-    return t == TT_TIER_ENVELOPE ? "envelope" : t == TT_TIER_AVERAGED ? "averaged" : "every";
-}
 
 /* "dopri5 tolerance 1e-08", or with the ladder's own name "envelope (dopri5) tolerance 1e-08" */
 static void describe(char *buf, size_t n, const tt_accuracy_row *r)
@@ -102,11 +93,11 @@ static void describe(char *buf, size_t n, const tt_accuracy_row *r)
 
 static void write_row(FILE *f, const tt_accuracy_row *r, size_t nobs)
 {
-    fprintf(f, "%s,%s,%s,%.6g,%.6g,%.6g,%.6g,%.4g", tt_method_name(r->method), tier_name(r->tier),
+    fprintf(f, "%s,%s,%s,%.6g,%.6g,%.6g,%.6g,%.4g", tt_method_name(r->method), tt_accuracy_tier_name(r->tier),
             r->knob, r->value, r->run_time, r->cpu_time, r->steps_per_cycle, r->integrated);
     for (size_t i = 0; i < nobs; i++)
         fprintf(f, ",%.6g", r->err[i]);
-    fprintf(f, ",%.3g,%s,%d,%s\n", r->residual_rel, role_name(r->role), r->is_default,
+    fprintf(f, ",%.3g,%s,%d,%s\n", r->residual_rel, tt_accuracy_role_name(r->role), r->is_default,
             r->status == TT_OK ? "ok" : "failed");
 }
 
@@ -228,42 +219,6 @@ static int plot(const char *path, const tt_accuracy *a, const char *title)
 }
 
 /* The built-in ladders named in list ("dopri5,envelope,rk4"). */
-static int pick_methods(const char *list, tt_accuracy_ladder *out, size_t max, size_t *n)
-{
-    size_t nall;
-    const tt_accuracy_ladder *all = tt_accuracy_ladders(&nall);
-    *n = 0;
-    char buf[256];
-    if (snprintf(buf, sizeof buf, "%s", list) >= (int)sizeof buf) {
-        fprintf(stderr, "tiptap accuracy: --methods: a list of %zu characters, at most %zu\n",
-                strlen(list), sizeof buf - 1);
-        return -1;
-    }
-    for (char *save = NULL, *tok = strtok_r(buf, ", ", &save); tok; tok = strtok_r(NULL, ", ", &save)) {
-        size_t i;
-        if (*n == max) {
-            fprintf(stderr, "tiptap accuracy: --methods: more than %zu methods\n", max);
-            return -1;
-        }
-        for (i = 0; i < nall; i++)
-            if (strcmp(tt_accuracy_ladder_name(&all[i]), tok) == 0)
-                break;
-        if (i == nall) {
-            fprintf(stderr, "tiptap accuracy: --methods: unknown method '%s'; known:", tok);
-            for (size_t k = 0; k < nall; k++)
-                fprintf(stderr, "%s %s", k ? "," : "", tt_accuracy_ladder_name(&all[k]));
-            fprintf(stderr, "\n");
-            return -1;
-        }
-        out[(*n)++] = all[i];
-    }
-    if (*n == 0) {
-        fprintf(stderr, "tiptap accuracy: --methods: no method named\n");
-        return -1;
-    }
-    return 0;
-}
-
 static void summary(const tt_accuracy *a, double target, double t0)
 {
     const tt_accuracy_observable *obs;
@@ -431,7 +386,8 @@ int cmd_accuracy(int argc, char **argv)
     int quiet = args.quiet;
     tt_accuracy_ladder picked[16];
     if (methods) {
-        if (pick_methods(methods, picked, sizeof picked / sizeof picked[0], &p.nladders) != 0) {
+        if (tt_accuracy_pick(methods, picked, sizeof picked / sizeof picked[0], &p.nladders) != 0) {
+            fprintf(stderr, "tiptap accuracy: --methods: %s\n", tt_error_message());
             cli_args_free(&args);
             return CLI_USAGE;
         }

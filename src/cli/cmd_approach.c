@@ -181,12 +181,8 @@ static int approach_companion(const tt_scene *scene, const tt_solver *s, double 
     tt_setup *st = NULL;
     tt_approach *ap = NULL;
     tt_approach_params p;
-    size_t mat = 0;
     int rc = c ? TT_OK : tt_error(TT_ENOMEM, "out of memory");
-    if (rc || (rc = tt_setup_alloc(&st, c)) || (rc = tt_config_approach(c, &p)) ||
-        (rc = tt_config_material_index(c, "approach", tt_setup_material(st, 0),
-                                       tt_setup_materials(st), &mat)) ||
-        (rc = tt_setup_use_material(st, mat)) || (rc = tt_approach_alloc(&ap, tt_setup_sim(st), &p)))
+    if (rc || (rc = tt_setup_alloc(&st, c)) || (rc = tt_config_approach_alloc(&ap, st, c, &p)))
         goto done;
     double da = 0, dp = 0;
     for (size_t i = 0; i < n && !tt_approach_done(ap); i++) {
@@ -232,12 +228,9 @@ int cmd_approach(int argc, char **argv)
     tt_outfile *of = NULL;
     tt_approach_point *pts = NULL;
     tt_approach_params p;
-    size_t mat = 0, n = 0;
+    size_t n = 0;
     int rc;
-    if ((rc = tt_setup_alloc(&st, scene)) || (rc = tt_config_approach(scene, &p)) ||
-        (rc = tt_config_material_index(scene, "approach", tt_setup_material(st, 0),
-                                       tt_setup_materials(st), &mat)) ||
-        (rc = tt_setup_use_material(st, mat)) || (rc = tt_scene_locate(scene, tt_approach_alloc(&ap, tt_setup_sim(st), &p))))
+    if ((rc = tt_setup_alloc(&st, scene)) || (rc = tt_config_approach_alloc(&ap, st, scene, &p)))
         goto done;
     {
         tt_estimate e;

@@ -12,6 +12,7 @@
 #include "tiptap/io/outfile.h"
 #include "tiptap/io/files.h"
 #include "tiptap/io/plot.h"
+#include "tiptap/run/run.h"
 
 static void help(void)
 {
@@ -40,24 +41,25 @@ static void help(void)
            "against eq. 7 evaluated directly at 2000 points of the stable branch.\n");
 }
 
+/* The curve's table (tt_run_contact_table: the A -> 0 end of an adhesive law first). */
 static int write_csv(const char *path, const tt_contact *c, double Amax)
 {
-    enum { N = 600 };
-    double A[N], D[N], P[N];
-    int st[N];
-    int rc = tt_contact_curve(c, N, Amax, A, D, P, st);
+    tt_table *t;
+    int rc = tt_run_contact_table(c, NULL, NAN, 600, Amax, &t);
     if (rc)
         return rc;
     tt_outfile *o;
-    if ((rc = tt_outfile_open(&o, path)))
+    if ((rc = tt_outfile_open(&o, path))) {
+        tt_table_free(t);
         return rc;
+    }
     FILE *f = tt_outfile_stream(o);
     fprintf(f, "A,Delta,P,stable\n");
-    const tt_contact_summary *s = tt_contact_summary_of(c);
-    if (s->adhesive)
-        fprintf(f, "0,%.10g,%.10g,%d\n", s->Delta0, s->P0, !s->hysteresis);
-    for (int i = 0; i < N; i++)
-        fprintf(f, "%.10g,%.10g,%.10g,%d\n", A[i], D[i], P[i], st[i]);
+    const double *A = tt_table_numbers(t, 0), *D = tt_table_numbers(t, 1), *P = tt_table_numbers(t, 2),
+                 *st = tt_table_numbers(t, 3);
+    for (size_t i = 0; i < tt_table_rows(t); i++)
+        fprintf(f, "%.10g,%.10g,%.10g,%d\n", A[i], D[i], P[i], (int)st[i]);
+    tt_table_free(t);
     return tt_outfile_close(o, 1);
 }
 
@@ -230,30 +232,8 @@ int cmd_contact(int argc, char **argv)
         /* an output that is the scene just read is refused before the summary */
         if ((out && (rc = tt_output_check(out))) || (plotpath && (rc = tt_output_check(plotpath))))
             goto done;
-        tt_material *mats = NULL;
-        size_t nmat = 0, pick = 0;
-        if ((rc = tt_config_materials(scene, &mats, &nmat)))
+        if ((rc = tt_run_contact_alloc(scene, material, model, &ct, &p, &Qi)))
             goto done;
-        while (material && pick < nmat && strcmp(mats[pick].name, material) != 0)
-            pick++;
-        if (pick == nmat) {
-            free(mats);
-            rc = tt_error(TT_EINVAL, "%s: no [material %s] section", tt_scene_origin(scene), material);
-            goto done;
-        }
-        char name[sizeof mats->name];
-        snprintf(name, sizeof name, "%s", mats[pick].name);
-        p = mats[pick].contact;
-        Qi = mats[pick].Qi;
-        free(mats);
-        if (model)
-            p.model = m;
-        if ((rc = tt_contact_alloc(&ct, &p))) {
-            char why[512];
-            snprintf(why, sizeof why, "%s", tt_error_message());
-            rc = tt_scene_locate(scene, tt_error(rc, "[material %s]: %s", name, why));
-            goto done;
-        }
         xi0n = tt_contact_summary_of(ct)->adhesive
                    ? tt_contact_summary_of(ct)->xi0 / tt_contact_summary_of(ct)->depth_scale
                    : 0.3;

@@ -49,7 +49,7 @@ static int write_outputs(void *user, const tt_scan *scan, const tt_scene *scene,
     }
     if ((rc = tt_outfile_close(of, 1)))
         return rc;
-    return cli_scan_write_outputs(scan, scene, dir, &n);
+    return cli_scan_write_outputs(scan, scene, dir, 0, &n); /* no HDF5 from the console */
 }
 
 static void ready(void *user, int port)

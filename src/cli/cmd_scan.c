@@ -17,12 +17,16 @@
 #include "tiptap/io/lock.h"
 #include "tiptap/io/outfile.h"
 #include "tiptap/config/config.h"
+#include "tiptap/config/meta.h"
 #include "tiptap/instrument/scan.h"
+#include "tiptap/instrument/scan_hdf5.h"
 #include "tiptap/instrument/scan_scope.h"
+#include "tiptap/version.h"
 
 static void help(void)
 {
-    printf("Usage: tiptap scan SCENE... -o DIR [--set section.key=value]... [--threads N] [-q]\n"
+    printf("Usage: tiptap scan SCENE... -o DIR [--set section.key=value]... [--threads N] [--hdf5]\n"
+           "                   [-q]\n"
            "Closed-loop tapping image of the scene's [surface] under [scan], [lockin] and\n"
            "[feedback].\n\n"
            "  -o, --output DIR   folder for the results (made if missing): scan.gwy (one\n"
@@ -36,6 +40,9 @@ static void help(void)
            "                     block, trace and retrace), scene.ini (the effective scene)\n"
            "  -j, --threads N    lines computed in parallel (default: all cores); the images\n"
            "                     do not depend on it\n"
+           "      --hdf5         also DIR/scan.h5: every channel, trace and retrace, in float64\n"
+           "                     with x and y in metres as dimension scales, the parameters and\n"
+           "                     the effective scene (docs/hdf5.md; h5py reads it)\n"
            CLI_HELP_SET
            "  -q, --quiet        no progress and summary on stderr\n\n"
            "Channels ([scan] channels): height (m), error (the error signal: lock-in amplitude -\n"
@@ -98,7 +105,7 @@ static void channel_path(char *buf, size_t len, const char *dir, int ch, int r, 
 
 int cli_scan_check_outputs(const char *dir)
 {
-    static const char *const fixed[] = {"scene.ini", "profile.csv", "scan.gwy", "scope.csv",
+    static const char *const fixed[] = {"scene.ini", "profile.csv", "scan.gwy", "scan.h5", "scope.csv",
                                         "scope.png", ".tiptap.lock"};
     char path[4200];
     int rc = TT_OK;
@@ -124,18 +131,22 @@ int cli_scan_folder_take(const char *cmd, const char *dir, int *lock)
 }
 
 /* The channel files of an earlier run in dir that this one did not write (a run with
- * fewer channels): removed, so that the folder holds one run's images, and named on
- * stderr. Only the names tiptap writes are touched; a link is removed, not followed. */
-static void remove_stale(const tt_scan *scan, const char *dir)
+ * fewer channels, or without --hdf5: its scan.h5): removed, so that the folder holds one
+ * run's images, and named on stderr. Only the names tiptap writes are touched; a link is
+ * removed, not followed. */
+static void remove_stale(const tt_scan *scan, const char *dir, int hdf5)
 {
     char path[4200], names[4096] = "";
     int n = 0;
-    for (int k = 0; k < 4 * TT_CH_COUNT; k++) {
+    for (int k = 0; k <= 4 * TT_CH_COUNT; k++) {
         int ch = k / 4, r = k / 2 % 2;
         struct stat st;
-        if (tt_scan_image(scan, ch, r))
+        if (k == 4 * TT_CH_COUNT ? hdf5 : tt_scan_image(scan, ch, r) != NULL)
             continue;
-        channel_path(path, sizeof path, dir, ch, r, k % 2);
+        if (k == 4 * TT_CH_COUNT)
+            snprintf(path, sizeof path, "%s/scan.h5", dir);
+        else
+            channel_path(path, sizeof path, dir, ch, r, k % 2);
         if (lstat(path, &st) != 0 || !(S_ISREG(st.st_mode) || S_ISLNK(st.st_mode)) ||
             unlink(path) != 0)
             continue;
@@ -147,20 +158,50 @@ static void remove_stale(const tt_scan *scan, const char *dir)
                         "does not write: %s\n", dir, n, n > 1 ? "s" : "", names);
 }
 
+/* DIR/scan.h5 can be written (made and removed again), before the scan runs. */
+static int check_hdf5(const char *dir)
+{
+    char path[4200];
+    struct stat st;
+    tt_h5 *f;
+    snprintf(path, sizeof path, "%s/scan.h5", dir);
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+        return tt_error(TT_EIO, "%s: is a folder; the scan writes a file there", path);
+    int rc = tt_h5_create(&f, path);
+    return rc ? rc : tt_h5_close(f, 0);
+}
+
+/* DIR/scan.h5 (docs/hdf5.md) with the metadata of the other files and the effective
+ * scene. */
+static int write_hdf5(const tt_scan *scan, const tt_scene *scene, const char *dir, const tt_meta *m)
+{
+    char path[4200];
+    char *text = tt_scene_write_string(scene, NULL);
+    if (!text)
+        return TT_ENOMEM;
+    snprintf(path, sizeof path, "%s/scan.h5", dir);
+    int rc = tt_scan_write_hdf5(path, scan, (const char *const *)m->keys,
+                                (const char *const *)m->values, m->n, text);
+    free(text);
+    return rc;
+}
+
 /* Every channel, trace and retrace, with the run's parameters: GSF and PNG files, and
- * one .gwy holding them all (scan.gwy). *written counts the files. */
-int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int *written)
+ * one .gwy holding them all (scan.gwy); with hdf5 also scan.h5. *written counts the
+ * files. */
+int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int hdf5,
+                           int *written)
 {
     char path[4096], title[TT_CH_COUNT][2][128];
     long xres = tt_scan_xres(scan), yres = tt_scan_yres(scan);
     char v[3][64];
-    snprintf(v[0], sizeof v[0], "%s", TT_VERSION);
+    snprintf(v[0], sizeof v[0], "%s", TIPTAP_VERSION_STRING);
     snprintf(v[1], sizeof v[1], "%ld", tt_scan_lines_done(scan));
     snprintf(v[2], sizeof v[2], "%ld", tt_scan_lines(scan));
     const char *keys[] = {"tiptap_version", "lines_finished", "lines_total"};
     const char *vals[] = {v[0], v[1], v[2]};
-    cli_meta meta;
-    int rc = cli_meta_scene(&meta, scene, keys, vals, 3);
+    tt_meta meta;
+    int rc = tt_meta_scene(&meta, scene, keys, vals, 3);
     if (rc)
         return rc;
     tt_gwy_channel gch[2 * TT_CH_COUNT];
@@ -193,7 +234,9 @@ int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const cha
         (rc = tt_gwy_write(path, gch, ng, (const char *const *)meta.keys,
                            (const char *const *)meta.values, meta.n)) == TT_OK)
         (*written)++;
-    cli_meta_free(&meta);
+    if (rc == TT_OK && hdf5 && (rc = write_hdf5(scan, scene, dir, &meta)) == TT_OK)
+        (*written)++;
+    tt_meta_free(&meta);
     if (rc)
         return rc;
     /* the line profile along the fast axis */
@@ -227,7 +270,7 @@ int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const cha
     rc = tt_outfile_close(of, 1);
     *written += rc == TT_OK;
     if (rc == TT_OK)
-        remove_stale(scan, dir);
+        remove_stale(scan, dir, hdf5);
     return rc;
 }
 
@@ -342,11 +385,17 @@ static void warn_contact(const tt_scan *scan)
 
 int cmd_scan(int argc, char **argv)
 {
-    static const struct option opts[] = {{"threads", required_argument, NULL, 'j'}, {NULL, 0, NULL, 0}};
+    static const struct option opts[] = {{"threads", required_argument, NULL, 'j'},
+                                         {"hdf5", no_argument, NULL, 'H'},
+                                         {NULL, 0, NULL, 0}};
     static const cli_spec spec = {"scan", CLI_OPT_OUTPUT | CLI_OPT_SET | CLI_OPT_QUIET, opts, "j:", help};
     cli_args args = {0};
-    int threads = 0, c;
-    while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) { /* 'j', its only own option */
+    int threads = 0, hdf5 = 0, c;
+    while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) { /* 'j' and 'H' */
+        if (c == 'H') {
+            hdf5 = 1;
+            continue;
+        }
         /* atoi read "abc" and "-3" as 0, which means all cores */
         long j;
         if (cli_whole("scan", "-j", optarg, 1, 4096, "a number of threads", &j)) {
@@ -420,6 +469,8 @@ int cmd_scan(int argc, char **argv)
         reported = 1;
         goto done;
     }
+    if (hdf5 && (rc = check_hdf5(dir)))
+        goto done;
     snprintf(path, sizeof path, "%s/scene.ini", dir);
     if ((rc = tt_outfile_open(&of, path)))
         goto done;
@@ -439,7 +490,7 @@ int cmd_scan(int argc, char **argv)
     if (tt_scan_lines_done(scan) > 0) {
         char saved[1024];
         snprintf(saved, sizeof saved, "%s", tt_error_message());
-        int wrc = cli_scan_write_outputs(scan, scene, dir, &written);
+        int wrc = cli_scan_write_outputs(scan, scene, dir, hdf5, &written);
         if (!wrc)
             wrc = cli_scope_write(scan, scope, dir, &written);
         cli_scope_warn("scan", scan, scope);
@@ -513,8 +564,8 @@ int cmd_scan(int argc, char **argv)
             cli_warn_estimate("scan", &params.solver, params.cantilever.A0, est.height_max,
                               "amplitude", est.amplitude_max, est.phase_max);
         fprintf(stderr, "output = %s: %d files (scan.gwy: every channel, trace and retrace; "
-                        "CHANNEL_trace/retrace.gsf and .png; profile.csv; scope.csv and .png; scene.ini)\n",
-                dir, written);
+                        "CHANNEL_trace/retrace.gsf and .png; profile.csv; scope.csv and .png; scene.ini%s)\n",
+                dir, written, hdf5 ? "; scan.h5" : "");
         if (tt_scan_clamped(scan))
             fprintf(stderr, "warning: the z piezo reached the end of its range ([feedback] z_range)\n");
     }

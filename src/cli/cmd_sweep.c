@@ -13,11 +13,12 @@
 #include "tiptap/io/plot.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
+#include "tiptap/version.h"
 
 static void help(void)
 {
     printf("Usage: tiptap sweep SCENE... --vary KEY=VALUES [--vary ...] [--run KIND] [-o sweep.csv]\n"
-           "                     [-j N] [--plot FILE] [--contrast KEY] [--set S.K=V]... [-q]\n"
+           "                     [-j N] [--plot FILE] [--contrast KEY] [--hdf5] [--set S.K=V]... [-q]\n"
            "Run every combination of the varied keys and write one table.\n\n"
            "      --vary KEY=VALUES  vary a scene key (section.key, material.NAME.key) over\n"
            "                     a list '10 nm,20 nm', a range FROM:TO:N '10nm:30nm:5' (N values,\n"
@@ -43,6 +44,10 @@ static void help(void)
            "                     runs one combination at a time on N threads instead\n"
            "      --plot FILE    PNG against the last varied key (approach: against z), one line\n"
            "                     per combination of the others\n"
+           "      --hdf5         also FILE with .h5 for its extension: each column a dataset over\n"
+           "                     the grid, the varied keys' values as dimension scales, the base\n"
+           "                     scene as attributes (docs/hdf5.md); scans also write scan.h5\n"
+           "                     into each combination's folder\n"
            "      --contrast KEY plot the differences to KEY's first value instead: apparent\n"
            "                     height (with --run setpoint: this value's rest separation minus\n"
            "                     the first's: the feedback retracts the sample where the setpoint\n"
@@ -54,17 +59,6 @@ static void help(void)
            "command resumes there and ends with the same table. The table is the same,\n"
            "byte for byte, for any -j and, under 'mpirun -np N tiptap sweep ...' in builds\n"
            "with MPI, for any number of ranks (rank 0 writes it).\n");
-}
-
-static int parse_kind(const char *s, sweep_kind *k)
-{
-    static const char *names[] = {"steady", "setpoint", "approach", "scan"};
-    for (int i = 0; i < 4; i++)
-        if (strcmp(s, names[i]) == 0) {
-            *k = (sweep_kind)i;
-            return 0;
-        }
-    return -1;
 }
 
 /* The index of a varied key, or -1. */
@@ -97,7 +91,7 @@ static unsigned long long fingerprint(const tt_scene *scene, const sweep_job *jo
     size_t len = 0;
     FILE *f = open_memstream(&buf, &len);
     if (f) {
-        fprintf(f, "tiptap %s\nrun %d\n%s", TT_VERSION, (int)job->kind, header);
+        fprintf(f, "tiptap %s\nrun %d\n%s", TIPTAP_VERSION_STRING, (int)job->kind, header);
         tt_scene_write(scene, f, NULL);
         fclose(f);
     }
@@ -140,12 +134,16 @@ static int check_output(const char *path)
 
 /* Every path the sweep writes, before anything runs: the table, the plot (and whether
  * it can be drawn at all), and a scan's folder of combination folders. */
-static int check_outputs(const sweep_job *job, const cli_args *a, long contrast)
+static int check_outputs(const sweep_job *job, const cli_args *a, long contrast, const char *h5)
 {
     int rc = check_output(a->output);
     if (!rc && a->plot && !(rc = sweep_plot_check(job, contrast)))
         rc = check_output(a->plot);
-    if (!rc && job->kind == SWEEP_SCAN)
+    if (!rc && h5 && strcmp(h5, a->output) == 0)
+        rc = tt_error(TT_EINVAL, "%s: with --hdf5 the table needs an extension other than .h5", a->output);
+    else if (!rc && h5)
+        rc = check_output(h5);
+    if (!rc && job->kind == TT_SWEEP_SCAN)
         rc = tt_mkdirs(job->dir);
     return rc;
 }
@@ -158,14 +156,27 @@ static void warn_unreached(const sweep_results *r)
     if (!n)
         return;
     fprintf(stderr, "tiptap sweep: warning: the setpoint was not reached in %zu of %zu combinations (found=%s; "
-                    "each row holds the closest point): ", n, r->n, SWEEP_UNREACHABLE);
+                    "each row holds the closest point): ", n, r->n, TT_SWEEP_UNREACHABLE);
     for (size_t k = 0; k < n && k < 10; k++)
         fprintf(stderr, "%s%zu", k ? ", " : "", list[k] + 1);
     fprintf(stderr, "%s\n", n > 10 ? ", ..." : "");
 }
 
-static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, const cli_args *a,
-                      int threads, const char *contrast)
+/* The sweep's table as FILE.h5 (docs/hdf5.md), read back from the texts of its
+ * combinations, resumed ones included. */
+static int write_hdf5(const char *path, const sweep_job *job, const sweep_results *r,
+                      const tt_scene *scene)
+{
+    tt_table *t;
+    int rc = sweep_table(job, r, &t);
+    if (!rc)
+        rc = tt_run_sweep_hdf5(path, job->grid, job->kind, scene, t);
+    tt_table_free(t);
+    return rc;
+}
+
+static int sweep_main(tt_scene *scene, char **vary, int nvary, tt_sweep_kind kind, const cli_args *a,
+                      int threads, const char *contrast, int hdf5)
 {
     int rank = 0, size = 1, mpi = 0, rc;
 #ifdef TT_HAVE_MPI
@@ -184,9 +195,16 @@ static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, 
         *dot = '\0';
     else /* no extension: the folder cannot take the table's own name */
         strncat(dir, ".d", sizeof dir - strlen(dir) - 1);
+    /* FILE.h5: the table's name with .h5 for its extension */
+    char h5[4100];
+    snprintf(h5, sizeof h5, "%s", a->output);
+    dot = strrchr(h5, '.');
+    if (dot && !strchr(dot, '/') && dot != h5)
+        *dot = '\0';
+    strncat(h5, ".h5", sizeof h5 - strlen(h5) - 1);
     if (!threads)
         threads = omp_get_max_threads();
-    sweep_job job = {NULL, kind, dir, threads};
+    sweep_job job = {NULL, kind, dir, threads, hdf5};
     double t0 = cli_now();
     sweep_results r = {0};
     rc = build_grid(scene, vary, nvary, &job, contrast);
@@ -199,7 +217,7 @@ static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, 
     cli_progress *progress = &prog;
     cli_catch_interrupt(); /* from the journal on a signal keeps the combinations finished */
     if (!rc && rank == 0)
-        rc = check_outputs(&job, a, find_key(job.grid, contrast));
+        rc = check_outputs(&job, a, find_key(job.grid, contrast), hdf5 ? h5 : NULL);
     if (!rc && rank == 0)
         rc = sweep_results_open(&r, n, a->output, fingerprint(scene, &job, header));
     else if (!rc && !(r.text = calloc(n, sizeof *r.text)))
@@ -213,11 +231,11 @@ static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, 
     if (mpi)
         rc = sweep_mpi_agree(rc);
     if (!rc)
-        rc = mpi ? sweep_mpi_run(&job, &r, kind == SWEEP_SCAN ? 1 : threads, progress)
-                 : sweep_run_threads(&job, &r, kind == SWEEP_SCAN ? 1 : threads, progress);
+        rc = mpi ? sweep_mpi_run(&job, &r, kind == TT_SWEEP_SCAN ? 1 : threads, progress)
+                 : sweep_run_threads(&job, &r, kind == TT_SWEEP_SCAN ? 1 : threads, progress);
 #else
     if (!rc)
-        rc = sweep_run_threads(&job, &r, kind == SWEEP_SCAN ? 1 : threads, progress);
+        rc = sweep_run_threads(&job, &r, kind == TT_SWEEP_SCAN ? 1 : threads, progress);
 #endif
     cli_progress_end(&prog);
     if (rank == 0 && rc == TT_EINTR)
@@ -225,9 +243,11 @@ static int sweep_main(tt_scene *scene, char **vary, int nvary, sweep_kind kind, 
                                 "resumes there", r.done, n, r.journal_path);
     if (rank == 0 && !rc)
         rc = sweep_results_write(&r, a->output, header);
+    if (rank == 0 && !rc && hdf5)
+        rc = write_hdf5(h5, &job, &r, scene);
     if (rank == 0 && !rc && a->plot)
         rc = sweep_plot(&job, &r, a->plot, find_key(job.grid, contrast));
-    if (rank == 0 && !rc && kind == SWEEP_SETPOINT)
+    if (rank == 0 && !rc && kind == TT_SWEEP_SETPOINT)
         warn_unreached(&r);
     double wall = cli_now() - t0;
     if (rank == 0 && !rc && !a->quiet)
@@ -253,14 +273,15 @@ int cmd_sweep(int argc, char **argv)
                                          {"run", required_argument, NULL, 'R'},
                                          {"threads", required_argument, NULL, 'j'},
                                          {"contrast", required_argument, NULL, 'C'},
+                                         {"hdf5", no_argument, NULL, 'H'},
                                          {NULL, 0, NULL, 0}};
     static const cli_spec spec = {"sweep", CLI_OPT_OUTPUT | CLI_OPT_PLOT | CLI_OPT_SET | CLI_OPT_QUIET,
                                   opts, "j:", help};
     cli_args args = {.output = "sweep.csv"};
     char **vary = calloc((size_t)argc + 1, sizeof *vary);
     const char *contrast = NULL;
-    int nvary = 0, threads = 0, c;
-    sweep_kind kind = SWEEP_STEADY;
+    int nvary = 0, threads = 0, hdf5 = 0, c;
+    tt_sweep_kind kind = TT_SWEEP_STEADY;
     if (!vary)
         return cli_fail(TT_ENOMEM, "out of memory");
     while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) {
@@ -268,8 +289,9 @@ int cmd_sweep(int argc, char **argv)
         switch (c) {
         case 'V': vary[nvary++] = optarg; break;
         case 'C': contrast = optarg; break;
+        case 'H': hdf5 = 1; break;
         case 'R':
-            if (parse_kind(optarg, &kind) == 0)
+            if (tt_sweep_kind_parse(optarg, &kind) == 0)
                 break;
             fprintf(stderr, "tiptap sweep: --run: '%s' is not steady, setpoint, approach or scan\n", optarg);
             cli_args_free(&args);
@@ -295,7 +317,7 @@ int cmd_sweep(int argc, char **argv)
         free(vary);
         return code;
     }
-    code = sweep_main(scene, vary, nvary, kind, &args, threads, contrast);
+    code = sweep_main(scene, vary, nvary, kind, &args, threads, contrast, hdf5);
     free(vary);
     tt_scene_free(scene);
     return code;

@@ -19,9 +19,10 @@ int cmd_accuracy(int argc, char **argv);
 int cmd_sweep(int argc, char **argv);
 
 /* Write a finished scan's images (GSF and PNG per channel and direction, scan.gwy with
- * all of them) and profile into dir, as tiptap scan does (cmd_scan.c), with the scene's
- * keys as metadata; *written counts the files written. */
-int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int *written);
+ * all of them, scan.h5 with hdf5) and profile into dir, as tiptap scan does (cmd_scan.c),
+ * with the scene's keys as metadata; *written counts the files written. */
+int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int hdf5,
+                           int *written);
 /* TT_EINVAL when a file a scan writes into dir (or removes there as an earlier run's
  * channel file) is an input of this run (tt_output_check). */
 int cli_scan_check_outputs(const char *dir);
@@ -192,18 +193,5 @@ void cli_progress_begin(cli_progress *p, const char *cmd, const char *unit, int 
 void cli_progress_show(cli_progress *p, long done, long total);
 /* Ends the rewritten line on a terminal. */
 void cli_progress_end(const cli_progress *p);
-
-/* The run's parameters as key/value metadata for the files it writes (cli_meta.c):
- * first the given pairs, then every key of the effective scene but its approach and
- * trace sections, as "section.key" (or "material.NAME.key", as --set spells it) = the
- * value with its unit.
- * The strings belong to m; cli_meta_free frees them. */
-typedef struct {
-    char **keys, **values;
-    size_t n, cap;
-} cli_meta;
-int cli_meta_scene(cli_meta *m, const tt_scene *scene, const char *const *first_keys,
-                   const char *const *first_values, size_t nfirst);
-void cli_meta_free(cli_meta *m);
 
 #endif

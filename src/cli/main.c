@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "tiptap/io/files.h"
 #include "tiptap/util/cancel.h"
+#include "tiptap/version.h"
 
 /* The subcommands, in the order --help lists them. */
 static const struct {
@@ -91,7 +92,7 @@ int main(int argc, char **argv)
         return CLI_OK;
     }
     if (c == 'V') {
-        printf("tiptap %s\n", TT_VERSION);
+        printf("tiptap %s\n", TIPTAP_VERSION_STRING);
         return CLI_OK;
     }
     fprintf(stderr, "tiptap: unknown command '%s'; see 'tiptap --help'\n", argv[1]);

@@ -14,22 +14,18 @@
 #include <stdio.h>
 
 #include "tiptap/config/sweep.h"
-
-typedef enum { SWEEP_STEADY, SWEEP_SETPOINT, SWEEP_APPROACH, SWEEP_SCAN } sweep_kind;
+#include "tiptap/run/sweep.h"
 
 typedef struct {
     const tt_sweep *grid;
-    sweep_kind kind;
+    tt_sweep_kind kind;
     const char *dir;  /* scan: the folder holding one folder per combination */
     int scan_threads; /* scan: threads of each scan's lines */
+    int hdf5;         /* scan: each combination's folder also gets scan.h5 */
 } sweep_job;
 
 /* The CSV header of a job's table (static storage reused per call; ends with \n). */
 void sweep_header(const sweep_job *job, char *buf, size_t len);
-
-/* The found column of a setpoint row whose setpoint was not reached (the row holds the
- * closest point the search found). */
-#define SWEEP_UNREACHABLE "unreachable"
 
 /* Check combination i before anything runs: its scene and every configuration the run
  * reads. One line naming the combination on failure. */
@@ -49,7 +45,12 @@ typedef struct {
     size_t resumed;   /* done when the journal was opened (a resumed sweep) */
 } sweep_results;
 
-/* The finished setpoint combinations marked SWEEP_UNREACHABLE: how many, the first max
+/* The finished combinations' rows read back from their CSV texts into one table of
+ * the library's columns (tt_run_sweep_columns), in SI, at the CSV's precision: for
+ * sweep --hdf5, whose journal holds the texts of a resumed sweep's combinations. */
+int sweep_table(const sweep_job *job, const sweep_results *r, tt_table **out);
+
+/* The finished setpoint combinations marked TT_SWEEP_UNREACHABLE: how many, the first max
  * of them (indices from 0) in list. */
 size_t sweep_unreached(const sweep_results *r, size_t *list, size_t max);
 

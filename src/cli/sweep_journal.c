@@ -14,6 +14,7 @@
 #include "tiptap/io/outfile.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
+#include "tiptap/version.h"
 
 /* One sweep at a time on a journal: a second one with the same -o would add its records
  * to the first's, and truncate what it took for a record cut short. The lock ends with
@@ -56,7 +57,7 @@ static int resume(sweep_results *r, unsigned long long hash)
         buf[len] = '\0';
     }
     rc = ferror(f) ? tt_error(TT_EIO, "%s: cannot read: %s", r->journal_path, strerror(errno)) : TT_OK;
-    journal_sweep sw = {TT_VERSION, hash, r->n};
+    journal_sweep sw = {TIPTAP_VERSION_STRING, hash, r->n};
     size_t good = 0;
     if (!rc)
         rc = journal_read(r->journal_path, buf ? buf : "", len, &sw, r->text, &r->done, &good);
@@ -88,7 +89,7 @@ int sweep_results_open(sweep_results *r, size_t n, const char *out, unsigned lon
     if ((rc = tt_file_create(r->journal_path, "sweep journal", &r->journal)) ||
         (rc = journal_lock(r->journal, r->journal_path)))
         return rc;
-    journal_sweep sw = {TT_VERSION, hash, n};
+    journal_sweep sw = {TIPTAP_VERSION_STRING, hash, n};
     if (journal_write_header(r->journal, &sw) != 0 || fflush(r->journal) != 0)
         return tt_error(TT_EIO, "%s: cannot write: %s", r->journal_path, strerror(errno));
     return TT_OK;

@@ -109,9 +109,9 @@ static size_t x_key(const tt_sweep *g, long contrast)
 
 int sweep_plot_check(const sweep_job *job, long contrast)
 {
-    if (job->kind == SWEEP_SCAN)
+    if (job->kind == TT_SWEEP_SCAN)
         return tt_error(TT_EINVAL, "--plot: not for scans (each folder has its images)");
-    if (job->kind != SWEEP_APPROACH && x_key(job->grid, contrast) == tt_sweep_keys(job->grid))
+    if (job->kind != TT_SWEEP_APPROACH && x_key(job->grid, contrast) == tt_sweep_keys(job->grid))
         return tt_error(TT_EINVAL, "--plot: needs a varied key besides the contrast key");
     return TT_OK;
 }
@@ -122,7 +122,7 @@ static int plot_points(const sweep_job *job, const sweep_results *r, tt_figure *
 {
     const tt_sweep *g = job->grid;
     size_t nk = tt_sweep_keys(g), x = x_key(g, contrast); /* x < nk: sweep_plot_check */
-    int base = 1 + (int)nk + (job->kind == SWEEP_SETPOINT), ycol = job->kind == SWEEP_SETPOINT ? base : base + 1;
+    int base = 1 + (int)nk + (job->kind == TT_SWEEP_SETPOINT), ycol = job->kind == TT_SWEEP_SETPOINT ? base : base + 1;
     int cols[3] = {ycol, base + 2, base + 7}, settled = base + 12;
     unsettled u;
     memset(&u, 0, sizeof u);
@@ -174,7 +174,7 @@ static int plot_points(const sweep_job *job, const sweep_results *r, tt_figure *
     char xlabel[256];
     snprintf(xlabel, sizeof xlabel, "%s (%s)", xl, tt_sweep_unit(g, x));
     int d = contrast >= 0;
-    tt_figure_axes(f, 0, xlabel, job->kind == SWEEP_SETPOINT ? (d ? "apparent height difference (nm)" : "rest separation z (nm)")
+    tt_figure_axes(f, 0, xlabel, job->kind == TT_SWEEP_SETPOINT ? (d ? "apparent height difference (nm)" : "rest separation z (nm)")
                                                              : (d ? "amplitude difference (nm)" : "amplitude (nm)"));
     tt_figure_axes(f, 1, xlabel, d ? "phase difference (deg)" : "phase lag (deg)");
     tt_figure_axes(f, 2, xlabel, d ? "dissipation difference (aJ)" : "tip-sample loss per cycle (aJ)");
@@ -239,10 +239,10 @@ int sweep_plot(const sweep_job *job, const sweep_results *r, const char *path, l
     int rc = sweep_plot_check(job, contrast);
     if (rc)
         return rc;
-    tt_figure *f = tt_figure_alloc(3, job->kind == SWEEP_APPROACH ? "Approach curves" : "Steady points");
+    tt_figure *f = tt_figure_alloc(3, job->kind == TT_SWEEP_APPROACH ? "Approach curves" : "Steady points");
     if (!f)
         return tt_error(TT_ENOMEM, "out of memory");
-    rc = job->kind == SWEEP_APPROACH ? plot_curves(job, r, f) : plot_points(job, r, f, contrast);
+    rc = job->kind == TT_SWEEP_APPROACH ? plot_curves(job, r, f) : plot_points(job, r, f, contrast);
     if (!rc)
         rc = tt_figure_write_png(f, path, 900, 1100);
     tt_figure_free(f);

@@ -29,6 +29,25 @@ int tt_config_approach(const tt_scene *s, tt_approach_params *p)
     return tt_config_check_rk4(s, "approach", fmin(p->from, p->to));
 }
 
+int tt_config_approach_setup(tt_setup *st, const tt_scene *s, tt_approach_params *p)
+{
+    size_t mat = 0;
+    int rc;
+    if ((rc = tt_config_approach(s, p)) ||
+        (rc = tt_config_material_index(s, "approach", tt_setup_material(st, 0),
+                                       tt_setup_materials(st), &mat)))
+        return rc;
+    return tt_setup_use_material(st, mat);
+}
+
+int tt_config_approach_alloc(tt_approach **out, tt_setup *st, const tt_scene *s,
+                             tt_approach_params *p)
+{
+    *out = NULL;
+    int rc = tt_config_approach_setup(st, s, p);
+    return rc ? rc : tt_scene_locate(s, tt_approach_alloc(out, tt_setup_sim(st), p));
+}
+
 int tt_config_accuracy(const tt_scene *s, tt_accuracy_subject *subject)
 {
     memset(subject, 0, sizeof *subject);

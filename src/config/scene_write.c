@@ -69,3 +69,22 @@ int tt_scene_write(const tt_scene *s, FILE *out, const char *sections)
     }
     return ferror(out) ? tt_error(TT_EIO, "could not write the scene") : TT_OK;
 }
+
+char *tt_scene_write_string(const tt_scene *s, const char *sections)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    if (!f) {
+        tt_error_nomem("the effective scene's text");
+        return NULL;
+    }
+    int rc = tt_scene_write(s, f, sections);
+    if (fclose(f) != 0 && rc == TT_OK)
+        rc = tt_error_nomem("the effective scene's text");
+    if (rc) {
+        free(text);
+        return NULL;
+    }
+    return text;
+}

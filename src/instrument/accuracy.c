@@ -660,3 +660,42 @@ const double *tt_accuracy_reference_profile(const tt_accuracy *A, size_t *n)
     *n = 2 * A->nprofile;
     return A->ref.profile;
 }
+
+int tt_accuracy_pick(const char *list, tt_accuracy_ladder *out, size_t max, size_t *n)
+{
+    size_t nall;
+    const tt_accuracy_ladder *all = tt_accuracy_ladders(&nall);
+    *n = 0;
+    char buf[256];
+    if (snprintf(buf, sizeof buf, "%s", list) >= (int)sizeof buf)
+        return tt_error(TT_EINVAL, "a list of %zu characters, at most %zu", strlen(list), sizeof buf - 1);
+    for (char *save = NULL, *tok = strtok_r(buf, ", ", &save); tok; tok = strtok_r(NULL, ", ", &save)) {
+        size_t i;
+        if (*n == max)
+            return tt_error(TT_EINVAL, "more than %zu methods", max);
+        for (i = 0; i < nall; i++)
+            if (strcmp(tt_accuracy_ladder_name(&all[i]), tok) == 0)
+                break;
+        if (i == nall) {
+            char known[256] = "";
+            for (size_t k = 0; k < nall; k++) {
+                size_t used = strlen(known);
+                snprintf(known + used, sizeof known - used, "%s %s", k ? "," : "",
+                         tt_accuracy_ladder_name(&all[k]));
+            }
+            return tt_error(TT_EINVAL, "unknown method '%s'; known:%s", tok, known);
+        }
+        out[(*n)++] = all[i];
+    }
+    return *n ? TT_OK : tt_error(TT_EINVAL, "no method named");
+}
+
+const char *tt_accuracy_role_name(tt_accuracy_role r)
+{
+    return r == TT_ACCURACY_REFERENCE ? "reference" : r == TT_ACCURACY_FLOOR ? "floor" : "setting";
+}
+
+const char *tt_accuracy_tier_name(tt_tier t)
+{
+    return t == TT_TIER_ENVELOPE ? "envelope" : t == TT_TIER_AVERAGED ? "averaged" : "every";
+}

@@ -28,6 +28,7 @@ static const struct {
 
 const char *tt_scan_channel_name(int i) { return i >= 0 && i < TT_CH_COUNT ? channel_info[i].name : "?"; }
 const char *tt_scan_channel_unit(int i) { return i >= 0 && i < TT_CH_COUNT ? channel_info[i].unit : "?"; }
+int tt_scan_channel_count(void) { return TT_CH_COUNT; }
 
 int tt_scan_channel_harmonic(int i)
 {

@@ -14,3 +14,5 @@ char *tt_strdup(const char *s)
         memcpy(d, s, n);
     return d;
 }
+
+void tt_free(void *p) { free(p); }

@@ -16,7 +16,9 @@
 
 #include <stddef.h>
 
+#include "tiptap/export.h"
 #include "tiptap/config/scene.h"
+#include "tiptap/config/setup.h"
 #include "tiptap/instrument/accuracy.h"
 #include "tiptap/config/solver_scene.h"
 #include "tiptap/instrument/approach.h"
@@ -27,9 +29,7 @@
 #include "tiptap/physics/cantilever.h"
 #include "tiptap/physics/material.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 /* [cantilever], its derived constants filled (tt_cantilever_init). */
 int tt_config_cantilever(const tt_scene *s, tt_cantilever *c);
@@ -77,6 +77,14 @@ void tt_config_scan_free(tt_scan_params *p);
 
 /* [approach]. */
 int tt_config_approach(const tt_scene *s, tt_approach_params *p);
+
+/* [approach] on a setup made from the same scene: its parameters read into *p and the
+ * material it names put under the tip (tt_config_approach_setup), then the approach
+ * made, the module's errors naming the scene file (tt_scene_locate). The approach
+ * borrows the setup's simulation: free it before the setup. */
+int tt_config_approach_setup(tt_setup *st, const tt_scene *s, tt_approach_params *p);
+int tt_config_approach_alloc(tt_approach **out, tt_setup *st, const tt_scene *s,
+                             tt_approach_params *p);
 
 /* What the accuracy study judges: the cantilever and [solver], the [approach]
  * material and point, and the scan when the scene has [scan]. Free with
@@ -137,7 +145,5 @@ void tt_config_approach_estimate(const tt_cantilever *c, const tt_solver *s,
  * map_value). Fills idx with up to max indices; returns how many there are. */
 size_t tt_config_scan_unused(const tt_scan_params *p, size_t *idx, size_t max);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -18,9 +18,9 @@
 
 #include <stddef.h>
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 /* One header or key line, as handed to the callback. */
 typedef struct {
@@ -45,7 +45,5 @@ int tt_ini_parse(const char *text, size_t len, const char *origin, tt_ini_handle
  * for quoting user text in a one-line message. Returns buf. */
 const char *tt_ini_escape(const char *s, char *buf, size_t len);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -18,11 +18,10 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "tiptap/export.h"
 #include "tiptap/config/units.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 typedef enum {
     TT_KEY_QUANTITY, /* a number with a unit (dims says which) */
@@ -146,8 +145,9 @@ int tt_scene_locate(const tt_scene *s, int rc);
  * as INI that tiptap reads back to the same scene. sections: NULL for all, or a
  * "|"-separated list such as "cantilever|tip|material|scan". */
 int tt_scene_write(const tt_scene *s, FILE *out, const char *sections);
+/* tt_scene_write into a string the caller frees with tt_free (or free); NULL when out
+ * of memory (with the message). */
+char *tt_scene_write_string(const tt_scene *s, const char *sections);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

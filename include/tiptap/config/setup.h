@@ -14,15 +14,14 @@
 
 #include <stddef.h>
 
+#include "tiptap/export.h"
 #include "tiptap/config/scene.h"
 #include "tiptap/physics/cantilever.h"
 #include "tiptap/physics/contact.h"
 #include "tiptap/physics/material.h"
 #include "tiptap/solver/integrator.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 typedef struct tt_setup tt_setup;
 
@@ -54,7 +53,5 @@ int tt_setup_apply(tt_setup *st, const char *key, double value);
 /* Parse a ramp key and value text as the schema reads that key. */
 int tt_setup_parse_key_value(const tt_setup *st, const char *key, const char *text, double *value);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -4,17 +4,14 @@
 #ifndef TIPTAP_SOLVER_SCENE_H
 #define TIPTAP_SOLVER_SCENE_H
 
+#include "tiptap/export.h"
 #include "tiptap/config/scene.h"
 #include "tiptap/solver/integrator.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 /* Fill s from the scene's [solver] section (defaults where a key is absent). */
 int tt_solver_from_scene(tt_solver *s, const tt_scene *scene);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

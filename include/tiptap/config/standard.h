@@ -5,14 +5,12 @@
 #ifndef TIPTAP_STANDARD_H
 #define TIPTAP_STANDARD_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 /* INI text of the standard scene (static storage). */
 const char *tt_standard_scene(void);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

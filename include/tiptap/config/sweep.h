@@ -20,11 +20,10 @@
 
 #include <stddef.h>
 
+#include "tiptap/export.h"
 #include "tiptap/config/scene.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 typedef struct tt_sweep tt_sweep;
 
@@ -74,7 +73,5 @@ int tt_sweep_scene(const tt_sweep *sw, size_t i, tt_scene **out);
  * journal of finished combinations is only resumed by the same sweep. */
 unsigned long long tt_sweep_hash(const tt_sweep *sw, unsigned long long h);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -8,9 +8,9 @@
 
 #include <stddef.h>
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 /* Dimensions, as bit flags so that a key may accept more than one
  * (a setpoint is a length or a fraction). */
@@ -47,7 +47,5 @@ const char *tt_units_symbol(tt_dim dim);
 /* strtod in the C locale, whatever the process locale. */
 double tt_strtod(const char *s, char **end);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

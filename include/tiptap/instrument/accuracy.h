@@ -38,13 +38,12 @@
 
 #include <stddef.h>
 
+#include "tiptap/export.h"
 #include "tiptap/instrument/scan.h"
 #include "tiptap/physics/material.h"
 #include "tiptap/solver/integrator.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 /* One method's ladder: the [solver] key it varies and its values, loosest first. */
 typedef struct {
@@ -62,6 +61,10 @@ const char *tt_accuracy_ladder_name(const tt_accuracy_ladder *l);
 
 /* The built-in table (static storage). */
 const tt_accuracy_ladder *tt_accuracy_ladders(size_t *count);
+/* The ladders named in list ("dopri5, rk4", by tt_accuracy_ladder_name), in its order,
+ * copied into out (at most max): TT_EINVAL with one line for an unknown name (listing
+ * the known), too many names, or none. */
+int tt_accuracy_pick(const char *list, tt_accuracy_ladder *out, size_t max, size_t *n);
 
 typedef enum { TT_ACCURACY_AUTO = 0, TT_ACCURACY_POINT = 1, TT_ACCURACY_LINE = 2 } tt_accuracy_kind;
 
@@ -91,6 +94,11 @@ typedef enum {
     TT_ACCURACY_FLOOR = 1,     /* the check reference: its errors are the floor */
     TT_ACCURACY_SETTING = 2    /* a ladder setting */
 } tt_accuracy_role;
+
+/* The names the table gives a row's role ("reference", "floor", "setting") and tier
+ * ("every", "envelope", "averaged"). */
+const char *tt_accuracy_role_name(tt_accuracy_role r);
+const char *tt_accuracy_tier_name(tt_tier t);
 
 #define TT_ACCURACY_MAX_OBS 5
 
@@ -191,7 +199,5 @@ double tt_accuracy_reference_drift(const tt_accuracy *a);
  * retrace (deg); n values in all. */
 const double *tt_accuracy_reference_profile(const tt_accuracy *a, size_t *n);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

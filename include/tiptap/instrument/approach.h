@@ -19,12 +19,11 @@
 
 #include <stddef.h>
 
+#include "tiptap/export.h"
 #include "tiptap/solver/integrator.h"
 #include "tiptap/solver/shooting.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 typedef enum { TT_APPROACH_STEADY = 0, TT_APPROACH_RAMP = 1 } tt_approach_mode;
 /* How steady mode finds a point's oscillation: the periodic orbit by shooting
@@ -66,7 +65,5 @@ int tt_approach_done(const tt_approach *a);
 /* Compute the next row. TT_ENUM etc. on solver failure. */
 int tt_approach_iterate(tt_approach *a, tt_approach_point *pt);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -13,9 +13,9 @@
 #ifndef TIPTAP_FEEDBACK_H
 #define TIPTAP_FEEDBACK_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 /* What the scene sets: the setpoint in metres, the gains, and the z piezo's range,
  * centred on the surface's zero. */
@@ -48,7 +48,5 @@ void tt_feedback_retune(tt_feedback *f, const tt_feedback_params *p);
 /* One update after dt seconds with the measured amplitude; returns the new z. */
 double tt_feedback_update(tt_feedback *f, double amplitude, double dt);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -14,9 +14,9 @@
 #ifndef TIPTAP_LOCKIN_H
 #define TIPTAP_LOCKIN_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 typedef struct {
     double drive_frequency;  /* Hz */
@@ -66,7 +66,5 @@ double tt_lockin_raw_phase(const tt_lockin *l, int h);
 /* Mean (DC) of the last block, unfiltered. */
 double tt_lockin_mean(const tt_lockin *l);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

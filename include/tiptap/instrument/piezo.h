@@ -21,9 +21,9 @@
 #ifndef TIPTAP_PIEZO_H
 #define TIPTAP_PIEZO_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 typedef struct {
     double resonance;  /* Hz; 0: no dynamics */
@@ -57,7 +57,5 @@ double tt_piezo_advance(tt_piezo *pz, double z_to, double dt);
 /* The creep's part of the actual height now (m). */
 double tt_piezo_creep(const tt_piezo *pz);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -29,6 +29,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "tiptap/export.h"
 #include "tiptap/instrument/feedback.h"
 #include "tiptap/instrument/lockin.h"
 #include "tiptap/instrument/piezo.h"
@@ -39,9 +40,7 @@
 #include "tiptap/physics/material.h"
 #include "tiptap/solver/integrator.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 /* Channels (bit flags). */
 enum {
@@ -72,6 +71,9 @@ const char *tt_scan_channel_unit(int i);
 int tt_scan_channel_harmonic(int i);
 /* Parse "height, phase" into a channel mask; -1 with a message naming the channel. */
 int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t len);
+/* The number of channel indices, TT_CH_COUNT, for a caller that lists every channel by
+ * index without the enum (the Python package). */
+int tt_scan_channel_count(void);
 
 /* The instrument's imperfections ([instrument]); all zero: an ideal instrument. Time t
  * is the instrument's clock: line n starts at n / line_rate, its trace takes the first
@@ -279,7 +281,5 @@ typedef struct {
  * greatest over every line, whichever thread ran it. */
 int tt_scan_contact_extent(const tt_scan *s, size_t i, tt_contact_extent *e);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

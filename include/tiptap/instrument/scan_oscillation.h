@@ -31,11 +31,10 @@
 #ifndef TIPTAP_SCAN_OSCILLATION_H
 #define TIPTAP_SCAN_OSCILLATION_H
 
+#include "tiptap/export.h"
 #include "tiptap/instrument/scan_scope.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 /* The loop the record came from (tt_scan_loop fills it from a scan). */
 typedef struct {
@@ -80,7 +79,5 @@ int tt_scan_oscillation(const tt_scan_scope *sc, const tt_loop *loop, tt_oscilla
 double tt_loop_phase_margin(const tt_loop *loop, double g, double ki);
 double tt_loop_ki_for_margin(const tt_loop *loop, double g, double pm);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -36,11 +36,10 @@
 #ifndef TIPTAP_SCAN_SCOPE_H
 #define TIPTAP_SCAN_SCOPE_H
 
+#include "tiptap/export.h"
 #include "tiptap/instrument/scan.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 enum {
     TT_SCOPE_TIME,
@@ -75,7 +74,5 @@ double tt_scan_scope_rate(const tt_scan_scope *sc);
 /* tt_scan_run records line `line` into sc (NULL: none), whichever thread runs it. */
 void tt_scan_scope_attach(tt_scan *s, long line, tt_scan_scope *sc);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -11,9 +11,9 @@
 #ifndef TIPTAP_SCANNER_H
 #define TIPTAP_SCANNER_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 typedef struct {
     double size_x, size_y;  /* m */
@@ -37,7 +37,5 @@ long tt_raster_pixel(const tt_raster *r, int dir, long nc, long k);
 /* Index into an image stored in the sample's orientation (see scan.h). */
 long tt_raster_index(const tt_raster *r, long line, long pixel);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -15,11 +15,10 @@
 
 #include <stddef.h>
 
+#include "tiptap/export.h"
 #include "tiptap/physics/material.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 typedef enum {
     TT_SURFACE_FLAT, TT_SURFACE_STEPS, TT_SURFACE_GRATING, TT_SURFACE_PARTICLES,
@@ -81,7 +80,5 @@ typedef void (*tt_surface_piece_fn)(void *user, double xa, double ha, double xb,
 int tt_surface_pieces(const tt_surface *s, double x0, double x1, tt_surface_piece_fn fn,
                       void *user);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -23,11 +23,10 @@
 #ifndef TIPTAP_TIP_H
 #define TIPTAP_TIP_H
 
+#include "tiptap/export.h"
 #include "tiptap/instrument/surface.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 typedef enum { TT_TIP_POINT, TT_TIP_SPHERE, TT_TIP_CONE } tt_tip_kind;
 
@@ -68,7 +67,5 @@ double tt_dilation_height(const tt_dilation *d, double x, double y);
 double tt_dilation_spacing(const tt_dilation *d);
 long tt_dilation_nodes(const tt_dilation *d);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -24,13 +24,12 @@
 
 #include <stddef.h>
 
+#include "tiptap/export.h"
 #include "tiptap/config/setup.h"
 #include "tiptap/instrument/scan.h"
 #include "tiptap/solver/integrator.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 typedef struct {
     const char *material;    /* material under the tip (NULL: the first) */
@@ -80,7 +79,5 @@ int tt_trace_done(const tt_trace *t);
  * etc. on solver failure, TT_EINVAL on a ramp value the scene refuses. */
 int tt_trace_iterate(tt_trace *t, tt_trace_row *row);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -9,9 +9,9 @@
 
 #include <stddef.h>
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 typedef struct tt_decimate tt_decimate;
 
@@ -25,7 +25,5 @@ int tt_decimate_finish(tt_decimate *d);
 size_t tt_decimate_count(const tt_decimate *d);
 const double *tt_decimate_line(const tt_decimate *d, size_t line);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -16,9 +16,9 @@
 
 #include <stdio.h>
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 /* The largest input of any kind but PNG maps: far above a real scene, journal or
  * profile (50,000 materials take 5 MB). */
@@ -57,7 +57,5 @@ void tt_input_note(const char *path, const char *what);
  * names an input (the same device and inode, or the same absolute path). */
 int tt_output_check(const char *out);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -11,9 +11,9 @@
 
 #include <stddef.h>
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 typedef struct {
     size_t xres, yres;
@@ -35,7 +35,5 @@ int tt_gsf_write(const char *path, const tt_gsf_field *field);
 int tt_gsf_read(const char *path, size_t *xres, size_t *yres, double *xreal, double *yreal,
                 double **data);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -19,9 +19,9 @@
 
 #include <stddef.h>
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 typedef struct {
     const char *title;
@@ -56,7 +56,5 @@ typedef struct {
 int tt_gwy_read(const char *path, tt_gwy_file **out);
 void tt_gwy_file_free(tt_gwy_file *f);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

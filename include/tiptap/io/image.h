@@ -5,9 +5,9 @@
 
 #include <stddef.h>
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 typedef enum { TT_CMAP_GOLD = 0, TT_CMAP_VIRIDIS, TT_CMAP_DIVERGING } tt_colormap;
 
@@ -23,7 +23,5 @@ typedef struct {
 
 int tt_image_write_png(const char *path, const tt_image *im);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

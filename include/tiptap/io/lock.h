@@ -10,9 +10,9 @@
 #ifndef TIPTAP_LOCK_H
 #define TIPTAP_LOCK_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 /* Lock dir for command cmd ("scan", "sweep"); *fd holds the lock. Fails with TT_EIO:
  * "DIR is in use by another tiptap CMD (pid N)", "DIR/.tiptap.lock: ...". */
@@ -20,7 +20,5 @@ int tt_folder_lock(const char *dir, const char *cmd, int *fd);
 /* Remove the lock file and release it (fd < 0: nothing to do). */
 void tt_folder_unlock(const char *dir, int fd);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

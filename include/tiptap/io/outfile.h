@@ -15,9 +15,9 @@
 
 #include <stdio.h>
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 typedef struct tt_outfile tt_outfile;
 
@@ -42,7 +42,5 @@ int tt_outfile_open_count(void);
  * be made or written. */
 int tt_mkdirs(const char *dir);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

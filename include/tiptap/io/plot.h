@@ -11,9 +11,9 @@
 
 #include <stddef.h>
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 enum {
     TT_PLOT_COLOR_MASK = 0xff, /* low bits: colour index (0 = next in the palette) */
@@ -49,7 +49,5 @@ int tt_figure_text(tt_figure *f, int panel, double x, double y, const char *text
 /* Render to PNG through a temporary file (see outfile.h). */
 int tt_figure_write_png(const tt_figure *f, const char *path, int width, int height);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -14,9 +14,9 @@
 #ifndef TIPTAP_CANTILEVER_H
 #define TIPTAP_CANTILEVER_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 typedef enum { TT_DRIVE_BASE = 0, TT_DRIVE_FORCE = 1 } tt_drive;
 
@@ -46,7 +46,5 @@ int tt_cantilever_init(tt_cantilever *c, double k, double f0, double Q, double A
  * drive strength: amplitude (m) and lag (rad), from the transfer function. */
 void tt_cantilever_response(const tt_cantilever *c, double w, double *amp, double *lag);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -21,9 +21,9 @@
 
 #include <stddef.h>
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 typedef enum {
     TT_CONTACT_MAUGIS = 0, /* Maugis-Dugdale, eq. 7, any lambda */
@@ -135,7 +135,5 @@ double tt_contact_table_error(const tt_contact *c, size_t n);
 int tt_contact_curve(const tt_contact *c, size_t n, double A_max, double *A, double *Delta,
                      double *P, int *stable);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

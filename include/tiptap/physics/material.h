@@ -11,11 +11,10 @@
 
 #include <stddef.h>
 
+#include "tiptap/export.h"
 #include "tiptap/physics/contact.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 typedef struct {
     double radius;         /* m */
@@ -41,7 +40,5 @@ double tt_material_reduced_modulus(const tt_tip *tip, double E, double nu);
  * lambda = 2.06 / xi0 (w^2 R / (pi K^2))^(1/3). */
 double tt_material_lambda(const tt_contact_params *p);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

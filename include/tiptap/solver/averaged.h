@@ -21,12 +21,11 @@
 #ifndef TIPTAP_AVERAGED_H
 #define TIPTAP_AVERAGED_H
 
+#include "tiptap/export.h"
 #include "tiptap/physics/cantilever.h"
 #include "tiptap/physics/contact.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 enum { TT_AVG_HMAX = 8 }; /* harmonics the table can hold */
 
@@ -96,7 +95,5 @@ void tt_averaged_step(const tt_averaged *a, tt_averaged_state *st, double s, dou
 /* The seconds the tables of a scan took to build (a clock, for the report). */
 double tt_averaged_build_seconds(const tt_averaged *a);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -28,11 +28,10 @@
 #ifndef TIPTAP_ENVELOPE_H
 #define TIPTAP_ENVELOPE_H
 
+#include "tiptap/export.h"
 #include "tiptap/solver/integrator.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 /* Observables after the n deflection samples of a cycle's vector. */
 enum { TT_ENV_PEAK = 0, TT_ENV_INDENT = 1, TT_ENV_ETS = 2, TT_ENV_EXTRA = 3 };
@@ -139,7 +138,5 @@ double tt_envelope_sample_offset(const tt_envelope *e, double s, double sdot);
  * the largest in units of the free amplitude (d, s) and of w A0 (d'). */
 double tt_envelope_reach(const tt_envelope *e, const double x[2], double s, double sdot);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

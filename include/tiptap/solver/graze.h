@@ -24,11 +24,10 @@
 #ifndef TIPTAP_GRAZE_H
 #define TIPTAP_GRAZE_H
 
+#include "tiptap/export.h"
 #include "tiptap/solver/integrator.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 enum {
     TT_GRAZE_PROBES = 24, /* gaps probed around the closest approach per cycle */
@@ -123,7 +122,5 @@ double tt_graze_error(const tt_graze *g, const double xa[2], const double *ra, c
  * against 1e-9 within). */
 int tt_graze_covers(const tt_graze *g, const double x[2], double s_mid, double tc);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -23,12 +23,11 @@
 #ifndef TIPTAP_INTEGRATOR_H
 #define TIPTAP_INTEGRATOR_H
 
+#include "tiptap/export.h"
 #include "tiptap/physics/cantilever.h"
 #include "tiptap/physics/contact.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 typedef enum { TT_METHOD_DOPRI5 = 0, TT_METHOD_RK4 = 1, TT_METHOD_RADAU = 2 } tt_method;
 
@@ -148,7 +147,5 @@ void tt_sim_set_state(tt_sim *sim, double d, double v, int contact);
 /* Tip-sample force (N) for a recorded sample, on the sim's current material. */
 double tt_sim_force(const tt_sim *sim, const tt_sample *smp, double *a);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

@@ -21,11 +21,10 @@
 
 #include <stdint.h>
 
+#include "tiptap/export.h"
 #include "tiptap/solver/integrator.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 #define TT_BOLTZMANN 1.380649e-23 /* J/K */
 
@@ -49,7 +48,5 @@ int tt_sim_set_thermal(tt_sim *sim, double temperature, int points);
 /* The key of the thermal noise from now on; its cycle counter restarts at 0. */
 void tt_sim_noise_key(tt_sim *sim, uint64_t key);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

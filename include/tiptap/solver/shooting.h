@@ -31,11 +31,10 @@
 #ifndef TIPTAP_SHOOTING_H
 #define TIPTAP_SHOOTING_H
 
+#include "tiptap/export.h"
 #include "tiptap/solver/integrator.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TT_BEGIN_DECLS
 
 typedef struct {
     long presettle;     /* cycles run first to get into the orbit's basin (at least) */
@@ -88,7 +87,5 @@ int tt_shoot_newton(tt_sim *sim, const tt_shoot_params *p, int *converged, int *
 int tt_shoot_steady(tt_sim *sim, const tt_shoot_params *p, long max_cycles, double tol,
                     tt_cycle *out, int *settled, tt_shoot_result *res);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

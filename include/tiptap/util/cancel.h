@@ -11,9 +11,9 @@
 #ifndef TIPTAP_CANCEL_H
 #define TIPTAP_CANCEL_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 void tt_cancel_request(void);
 void tt_cancel_request_signal(int sig);
@@ -22,7 +22,5 @@ int tt_cancel_requested(void);
 int tt_cancel_signal(void);
 void tt_cancel_reset(void);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

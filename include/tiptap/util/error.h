@@ -10,9 +10,9 @@
 #ifndef TIPTAP_ERROR_H
 #define TIPTAP_ERROR_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 enum {
     TT_OK = 0,
@@ -51,7 +51,5 @@ int tt_error_nomem(const char *fmt, ...)
 /* Clear this thread's message. */
 void tt_error_clear(void);
 
-#ifdef __cplusplus
-}
-#endif
+TT_END_DECLS
 #endif

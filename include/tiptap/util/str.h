@@ -1,18 +1,21 @@
 /* tiptap: string helpers.
  *
- * Ownership: a copy belongs to the caller, who frees it with free().
+ * Ownership: a copy belongs to the caller, who frees it with free() or tt_free().
  */
 #ifndef TIPTAP_STR_H
 #define TIPTAP_STR_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "tiptap/export.h"
+
+TT_BEGIN_DECLS
 
 /* A malloc'd copy of s; NULL when s is NULL or memory runs out (C11 has no strdup). */
 char *tt_strdup(const char *s);
 
-#ifdef __cplusplus
-}
-#endif
+/* Free memory the library allocated and handed to the caller (a string, a copy): the
+ * same free() the library uses, for callers that do not share its C library (a
+ * binding, another language's runtime). NULL is ignored. */
+void tt_free(void *p);
+
+TT_END_DECLS
 #endif

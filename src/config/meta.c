@@ -1,14 +1,16 @@
 /* The run's parameters as metadata of the files a scan writes (GSF header keys, .gwy
- * metadata): every key of the effective scene that the scan uses. */
+ * metadata, HDF5 attributes): every key of the effective scene that the scan uses
+ * (see include/tiptap/config/meta.h). */
+#include "tiptap/config/meta.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "commands.h"
 #include "tiptap/util/error.h"
 #include "tiptap/util/str.h"
 
-void cli_meta_free(cli_meta *m)
+void tt_meta_free(tt_meta *m)
 {
     for (size_t i = 0; i < m->n; i++) {
         free(m->keys[i]);
@@ -19,7 +21,7 @@ void cli_meta_free(cli_meta *m)
     memset(m, 0, sizeof *m);
 }
 
-static int meta_add(cli_meta *m, const char *key, const char *value)
+int tt_meta_add(tt_meta *m, const char *key, const char *value)
 {
     if (m->n == m->cap) {
         size_t cap = m->cap ? 2 * m->cap : 64;
@@ -48,19 +50,14 @@ static int meta_add(cli_meta *m, const char *key, const char *value)
 /* "[material glass]" + "adhesion_energy = 20 mJ/m^2" -> "material.glass.adhesion_energy",
  * the value as the scene writes it (with its unit); the approach and trace sections,
  * which a scan does not use, are left out. */
-int cli_meta_scene(cli_meta *m, const tt_scene *scene, const char *const *first_keys,
-                   const char *const *first_values, size_t nfirst)
+int tt_meta_scene(tt_meta *m, const tt_scene *scene, const char *const *first_keys,
+                  const char *const *first_values, size_t nfirst)
 {
     memset(m, 0, sizeof *m);
-    char *text = NULL;
-    size_t len = 0;
-    FILE *f = open_memstream(&text, &len);
-    if (!f)
-        return tt_error_nomem("the outputs' metadata");
-    int rc = tt_scene_write(scene, f, NULL);
-    fclose(f);
+    char *text = tt_scene_write_string(scene, NULL);
+    int rc = text ? TT_OK : TT_ENOMEM;
     for (size_t i = 0; rc == TT_OK && i < nfirst; i++)
-        rc = meta_add(m, first_keys[i], first_values[i]);
+        rc = tt_meta_add(m, first_keys[i], first_values[i]);
     char section[256] = "", key[512];
     int skip = 1;
     for (char *line = text, *next; rc == TT_OK && line && *line; line = next) {
@@ -79,11 +76,11 @@ int cli_meta_scene(cli_meta *m, const tt_scene *scene, const char *const *first_
             if (sp)
                 *sp = '.';
             snprintf(key, sizeof key, "%s.%s", section, line);
-            rc = meta_add(m, key, eq + 3);
+            rc = tt_meta_add(m, key, eq + 3);
         }
     }
     free(text);
     if (rc)
-        cli_meta_free(m);
+        tt_meta_free(m);
     return rc;
 }

@@ -1,0 +1,219 @@
+"""Scenes: INI files in SI units read by the library's configuration layer
+(docs/scene-format.md), keys overridden as `tiptap --set` does, and the schema of every
+key with its unit and default."""
+
+import collections
+import math
+import os
+
+from ._errors import SceneError, check
+from ._lib import ffi, lib, owned_text, text
+
+Key = collections.namedtuple(
+    "Key", "section key kind unit units default min max choices path doc named"
+)
+Key.__doc__ = """One scene key of the schema.
+
+section, key: "[section]" and the key ("material" is named: material.NAME.key);
+kind: "quantity", "int", "enum", "string" or "bool"; unit: the SI unit a number given
+from Python is read in ("" for plain numbers and keys without one; None where a
+number alone is ambiguous, as a setpoint that is a length or a percentage); units: every
+SI unit the key accepts; default: as written in a scene (None: absent unless given);
+min, max: the allowed range in SI units; choices: an enum's values; path: a file name
+relative to the scene file; doc: its one-line meaning; named: the section repeats with
+names."""
+
+_KINDS = ("quantity", "int", "enum", "string", "bool")
+
+
+def _schema():
+    count = ffi.new("size_t *")
+    sections = lib.tt_scene_schema(count)
+    out = {}
+    for i in range(count[0]):
+        sec = sections[i]
+        name = text(sec.name)
+        for j in range(sec.nkeys):
+            k = sec.keys[j]
+            units = []
+            bit = 1
+            while bit <= k.dims:
+                if k.dims & bit:
+                    units.append(text(lib.tt_units_symbol(bit)))
+                bit <<= 1
+            kind = _KINDS[k.kind]
+            if kind != "quantity":
+                unit = ""
+            elif len(units) == 1 and not (k.dims & lib.TT_DIM_FRACTION):
+                unit = units[0]
+            else:
+                unit = None
+            out[(name, text(k.key))] = Key(
+                name, text(k.key), kind, unit, tuple(units),
+                text(getattr(k, "def")) if getattr(k, "def") != ffi.NULL else None,
+                k.min, k.max,
+                tuple(text(k.choices).split("|")) if k.choices != ffi.NULL else (),
+                bool(k.flags & 4), text(k.doc), bool(sec.named),
+            )
+    return out
+
+
+SCHEMA = _schema()
+
+
+def keys():
+    """Every scene key the library knows, in documentation order (a list of Key)."""
+    return list(SCHEMA.values())
+
+
+def _key_name(name):
+    """'feedback__setpoint' (a keyword argument) -> 'feedback.setpoint'."""
+    return name.replace("__", ".")
+
+
+def _schema_key(assignment_key):
+    parts = assignment_key.split(".")
+    if len(parts) < 2:
+        return None
+    section, key = parts[0], parts[-1]
+    return SCHEMA.get((section, key))
+
+
+def format_value(key, value):
+    """A Python value as the scene text of key ("section.key" or "material.NAME.key"):
+    strings as they are ("52 kHz", "80 %"); True/False as yes/no; numbers in the key's SI
+    unit, written so that they read back to the same double."""
+    if isinstance(value, str):
+        return value
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    spec = _schema_key(key)
+    if isinstance(value, int) and (spec is None or spec.kind != "quantity"):
+        return str(value)
+    if isinstance(value, (int, float)) or hasattr(value, "__float__"):
+        v = float(value)
+        if not math.isfinite(v):
+            raise SceneError(lib.TT_EINVAL, f"{key}: {value!r} is not a finite number")
+        if spec is None or spec.kind != "quantity":
+            return repr(v)
+        if spec.unit is None:
+            raise SceneError(
+                lib.TT_EINVAL,
+                f"{key}: a number alone is ambiguous here; give the text with its unit "
+                f"({text(lib.tt_units_describe(_dims(spec)))})",
+            )
+        return f"{v!r} {spec.unit}".rstrip()
+    raise TypeError(f"{key}: a value is a str, bool or number, not {type(value).__name__}")
+
+
+def _dims(spec):
+    count = ffi.new("size_t *")
+    sections = lib.tt_scene_schema(count)
+    for i in range(count[0]):
+        if text(sections[i].name) == spec.section:
+            for j in range(sections[i].nkeys):
+                if text(sections[i].keys[j].key) == spec.key:
+                    return sections[i].keys[j].dims
+    return 0
+
+
+class Scene:
+    """A scene: files read in order (later ones override earlier ones), then keys set.
+
+        s = tiptap.Scene("scans/quick.ini", "surfaces/polymer-blend.ini",
+                         feedback__setpoint="70 %", scan__pixels=32)
+        s.set({"material.disk.reduced_modulus": 3e9})      # SI numbers take the key's unit
+        s["cantilever.free_amplitude"]                     # '20 nm' (the effective value)
+
+    Keyword arguments name keys with double underscores (section__key,
+    material__NAME__key); a dict takes any key as `tiptap --set` spells it. Every value
+    is checked by the library as the command line's are: a bad key, value or unit raises
+    SceneError with the library's one line naming file, section and key.
+    """
+
+    def __init__(self, *files, text=None, set=None, **keys):
+        p = lib.tt_scene_alloc()
+        if p == ffi.NULL:
+            raise MemoryError("tiptap: out of memory for a scene")
+        self._p = ffi.gc(p, lib.tt_scene_free)
+        for f in files:
+            self.load(f)
+        if text is not None:
+            self.load_string(text)
+        self.set(set, **keys)
+
+    @classmethod
+    def of(cls, scene, set=None, **keys):
+        """scene as a Scene: a Scene (copied when keys are set, so that it stays as it
+        was), a file name or a list of file names."""
+        if isinstance(scene, Scene):
+            if not set and not keys:
+                return scene
+            s = scene.copy()
+            s.set(set, **keys)
+            return s
+        if isinstance(scene, (str, bytes, os.PathLike)):
+            scene = [scene]
+        return cls(*scene, set=set, **keys)
+
+    def load(self, path):
+        """Read a scene file over this scene."""
+        check(lib.tt_scene_load(self._p, os.fsencode(path)))
+        return self
+
+    def load_string(self, text, origin="scene"):
+        """Read scene text over this scene; origin names it in messages."""
+        check(lib.tt_scene_load_string(self._p, text.encode(), origin.encode()))
+        return self
+
+    def set(self, assignments=None, **keys):
+        """Set keys: a dict {"section.key": value} and/or section__key=value."""
+        items = list((assignments or {}).items()) + [(_key_name(k), v) for k, v in keys.items()]
+        for k, v in items:
+            line = f"{k}={format_value(k, v)}"
+            check(lib.tt_scene_set(self._p, line.encode()))
+        return self
+
+    def copy(self):
+        """A deep copy."""
+        c = Scene.__new__(Scene)
+        p = lib.tt_scene_copy(self._p)
+        if p == ffi.NULL:
+            raise MemoryError("tiptap: out of memory copying a scene")
+        c._p = ffi.gc(p, lib.tt_scene_free)
+        return c
+
+    @property
+    def origin(self):
+        """The file name messages give (the first file read, or "scene")."""
+        return text(lib.tt_scene_origin(self._p))
+
+    def text(self, sections=None):
+        """The effective scene as INI text: every key, defaults included, paths absolute
+        (what `tiptap scan` writes as scene.ini). sections: e.g. "cantilever|tip"."""
+        t = lib.tt_scene_write_string(self._p, sections.encode() if sections else ffi.NULL)
+        if t == ffi.NULL:
+            check(lib.TT_ENOMEM)
+        return owned_text(t)
+
+    def items(self):
+        """The effective scene as a dict {"section.key": "value with unit"}, named
+        sections as "material.NAME.key" (as --set spells them)."""
+        out = {}
+        section = None
+        for line in self.text().splitlines():
+            line = line.strip()
+            if not line or line[0] in ";#":
+                continue
+            if line.startswith("[") and line.endswith("]"):
+                section = line[1:-1].strip().replace(" ", ".", 1)
+            elif " = " in line and section:
+                k, v = line.split(" = ", 1)
+                out[f"{section}.{k.strip()}"] = v.strip()
+        return out
+
+    def __getitem__(self, key):
+        return self.items()[key]
+
+    def __repr__(self):
+        return f"<tiptap.Scene {self.origin!r}>"

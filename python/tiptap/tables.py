@@ -1,0 +1,158 @@
+"""Runs that give tables: approach(), trace(), contact(), accuracy() (and sweep(), in
+sweep.py). Each returns a Table: a dict of numpy arrays, one per column, in SI units
+(the phase in degrees), with .units and .meta."""
+
+import math
+
+import numpy as np
+
+from ._errors import SceneError, check
+from ._lib import ffi, lib, text
+from ._run import Progress, finish, run
+from .scene import Scene
+
+
+class Table(dict):
+    """Columns by name (numpy arrays: float64, or str for text columns), in the library's
+    order; t.units[name] is the column's SI unit ("" for counts, fractions and texts);
+    t.meta holds what the table is of (numbers as floats where they read as one)."""
+
+    def __init__(self, columns=(), units=None, meta=None):
+        super().__init__(columns)
+        self.units = dict(units or {})
+        self.meta = dict(meta or {})
+
+    @property
+    def rows(self):
+        return len(next(iter(self.values()))) if self else 0
+
+    def __repr__(self):
+        cols = ", ".join(f"{k} [{self.units[k]}]" if self.units.get(k) else k for k in self)
+        return f"<tiptap.Table {self.rows} rows: {cols}>"
+
+
+def _number(v):
+    try:
+        return float(v)
+    except ValueError:
+        return v
+
+
+def table_of(p):
+    """A tt_table as a Table (copied), then freed."""
+    if p == ffi.NULL:
+        return None
+    try:
+        rows = lib.tt_table_rows(p)
+        t = Table()
+        for c in range(lib.tt_table_columns(p)):
+            name = text(lib.tt_table_name(p, c))
+            if lib.tt_table_is_text(p, c):
+                t[name] = np.array([text(lib.tt_table_text(p, c, r)) for r in range(rows)], dtype=str)
+            else:
+                buf = ffi.buffer(lib.tt_table_numbers(p, c), rows * 8) if rows else b""
+                t[name] = np.frombuffer(buf, dtype=np.float64).copy()
+            t.units[name] = text(lib.tt_table_unit(p, c))
+        for i in range(lib.tt_table_metas(p)):
+            t.meta[text(lib.tt_table_meta_key(p, i))] = _number(text(lib.tt_table_meta_value(p, i)))
+        return t
+    finally:
+        lib.tt_table_free(p)
+
+
+def _refused(message):
+    return SceneError(lib.TT_EINVAL, message)
+
+
+def _run_table(call, what, unit, progress):
+    """call(out, progress_c) -> status: a run layer function into a tt_table."""
+    out = ffi.new("tt_table **")
+    prog = Progress(progress, what, unit)
+    status, message, interrupted = run(lambda: call(out, prog.c), prog)
+    result = table_of(out[0])
+    finish(status, message, interrupted, what, result, prog)
+    return result
+
+
+def approach(scene, *, set=None, progress=None, **keys):
+    """The approach curve of the scene's [approach] (`tiptap approach`): a row per point
+    of both branches; z, amplitude, phase, mean_deflection, peak_force, max_indentation,
+    contact_fraction, dissipated, branch, settled, cycles, drive_work, energy_residual,
+    deflection_min, deflection_max."""
+    s = Scene.of(scene, set, **keys)
+    return _run_table(lambda out, c: lib.tt_run_approach(s._p, out, c, ffi.NULL), "approach",
+                      "points", progress)
+
+
+def trace(scene, *, set=None, progress=None, **keys):
+    """The time trace of the scene's [trace] (`tiptap trace`): samples_per_cycle rows per
+    recorded cycle; cycle, t, base, tip, sample, deflection, force, contact_radius,
+    pressure, contact, and the ramped key's value when [trace] ramp is set."""
+    s = Scene.of(scene, set, **keys)
+    return _run_table(lambda out, c: lib.tt_run_trace(s._p, out, c, ffi.NULL), "trace", "cycles",
+                      progress)
+
+
+def contact(scene=None, *, material=None, model=None, lam=None, xi0=0.3, points=600, amax=3.0,
+            set=None, **keys):
+    """The contact curve (`tiptap contact`) in Burnham et al.'s normalised units (eq. 3):
+    A, Delta, P, stable; the summary (lambda, P0, Delta0, pulloff_load, jumpout_delta,
+    ..., with a scene also the physical values) in .meta.
+
+    With a scene: the force law of [material NAME] (material: NAME, default the first),
+    model replacing its model. Without: the normalised law of model (default maugis) at
+    Maugis parameter lam, with the normalised interatomic distance xi0."""
+    out = ffi.new("tt_table **")
+    c = ffi.new("tt_contact **")
+    if scene is not None:
+        if lam is not None:
+            raise TypeError("contact: lam draws the normalised curve, which takes no scene")
+        s = Scene.of(scene, set, **keys)
+        params = ffi.new("tt_contact_params *")
+        qi = ffi.new("double *")
+        check(lib.tt_run_contact_alloc(s._p, material.encode() if material else ffi.NULL,
+                                       model.encode() if model else ffi.NULL, c, params, qi))
+        law = ffi.gc(c[0], lib.tt_contact_free)
+        check(lib.tt_run_contact_table(law, params, qi[0], points, amax, out))
+    else:
+        m = ffi.new("tt_contact_model *")
+        if lib.tt_contact_model_parse((model or "maugis").encode(), m) != 0:
+            raise _refused(f"model: '{model}' is not one of maugis, hertz, dmt, jkr")
+        if lam is None and m[0] == lib.TT_CONTACT_MAUGIS:
+            raise TypeError("contact: give a scene, or lam (the Maugis parameter, 1e-4 to 1e4)")
+        lam = 1.0 if lam is None else float(lam)
+        if not 1e-4 <= lam <= 1e4:
+            raise _refused(f"lam: {lam!r}: expected a number from 1e-4 to 1e4")
+        check(lib.tt_contact_alloc_normalised(c, m[0], lam, float(xi0)))
+        law = ffi.gc(c[0], lib.tt_contact_free)
+        check(lib.tt_run_contact_table(law, ffi.NULL, math.nan, points, amax, out))
+    t = table_of(out[0])
+    if model or scene is None:
+        t.meta["model"] = model or "maugis"
+    return t
+
+
+def accuracy(scene, *, point=None, cycles=0, pixels=8, methods=None, repeats=3, clock="wall",
+             set=None, progress=None, **keys):
+    """The work-precision study (`tiptap accuracy`): a row per solver setting (reference,
+    floor, each ladder loosest first) with its run time and its errors against the
+    reference. point: judge a steady point at this rest separation (m) even if the scene
+    has [scan]; cycles: per run (0: the default); pixels: of a scan line; methods:
+    "dopri5,rk4" (default all); repeats: timing passes; clock: "wall" or "cpu"."""
+    s = Scene.of(scene, set, **keys)
+    p = ffi.new("tt_accuracy_params *")
+    lib.tt_accuracy_params_default(p)
+    if point is not None:
+        p.kind = lib.TT_ACCURACY_POINT
+        p.point = float(point)
+    p.cycles, p.line_pixels, p.repeats = int(cycles), int(pixels), int(repeats)
+    if clock not in ("wall", "cpu"):
+        raise _refused(f"clock: '{clock}' is not wall or cpu")
+    p.cpu_clock = clock == "cpu"
+    ladders = ffi.new("tt_accuracy_ladder[16]")
+    if methods:
+        n = ffi.new("size_t *")
+        check(lib.tt_accuracy_pick(methods.encode(), ladders, 16, n))
+        p.ladders, p.nladders = ladders, n[0]
+    return _run_table(lambda out, c: lib.tt_run_accuracy(s._p, p, out, c, ffi.NULL), "accuracy",
+                      "settings", progress)

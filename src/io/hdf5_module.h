@@ -1,0 +1,40 @@
+/* The HDF5 module's interface (src/hdf5/h5_module.c), private to the library: the
+ * calls into libhdf5 live in a separate shared module, libtiptap_hdf5.so, that
+ * src/io/hdf5.c loads on the first HDF5 file, so that every other run (and every start
+ * of the program) does without loading libhdf5 and the thirty libraries it pulls in
+ * (curl, crypto, ...). The module calls nothing of tiptap's: it reports a failure by
+ * returning -1, and hdf5.c words the message. */
+#ifndef TIPTAP_HDF5_MODULE_H
+#define TIPTAP_HDF5_MODULE_H
+
+#include <stddef.h>
+
+/* What tt_h5_module() returns; version changes with the table. */
+#define TT_H5_MODULE_VERSION 1
+
+enum { TT_H5_TEXT = 0, TT_H5_DOUBLE = 1, TT_H5_LONG = 2 };
+
+typedef struct tt_h5_file tt_h5_file;
+
+typedef struct {
+    int version;
+    /* A new file at path (truncated); NULL on failure. */
+    tt_h5_file *(*create)(const char *path);
+    /* Closes and frees; -1 when the file could not be completed. */
+    int (*close)(tt_h5_file *f);
+    int (*group)(tt_h5_file *f, const char *path);
+    int (*doubles)(tt_h5_file *f, const char *path, int rank, const size_t *dims, const double *data);
+    /* rank 0: one text */
+    int (*texts)(tt_h5_file *f, const char *path, int rank, const size_t *dims, const char *const *texts);
+    /* a scalar attribute of type TT_H5_TEXT (value: a const char *const *), _DOUBLE, _LONG */
+    int (*attr)(tt_h5_file *f, const char *object, const char *name, int type, const void *value);
+    int (*scale)(tt_h5_file *f, const char *path, const char *name);
+    int (*attach)(tt_h5_file *f, const char *data, const char *scale, unsigned dim, const char *label);
+} tt_h5_ops;
+
+/* The module's one exported function. */
+__attribute__((visibility("default"))) const tt_h5_ops *tt_h5_module(void);
+#define TT_H5_MODULE_SYMBOL "tt_h5_module"
+#define TT_H5_MODULE_FILE "libtiptap_hdf5.so"
+
+#endif

@@ -1,0 +1,70 @@
+/* tiptap approach's rows as a table (see include/tiptap/run/run.h). */
+#include <math.h>
+#include <stdlib.h>
+
+#include "run_common.h"
+#include "tiptap/config/config.h"
+#include "tiptap/config/setup.h"
+#include "tiptap/instrument/approach.h"
+#include "tiptap/run/run.h"
+#include "tiptap/util/cancel.h"
+#include "tiptap/util/error.h"
+
+enum { Z, AMP, PHASE, MEAN, PEAK, INDENT, FRACTION, DISS, BRANCH, SETTLED, CYCLES, DRIVE,
+       RESIDUAL, YMIN, YMAX, NCOL };
+
+static const run_column columns[NCOL] = {
+    {"z", "m", 0}, {"amplitude", "m", 0}, {"phase", "deg", 0}, {"mean_deflection", "m", 0},
+    {"peak_force", "N", 0}, {"max_indentation", "m", 0}, {"contact_fraction", "", 0},
+    {"dissipated", "J", 0}, {"branch", "", 1}, {"settled", "", 0}, {"cycles", "", 0},
+    {"drive_work", "J", 0}, {"energy_residual", "", 0}, {"deflection_min", "m", 0},
+    {"deflection_max", "m", 0},
+};
+
+/* One point as the CSV's row, in SI (tiptap approach's write_row). */
+static int put(tt_table *t, const tt_approach_point *p)
+{
+    const tt_cycle *c = &p->cycle;
+    int rc = tt_table_row(t);
+    if (rc)
+        return rc;
+    const double v[NCOL] = {p->z, c->amplitude, c->phase * 180 / M_PI, c->mean, c->peak_force,
+                            c->max_indentation, c->contact_fraction, c->e_ts, NAN, p->settled,
+                            (double)p->cycles, c->e_drive, c->residual_rel,
+                            isfinite(c->y_min) ? c->y_min : NAN, isfinite(c->y_max) ? c->y_max : NAN};
+    for (int k = 0; k < NCOL; k++)
+        tt_table_set(t, (size_t)k, v[k]);
+    return tt_table_set_text(t, BRANCH, p->retract ? "retract" : "approach");
+}
+
+int tt_run_approach(const tt_scene *s, tt_table **out, tt_progress_fn progress, void *user)
+{
+    tt_setup *st;
+    tt_scene *copy;
+    tt_approach *ap = NULL;
+    tt_approach_params p;
+    *out = NULL;
+    int rc;
+    if ((rc = run_setup(s, &copy, &st)) || (rc = tt_config_approach_alloc(&ap, st, copy, &p)))
+        goto done;
+    tt_table *t = run_table(columns, NCOL);
+    if (!t) {
+        rc = TT_ENOMEM;
+        goto done;
+    }
+    *out = t;
+    long total = (long)tt_approach_rows(ap);
+    while (!tt_approach_done(ap) && rc == TT_OK) {
+        tt_approach_point pt;
+        if (tt_cancel_requested())
+            rc = tt_error(TT_EINTR, "interrupted: %zu of %ld points finished", tt_table_rows(t), total);
+        else if ((rc = tt_approach_iterate(ap, &pt)) == TT_OK && (rc = put(t, &pt)) == TT_OK &&
+                 progress)
+            progress(user, (long)tt_table_rows(t), total);
+    }
+done:
+    tt_approach_free(ap);
+    tt_setup_free(st);
+    tt_scene_free(copy);
+    return rc;
+}
