@@ -45,6 +45,22 @@ void tt_envelope_free(tt_envelope *e);
 /* Observables per cycle: n + TT_ENV_EXTRA. */
 int tt_envelope_size(const tt_envelope *e);
 
+/* Take the sample's travel within the cycle (sdot T) as a fourth input of the model, for
+ * a sample whose travel changes from cycle to cycle by more than its position's smooth
+ * course explains (the z piezo's noise): its Jacobian column costs 2 more cycles a build,
+ * and the travel's offset from the anchor's counts in tt_envelope_reach. Without it the
+ * model holds the travel at the anchor's. Call it before the model is first built. */
+void tt_envelope_use_travel(tt_envelope *e);
+
+/* Second order in the inputs, for noise that takes the inputs further from the anchor
+ * than a linear model holds (docs/dynamics.md, "Noise on the envelope tier"): the
+ * second derivatives from the build's cycles and one more cycle per pair of inputs (3
+ * or 6), the Jacobians carried to each new anchor, the state's second-order part
+ * carried by the caller (tt_envelope_predict2), and tt_envelope_error holding the
+ * samples as the lock-in's components (the reduction's rows) rather than one by one.
+ * Call it after tt_envelope_reduce and before the model is first built. */
+int tt_envelope_use_second_order(tt_envelope *e);
+
 /* A cycle's observable vector from its samples (deflection d - z) and results. */
 void tt_envelope_observe(const tt_envelope *e, const tt_sample *samples, const tt_cycle *cy,
                          double *obs);
@@ -69,6 +85,13 @@ void tt_envelope_anchor(tt_envelope *e, const double x0[2], double s, double sdo
 void tt_envelope_predict(const tt_envelope *e, const double x[2], double s, double sdot,
                          double x1[2], double *obs);
 
+/* The same for a second-order model (tt_envelope_use_second_order): x is the state, x2
+ * its second-order part (0 after an integrated cycle); x21 the end state's. Without
+ * second order, or before it is built, x21 is 0 and the prediction tt_envelope_predict's
+ * (which is this with x2 = 0). */
+void tt_envelope_predict2(const tt_envelope *e, const double x[2], const double x2[2], double s,
+                          double sdot, double x1[2], double x21[2], double *obs);
+
 /* Reduce the model's deflection samples to m linear combinations of them, R (m x n, by
  * rows; copied), for a caller that needs only those (the lock-in's per-period
  * components, tiptap/instrument/lockin.h): tt_envelope_predict_reduced then costs
@@ -79,6 +102,10 @@ int tt_envelope_reduce(tt_envelope *e, int m, const double *R);
  * the TT_ENV_EXTRA observables. Needs tt_envelope_reduce. */
 void tt_envelope_predict_reduced(const tt_envelope *e, const double x[2], double s, double sdot,
                                  double x1[2], double *red);
+
+/* tt_envelope_predict2 with the samples reduced. */
+void tt_envelope_predict2_reduced(const tt_envelope *e, const double x[2], const double x2[2],
+                                  double s, double sdot, double x1[2], double x21[2], double *red);
 
 /* Noise of the model's cycles (docs/dynamics.md, "Noise on the envelope tier"): the
  * thermal force (two-sided PSD psd, N^2/Hz; 0: none) and detector noise of rms sd (m)
