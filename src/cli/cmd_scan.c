@@ -450,7 +450,7 @@ int cmd_scan(int argc, char **argv)
         /* the reason from the scan's own test: a tier that ran yet integrated every
          * cycle (a grazing tip) is not a fallback */
         const char *why = !tt_scan_envelope_tier(&params)
-                              ? ": every cycle, since Q is below 30 or above 3000 or noise is on "
+                              ? ": every cycle, since Q is below 30 or above 3000 "
                                 "(docs/dynamics.md)"
                           : done < all ? ": the rest followed on the cycle map's model"
                                        : ": the model held on none (docs/dynamics.md)";

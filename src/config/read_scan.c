@@ -368,7 +368,8 @@ static int read_noise(const tt_scene *s, tt_scan_params *p)
         (rc = tt_scene_get_int(s, "noise", NULL, "points", &points)) ||
         (rc = tt_scene_get_double(s, "noise", NULL, "temperature", &n->temperature)) ||
         (rc = tt_scene_get_double(s, "noise", NULL, "detector", &n->detector)) ||
-        (rc = tt_scene_get_double(s, "noise", NULL, "z_piezo", &n->z_piezo)))
+        (rc = tt_scene_get_double(s, "noise", NULL, "z_piezo", &n->z_piezo)) ||
+        (rc = tt_scene_get_double(s, "noise", NULL, "z_piezo_bandwidth", &n->z_bandwidth)))
         return rc;
     n->seed = (uint64_t)seed;
     n->points = (int)points;
@@ -376,6 +377,15 @@ static int read_noise(const tt_scene *s, tt_scan_params *p)
         return tt_scene_fail(s, "noise", NULL, "points",
                              "rk4's steps_per_cycle (%d) must be a multiple of it (%d)",
                              p->solver.steps_per_cycle, n->points);
+    /* the z piezo's noise is drawn once per drive cycle (linear between): its band must
+     * lie below that rate's Nyquist frequency */
+    static const char *const band[] = {"noise.z_piezo_bandwidth", "cantilever.drive_frequency",
+                                       "cantilever.resonance_frequency", NULL};
+    if (n->z_piezo > 0 && n->z_bandwidth > 0.5 * p->cantilever.fd)
+        return tt_scene_fail_set(s, band,
+                                 "the z piezo's noise bandwidth (%.4g kHz) is above half the drive "
+                                 "frequency (%.4g kHz): the noise is drawn once per drive cycle",
+                                 n->z_bandwidth * 1e-3, 0.5e-3 * p->cantilever.fd);
     const char *mode = tt_scene_get_string(s, "scan", NULL, "lines_mode");
     p->continuous = mode && strcmp(mode, "continuous") == 0;
     return TT_OK;

@@ -147,6 +147,7 @@ typedef struct {
     int prev_touch;
     int rebuild;     /* the Jacobians must be taken anew before the model runs */
     int fails;       /* failed shortest stretches since a check passed (noise on) */
+    double zn;       /* the z piezo's noise in the anchor's sample position */
     snapshot sn;
     long integrated; /* cycles of the run integrated, each once */
     char *seen;      /* the phase's cycles integrated so far: a cycle integrated again
@@ -168,6 +169,7 @@ static int integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_c
     }
     tt_envelope_observe(L->W->env, tt_sim_samples(sim), cy, obs);
     tt_sim_get_state(sim, &st->x[0], &st->x[1], c1);
+    st->x2[0] = st->x2[1] = 0;
     return TT_OK;
 }
 
@@ -181,8 +183,8 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
     const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
     const double x0[2] = {st->x[0], st->x[1]};
     const int c0 = tt_envelope_anchor_contact(env);
-    double xp[2], *pred = obs + tt_envelope_size(env);
-    tt_envelope_predict(env, x0, in->sa, sdot, xp, pred);
+    double xp[2], xp2[2], *pred = obs + tt_envelope_size(env);
+    tt_envelope_predict2(env, x0, st->x2, in->sa, sdot, xp, xp2, pred);
     tt_sim_set_state(L->W->sim, x0[0], x0[1], c0);
     tt_cycle cy;
     int c1;
@@ -201,6 +203,7 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
     if (!(err <= L->tol + L->rel * tt_envelope_reach(env, x0, in->sa, sdot)) || c1 != c0 || tt_envelope_touched(&cy) != tt_envelope_anchor_touched(env))
         return 0;
     tt_envelope_anchor(env, x0, in->sa, sdot, st->x, &cy, obs);
+    c->zn = in->zn;
     return 1;
 }
 
@@ -232,11 +235,13 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
     if (!c->rebuild && c0 == tt_envelope_anchor_contact(env) &&
         touch == tt_envelope_anchor_touched(env)) {
         tt_envelope_anchor(env, x0, in->sa, sdot, st->x, &cy, obs);
+        c->zn = in->zn;
         return 1;
     }
     if (c->quiet < c->wait)
         return 0;
     long jacobian = 0; /* its cycles are not the run's */
+    c->zn = in->zn;
     if (tt_envelope_build(env, sim, x0, c0, in->sa, sdot, &cy, obs, &jacobian)) {
         c->rebuild = 0;
         return 1;
@@ -274,20 +279,28 @@ static void fail(const line_ctx *L, line_state *st, controller *c, long k)
 
 /* A model cycle, unless the stretch is done, this or the next cycle crosses an edge,
  * the sample is out of the anchor's reach, or it is the phase's last (the next phase
- * starts integrating from the sim's state): then a check. 1: the model ran the cycle,
- * its samples reduced to the lock-in's components in obs. */
+ * starts integrating from the sim's state): then a check. The sample's reach counts its
+ * smooth course only: the z piezo's noise moves it as an input the model takes, held by
+ * the check's error (docs/dynamics.md, "Noise on the envelope tier"); with noise the
+ * model's inputs are held within L->reach of the anchor too (the second-order model's
+ * trust region). 1: the model ran the cycle, its samples reduced to the lock-in's
+ * components in obs. */
 static int model_step(const line_ctx *L, line_state *st, const controller *c,
                       const cycle_in *in, int edge, double *obs)
 {
+    const tt_envelope *env = L->W->env;
     const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
     if (!c->model || c->left <= 0 || edge || in->edge_next || in->mat != st->current ||
         in->k + 1 >= L->ncyc ||
-        !(fabs(tt_envelope_sample_offset(L->W->env, in->sa, sdot)) <= L->edge))
+        !(fabs(tt_envelope_sample_offset(env, in->sa, sdot) - (in->zn - c->zn)) <= L->edge) ||
+        (L->reach > 0 && !(tt_envelope_reach(env, st->x, in->sa, sdot) <= L->reach)))
         return 0;
-    double x1[2];
-    tt_envelope_predict_reduced(L->W->env, st->x, in->sa, sdot, x1, obs);
+    double x1[2], x21[2];
+    tt_envelope_predict2_reduced(env, st->x, st->x2, in->sa, sdot, x1, x21, obs);
     st->x[0] = x1[0];
     st->x[1] = x1[1];
+    st->x2[0] = x21[0];
+    st->x2[1] = x21[1];
     return 1;
 }
 

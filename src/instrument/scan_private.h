@@ -9,6 +9,7 @@
 #include "tiptap/instrument/scan.h"
 #include "tiptap/solver/averaged.h"
 #include "tiptap/solver/envelope.h"
+#include "tiptap/solver/noise.h"
 
 enum { NHARM = TT_CH_HARMONIC_MAX - 1 }; /* harmonic channels of each kind */
 _Static_assert(TT_CH_COUNT <= 8 * sizeof(unsigned), "a channel mask holds every channel");
@@ -27,6 +28,7 @@ typedef struct {
     double z_from, z_to;
     tt_piezo pz;
     double z_act;
+    double zn; /* the z piezo's noise */
     /* the envelope tier (NULL: every cycle): its model, a snapshot of the lock-in and
      * of the block's periods (y) to roll back to, and two observable vectors */
     tt_envelope *env;
@@ -58,7 +60,8 @@ struct tt_scan {
     long settle_cycles;
     long profile_line;
     tt_scan_noise noise;
-    double sd, sz;       /* per-sample detector and per-cycle z piezo noise, m rms */
+    double sd;           /* per-sample detector noise, m rms */
+    tt_noise_ou zn;      /* the z piezo's noise, sampled at each drive cycle's start (sd 0: off) */
     int continuous;
     /* lock-in and feedback */
     tt_lockin_params lockin;
@@ -117,8 +120,10 @@ typedef struct {
     tt_feedback fb;
     double z_from, z_to, z_act; /* the z piezo's command ramp and actual height */
     tt_piezo pz;
+    double zn;        /* the z piezo's noise at cycle k's start, m (drawn in cycle_begin) */
     size_t current;   /* the material on the sim */
     double x[2];      /* the tip's state at cycle k's start: the sim's, or the model's */
+    double x2[2];     /* the second-order part of a model's x (0 after an integration) */
     surf_pt ahead[2]; /* the surface at the next two cycles' starts */
     long cycles;      /* the line's cycles so far (the noise's cycle count) */
     double worst;
@@ -131,6 +136,7 @@ typedef struct {
     long k; /* the cycle of this phase */
     int j;  /* its place in the lock-in block */
     double ha, hb, topo, za, sa, sb;
+    double zn; /* the z piezo's noise in sa, sb at the cycle's middle (0: none) */
     size_t mat, mat_next;
     int edge_next; /* the next cycle crosses an edge (edge heights or materials) */
 } cycle_in;
@@ -144,7 +150,9 @@ typedef struct {
     double s_ref;
     double tol, edge; /* the envelope tier's error per cycle and edge height */
     double rel;       /* and with noise on, its error per reach of the inputs from the anchor */
-    uint64_t kd, kz;  /* the every-cycle tier's detector and z piezo noise keys */
+    double reach;     /* the largest reach of the second-order model's stretches, of A0 (0: any) */
+    uint64_t kd;      /* the every-cycle tier's detector noise key */
+    uint64_t kz;      /* the z piezo noise's key (both tiers draw the same) */
     uint64_t ke;      /* the envelope tier's noise key (thermal and detector, per cycle) */
     pixel_acc *pix;   /* [direction][pixel] */
 } line_ctx;

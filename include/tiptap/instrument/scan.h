@@ -92,8 +92,12 @@ typedef struct {
     int points;         /* thermal force points per drive cycle */
     double detector;    /* deflection noise density of the detector, m/sqrt(Hz) (one-sided),
                          * added to every sample the lock-in reads */
-    double z_piezo;     /* position noise density of the z piezo, m/sqrt(Hz), drawn once per
-                         * drive cycle and linear between: moves the sample, not the height */
+    double z_piezo;     /* position noise density of the z piezo, m/sqrt(Hz) (one-sided),
+                         * through a first-order low-pass of corner z_bandwidth (an
+                         * Ornstein-Uhlenbeck process, exact at each drive cycle's start and
+                         * linear between): moves the sample, not the height */
+    double z_bandwidth; /* Hz: the low-pass's corner, above 0 and at most half the drive
+                         * frequency when z_piezo is on */
 } tt_scan_noise;
 
 /* Everything a scan needs, in SI units. */
