@@ -5,7 +5,7 @@ cd "$(dirname "$0")/.."
 t=build/tiptap
 $t scan scans/standard.ini surfaces/polymer-blend.ini examples/polymer-blend/scan.ini -o examples/polymer-blend/out
 $t scan scans/standard.ini surfaces/grating.ini examples/grating/scan.ini -o examples/grating/out
-for s in gain-low gain-right gain-high line-rate-fast; do
+for s in gain-low gain-right gain-ringing gain-unstable line-rate-fast; do
   $t scan scans/standard.ini surfaces/grating.ini examples/feedback-tuning/common.ini \
      examples/feedback-tuning/$s.ini -o examples/feedback-tuning/$s
 done
@@ -13,9 +13,18 @@ for s in tip tilt drift piezo creep; do
   $t scan scans/standard.ini examples/instrument/common.ini examples/instrument/$s.ini \
      -o examples/instrument/$s
 done
-# the four tuning runs' profile lines in one figure
+# the tuning runs' profile lines in one figure
 $t profiles -q --title "feedback tuning: trace, retrace and the true surface of the profile line" \
-   -o examples/feedback-tuning/profiles.png examples/feedback-tuning/{gain-low,gain-right,gain-high,line-rate-fast}
+   -o examples/feedback-tuning/profiles.png examples/feedback-tuning/{gain-low,gain-right,gain-ringing,gain-unstable,line-rate-fast}
+# creep on its own scale: the tracking error of the creep run and of the same scan on an
+# ideal piezo, side by side
+$t scan scans/standard.ini examples/instrument/common.ini examples/instrument/creep.ini \
+   --set instrument.creep=0 -q -o /tmp/tt-ideal.$$
+mkdir -p /tmp/tt-cmp.$$ && cp -r /tmp/tt-ideal.$$ /tmp/tt-cmp.$$/ideal-piezo && cp -r examples/instrument/creep /tmp/tt-cmp.$$/creep
+$t profiles -q --minus-surface --range -1.5:2.5 \
+   --title "creep: height - true surface of the profile line (walls cut off)" \
+   -o examples/instrument/creep.png /tmp/tt-cmp.$$/creep /tmp/tt-cmp.$$/ideal-piezo
+rm -rf /tmp/tt-ideal.$$ /tmp/tt-cmp.$$
 # the ridge of README.md there: line-rate-fast without noise, independent lines, the scan
 # ending on a wall (2 um; profile from the former example) and mid-line (2.25 um)
 off="--set noise.temperature=0K --set noise.detector=0m/sqrt(Hz) --set noise.z_piezo=0m/sqrt(Hz)"
@@ -25,3 +34,6 @@ cp /tmp/tt-mid.$$/profile.csv examples/feedback-tuning/ridge/turnaround-mid-line
 $t profiles -q --title "line-rate-fast without noise: turnaround on a wall (2 um) and mid-line (2.25 um)" \
    -o examples/feedback-tuning/ridge.png examples/feedback-tuning/ridge/turnaround-on-a-wall \
    examples/feedback-tuning/ridge/turnaround-mid-line
+# each scan's scope.csv holds a point per lock-in block (megabytes at 2 Hz): not
+# committed; scope.png shows it, and the scan writes it again
+find examples -name scope.csv -delete

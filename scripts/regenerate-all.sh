@@ -36,7 +36,7 @@ done
 if [ "$mode" != quick ]; then
   $t scan scans/standard.ini surfaces/polymer-blend.ini examples/polymer-blend/scan.ini -o $o/polymer-blend 2>/dev/null
   $t scan scans/standard.ini surfaces/grating.ini examples/grating/scan.ini -o $o/grating 2>/dev/null
-  for s in gain-low gain-right gain-high line-rate-fast; do
+  for s in gain-low gain-right gain-ringing gain-unstable line-rate-fast; do
     $t scan scans/standard.ini surfaces/grating.ini examples/feedback-tuning/common.ini \
        examples/feedback-tuning/$s.ini -o $o/$s 2>/dev/null
   done

@@ -3,6 +3,8 @@
 set -euo pipefail
 packages=(build-essential cmake pkg-config libgsl-dev libfftw3-dev libpng-dev
           libcairo2-dev libcmocka-dev fonts-dejavu-core
+          libwebsockets-dev  # tiptap live: HTTP and WebSocket (docs/dependencies.md)
+          python3            # the tests of tiptap live speak WebSocket and DevTools from it
           openmpi-bin libopenmpi-dev) # MPI: CI runs 'mpirun -np 2 tiptap sweep' (tests/cli_sweep.sh)
 missing=()
 for p in "${packages[@]}"; do

@@ -23,15 +23,16 @@ for scene in "$src"/examples/extreme/*.ini; do
   A0=$(sed -n 's/^free_amplitude *= *\([0-9.e+-]*\) nm.*/\1/p' "$scene")
   A0=${A0:-20}
 
-  # scan: the profile line's height (m), amplitude (m) and phase (deg), trace and retrace
+  # scan: the profile line's height (m), error (m) and phase (deg), trace and retrace
+  # (profile.csv: position, then height, error, amplitude, phase, ... each trace, retrace)
   set -- --set scan.pixels=8 --set scan.lines=1 --set scan.line_rate=50Hz
   if "$tiptap" scan "$scene" "$@" -o "$tmp/s-$n" 2>"$tmp/s-$n.err" >/dev/null &&
      "$tiptap" scan "$scene" "$@" --set solver.tolerance=$ref -o "$tmp/r-$n" -q 2>/dev/null >/dev/null; then
     meas=$(paste -d, "$tmp/s-$n/profile.csv" "$tmp/r-$n/profile.csv" | awk -F, -v A0="$A0" "$rnd"'
       function d(a, b) { return r(a > b ? a - b : b - a, a, b) }
-      NR > 1 { for (c = 2; c <= 3; c++) if (d($c, $(c+13)) > h) h = d($c, $(c+13))
-               for (c = 4; c <= 5; c++) if (d($c, $(c+13)) / (A0 * 1e-9) > a) a = d($c, $(c+13)) / (A0 * 1e-9)
-               for (c = 6; c <= 7; c++) { x = d($c, $(c+13)); if (x > 180) x = 360 - x; if (x > p) p = x } }
+      NR > 1 { for (c = 2; c <= 3; c++) if (d($c, $(c+15)) > h) h = d($c, $(c+15))
+               for (c = 4; c <= 5; c++) if (d($c, $(c+15)) / (A0 * 1e-9) > a) a = d($c, $(c+15)) / (A0 * 1e-9)
+               for (c = 8; c <= 9; c++) { x = d($c, $(c+15)); if (x > 180) x = 360 - x; if (x > p) p = x } }
       END { printf "%.3g %.3g %.3g", h, a, p }')
     set -- $meas
     eh=$(sed -n 's/^error_estimate_height_m = .*max \([^)]*\)).*/\1/p' "$tmp/s-$n.err")

@@ -16,7 +16,7 @@ pixels = 16
 lines = 2
 line_rate = 100 Hz
 settle_cycles = 10
-channels = height, amplitude, phase
+channels = height, error, phase
 [trace]
 cycles = 20
 [approach]

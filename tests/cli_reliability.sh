@@ -61,7 +61,7 @@ if (ulimit -v 1000000; "$tiptap" keys >/dev/null 2>&1); then
   want="tiptap scan: 16384 x 16384 pixels need about 6.5 GB of memory (2 images of 2.1 GB each), more than the 1.0 GB available"
 else
   out=$("$tiptap" scan "$tmp/s.ini" -o "$tmp/huge" "${huge[@]}" --set lockin.harmonics=8 \
-    --set "scan.channels=height, amplitude, phase, peak_force, indentation, dissipation, topography, harmonic2, harmonic3, harmonic4, harmonic5, harmonic6, harmonic7, harmonic8, harmonic2_phase, harmonic3_phase, harmonic4_phase, harmonic5_phase, harmonic6_phase, harmonic7_phase, harmonic8_phase" 2>&1 >/dev/null; echo "rc=$?")
+    --set "scan.channels=height, error, phase, peak_force, indentation, dissipation, topography, harmonic2, harmonic3, harmonic4, harmonic5, harmonic6, harmonic7, harmonic8, harmonic2_phase, harmonic3_phase, harmonic4_phase, harmonic5_phase, harmonic6_phase, harmonic7_phase, harmonic8_phase" 2>&1 >/dev/null; echo "rc=$?")
   want="tiptap scan: 16384 x 16384 pixels need about 92.4 GB of memory (42 images of 2.1 GB each), more than the"
 fi
 grep -qF "$want" <<<"$out" && grep -qF "rc=1" <<<"$out" && ok "huge scan refused" || bad "huge scan: '$out'"

@@ -36,7 +36,11 @@ fi
 # stderr not a terminal: plain progress lines; the summary names the folder
 "$tiptap" scan "$tmp/s.ini" -o "$tmp/log" 2>"$tmp/log.err" || bad "scan with a log"
 grep -q "^scan: 4/4 lines" "$tmp/log.err" && ! grep -q $'\r' "$tmp/log.err" && ok "plain progress line" || bad "progress in a log"
-grep -q "^output = $tmp/log: 27 files (scan.gwy" "$tmp/log.err" && ok "summary names the output" || bad "summary output line"
+grep -q "^output = $tmp/log: 33 files (scan.gwy" "$tmp/log.err" && ok "summary names the output" || bad "summary output line"
+# the profile line's full-rate record: a point per lock-in block, trace and retrace
+head -1 "$tmp/log/scope.csv" | grep -qx "direction,time_s,position_m,z_m,error_m,amplitude_m,phase_deg,surface_m,pixel,material" &&
+  [ "$(grep -c "^trace," "$tmp/log/scope.csv")" -gt 100 ] && [ "$(grep -c "^retrace," "$tmp/log/scope.csv")" -gt 100 ] &&
+  head -c 8 "$tmp/log/scope.png" | grep -q PNG && ok "scope.csv and scope.png" || bad "scope files"
 head -1 "$tmp/out/profile.csv" | grep -q "^position_nm,height_trace_m" && ok "profile" || bad "profile header"
 ls "$tmp/out" | grep -q "\.tmp\." && bad "temporary files left" || ok "no temporary files"
 # the profiles overlay reads the folder's profile line
@@ -44,6 +48,11 @@ ls "$tmp/out" | grep -q "\.tmp\." && bad "temporary files left" || ok "no tempor
   bad "profiles overlay"
 "$tiptap" profiles -q -o "$tmp/prof.png" "$tmp/nowhere" 2>/dev/null && bad "profiles of a missing folder" ||
   ok "profiles refuses a missing folder"
+# a profile line the scan never finished (NaN) gets a note in its panel and on stderr
+mkdir "$tmp/nan" && printf 'position_nm,height_trace_m,height_retrace_m\n10,nan,nan\n20,nan,nan\n' >"$tmp/nan/profile.csv"
+"$tiptap" profiles -q -o "$tmp/nan.png" "$tmp/nan" "$tmp/out" 2>"$tmp/nan.err" && [ -s "$tmp/nan.png" ] &&
+  grep -q "^tiptap profiles: $tmp/nan: the profile line holds no height" "$tmp/nan.err" &&
+  ok "a NaN profile line is named" || bad "NaN profile: $(cat "$tmp/nan.err")"
 # the effective scene runs again from anywhere and gives the same height image
 (cd / && "$tiptap" scan "$tmp/out/scene.ini" -o "$tmp/again" -q) || bad "effective scene re-runs"
 cmp -s "$tmp/out/height_trace.gsf" "$tmp/again/height_trace.gsf" && ok "effective scene reproduces the image" || bad "re-run differs"
@@ -64,7 +73,7 @@ head -1 "$tmp/harm/profile.csv" | grep -q "^position_nm,height_trace_m,height_re
 # channels but the harmonics: on the envelope tier the channels recorded (peak force,
 # indentation) are among what its checks compare, so they choose the cycles integrated.
 "$tiptap" scan "$src/surfaces/png-map.ini" "$tmp/s.ini" -o "$tmp/harm2" -q --set lockin.harmonics=3 \
-  --set "scan.channels=height, amplitude, phase, peak_force, indentation, dissipation, harmonic2" || bad "harmonic scan ran"
+  --set "scan.channels=height, error, phase, peak_force, indentation, dissipation, harmonic2" || bad "harmonic scan ran"
 cmp -s <(tail -c 128 "$tmp/out/height_trace.gsf") <(tail -c 128 "$tmp/harm2/height_trace.gsf") && ok "harmonics leave the height alone" || bad "harmonics change the height"
 "$tiptap" scan "$tmp/s.ini" -o "$tmp/harm2" -q --set scan.channels=harmonic2 2>"$tmp/harm2.err" && bad "harmonic2 without harmonics accepted"
 grep -q "^tiptap: --set: \[scan\] channels: harmonic2 needs \[lockin\] harmonics = 2 or more (it is 1)$" "$tmp/harm2.err" &&

@@ -103,7 +103,7 @@ static const char *base =
     "[material disk]\nyoungs_modulus = 30 GPa\npoisson_ratio = 0.3\n"
     "adhesion_energy = 40 mJ/m^2\ninteratomic_distance = 0.265 nm\n"
     "[scan]\nsize = 1 um\npixels = 32\nlines = 1\nline_rate = 8 Hz\n"
-    "channels = height, amplitude, phase\n"
+    "channels = height, error, phase\n"
     "[feedback]\nsetpoint = 80 %\n";
 
 static tt_scan *scan_with(const char *extra, const char *tier, tt_scene **sc)

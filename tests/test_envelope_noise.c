@@ -2,8 +2,8 @@
  * map's linear-noise model of the thermal force gives the free cantilever's equipartition
  * (<d^2> = kB T / k, <d'^2> = kB T / m*); a scan with the full noise set (thermal,
  * detector, z piezo) skips cycles, and the noise in its images has the every-cycle tier's
- * statistics (per line the sd, the mean and the spectrum of height, amplitude and phase
- * over seeds) within sampling error; with the z piezo's noise alone (the same draws on
+ * statistics (per line the sd, the mean and the spectrum of height, error (amplitude -
+ * setpoint) and phase over seeds) within sampling error; with the z piezo's noise alone (the same draws on
  * both tiers) the images' noise agrees to 1 % on stiff disks too; the images are the same
  * on one thread as on two. */
 #include <math.h>
@@ -103,7 +103,7 @@ static const char *base =
     "[material polymer]\nyoungs_modulus = 1 GPa\nadhesion_energy = 40 mJ/m^2\n"
     "interaction_quality_factor = 5\n"
     "[scan]\nsize = 1 um\npixels = 64\nlines = 2\nline_rate = 8 Hz\nsettle_cycles = 3000\n"
-    "channels = height, amplitude, phase\n"
+    "channels = height, error, phase\n"
     "[feedback]\nsetpoint = 80 %\nintegral_gain = 3000 Hz\n";
 
 /* The full noise set of tiptap bench (the z piezo's at its default bandwidth), and the z
@@ -223,7 +223,7 @@ static void paired_difference(const double *a, const double *b, int n, double *d
 
 /* The envelope tier's noise against the every-cycle tier's at the same seeds: per line
  * the variance (so the sd), the mean and the line spectrum in three bands of height,
- * amplitude and phase agree within 3.5 standard errors of their paired ratio or
+ * error and phase agree within 3.5 standard errors of their paired ratio or
  * difference, and within slack (a fraction of the sd; of the ratio) of it, the sd's
  * error being under 4 % (so that the test means something); the envelope tier
  * integrates under half the cycles. */

@@ -17,7 +17,7 @@ static const char *base =
     "interaction_quality_factor = 10\n"
     "[material stiff]\nyoungs_modulus = 3 GPa\nadhesion_energy = 40 mJ/m^2\n"
     "[scan]\nsize = 1 um\npixels = 16\nlines = 1\nline_rate = 40 Hz\nsettle_cycles = 2000\n"
-    "channels = height, amplitude, phase\n"
+    "channels = height, error, phase\n"
     "[feedback]\nsetpoint = 80 %\nintegral_gain = 3000 Hz\n";
 
 /* The estimate lies between the measured error and ten times it. */

@@ -17,7 +17,7 @@ static const char *base =
     "free_amplitude = 20 nm\n"
     "[material stiff]\nyoungs_modulus = 100 GPa\n"
     "[scan]\nsize = 1 um\npixels = 32\nlines = 2\nline_rate = 20 Hz\nsettle_cycles = 3000\n"
-    "channels = height, amplitude, topography, harmonic2, harmonic3, harmonic2_phase\n"
+    "channels = height, error, topography, harmonic2, harmonic3, harmonic2_phase\n"
     "[lockin]\nharmonics = 3\n"
     "[feedback]\nsetpoint = 80 %\nintegral_gain = 3000 Hz\n";
 

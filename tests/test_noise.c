@@ -133,7 +133,7 @@ static const char *base =
     "[material stiff]\nyoungs_modulus = 100 GPa\n"
     "[surface]\ntype = grating\nperiod = 500 nm\nheight = 10 nm\nedge_width = 100 nm\n"
     "[scan]\nsize = 1 um\npixels = 32\nlines = 4\nline_rate = 20 Hz\nsettle_cycles = 2000\n"
-    "channels = height, amplitude\n"
+    "channels = height, error\n"
     "[feedback]\nsetpoint = 80 %\nintegral_gain = 3000 Hz\n";
 
 static tt_scan *scan_on(const char *extra, int threads)

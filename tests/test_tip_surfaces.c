@@ -18,7 +18,7 @@
 static const char *const overrides[] = {
     "scan.size=300 nm", "scan.pixels=12", "scan.lines=12", "scan.line_rate=800 Hz",
     "scan.settle_cycles=200",
-    "scan.channels=height, amplitude, phase, peak_force, indentation, dissipation, topography",
+    "scan.channels=height, error, phase, peak_force, indentation, dissipation, topography",
 };
 
 static int by_name(const void *a, const void *b)

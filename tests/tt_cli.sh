@@ -1,7 +1,7 @@
 # Shared by the tests/cli_*.sh scripts (sourced, not run): a scratch folder removed at
 # exit, ok/bad reporting that sets the exit status, and checks of refused commands.
 tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+trap '[ -n "${TT_KEEP_TMP:-}" ] || rm -rf "$tmp"' EXIT
 fail=0
 ok() { echo "ok   $1"; }
 bad() { echo "FAIL $1"; fail=1; }

@@ -9,9 +9,9 @@
 #include "tiptap/util/error.h"
 #include "tiptap/instrument/scan.h"
 
-/* The scan of base plus extra, run on two threads; *sc receives the scene (the caller
+/* The scan of base plus extra, made but not run; *sc receives the scene (the caller
  * frees both). */
-static inline tt_scan *tt_run_scan(const char *base, const char *extra, tt_scene **sc)
+static inline tt_scan *tt_make_scan(const char *base, const char *extra, tt_scene **sc)
 {
     *sc = tt_scene_alloc();
     assert_int_equal(tt_scene_load_string(*sc, base, "base"), TT_OK);
@@ -20,6 +20,14 @@ static inline tt_scan *tt_run_scan(const char *base, const char *extra, tt_scene
     tt_scan *s;
     if (tt_config_scan_alloc(&s, *sc) != TT_OK)
         fail_msg("%s", tt_error_message());
+    return s;
+}
+
+/* The scan of base plus extra, run on two threads; *sc receives the scene (the caller
+ * frees both). */
+static inline tt_scan *tt_run_scan(const char *base, const char *extra, tt_scene **sc)
+{
+    tt_scan *s = tt_make_scan(base, extra, sc);
     if (tt_scan_run(s, 2, NULL, NULL) != TT_OK)
         fail_msg("%s", tt_error_message());
     return s;

@@ -13,12 +13,17 @@
 
 static void help(void)
 {
-    printf("Usage: tiptap profiles [-o FIG.png] [--title T] [-q] DIR...\n"
+    printf("Usage: tiptap profiles [-o FIG.png] [--title T] [--minus-surface] [--range LO:HI]\n"
+           "                        [-q] DIR...\n"
            "Overlay, for each scan output folder DIR (tiptap scan -o DIR), the heights of\n"
            "its profile line (DIR/profile.csv): trace, retrace and, where the scan recorded\n"
            "the topography channel, the true surface. One panel per folder, titled by it.\n\n"
            "  -o FIG.png   output (default profiles.png)\n"
-           "  --title T    the figure's title\n");
+           "  --title T    the figure's title\n"
+           "  --minus-surface  draw height - true surface (the loop's tracking error, on\n"
+           "               its own scale: needs the topography channel)\n"
+           "  --range LO:HI  the height axis from LO to HI nm in every panel (what lies\n"
+           "               outside is cut off at the frame)\n");
 }
 
 enum { COLS = 64 };
@@ -118,14 +123,33 @@ static const char *base_name(const char *dir)
 
 int cmd_profiles(int argc, char **argv)
 {
-    static const struct option own[] = {{"title", required_argument, NULL, 't'}, {NULL, 0, NULL, 0}};
+    static const struct option own[] = {{"title", required_argument, NULL, 't'},
+                                        {"minus-surface", no_argument, NULL, 'm'},
+                                        {"range", required_argument, NULL, 'r'},
+                                        {NULL, 0, NULL, 0}};
     static const cli_spec spec = {"profiles", CLI_OPT_OUTPUT | CLI_OPT_QUIET, own, "", help};
     cli_args a = {.output = "profiles.png"};
     const char *title = "profile line: trace, retrace, true surface";
-    int c;
-    while ((c = cli_getopt(&spec, &a, argc, argv)) > 0)
+    int c, minus = 0;
+    double lo = NAN, hi = NAN;
+    while ((c = cli_getopt(&spec, &a, argc, argv)) > 0) {
         if (c == 't')
             title = optarg;
+        if (c == 'm')
+            minus = 1;
+        if (c == 'r') {
+            char *end, *mid;
+            lo = tt_strtod(optarg, &mid);
+            hi = *mid == ':' ? tt_strtod(mid + 1, &end) : NAN;
+            if (mid == optarg || *mid != ':' || end == mid + 1 || *end || !(hi > lo)) {
+                cli_args_free(&a);
+                fprintf(stderr, "tiptap profiles: --range '%s': expected LO:HI in nm with LO < HI\n", optarg);
+                return CLI_USAGE;
+            }
+        }
+    }
+    if (minus && strcmp(title, "profile line: trace, retrace, true surface") == 0)
+        title = "profile line: height - true surface, trace and retrace";
     if (c == CLI_EXIT)
         return a.exit;
     int n = argc - optind;
@@ -141,15 +165,42 @@ int cmd_profiles(int argc, char **argv)
         if ((rc = read_profile(argv[optind + i], &p)))
             break;
         char label[300];
-        snprintf(label, sizeof label, "%s: height (nm)", base_name(argv[optind + i]));
+        snprintf(label, sizeof label, "%s: %s (nm)", base_name(argv[optind + i]),
+                 minus ? "height - surface" : "height");
         tt_figure_axes(f, i, i == n - 1 ? "position along the line (nm)" : "", label);
-        if (p.have[3])
+        if (minus && !p.have[3]) {
+            rc = tt_error(TT_EINVAL, "--minus-surface: %s/profile.csv has no topography "
+                                     "(add topography to [scan] channels)", argv[optind + i]);
+            profile_free(&p);
+            break;
+        }
+        for (size_t k = 0; minus && k < p.n; k++) {
+            p.col[1][k] -= p.col[3][k];
+            if (p.have[2])
+                p.col[2][k] -= p.col[3][k];
+        }
+        if (isfinite(lo))
+            tt_figure_ylim(f, i, lo, hi);
+        if (p.have[3] && !minus)
             rc = tt_figure_line(f, i, p.col[0], p.col[3], p.n, i == 0 ? "true surface" : NULL,
                                 7 | TT_PLOT_DASHED);
         if (rc == TT_OK)
             rc = tt_figure_line(f, i, p.col[0], p.col[1], p.n, i == 0 ? "trace" : NULL, 1 | TT_PLOT_THICK);
         if (rc == TT_OK && p.have[2])
             rc = tt_figure_line(f, i, p.col[0], p.col[2], p.n, i == 0 ? "retrace" : NULL, 2 | TT_PLOT_THICK);
+        /* a line the scan never finished (interrupted) is NaN: said in its panel, not
+         * left an empty frame */
+        int any = 0;
+        for (size_t k = 0; k < p.n; k++)
+            any |= isfinite(p.col[1][k]) || (p.have[2] && isfinite(p.col[2][k]));
+        if (rc == TT_OK && !any && p.n > 0) {
+            tt_figure_ylim(f, i, 0, 1);
+            rc = tt_figure_text(f, i, p.col[0][0], 0.5,
+                                "no height on this line: the scan did not finish it (an "
+                                "interrupted run; its lines_finished < lines_total)");
+            fprintf(stderr, "tiptap profiles: %s: the profile line holds no height (the scan did not "
+                            "finish it)\n", argv[optind + i]);
+        }
         profile_free(&p);
     }
     cli_catch_interrupt(); /* the figure is finished, not left half-written */

@@ -18,6 +18,7 @@
 #include "tiptap/io/outfile.h"
 #include "tiptap/config/config.h"
 #include "tiptap/instrument/scan.h"
+#include "tiptap/instrument/scan_scope.h"
 
 static void help(void)
 {
@@ -29,14 +30,17 @@ static void help(void)
            "                     parameters as metadata),\n"
            "                     CHANNEL_trace.gsf, CHANNEL_retrace.gsf (Gwyddion Simple Field,\n"
            "                     SI units), CHANNEL_trace.png, ... (previews with colour bar and\n"
-           "                     scale bar), profile.csv (the [scan] profile_line), scene.ini\n"
-           "                     (the effective scene, every key)\n"
+           "                     scale bar), profile.csv (the [scan] profile_line), scope.csv and\n"
+           "                     scope.png (that line's full-rate record: z, error,\n"
+           "                     amplitude, phase and the true surface at every lock-in\n"
+           "                     block, trace and retrace), scene.ini (the effective scene)\n"
            "  -j, --threads N    lines computed in parallel (default: all cores); the images\n"
            "                     do not depend on it\n"
            CLI_HELP_SET
            "  -q, --quiet        no progress and summary on stderr\n\n"
-           "Channels ([scan] channels): height (m), amplitude (error: amplitude - setpoint, m),\n"
-           "phase (lag, deg), peak_force (N), indentation (m), dissipation (J per cycle),\n"
+           "Channels ([scan] channels): height (m), error (the error signal: lock-in amplitude -\n"
+           "setpoint, m), amplitude (the lock-in amplitude, m), phase (lag, deg), peak_force (N),\n"
+           "indentation (m), dissipation (J per cycle),\n"
            "topography (the true surface, m), harmonic2 ... harmonic8 (amplitude of the\n"
            "deflection's harmonic h, m; needs [lockin] harmonics >= h), harmonic2_phase ...\n"
            "harmonic8_phase (its lag behind cos(h w t), deg). Ctrl-C (or SIGTERM) abandons the\n"
@@ -94,7 +98,8 @@ static void channel_path(char *buf, size_t len, const char *dir, int ch, int r, 
 
 int cli_scan_check_outputs(const char *dir)
 {
-    static const char *const fixed[] = {"scene.ini", "profile.csv", "scan.gwy", ".tiptap.lock"};
+    static const char *const fixed[] = {"scene.ini", "profile.csv", "scan.gwy", "scope.csv",
+                                        "scope.png", ".tiptap.lock"};
     char path[4200];
     int rc = TT_OK;
     for (size_t i = 0; i < sizeof fixed / sizeof fixed[0] && !rc; i++) {
@@ -365,6 +370,7 @@ int cmd_scan(int argc, char **argv)
         return code;
     double t0 = cli_now();
     tt_scan *scan = NULL;
+    tt_scan_scope *scope = NULL;
     tt_scan_params params;
     char path[4096];
     tt_outfile *of = NULL;
@@ -392,6 +398,11 @@ int cmd_scan(int argc, char **argv)
         tt_config_scan_free(&params);
         goto done;
     }
+    if ((rc = tt_scan_scope_alloc(&scope))) {
+        tt_config_scan_free(&params);
+        goto done;
+    }
+    tt_scan_scope_attach(scan, tt_scan_profile_line(scan), scope);
     report_cost(&params, &cost, nthreads, bytes, quiet);
     warn_unused(&params);
     tt_config_scan_free(&params);
@@ -429,6 +440,9 @@ int cmd_scan(int argc, char **argv)
         char saved[1024];
         snprintf(saved, sizeof saved, "%s", tt_error_message());
         int wrc = cli_scan_write_outputs(scan, scene, dir, &written);
+        if (!wrc)
+            wrc = cli_scope_write(scan, scope, dir, &written);
+        cli_scope_warn("scan", scan, scope);
         if (wrc && !rc)
             rc = wrc;
         else if (rc)
@@ -450,8 +464,7 @@ int cmd_scan(int argc, char **argv)
         /* the reason from the scan's own test: a tier that ran yet integrated every
          * cycle (a grazing tip) is not a fallback */
         const char *why = !tt_scan_envelope_tier(&params)
-                              ? ": every cycle, since Q is below 30 or above 3000 "
-                                "(docs/dynamics.md)"
+                              ? ": every cycle, since Q is below 30 (docs/dynamics.md)"
                           : done < all ? ": the rest followed on the cycle map's model"
                                        : ": the model held on none (docs/dynamics.md)";
         fprintf(stderr, "cycles_integrated = %ld (%.1f %%; envelope tier%s)\n", done,
@@ -499,7 +512,7 @@ int cmd_scan(int argc, char **argv)
             cli_warn_estimate("scan", &params.solver, params.cantilever.A0, est.height_max,
                               "amplitude", est.amplitude_max, est.phase_max);
         fprintf(stderr, "output = %s: %d files (scan.gwy: every channel, trace and retrace; "
-                        "CHANNEL_trace/retrace.gsf and .png; profile.csv; scene.ini)\n",
+                        "CHANNEL_trace/retrace.gsf and .png; profile.csv; scope.csv and .png; scene.ini)\n",
                 dir, written);
         if (tt_scan_clamped(scan))
             fprintf(stderr, "warning: the z piezo reached the end of its range ([feedback] z_range)\n");
@@ -509,6 +522,7 @@ done:
         cli_fail(rc, NULL);
     cli_unlock_folder(dir, lock);
     tt_scan_free(scan);
+    tt_scan_scope_free(scope);
     tt_scene_free(scene);
     return rc == TT_OK ? CLI_OK : rc == TT_EINTR ? CLI_INTERRUPTED : CLI_FAIL;
 }

@@ -29,7 +29,10 @@ static void help(void)
            CLI_HELP_SET
            "  -q, --quiet        no summary on stderr\n\n"
            "Positions are along the axis into the sample, the base at rest at 0; the\n"
-           "deflection is tip - base, what a beam-deflection detector measures.\n"
+           "deflection is tip - base, what a beam-deflection detector measures. [noise] as in\n"
+           "a scan (seed, temperature, points, detector, z_piezo, z_piezo_bandwidth): the\n"
+           "thermal force moves the tip, z piezo noise through its bandwidth the sample, and\n"
+           "the detector's noise is added to deflection_nm only.\n"
            "stderr ends with the run time, the energy balance (the largest energy-balance\n"
            "residual of a cycle relative to the free drive work per cycle, pi c w A0^2: zero\n"
            "for the exact solution, a check) and the error estimate: twice the largest\n"
@@ -47,7 +50,7 @@ static void help(void)
 static int series_push(tt_decimate *S, const tt_trace_sample *x)
 {
     const double v[7] = {x->t * 1e6, x->base * 1e9, x->tip * 1e9, x->sample * 1e9,
-                         (x->tip - x->base) * 1e9, x->force * 1e9, x->pressure * 1e-9};
+                         x->deflection * 1e9, x->force * 1e9, x->pressure * 1e-9};
     return tt_decimate_push(S, v);
 }
 
@@ -105,7 +108,7 @@ static void write_row(FILE *f, const tt_trace_row *r, int ramp)
     for (size_t k = 0; k < r->nsamples; k++) {
         const tt_trace_sample *x = &r->samples[k];
         fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d", x->t * 1e6, x->base * 1e9,
-                x->tip * 1e9, x->sample * 1e9, (x->tip - x->base) * 1e9, x->force * 1e9,
+                x->tip * 1e9, x->sample * 1e9, x->deflection * 1e9, x->force * 1e9,
                 x->contact_radius * 1e9, x->pressure * 1e-9, x->contact);
         if (ramp)
             fprintf(f, ",%.9g", r->ramp_value);
@@ -160,7 +163,7 @@ static int companion_step(trace_est *e, const tt_trace_row *r)
     if (rc)
         return rc;
     for (size_t k = 0; k < r->nsamples && k < q.nsamples; k++) {
-        double a = r->samples[k].tip - r->samples[k].base, b = q.samples[k].tip - q.samples[k].base;
+        double a = r->samples[k].deflection, b = q.samples[k].deflection;
         e->deflection_rel = fmax(e->deflection_rel, 2 * fabs(a - b) / e->A0);
     }
     double ph = fmod(fabs(r->summary.phase - q.summary.phase) * 180 / M_PI, 360);

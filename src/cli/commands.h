@@ -29,6 +29,15 @@ int cli_scan_check_outputs(const char *dir);
  * made, and locked for command cmd (tt_folder_lock; *lock for cli_unlock_folder). */
 int cli_scan_folder_take(const char *cmd, const char *dir, int *lock);
 int cmd_profiles(int argc, char **argv);
+int cmd_live(int argc, char **argv);
+/* A line's full-rate record of scan into dir (cli_scope.c): scope.csv (every quantity,
+ * SI) and scope.png (z and the true surface, error, amplitude against the setpoint,
+ * phase against time, and a zoom on the ring or the largest error); nothing when the
+ * record holds no line. *written counts the files. */
+int cli_scope_write(const tt_scan *scan, const tt_scan_scope *sc, const char *dir, int *written);
+/* The warning on stderr, naming command cmd, when the record shows the loop oscillating,
+ * with the gain the loop's model suggests (tt_scan_oscillation). */
+void cli_scope_warn(const char *cmd, const tt_scan *scan, const tt_scan_scope *sc);
 
 /* Exit codes: 0 success, 1 bad input or failure, 2 usage, 130 interrupted (Ctrl-C);
  * 143 stopped by SIGTERM (main turns CLI_INTERRUPTED into 128 + the signal). */

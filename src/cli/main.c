@@ -21,6 +21,7 @@ static const struct {
     {"scan", cmd_scan, "closed-loop tapping image: height, phase, force, dissipation"},
     {"sweep", cmd_sweep, "parameter grid: steady points, approach curves or scans, on every core"},
     {"profiles", cmd_profiles, "overlay the profile lines of scans: trace, retrace, true surface"},
+    {"live", cmd_live, "the instrument's console in a browser: scope, image, gains (docs/live.md)"},
     {"accuracy", cmd_accuracy, "work-precision: error against run time of each solver setting"},
     {"bench", cmd_bench, "benchmark: cycles per second and accuracy on the standard scene"},
     {"keys", cmd_keys, "list every scene section and key with unit and default"},

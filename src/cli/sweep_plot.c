@@ -23,6 +23,47 @@ static double field(const char *row, int col)
     return end == row ? NAN : v;
 }
 
+/* Points that did not settle within [approach] max_cycles (the CSV's settled = 0),
+ * gathered per panel and drawn over the lines as marks: their values are where the run
+ * stopped, not a steady state. */
+typedef struct {
+    double *x[3], *y[3];
+    size_t n[3], cap[3];
+} unsettled;
+
+static int mark(unsettled *u, int p, double x, double y)
+{
+    if (u->n[p] == u->cap[p]) {
+        size_t cap = u->cap[p] ? 2 * u->cap[p] : 64;
+        double *nx = realloc(u->x[p], cap * sizeof *nx);
+        if (nx)
+            u->x[p] = nx;
+        double *ny = realloc(u->y[p], cap * sizeof *ny);
+        if (ny)
+            u->y[p] = ny;
+        if (!nx || !ny)
+            return tt_error(TT_ENOMEM, "out of memory");
+        u->cap[p] = cap;
+    }
+    u->x[p][u->n[p]] = x;
+    u->y[p][u->n[p]++] = y;
+    return TT_OK;
+}
+
+/* The marks drawn (the legend names them once), and freed. */
+static void draw_unsettled(tt_figure *f, unsettled *u)
+{
+    int first = 1;
+    for (int p = 0; p < 3; p++) {
+        if (u->n[p])
+            tt_figure_line(f, p, u->x[p], u->y[p], u->n[p],
+                           first ? "not settled within max_cycles" : NULL, 7 | TT_PLOT_POINTS);
+        first &= !u->n[p];
+        free(u->x[p]);
+        free(u->y[p]);
+    }
+}
+
 /* Series of a combination: its levels of every key but x and the contrast key. */
 static size_t series_of(const tt_sweep *g, size_t i, size_t x, long contrast, size_t *count)
 {
@@ -82,7 +123,9 @@ static int plot_points(const sweep_job *job, const sweep_results *r, tt_figure *
     const tt_sweep *g = job->grid;
     size_t nk = tt_sweep_keys(g), x = x_key(g, contrast); /* x < nk: sweep_plot_check */
     int base = 1 + (int)nk + (job->kind == SWEEP_SETPOINT), ycol = job->kind == SWEEP_SETPOINT ? base : base + 1;
-    int cols[3] = {ycol, base + 2, base + 7};
+    int cols[3] = {ycol, base + 2, base + 7}, settled = base + 12;
+    unsettled u;
+    memset(&u, 0, sizeof u);
     size_t nx = tt_sweep_levels(g, x), ns, nc = contrast >= 0 ? tt_sweep_levels(g, (size_t)contrast) : 1;
     series_of(g, 0, x, contrast, &ns);
     double *xs = malloc(nx * sizeof *xs), *ys = malloc(nx * sizeof *ys);
@@ -105,19 +148,24 @@ static int plot_points(const sweep_job *job, const sweep_results *r, tt_figure *
             if (m)
                 series_label(g, idx[0], x, contrast, label, sizeof label);
             for (int p = 0; p < 3 && m; p++) {
-                for (size_t j = 0; j < m; j++) {
+                for (size_t j = 0; j < m && !rc; j++) {
                     xs[j] = tt_sweep_value(g, idx[j], x);
                     ys[j] = field(r->text[idx[j]], cols[p]);
+                    int ok = field(r->text[idx[j]], settled) == 1;
                     if (contrast >= 0) {
                         /* the reference: same levels but the contrast key's first */
                         double y0 = NAN;
                         for (size_t q = 0; q < nref; q++)
-                            if (tt_sweep_level(g, ref[q], x) == tt_sweep_level(g, idx[j], x))
+                            if (tt_sweep_level(g, ref[q], x) == tt_sweep_level(g, idx[j], x)) {
                                 y0 = field(r->text[ref[q]], cols[p]);
+                                ok &= field(r->text[ref[q]], settled) == 1;
+                            }
                         /* apparent height: where the setpoint needs a larger rest
                          * separation the feedback retracts the sample, as over a bump */
                         ys[j] -= y0;
                     }
+                    if (!ok)
+                        rc = mark(&u, p, xs[j], ys[j]);
                 }
                 tt_figure_line(f, p, xs, ys, m, p == 0 ? label : NULL, (unsigned)(s * (nc - 1) + c) % 8 + 1);
             }
@@ -135,6 +183,7 @@ static int plot_points(const sweep_job *job, const sweep_results *r, tt_figure *
         tt_figure_hline(f, 1, 0, NULL);
     } else
         tt_figure_hline(f, 1, 90, NULL);
+    draw_unsettled(f, &u);
     free(xs);
     free(ys);
     free(idx);
@@ -146,8 +195,10 @@ static int plot_points(const sweep_job *job, const sweep_results *r, tt_figure *
 static int plot_curves(const sweep_job *job, const sweep_results *r, tt_figure *f)
 {
     const tt_sweep *g = job->grid;
-    int base = 1 + (int)tt_sweep_keys(g), cols[3] = {base + 1, base + 2, base + 4};
+    int base = 1 + (int)tt_sweep_keys(g), cols[3] = {base + 1, base + 2, base + 4}, settled = base + 12;
     int rc = TT_OK;
+    unsettled u;
+    memset(&u, 0, sizeof u);
     for (size_t i = 0; i < r->n && !rc; i++) {
         const char *t = r->text[i];
         size_t m = 0;
@@ -163,9 +214,12 @@ static int plot_curves(const sweep_job *job, const sweep_results *r, tt_figure *
             style |= TT_PLOT_DASHED;
         for (int p = 0; p < 3 && !rc; p++) {
             size_t j = 0;
-            for (const char *q = t; q && *q && j < m; q = strchr(q, '\n'), q = q ? q + 1 : q) {
+            for (const char *q = t; q && *q && j < m && !rc; q = strchr(q, '\n'), q = q ? q + 1 : q) {
                 xs[j] = field(q, base);
-                ys[j++] = field(q, cols[p]);
+                ys[j] = field(q, cols[p]);
+                if (field(q, settled) != 1)
+                    rc = mark(&u, p, xs[j], ys[j]);
+                j++;
             }
             tt_figure_line(f, p, xs, ys, j, p == 0 ? label : NULL, style);
         }
@@ -176,6 +230,7 @@ static int plot_curves(const sweep_job *job, const sweep_results *r, tt_figure *
     tt_figure_axes(f, 1, "rest separation z (nm)", "phase lag (deg)");
     tt_figure_hline(f, 1, 90, NULL);
     tt_figure_axes(f, 2, "rest separation z (nm)", "peak force (nN)");
+    draw_unsettled(f, &u);
     return rc;
 }
 

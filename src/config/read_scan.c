@@ -358,12 +358,10 @@ size_t tt_config_scan_unused(const tt_scan_params *p, size_t *idx, size_t max)
     return k;
 }
 
-/* [noise] and [scan] lines_mode. */
-static int read_noise(const tt_scene *s, tt_scan_params *p)
+int tt_config_noise(const tt_scene *s, const tt_solver *solver, double fd, tt_scan_noise *n)
 {
     int rc;
     long seed, points;
-    tt_scan_noise *n = &p->noise;
     if ((rc = tt_scene_get_int(s, "noise", NULL, "seed", &seed)) ||
         (rc = tt_scene_get_int(s, "noise", NULL, "points", &points)) ||
         (rc = tt_scene_get_double(s, "noise", NULL, "temperature", &n->temperature)) ||
@@ -373,19 +371,28 @@ static int read_noise(const tt_scene *s, tt_scan_params *p)
         return rc;
     n->seed = (uint64_t)seed;
     n->points = (int)points;
-    if (n->temperature > 0 && p->solver.method == TT_METHOD_RK4 && p->solver.steps_per_cycle % n->points)
+    if (n->temperature > 0 && solver->method == TT_METHOD_RK4 && solver->steps_per_cycle % n->points)
         return tt_scene_fail(s, "noise", NULL, "points",
                              "rk4's steps_per_cycle (%d) must be a multiple of it (%d)",
-                             p->solver.steps_per_cycle, n->points);
+                             solver->steps_per_cycle, n->points);
     /* the z piezo's noise is drawn once per drive cycle (linear between): its band must
      * lie below that rate's Nyquist frequency */
     static const char *const band[] = {"noise.z_piezo_bandwidth", "cantilever.drive_frequency",
                                        "cantilever.resonance_frequency", NULL};
-    if (n->z_piezo > 0 && n->z_bandwidth > 0.5 * p->cantilever.fd)
+    if (n->z_piezo > 0 && n->z_bandwidth > 0.5 * fd)
         return tt_scene_fail_set(s, band,
                                  "the z piezo's noise bandwidth (%.4g kHz) is above half the drive "
                                  "frequency (%.4g kHz): the noise is drawn once per drive cycle",
-                                 n->z_bandwidth * 1e-3, 0.5e-3 * p->cantilever.fd);
+                                 n->z_bandwidth * 1e-3, 0.5e-3 * fd);
+    return TT_OK;
+}
+
+/* [noise] and [scan] lines_mode. */
+static int read_noise(const tt_scene *s, tt_scan_params *p)
+{
+    int rc = tt_config_noise(s, &p->solver, p->cantilever.fd, &p->noise);
+    if (rc)
+        return rc;
     const char *mode = tt_scene_get_string(s, "scan", NULL, "lines_mode");
     p->continuous = mode && strcmp(mode, "continuous") == 0;
     return TT_OK;

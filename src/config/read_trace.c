@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "tiptap/config/config.h"
+#include "tiptap/config/solver_scene.h"
 #include "tiptap/util/error.h"
 
 /* Parse text as a value of the ramped key "section.key" or "section.name.key": the
@@ -53,6 +54,11 @@ int tt_config_trace(const tt_scene *s, tt_trace_params *p)
         (rc = tt_scene_get_double(s, "trace", NULL, "separation_end", &p->separation_end)))
         return rc;
     if ((rc = tt_config_check_rk4(s, "trace", fmin(p->separation, p->separation_end))))
+        return rc;
+    tt_solver solver;
+    tt_cantilever c;
+    if ((rc = tt_solver_from_scene(&solver, s)) || (rc = tt_config_cantilever(s, &c)) ||
+        (rc = tt_config_noise(s, &solver, c.fd, &p->noise)))
         return rc;
     if (!p->ramp)
         return TT_OK;

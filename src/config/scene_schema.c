@@ -185,9 +185,10 @@ static const tt_scene_key scan_keys[] = {
      "lines per second; each line is a trace and a retrace, half the period each"},
     {"fast_axis", TT_KEY_ENUM, 0, "x", 0, 0, 0, "x|y", "direction of the fast scan"},
     {"retrace", TT_KEY_BOOL, 0, "yes", 0, 0, 0, NULL, "record the retrace images too"},
-    {"channels", TT_KEY_STRING, 0, "height, amplitude, phase, peak_force, indentation, dissipation", 0,
+    {"channels", TT_KEY_STRING, 0, "height, error, amplitude, phase, peak_force, indentation, dissipation", 0,
      0, 0, NULL,
-     "what to record: height, amplitude, phase, peak_force, indentation, dissipation, topography, "
+     "what to record: height, error (amplitude - setpoint), amplitude (the lock-in's), phase, "
+     "peak_force, indentation, dissipation, topography, "
      "harmonic2 to harmonic8 (need [lockin] harmonics >= h), harmonic2_phase to harmonic8_phase"},
     {"profile_line", TT_KEY_INT, 0, "-1", -1, 16383, 0, NULL,
      "line written to profile.csv (-1: the middle line)"},

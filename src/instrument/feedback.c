@@ -14,6 +14,17 @@ void tt_feedback_init(tt_feedback *f, const tt_feedback_params *p, double z0)
     f->clamped = 0;
 }
 
+void tt_feedback_retune(tt_feedback *f, const tt_feedback_params *p)
+{
+    f->z0 -= f->ki * f->integral;
+    f->integral = 0;
+    f->setpoint = p->setpoint;
+    f->kp = p->kp;
+    f->ki = p->ki;
+    f->z_min = -0.5 * p->z_range;
+    f->z_max = 0.5 * p->z_range;
+}
+
 double tt_feedback_update(tt_feedback *f, double amplitude, double dt)
 {
     double e = amplitude - f->setpoint;

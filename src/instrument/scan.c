@@ -17,8 +17,8 @@
 static const struct {
     const char *name, *unit;
 } channel_info[TT_CH_COUNT] = {
-    {"height", "m"},     {"amplitude", "m"},   {"phase", "deg"},       {"peak_force", "N"},
-    {"indentation", "m"}, {"dissipation", "J"}, {"topography", "m"},
+    {"height", "m"},     {"error", "m"},       {"phase", "deg"},       {"peak_force", "N"},
+    {"indentation", "m"}, {"dissipation", "J"}, {"topography", "m"},   {"amplitude", "m"},
     {"harmonic2", "m"},  {"harmonic3", "m"},   {"harmonic4", "m"},     {"harmonic5", "m"},
     {"harmonic6", "m"},  {"harmonic7", "m"},   {"harmonic8", "m"},
     {"harmonic2_phase", "deg"}, {"harmonic3_phase", "deg"}, {"harmonic4_phase", "deg"},
@@ -31,7 +31,7 @@ const char *tt_scan_channel_unit(int i) { return i >= 0 && i < TT_CH_COUNT ? cha
 
 int tt_scan_channel_harmonic(int i)
 {
-    if (i == 1 || i == 2)
+    if (i == 1 || i == 2 || i == 7)
         return 1;
     if (i >= TT_CH_HARMONIC_INDEX && i < TT_CH_HARMONIC_INDEX + NHARM)
         return i - TT_CH_HARMONIC_INDEX + 2;
@@ -59,8 +59,8 @@ int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t l
                 found = i;
         if (found < 0) {
             snprintf(why, len,
-                     "unknown channel '%.*s'; channels are height, amplitude, phase, peak_force, "
-                     "indentation, dissipation, topography, harmonic2 to harmonic%d, "
+                     "unknown channel '%.*s'; channels are height, error, amplitude, phase, "
+                     "peak_force, indentation, dissipation, topography, harmonic2 to harmonic%d, "
                      "harmonic2_phase to harmonic%d_phase",
                      (int)(e - p), p, TT_CH_HARMONIC_MAX, TT_CH_HARMONIC_MAX);
             return -1;
@@ -100,6 +100,16 @@ static int build_contacts(tt_scan *S, const tt_material *m, size_t n)
     return TT_OK;
 }
 
+int tt_scan_piezo_noise(const tt_scan_noise *n, const tt_cantilever *c, tt_noise_ou *zn)
+{
+    *zn = (tt_noise_ou){0, 0, 0};
+    if (n->z_piezo > 0 && tt_noise_ou_init(zn, n->z_piezo, n->z_bandwidth, c->T))
+        return tt_error(TT_EINVAL, "[noise] z_piezo_bandwidth: %g Hz is not above 0 and at most "
+                                   "half the drive frequency (%g Hz)",
+                        n->z_bandwidth, 0.5 * c->fd);
+    return TT_OK;
+}
+
 /* Copy the parameters; the lock-in demodulates only up to the highest harmonic a
  * channel records, since nothing else reads the rest. */
 static int take_params(tt_scan *S, const tt_scan_params *p)
@@ -117,12 +127,9 @@ static int take_params(tt_scan *S, const tt_scan_params *p)
     S->continuous = p->continuous;
     /* white noise of one-sided density n sampled at rate fs has variance n^2 fs / 2 */
     S->sd = p->noise.detector * sqrt(0.5 * p->lockin.samples_per_period / p->cantilever.T);
-    /* the z piezo's noise through its bandwidth, sampled at each drive cycle's start */
-    if (p->noise.z_piezo > 0 &&
-        tt_noise_ou_init(&S->zn, p->noise.z_piezo, p->noise.z_bandwidth, p->cantilever.T))
-        return tt_error(TT_EINVAL, "[noise] z_piezo_bandwidth: %g Hz is not above 0 and at most "
-                                   "half the drive frequency (%g Hz)",
-                        p->noise.z_bandwidth, 0.5 * p->cantilever.fd);
+    int rc = tt_scan_piezo_noise(&p->noise, &p->cantilever, &S->zn);
+    if (rc)
+        return rc;
     S->lockin = p->lockin;
     S->lockin.drive_frequency = p->cantilever.fd;
     S->lockin.harmonics = 1;
@@ -199,6 +206,7 @@ int tt_scan_alloc(tt_scan **out, const tt_scan_params *p)
                 S->img[r][c][i] = NAN;
         }
     S->collapse_line = S->collapse_px = -1;
+    S->watch_line = -1;
     S->line_done = calloc((size_t)S->raster.lines, 1);
     if (!S->line_done) {
         tt_scan_free(S);
@@ -212,6 +220,9 @@ void tt_scan_free(tt_scan *S)
 {
     if (!S)
         return;
+    if (S->step)
+        tt_scan_worker_free(S->step);
+    free(S->step);
     for (int r = 0; r < 2; r++)
         for (int c = 0; c < TT_CH_COUNT; c++)
             free(S->img[r][c]);
@@ -231,13 +242,14 @@ void tt_scan_free(tt_scan *S)
     free(S);
 }
 
-static void worker_free(worker *W)
+void tt_scan_worker_free(worker *W)
 {
     tt_sim_free(W->sim);
     tt_lockin_free(W->lockin);
     free(W->samples);
     free(W->y);
     tt_envelope_free(W->env);
+    tt_graze_free(W->graze);
     tt_lockin_free(W->lockin_save);
     free(W->y_save);
     free(W->obs);
@@ -245,15 +257,13 @@ static void worker_free(worker *W)
 }
 
 /* The envelope tier falls back to every cycle at low Q (the envelope follows the free
- * transient's Q / pi cycles; below Q 30 there are too few to skip) and at very high Q
- * (above 3000 the envelope drifts over stretches by more than the check of their last
- * cycle sees: at Q 1e4 the images erred 1.4 times the estimate, tests/test_envelope.c).
- * Noise runs on it: thermal and detector noise to first order, the z piezo's (smooth
- * below its bandwidth) as the sample's position it is (docs/dynamics.md, "Noise on the
- * envelope tier"). */
+ * transient's Q / pi cycles; below Q 30 there are too few to skip; above Q 3000 its
+ * checks bound a stretch's drift instead, scan_envelope.c). Noise runs on it: thermal
+ * and detector noise to first order, the z piezo's (smooth below its bandwidth) as the
+ * sample's position it is (docs/dynamics.md, "Noise on the envelope tier"). */
 static int envelope_allowed(const tt_cantilever *c)
 {
-    return c->Q >= 30 && c->Q <= 3000;
+    return c->Q >= 30;
 }
 
 /* The averaged tier takes the drive, the damping and the tip-sample force for small
@@ -302,10 +312,43 @@ static int second_order(const tt_scan *S)
     return S->noise.temperature > 0 || S->zn.sd > 0;
 }
 
+/* What the envelope model's shape follows from the noise: 1, the travel as an input (z
+ * piezo noise); 2, second order. */
+static int model_shape(const tt_scan *S)
+{
+    return (S->zn.sd > 0 ? 1 : 0) | (second_order(S) ? 2 : 0);
+}
+
 static int envelope_alloc(tt_scan *S, worker *W)
 {
+    W->env_shape = model_shape(S);
     size_t n = (size_t)S->lockin.samples_per_period * (size_t)S->lockin.periods_per_block;
     int rc = tt_envelope_alloc(&W->env, &S->cantilever, S->lockin.samples_per_period);
+    /* the gaps around the closest approach, from which a grazing tip's branch and the
+     * time of its jump-in are predicted (tiptap/solver/graze.h) */
+    if (!rc)
+        rc = tt_envelope_set_probes(W->env, TT_GRAZE_PROBES);
+    if (!rc) {
+        const int m = tt_lockin_components(W->lockin);
+        double *scale = calloc(2 * ((size_t)m + TT_ENV_EXTRA), sizeof *scale);
+        if (!scale)
+            return tt_error_nomem("a scan thread's envelope tier");
+        double *floor = scale + m + TT_ENV_EXTRA;
+        const tt_cantilever *c = &S->cantilever;
+        for (int i = 0; i < m; i++)
+            scale[i] = c->A0;
+        scale[m + TT_ENV_PEAK] = c->k * c->A0;
+        scale[m + TT_ENV_INDENT] = c->A0;
+        scale[m + TT_ENV_ETS] = c->k * c->A0 * c->A0;
+        /* a touch's peak force and greatest indentation scatter from one grazing touch
+         * to the next by up to 4e-5 k A0 and 1e-6 A0 (the maximum sought on each step's
+         * samples; the blend's matrix): held to 1e-4 and 1e-5 of their scales, 8 pN and
+         * 0.2 pm on the standard cantilever, which a pixel's hundreds of cycles average */
+        floor[m + TT_ENV_PEAK] = 1e-4;
+        floor[m + TT_ENV_INDENT] = 1e-5;
+        rc = tt_graze_alloc(&W->graze, &S->cantilever, m + TT_ENV_EXTRA, scale, floor);
+        free(scale);
+    }
     if (!rc)
         rc = tt_lockin_alloc(&W->lockin_save, &S->lockin);
     if (rc)
@@ -366,10 +409,37 @@ static int averaged_tables(tt_scan *S)
     return TT_OK;
 }
 
+int tt_scan_worker_retune(tt_scan *S, worker *W)
+{
+    const int env = envelope_usable(S, &S->solver);
+    if (W->averaged)
+        return TT_OK; /* noiseless (docs/dynamics.md, Averaged) */
+    /* the model's inputs and order follow the noise: made anew when they change */
+    if (W->env && (!env || W->env_shape != model_shape(S))) {
+        tt_envelope_free(W->env);
+        tt_graze_free(W->graze);
+        tt_lockin_free(W->lockin_save);
+        free(W->y_save);
+        free(W->obs);
+        W->env = NULL;
+        W->graze = NULL;
+        W->lockin_save = NULL;
+        W->y_save = W->obs = NULL;
+    }
+    int rc = tt_sim_set_thermal(W->sim, env ? 0 : S->noise.temperature, S->noise.points);
+    if (rc || !env)
+        return rc;
+    if (!W->env)
+        return envelope_alloc(S, W);
+    return tt_envelope_set_noise(W->env, 2 * S->cantilever.c * TT_BOLTZMANN * S->noise.temperature,
+                                 S->sd);
+}
+
 static int worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)
 {
     memset(W, 0, sizeof *W);
     W->tolerance = solver->tolerance;
+    W->model_tol = 10 * solver->tolerance;
     int rc;
     if ((rc = tt_sim_alloc(&W->sim, &S->cantilever, solver)) ||
         (rc = tt_sim_set_thermal(W->sim, envelope_usable(S, solver) ? 0 : S->noise.temperature,
@@ -447,6 +517,7 @@ static void engage(tt_scan *S, worker *W, long line, long nc, uint64_t kz, line_
         return;
     /* the z piezo's noise starts each line from its stationary distribution */
     st->zn = tt_noise_ou_first(&S->zn, kz);
+    W->s_ref = S->setpoint;
     /* heights are reported against the surface's own zero, the piezo's range centred
      * on it; creep follows the whole line */
     const tt_feedback_params fp = {S->setpoint, S->kp, S->ki, S->z_range};
@@ -496,15 +567,14 @@ static line_ctx line_context(tt_scan *S, worker *W, long line)
     L.N = S->lockin.samples_per_period;
     L.nc = tt_raster_cycles_per_direction(&S->raster, S->cantilever.T);
     L.piezo = !tt_piezo_ideal(&S->inst.piezo);
-    L.s_ref = S->setpoint;
     /* The model's error per cycle, relative to the free amplitude: held to ten times
      * the stepper's tolerance, below what the integration itself errs per cycle (13 to
      * 16 times the tolerance at 1e-8 on the standard scene, 5 to 20 times at 1e-6 and
      * 1e-7: one cycle against one at 1e-12 from the same state). The worker's own
-     * tolerance: the error estimate's companion line tightens the model with the
+     * model tolerance: the error estimate's companion line tightens the model with the
      * integration, or the model's error (at setpoint-10 100 times the integration's in
      * amplitude) would cancel out of the companion's difference */
-    L.tol = 10 * W->tolerance;
+    L.tol = W->model_tol;
     /* With noise on, the state and the sample wander from the anchor by the noise (the
      * thermal force alone moves the state by 1.25 pm a cycle, 2000 times the tolerance
      * at the default), and the model's error grows with the square of that reach: it is
@@ -537,6 +607,7 @@ int tt_scan_line_run(tt_scan *S, worker *W, long line, const line_out *out, scan
      * no settling. */
     const int carry = S->continuous && W->engaged;
     engage(S, W, line, L.nc, L.kz, &st);
+    L.s_ref = W->s_ref;
     int contact;
     tt_sim_get_state(W->sim, &st.x[0], &st.x[1], &contact);
     tt_sim_set_sampling(W->sim, L.N, W->samples);
@@ -613,6 +684,58 @@ static int run_line(tt_scan *S, worker *W, long line, const line_out *out, long 
     return rc;
 }
 
+/* What one line added to the scan's totals. */
+typedef struct {
+    long cycles, integrated;
+    double worst;
+    int clamped;
+} line_tally;
+
+/* One line on worker W into the scan's images, recording into W->scope when it is set
+ * (the scope is closed after the line); tally receives what the line ran. */
+static int scan_line(tt_scan *S, worker *W, long line, tt_scan_scope *scope, line_tally *t)
+{
+    line_out images;
+    memcpy(images.img, S->img, sizeof images.img);
+    images.packed = 0;
+    memset(t, 0, sizeof *t);
+    int rc = scope ? tt_scan_scope_begin(scope, S, line) : TT_OK;
+    if (rc)
+        return rc;
+    W->scope = scope;
+    rc = run_line(S, W, line, &images, &t->cycles, &t->integrated, &t->worst, &t->clamped);
+    W->scope = NULL;
+    if (scope)
+        tt_scan_scope_end(scope, rc == TT_OK);
+    return rc;
+}
+
+/* A line's totals into the scan's; 1 when it finished (counted done once). */
+static int line_account(tt_scan *S, long line, int rc, const line_tally *t)
+{
+    S->cycles += t->cycles;
+    S->integrated += t->integrated;
+    if (t->worst > S->worst_residual)
+        S->worst_residual = t->worst;
+    S->clamped |= t->clamped;
+    if (rc != TT_OK)
+        return 0;
+    if (!S->line_done[line]) {
+        S->line_done[line] = 1;
+        S->lines_done++;
+    }
+    return 1;
+}
+
+/* The greatest indentation of each material from a worker's: the same whichever
+ * worker ran which line. */
+static void merge_indent(tt_scan *S, const worker *W)
+{
+    for (size_t m = 0; W->indent && m < S->nmaterials; m++)
+        if (W->indent[m] > S->indent[m])
+            S->indent[m] = W->indent[m];
+}
+
 int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done, long total),
                 void *user)
 {
@@ -628,9 +751,6 @@ int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done,
     int rc = TT_OK;
     for (int i = 0; i < threads && rc == TT_OK; i++)
         rc = worker_alloc(S, &W[i], &S->solver);
-    line_out images;
-    memcpy(images.img, S->img, sizeof images.img);
-    images.packed = 0;
     if (rc == TT_OK) {
         S->status = TT_OK;
         long total = S->raster.lines;
@@ -642,20 +762,11 @@ int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done,
             if (failed || S->line_done[line] || tt_cancel_requested())
                 continue;
             worker *w = &W[omp_get_thread_num()];
-            long cycles = 0, integrated = 0;
-            double worst = 0;
-            int clamped = 0;
-            int lrc = run_line(S, w, line, &images, &cycles, &integrated, &worst, &clamped);
+            line_tally t;
+            int lrc = scan_line(S, w, line, line == S->watch_line ? S->watch : NULL, &t);
 #pragma omp critical(tt_scan_result)
             {
-                S->cycles += cycles;
-                S->integrated += integrated;
-                if (worst > S->worst_residual)
-                    S->worst_residual = worst;
-                S->clamped |= clamped;
-                if (lrc == TT_OK) {
-                    S->line_done[line] = 1;
-                    S->lines_done++;
+                if (line_account(S, line, lrc, &t)) {
                     if (progress)
                         progress(user, S->lines_done, total);
                 } else if (lrc != TT_EINTR && S->status == TT_OK) {
@@ -670,15 +781,52 @@ int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done,
             rc = tt_error(TT_EINTR, "interrupted after %ld of %ld lines", S->lines_done,
                           S->raster.lines);
     }
-    /* the greatest of each thread's: the same whichever thread ran which line */
     for (int i = 0; i < threads; i++)
-        for (size_t m = 0; W[i].indent && m < S->nmaterials; m++)
-            if (W[i].indent[m] > S->indent[m])
-                S->indent[m] = W[i].indent[m];
+        merge_indent(S, &W[i]);
     for (int i = 0; i < threads; i++)
-        worker_free(&W[i]);
+        tt_scan_worker_free(&W[i]);
     free(W);
     return rc;
+}
+
+int tt_scan_step(tt_scan *S, long line, tt_scan_scope *scope)
+{
+    if (line < 0 || line >= S->raster.lines)
+        return tt_error(TT_EINVAL, "line %ld: the scan's lines are 0 to %ld", line, S->raster.lines - 1);
+    if (!S->step) {
+        S->step = malloc(sizeof *S->step);
+        if (!S->step)
+            return tt_error_nomem("the scan's stepping workspace");
+        int rc = worker_alloc(S, S->step, &S->solver);
+        if (rc) {
+            tt_scan_worker_free(S->step);
+            free(S->step);
+            S->step = NULL;
+            return rc;
+        }
+    }
+    line_tally t;
+    int rc = scan_line(S, S->step, line, scope, &t);
+    line_account(S, line, rc, &t);
+    merge_indent(S, S->step);
+    return rc;
+}
+
+void tt_scan_disengage(tt_scan *S)
+{
+    if (S->step)
+        S->step->engaged = 0;
+}
+
+int tt_scan_line_values(const tt_scan *S, int ch, int retrace, long line, double *out)
+{
+    const double *img = tt_scan_image(S, ch, retrace);
+    if (!img || line < 0 || line >= S->raster.lines)
+        return tt_error(TT_EINVAL, "no %s image of line %ld (%s)", tt_scan_channel_name(ch), line,
+                        img ? "no such line" : "channel not recorded");
+    for (long px = 0; px < S->raster.pixels; px++)
+        out[px] = img[tt_raster_index(&S->raster, line, px)];
+    return TT_OK;
 }
 
 /* One companion line on a solver setting: height, amplitude and phase of trace and
@@ -694,9 +842,16 @@ static int companion_line(tt_scan *S, const tt_solver *solver, double *buf)
         for (int r = 0; r < (S->raster.retrace ? 2 : 1); r++)
             out.img[r][c] = buf + (size_t)(2 * c + r) * (size_t)px;
     int rc = worker_alloc(S, &W, solver);
+    /* The tight line's model is held ten times tighter than the run's, as its steps are
+     * (a hundred times: see tt_companion_solver), so that the difference of the two is
+     * the run's error, the model's included; a hundred times tighter is below what the
+     * grazing touches' model can follow (1e-9 of A0 over the blend's orbit), and the
+     * tight line would integrate every grazing cycle at 1e-10 (16 G instructions, a
+     * fifth of the README job's) */
+    W.model_tol = fmax(W.model_tol, S->solver.tolerance);
     if (!rc)
         rc = run_line(S, &W, S->profile_line, &out, &cycles, &integrated, &worst, &clamped);
-    worker_free(&W);
+    tt_scan_worker_free(&W);
     return rc;
 }
 

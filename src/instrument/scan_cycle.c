@@ -124,11 +124,14 @@ int tt_scan_block_end(const line_ctx *L, line_state *st, long b)
         st->clamped = 1;
     if (L->phase == 0)
         return TT_OK;
+    if (L->W->scope)
+        tt_scan_scope_put(L, st, b, A, ph);
     /* the block's lock-in outputs belong to the pixel of its last cycle */
     long k = b * P + P - 1;
     pixel_acc *a = pixel_of(L, k < L->nc ? k : L->nc - 1);
     a->sum[1] += (A - S->setpoint) * P;
     a->sum[2] += ph * 180 / M_PI * P;
+    a->sum[7] += A * P;
     a->nblk += P;
     for (int h = 2; h <= S->lockin.harmonics; h++) {
         double Ah = tt_lockin_amplitude(li, h), phh = tt_lockin_phase(li, h);

@@ -7,8 +7,10 @@
 #include <stdint.h>
 
 #include "tiptap/instrument/scan.h"
+#include "tiptap/instrument/scan_scope.h"
 #include "tiptap/solver/averaged.h"
 #include "tiptap/solver/envelope.h"
+#include "tiptap/solver/graze.h"
 #include "tiptap/solver/noise.h"
 
 enum { NHARM = TT_CH_HARMONIC_MAX - 1 }; /* harmonic channels of each kind */
@@ -18,6 +20,7 @@ _Static_assert(TT_CH_COUNT <= 8 * sizeof(unsigned), "a channel mask holds every 
 typedef struct {
     tt_sim *sim;
     double tolerance; /* its solver's: the companion's is tighter than the scan's */
+    double model_tol; /* the envelope tier's model's per cycle, relative to A0 */
     tt_lockin *lockin;
     tt_sample *samples;
     double *y; /* the lock-in block's periods: samples, or on the envelope tier each
@@ -32,6 +35,8 @@ typedef struct {
     /* the envelope tier (NULL: every cycle): its model, a snapshot of the lock-in and
      * of the block's periods (y) to roll back to, and two observable vectors */
     tt_envelope *env;
+    tt_graze *graze; /* the touch branch of a grazing tip (the free one: env) */
+    int env_shape;   /* the noise the model was made for (scan.c, model_shape) */
     tt_lockin *lockin_save;
     double *y_save, *obs;
     /* the greatest indentation of the trace and retrace cycles, per material */
@@ -39,6 +44,11 @@ typedef struct {
     /* the averaged tier (averaged: on): its slow state where the last line ended */
     int averaged;
     tt_averaged_state avg;
+    /* the rest separation at z = 0 of the line's engage: continuous lines keep the
+     * first engage's, so that a new setpoint does not move the sample */
+    double s_ref;
+    /* the scope the line under way records into (NULL: none) */
+    tt_scan_scope *scope;
 } worker;
 
 struct tt_scan {
@@ -83,6 +93,11 @@ struct tt_scan {
     /* the first failure of any thread */
     int status;
     char message[1024];
+    /* tt_scan_step's workspace (NULL until the first stepped line), and the line
+     * tt_scan_run records into a scope (watch_line -1: none) */
+    worker *step;
+    long watch_line;
+    tt_scan_scope *watch;
 };
 
 /* Per-pixel sums of one scan direction. */
@@ -184,6 +199,24 @@ surf_pt tt_scan_surface_at(const line_ctx *L, long k);
  * envelope and averaged tiers): demodulate, update the feedback, and (trace, retrace)
  * add the lock-in's outputs to the pixel of the block's last cycle (scan_cycle.c). */
 int tt_scan_block_end(const line_ctx *L, line_state *st, long b);
+
+/* A worker's buffers freed (scan.c). */
+void tt_scan_worker_free(worker *W);
+/* A worker made to fit the scan's noise after a change (scan.c): the thermal force on
+ * its sim, the envelope tier's model made anew where the noise changes its inputs or
+ * order (z piezo noise: the travel; thermal or z piezo: second order) and its noise. */
+int tt_scan_worker_retune(tt_scan *S, worker *W);
+/* The z piezo's noise of n for the cantilever's drive period (sd 0: off); TT_EINVAL naming
+ * [noise] z_piezo_bandwidth when its band is not within (0, fd / 2]. */
+int tt_scan_piezo_noise(const tt_scan_noise *n, const tt_cantilever *c, tt_noise_ou *zn);
+
+/* The scope (scan_scope.c): made ready for line `line` before it runs (its points NaN),
+ * block b's point written at the block's end from the lock-in's filtered amplitude A
+ * and phase ph (rad) after the feedback's update, and closed after the line (ok: the
+ * line finished; else the scope holds none). */
+int tt_scan_scope_begin(tt_scan_scope *sc, const tt_scan *S, long line);
+void tt_scan_scope_put(const line_ctx *L, const line_state *st, long b, double A, double ph);
+void tt_scan_scope_end(tt_scan_scope *sc, int ok);
 
 /* One line on the averaged tier (scan_averaged.c), through tt_scan_line_run; it
  * integrates no cycle. */

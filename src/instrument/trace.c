@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "tiptap/physics/material.h"
+#include "tiptap/solver/noise.h"
 #include "tiptap/util/error.h"
 
 struct tt_trace {
@@ -18,6 +19,12 @@ struct tt_trace {
     double sdot;             /* sample speed, m/s, fixed at the first recorded cycle */
     tt_sample *raw;          /* the sim's samples of the current cycle */
     tt_trace_sample *out;    /* the same with force and pressure */
+    long cycles;             /* cycles run, settling included: the noise's count */
+    double sd;               /* detector noise per sample, m rms */
+    tt_noise_ou zn;          /* the z piezo's noise through its bandwidth (sd 0: off) */
+    double za;               /* its value at cycle zk's start */
+    long zk;
+    uint64_t kd, kz;         /* the detector's and the z piezo's keys */
 };
 
 /* Set the ramped key to one end's value; a refusal names that end ("[trace] ramp_to:
@@ -63,6 +70,22 @@ int tt_trace_alloc(tt_trace **out, tt_setup *st, const tt_trace_params *p)
     t->st = st;
     t->p = *p;
     t->mat = mat;
+    /* white noise of one-sided density n sampled at rate fs has variance n^2 fs / 2 */
+    const double T = tt_setup_cantilever(st)->T;
+    t->sd = p->noise.detector * sqrt(0.5 * (double)p->samples_per_cycle / T);
+    if (p->noise.z_piezo > 0 && (rc = tt_noise_ou_init(&t->zn, p->noise.z_piezo, p->noise.z_bandwidth, T))) {
+        tt_trace_free(t);
+        return rc;
+    }
+    t->kd = tt_noise_key(p->noise.seed, TT_NOISE_DETECTOR, 0);
+    t->kz = tt_noise_key(p->noise.seed, TT_NOISE_PIEZO, 0);
+    t->za = tt_noise_ou_first(&t->zn, t->kz); /* from its stationary distribution */
+    tt_sim *sim = tt_setup_sim(st);
+    if ((rc = tt_sim_set_thermal(sim, p->noise.temperature, p->noise.points))) {
+        tt_trace_free(t);
+        return rc;
+    }
+    tt_sim_noise_key(sim, tt_noise_key(p->noise.seed, TT_NOISE_THERMAL, 0));
     *out = t;
     return TT_OK;
 }
@@ -72,8 +95,10 @@ void tt_trace_free(tt_trace *t)
     if (!t)
         return;
     /* the sim outlives the trace: it must not write into freed samples */
-    if (t->st)
+    if (t->st) {
         tt_sim_set_sampling(tt_setup_sim(t->st), 0, NULL);
+        tt_sim_set_thermal(tt_setup_sim(t->st), 0, 0);
+    }
     free(t->raw);
     free(t->out);
     free(t);
@@ -82,6 +107,21 @@ void tt_trace_free(tt_trace *t)
 size_t tt_trace_rows(const tt_trace *t) { return (size_t)t->p.cycles; }
 int tt_trace_done(const tt_trace *t) { return t->row >= t->p.cycles; }
 
+/* The sample for the next cycle: at s, moving at sdot, plus the z piezo's noise through
+ * its bandwidth (exact at each cycle's start, linear between; as a scan draws it,
+ * src/instrument/scan_cycle.c). Set again for the same cycle, it is the same. */
+static void set_sample(tt_trace *t, double s, double sdot)
+{
+    if (t->zn.sd > 0) {
+        for (; t->zk < t->cycles; t->zk++)
+            t->za = tt_noise_ou_next(&t->zn, t->kz, (uint64_t)t->zk + 1, t->za);
+        const double a = t->za, b = tt_noise_ou_next(&t->zn, t->kz, (uint64_t)t->cycles + 1, a);
+        s += a;
+        sdot += (b - a) / tt_setup_cantilever(t->st)->T;
+    }
+    tt_sim_set_sample(tt_setup_sim(t->st), s, sdot);
+}
+
 /* From the free steady state, settle_cycles at the first separation, unrecorded. */
 static int settle(tt_trace *t)
 {
@@ -89,9 +129,12 @@ static int settle(tt_trace *t)
     tt_cycle cy;
     int rc = TT_OK;
     tt_sim_reset_free(sim);
-    tt_sim_set_sample(sim, t->p.separation, 0);
-    for (long i = 0; i < t->p.settle_cycles && rc == TT_OK; i++)
+    set_sample(t, t->p.separation, 0);
+    for (long i = 0; i < t->p.settle_cycles && rc == TT_OK; i++, t->cycles++) {
+        if (i > 0 && t->zn.sd > 0) /* a sample at rest is set once: the stepper keeps its state */
+            set_sample(t, t->p.separation, 0);
         rc = tt_sim_cycle(sim, &cy);
+    }
     if (rc)
         return rc;
     tt_sim_set_sampling(sim, (int)t->p.samples_per_cycle, t->raw);
@@ -127,6 +170,10 @@ static void fill_samples(tt_trace *t)
         o->t = s->t;
         o->base = s->z;
         o->tip = s->d;
+        o->deflection = s->d - s->z;
+        if (t->sd > 0)
+            o->deflection += t->sd * tt_noise_gauss(t->kd, (uint64_t)t->row * (uint64_t)t->p.samples_per_cycle +
+                                                               (uint64_t)k);
         o->sample = s->s;
         o->contact_radius = a;
         o->pressure = s->contact ? hertz_pressure(cp, a) : 0;
@@ -166,8 +213,10 @@ int tt_trace_iterate(tt_trace *t, tt_trace_row *row)
             return rc;
     }
     /* the sample moves at sdot through the recorded cycles (Burnham et al.'s figure 4b) */
-    tt_sim_set_sample(tt_setup_sim(t->st), t->p.separation + t->sdot * (double)i * tt_setup_cantilever(t->st)->T, t->sdot);
-    if ((rc = tt_sim_cycle(tt_setup_sim(t->st), &row->summary)))
+    set_sample(t, t->p.separation + t->sdot * (double)i * tt_setup_cantilever(t->st)->T, t->sdot);
+    rc = tt_sim_cycle(tt_setup_sim(t->st), &row->summary);
+    t->cycles++;
+    if (rc)
         return rc;
     fill_samples(t);
     row->peak_pressure = peak_pressure(t, &row->summary);

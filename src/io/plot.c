@@ -352,6 +352,122 @@ static void draw_ticks(cairo_t *cr, const axis *a, int vertical, double x0, doub
     }
 }
 
+/* The frame of a panel in device units and its axes' data-to-device maps. */
+typedef struct {
+    double x0, x1, y0, y1; /* left, right, bottom, top */
+    const axis *ax, *ay, *ay2;
+} frame;
+
+static double px_of(const frame *f, double v)
+{
+    double l = tf(f->ax, f->ax->lo), h = tf(f->ax, f->ax->hi);
+    return f->x0 + (tf(f->ax, v) - l) / (h - l) * (f->x1 - f->x0);
+}
+
+static double py_of(const frame *f, const axis *a, double v)
+{
+    double l = tf(a, a->lo), h = tf(a, a->hi);
+    return f->y0 - (tf(a, v) - l) / (h - l) * (f->y0 - f->y1);
+}
+
+/* The legend's size: widest label and entries. */
+static size_t legend_size(cairo_t *cr, const panel *p, double *lw)
+{
+    size_t nl = 0;
+    *lw = 0;
+    cairo_set_font_size(cr, 13);
+    for (size_t k = 0; k < p->ns; k++)
+        if (p->s[k].label) {
+            cairo_text_extents_t e;
+            cairo_text_extents(cr, p->s[k].label, &e);
+            if (e.width > *lw)
+                *lw = e.width;
+            nl++;
+        }
+    return nl;
+}
+
+/* How much of the data a box (device units) would hide: the points of every series
+ * inside it, and of every segment between two points a few points along it. */
+static long covered(const panel *p, const frame *f, double bx0, double by0, double bx1, double by1)
+{
+    long n = 0;
+    for (size_t k = 0; k < p->ns; k++) {
+        const series *s = &p->s[k];
+        const axis *ya = (s->style & TT_PLOT_RIGHT) ? f->ay2 : f->ay;
+        double qx = NAN, qy = NAN;
+        for (size_t i = 0; i < s->n; i++) {
+            double xv = s->x[i], yv = s->y[i];
+            if (!isfinite(xv) || !isfinite(yv) || (f->ax->log && xv <= 0) || (ya->log && yv <= 0)) {
+                qx = NAN;
+                continue;
+            }
+            double x = px_of(f, xv), y = py_of(f, ya, yv);
+            int steps = isfinite(qx) && !(s->style & TT_PLOT_POINTS) ? 8 : 1;
+            for (int j = 1; j <= steps; j++) {
+                double u = (double)j / steps, cx = isfinite(qx) ? qx + (x - qx) * u : x,
+                       cy = isfinite(qx) ? qy + (y - qy) * u : y;
+                n += cx >= bx0 && cx <= bx1 && cy >= by0 && cy <= by1;
+            }
+            qx = x;
+            qy = y;
+        }
+    }
+    return n;
+}
+
+/* The legend's corner (0 top right, 1 top left, 2 bottom right, 3 bottom left): the
+ * first that hides no data, else the one that hides least; *hidden: what it hides. */
+static int legend_corner(const panel *p, const frame *f, double w, double h, long *hidden)
+{
+    int best = 0;
+    *hidden = -1;
+    for (int c = 0; c < 4; c++) {
+        double bx0 = c % 2 ? f->x0 + 2 : f->x1 - w - 2, by0 = c < 2 ? f->y1 + 2 : f->y0 - h - 2;
+        long n = covered(p, f, bx0, by0, bx0 + w, by0 + h);
+        if (*hidden < 0 || n < *hidden) {
+            *hidden = n;
+            best = c;
+        }
+        if (n == 0)
+            break;
+    }
+    return best;
+}
+
+static void draw_legend(cairo_t *cr, const panel *p, const frame *f, int corner, double lw, size_t nl)
+{
+    double w = lw + 54, h = 18.0 * (double)nl + 8;
+    double bx = corner % 2 ? f->x0 + 2 : f->x1 - w - 2, by = corner < 2 ? f->y1 + 2 : f->y0 - h - 2;
+    double lx = bx + 8, ly = by + 14;
+    cairo_set_font_size(cr, 13);
+    cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
+    cairo_rectangle(cr, bx, by, w, h);
+    cairo_fill(cr);
+    for (size_t k = 0; k < p->ns; k++) {
+        const series *s = &p->s[k];
+        if (!s->label)
+            continue;
+        const double *c = palette[((s->style & TT_PLOT_COLOR_MASK) - 1) % 8];
+        cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+        cairo_set_line_width(cr, 2);
+        double d2[] = {8, 5};
+        cairo_set_dash(cr, d2, (s->style & TT_PLOT_DASHED) ? 2 : 0, 0);
+        if (s->style & TT_PLOT_POINTS) {
+            cairo_arc(cr, lx + 14, ly, 3.5, 0, 2 * M_PI);
+            cairo_fill(cr);
+        } else {
+            cairo_move_to(cr, lx, ly);
+            cairo_line_to(cr, lx + 30, ly);
+            cairo_stroke(cr);
+        }
+        cairo_set_dash(cr, NULL, 0, 0);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        text(cr, lx + 38, ly, s->label, 0, 0.5, 0);
+        ly += 18;
+    }
+}
+
 static void draw_panel(cairo_t *cr, const panel *p, double X, double Y, double W, double H)
 {
     axis ax, ay, ay2;
@@ -372,6 +488,20 @@ static void draw_panel(cairo_t *cr, const panel *p, double X, double Y, double W
     int has_right = p->y2label != NULL;
     double ml = 80, mr = has_right ? 80 : 20, mt = 10, mb = 50;
     double x0 = X + ml, x1 = X + W - mr, y0 = Y + H - mb, y1 = Y + mt;
+    /* the legend goes where it hides no data; where every corner would, the y axis
+     * (linear, not fixed) grows at the top by the legend's height, and it goes there */
+    double lw;
+    size_t nl = legend_size(cr, p, &lw);
+    frame fr = {x0, x1, y0, y1, &ax, &ay, &ay2};
+    long hidden = 0;
+    int corner = nl ? legend_corner(p, &fr, lw + 54, 18.0 * (double)nl + 8, &hidden) : 0;
+    if (hidden > 0 && !p->logy && !isfinite(p->yhi) && !has_right) {
+        double frac = (18.0 * (double)nl + 14) / (y0 - y1);
+        if (frac < 0.6) {
+            ay.hi += (ay.hi - ay.lo) * frac / (1 - frac);
+            corner = legend_corner(p, &fr, lw + 54, 18.0 * (double)nl + 8, &hidden);
+        }
+    }
     cairo_set_font_size(cr, 13);
     draw_ticks(cr, &ax, 0, x0, y0, x1 - x0, 0, y0, y1);
     draw_ticks(cr, &ay, 1, x0, y0, y0 - y1, -1, x0, x1);
@@ -463,46 +593,8 @@ static void draw_panel(cairo_t *cr, const panel *p, double X, double Y, double W
             text(cr, px + 4, py - 4, nt->text, 0, 1, 0);
     }
     cairo_restore(cr);
-    /* legend, top right inside the frame */
-    cairo_set_font_size(cr, 13);
-    double ly = y1 + 16, lw = 0;
-    size_t nl = 0;
-    for (size_t k = 0; k < p->ns; k++)
-        if (p->s[k].label) {
-            cairo_text_extents_t e;
-            cairo_text_extents(cr, p->s[k].label, &e);
-            if (e.width > lw)
-                lw = e.width;
-            nl++;
-        }
-    if (nl) {
-        double lx = x1 - lw - 50;
-        cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
-        cairo_rectangle(cr, lx - 8, y1 + 4, lw + 54, 18.0 * (double)nl + 8);
-        cairo_fill(cr);
-        for (size_t k = 0; k < p->ns; k++) {
-            const series *s = &p->s[k];
-            if (!s->label)
-                continue;
-            const double *c = palette[((s->style & TT_PLOT_COLOR_MASK) - 1) % 8];
-            cairo_set_source_rgb(cr, c[0], c[1], c[2]);
-            cairo_set_line_width(cr, 2);
-            double d2[] = {8, 5};
-            cairo_set_dash(cr, d2, (s->style & TT_PLOT_DASHED) ? 2 : 0, 0);
-            if (s->style & TT_PLOT_POINTS) {
-                cairo_arc(cr, lx + 14, ly, 3.5, 0, 2 * M_PI);
-                cairo_fill(cr);
-            } else {
-                cairo_move_to(cr, lx, ly);
-                cairo_line_to(cr, lx + 30, ly);
-                cairo_stroke(cr);
-            }
-            cairo_set_dash(cr, NULL, 0, 0);
-            cairo_set_source_rgb(cr, 0, 0, 0);
-            text(cr, lx + 38, ly, s->label, 0, 0.5, 0);
-            ly += 18;
-        }
-    }
+    if (nl)
+        draw_legend(cr, p, &fr, corner, lw, nl);
 }
 
 int tt_figure_write_png(const tt_figure *f, const char *path, int width, int height)

@@ -45,6 +45,7 @@ static void cycle_begin(tt_sim *S)
     S->t_contact = S->t_release = NAN;
     S->steps = S->rejected = S->events = 0;
     S->next_sample = 0;
+    S->next_probe = 0;
     S->rk4_j = 1;
     S->step_flight = 0;
     if (S->nz_f)

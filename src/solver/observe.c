@@ -15,24 +15,44 @@ static double ts_force(const tt_sim *S, double tau, double d, double v, int cont
     return P + (contact ? S->ci * (v - S->sdot) : 0.0);
 }
 
-/* Samples at k T / n inside (t0, t0 + th h]; k = 0 is taken at the cycle start. */
-static void observe_samples(tt_sim *S, double th)
+/* The state at time ts of the step's part [0, th] into smp. */
+static void observe_at(tt_sim *S, double ts, tt_sample *smp)
 {
     double h = S->step_h, t0 = S->step_tau;
+    double f = h > 0 ? (ts - t0) / h : 0;
+    if (f < 0)
+        f = 0;
+    double z, zd, Fd, cw, sw;
+    drive_at(S, ts, &z, &zd, &Fd, &cw, &sw);
+    tt_step_dense(S, f, &smp->d, &smp->v);
+    smp->t = tt_sim_time(S) + ts;
+    smp->z = z;
+    smp->s = S->s0 + S->sdot * ts;
+    smp->contact = S->contact_state;
+}
+
+/* Samples at k T / n inside (t0, t0 + th h]; k = 0 is taken at the cycle start. Then
+ * the probes inside it. */
+static void observe_samples(tt_sim *S, double th)
+{
+    const double end = S->step_tau + th * S->step_h * (1 + 1e-12);
     const tt_cantilever *c = &S->c;
     while (S->next_sample < S->nsamp) {
         double ts = c->T * S->next_sample / S->nsamp;
-        if (ts > t0 + th * h * (1 + 1e-12))
+        if (ts > end)
             break;
-        double f = h > 0 ? (ts - t0) / h : 0;
-        if (f < 0)
-            f = 0;
-        tt_sample *smp = &S->samples[S->next_sample++];
-        double z, zd, Fd, cw, sw;
-        drive_at(S, ts, &z, &zd, &Fd, &cw, &sw);
-        tt_step_dense(S, f, &smp->d, &smp->v);
+        observe_at(S, ts, &S->samples[S->next_sample++]);
+    }
+    /* a probe needs the tip's position only: no drive evaluation */
+    while (S->next_probe < S->nprobe) {
+        double ts = S->probe_tau[S->next_probe];
+        if (ts > end)
+            break;
+        tt_sample *smp = &S->probes[S->next_probe++];
+        double f = S->step_h > 0 ? (ts - S->step_tau) / S->step_h : 0;
+        tt_step_dense(S, f < 0 ? 0 : f, &smp->d, &smp->v);
         smp->t = tt_sim_time(S) + ts;
-        smp->z = z;
+        smp->z = NAN;
         smp->s = S->s0 + S->sdot * ts;
         smp->contact = S->contact_state;
     }

@@ -123,6 +123,15 @@ void tt_sim_set_sampling(tt_sim *S, int n, tt_sample *buf)
 
 const tt_sample *tt_sim_samples(const tt_sim *S) { return S->nsamp ? S->samples : NULL; }
 
+void tt_sim_set_probes(tt_sim *S, int n, const double *tau, tt_sample *buf)
+{
+    S->nprobe = buf && tau ? n : 0;
+    S->probe_tau = tau;
+    S->probes = buf;
+}
+
+const tt_sample *tt_sim_probes(const tt_sim *S) { return S->nprobe ? S->probes : NULL; }
+
 void tt_sim_track_extremes(tt_sim *S, int on)
 {
     S->track_extremes = on;

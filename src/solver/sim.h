@@ -79,6 +79,10 @@ struct tt_sim {
     int nsamp;
     tt_sample *samples;
     int next_sample;
+    /* probes: the state at further times within each cycle (tt_sim_set_probes) */
+    int nprobe, next_probe;
+    const double *probe_tau;
+    tt_sample *probes;
     int track_extremes;
     int skip_peaks;      /* peak force and indentation not asked for (tt_sim_track_peaks) */
     /* per-cycle accumulators outside the state vector */

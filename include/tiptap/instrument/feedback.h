@@ -41,6 +41,10 @@ typedef struct {
 /* Start the loop from output z0 (clamped to the piezo's range, -z_range / 2 to
  * z_range / 2) with an empty integrator. */
 void tt_feedback_init(tt_feedback *f, const tt_feedback_params *p, double z0);
+/* New gains, setpoint and range for a running loop, its output unchanged: the
+ * integrator's share of z, ki * integral, moves into the offset z0 and the integral
+ * restarts from zero, so that a new ki does not make z jump (bumpless). */
+void tt_feedback_retune(tt_feedback *f, const tt_feedback_params *p);
 /* One update after dt seconds with the measured amplitude; returns the new z. */
 double tt_feedback_update(tt_feedback *f, double amplitude, double dt);
 

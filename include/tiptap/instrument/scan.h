@@ -46,27 +46,28 @@ extern "C" {
 /* Channels (bit flags). */
 enum {
     TT_CH_HEIGHT = 1 << 0,      /* feedback height, m */
-    TT_CH_AMPLITUDE = 1 << 1,   /* amplitude error: lock-in amplitude - setpoint, m */
+    TT_CH_ERROR = 1 << 1,       /* the error signal: lock-in amplitude - setpoint, m */
     TT_CH_PHASE = 1 << 2,       /* lock-in phase lag, deg */
     TT_CH_PEAK_FORCE = 1 << 3,  /* greatest tip-sample force per cycle, N */
     TT_CH_INDENTATION = 1 << 4, /* greatest penetration per cycle, m */
     TT_CH_DISSIPATION = 1 << 5, /* tip-sample energy lost per cycle, J */
     TT_CH_TOPOGRAPHY = 1 << 6,  /* the true surface height under the tip's axis, m
                                  * (reference: no dilation, tilt or z drift) */
+    TT_CH_AMPLITUDE = 1 << 7,   /* the lock-in amplitude (filtered), m */
     /* Higher harmonics of the deflection, h = 2 to TT_CH_HARMONIC_MAX: channel index
      * TT_CH_HARMONIC_INDEX + h - 2 is "harmonicH", the lock-in amplitude of harmonic h
      * (m), and TT_CH_HARMONIC_PHASE_INDEX + h - 2 is "harmonicH_phase", its lag behind
      * cos(h w t) (deg). */
     TT_CH_HARMONIC_MAX = 8,
-    TT_CH_HARMONIC_INDEX = 7,
-    TT_CH_HARMONIC_PHASE_INDEX = 14,
-    TT_CH_COUNT = 21
+    TT_CH_HARMONIC_INDEX = 8,
+    TT_CH_HARMONIC_PHASE_INDEX = 15,
+    TT_CH_COUNT = 22
 };
 
 /* Name ("height"), unit ("m", "deg", "N", "J") and title of channel index i. */
 const char *tt_scan_channel_name(int i);
 const char *tt_scan_channel_unit(int i);
-/* The harmonic a channel index demodulates: 1 for amplitude and phase, h for
+/* The harmonic a channel index demodulates: 1 for error, phase and amplitude, h for
  * harmonicH and harmonicH_phase, 0 for the others. */
 int tt_scan_channel_harmonic(int i);
 /* Parse "height, phase" into a channel mask; -1 with a message naming the channel. */
@@ -132,9 +133,69 @@ void tt_scan_free(tt_scan *s);
 /* Run all lines on up to threads threads (0: all cores). progress, if not NULL, is
  * called (from one thread at a time) after each finished line with the number of
  * lines done. Stops early with TT_EINTR when cancellation is requested (cancel.h);
- * finished lines keep their data, the others stay NaN. */
+ * finished lines keep their data, the others stay NaN. A scope attached with
+ * tt_scan_scope_attach receives its line's record. It runs the lines not done yet: a
+ * line finished before, by an earlier tt_scan_run or by tt_scan_step, is skipped. */
 int tt_scan_run(tt_scan *s, int threads, void (*progress)(void *user, long done, long total),
                 void *user);
+
+/* A scan one line at a time, as an instrument is driven: alloc, run a line, read its
+ * pixels (tt_scan_line_values) and its full-rate record (tiptap/instrument/scan_scope.h),
+ * change the gains or the setpoint, run the next line, ..., free. tt_scan_run runs the
+ * same line code, so stepping lines 0, 1, ... in order gives its images byte for byte.
+ *
+ * tt_scan_step runs line `line` (0 .. lines - 1, any order, again as often as wanted)
+ * on the calling thread, its trace and retrace, and writes its pixels into the images;
+ * scope, if not NULL, receives the line's record. Independent lines ([scan] lines_mode)
+ * each start settled at their first pixel; continuous lines carry on from where the
+ * last stepped line's retrace ended (the cantilever, lock-in, feedback and piezo), the
+ * first of them (and the first after tt_scan_disengage) engaging and settling. The
+ * stepped lines keep their own state, apart from tt_scan_run's; the scan owns that
+ * workspace (made at the first step, freed by tt_scan_free). A line's cycles, energy
+ * check and clamping add to the scan's totals (tt_scan_cycles, ...) however often it
+ * runs. Not for two threads at once on one scan. TT_EINTR when cancellation is
+ * requested (the line's pixels then keep their earlier values). */
+typedef struct tt_scan_scope tt_scan_scope;
+int tt_scan_step(tt_scan *s, long line, tt_scan_scope *scope);
+/* The next stepped line engages afresh at its first pixel and settles, as a scan's
+ * first line does (continuous lines; independent lines always do). */
+void tt_scan_disengage(tt_scan *s);
+/* Line `line`'s pixels of a channel into out (pixels values, along the fast axis from
+ * position 0, retrace included: its pixels stored in the trace's order); TT_EINVAL for
+ * a channel not recorded or a line out of range. */
+int tt_scan_line_values(const tt_scan *s, int channel_index, int retrace, long line, double *out);
+
+/* What may change between two lines of a live scan, effective from the next line
+ * (tt_scan_step or tt_scan_run). Anything else (pixels, lines, size, the fast axis,
+ * the surface and materials, the tip, the cantilever's k, f0 and Q, the lock-in, the
+ * solver and its tier, the channels, tilt and drift, the piezo's dynamics) needs a new
+ * tt_scan. Each refuses a value out of range with TT_EINVAL and changes nothing then.
+ *
+ * The feedback: setpoint (m, above 0 and below the free amplitude), gains (kp
+ * and ki 0 or more) and z range (above 0). On continuous lines the output does not
+ * jump: the integrator's share of z is kept as the loop's offset and the new ki
+ * integrates from there (a bumpless change, as an instrument's). The rest position the
+ * heights are counted from stays the first engage's, so a new setpoint moves the height
+ * image as the loop settles elsewhere, as on an instrument. */
+void tt_scan_get_feedback(const tt_scan *s, tt_feedback_params *p);
+int tt_scan_set_feedback(tt_scan *s, const tt_feedback_params *p);
+/* The noise (all its kinds and the seed; zero amplitudes: off). Z piezo noise gives the
+ * envelope tier's model the sample's travel as an input and second order, and thermal
+ * noise second order, from the next line on; they are dropped when it is off again. A
+ * z piezo bandwidth above half the drive frequency is refused (TT_EINVAL). */
+void tt_scan_get_noise(const tt_scan *s, tt_scan_noise *n);
+int tt_scan_set_noise(tt_scan *s, const tt_scan_noise *n);
+/* Lines per second (the cycles of a line follow it; the images keep their size).
+ * Refused with drift on: the drift's clock and the dilated surface's extent follow the
+ * line rate the scan was made with. */
+double tt_scan_line_rate(const tt_scan *s);
+int tt_scan_set_line_rate(tt_scan *s, double line_rate);
+/* The drive's free amplitude (m): the cantilever's drive strength follows, and the
+ * averaged tier's tables are made again (a second or so). The next stepped line
+ * engages afresh (tt_scan_disengage), since the oscillation it carried is the old
+ * one's. The setpoint stays in metres: set it too. */
+double tt_scan_free_amplitude(const tt_scan *s);
+int tt_scan_set_free_amplitude(tt_scan *s, double A0);
 
 /* Geometry and results. Images are stored in the sample's orientation whatever the
  * fast axis: xres columns along x, yres rows along y, row 0 at y = 0 (the top);
@@ -173,7 +234,7 @@ double tt_scan_averaged_table_error(const tt_scan *s);
 long tt_scan_averaged_collapsed(const tt_scan *s, long *line, long *pixel);
 long tt_scan_averaged_outside(const tt_scan *s);
 /* Whether a scan of these parameters runs on the envelope tier: [solver] tier asks for
- * it and the scan allows it (Q from 30 to 3000, no noise); else every cycle. */
+ * it and the scan allows it (Q 30 or more); else every cycle. */
 int tt_scan_envelope_tier(const tt_scan_params *p);
 /* Whether it runs on the averaged tier: [solver] tier asks for it and the scan allows
  * it (Q 30 or more, the drive within 5 % of resonance); else on the envelope tier's

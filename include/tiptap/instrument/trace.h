@@ -7,6 +7,13 @@
  * separation unrecorded, then records cycles rows, each one drive cycle of
  * samples_per_cycle samples.
  *
+ * Noise ([noise], as a scan's: tiptap/instrument/scan.h) keyed by (seed, line 0) and
+ * counted in cycles from the settling's start: the thermal force on the cantilever,
+ * z piezo noise moving the sample (through its bandwidth, exact at each cycle's start,
+ * linear between) and the detector's
+ * noise added to each sample's measured deflection (tt_trace_sample deflection), not
+ * to the tip's position.
+ *
  * Usage: tt_trace_alloc(&t, setup, &params); while (!tt_trace_done(t))
  * { tt_trace_iterate(t, &row); ... }; tt_trace_free(t).
  * Ownership: the trace borrows the setup (which must outlive it) and drives its sim;
@@ -19,6 +26,7 @@
 #include <stddef.h>
 
 #include "tiptap/config/setup.h"
+#include "tiptap/instrument/scan.h"
 #include "tiptap/solver/integrator.h"
 
 #ifdef __cplusplus
@@ -35,12 +43,14 @@ typedef struct {
     const char *ramp;        /* key ramped over the recorded cycles, "material.NAME.key" or
                               * "cantilever.key" (NULL: none) */
     double ramp_from, ramp_to; /* its values at the first and last recorded cycle, SI */
+    tt_scan_noise noise;     /* all zero: none */
 } tt_trace_params;
 
 /* One sample within a cycle, SI units along the axis into the sample. */
 typedef struct {
     double t;                /* s, absolute */
-    double base, tip;        /* base and tip positions, m (deflection = tip - base) */
+    double base, tip;        /* base and tip positions, m */
+    double deflection;       /* what the detector reads, m: tip - base, plus its noise */
     double sample;           /* sample surface, m */
     double force;            /* tip-sample force, N */
     double contact_radius;   /* m */

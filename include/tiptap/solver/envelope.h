@@ -42,8 +42,17 @@ typedef struct tt_envelope tt_envelope;
 /* A model for n deflection samples per cycle. */
 int tt_envelope_alloc(tt_envelope **out, const tt_cantilever *c, int n);
 void tt_envelope_free(tt_envelope *e);
-/* Observables per cycle: n + TT_ENV_EXTRA. */
+/* Observables per cycle: n + TT_ENV_EXTRA + the probes. */
 int tt_envelope_size(const tt_envelope *e);
+
+/* Probes (tiptap/solver/graze.h): np more observables after the TT_ENV_EXTRA ones, the
+ * tip's position d at the sim's probe times (tt_sim_set_probes), so that the model
+ * predicts the tip's path near its closest approach (the gap to the sample is then
+ * taken from the sample's own position at those times, which the model's input, the
+ * sample's position mid-cycle, does not fix). Call it after tt_envelope_alloc and before
+ * tt_envelope_reduce and tt_envelope_use_second_order. */
+int tt_envelope_set_probes(tt_envelope *e, int np);
+int tt_envelope_probes(const tt_envelope *e);
 
 /* Take the sample's travel within the cycle (sdot T) as a fourth input of the model, for
  * a sample whose travel changes from cycle to cycle by more than its position's smooth
@@ -76,6 +85,10 @@ void tt_envelope_observe(const tt_envelope *e, const tt_sample *samples, const t
 int tt_envelope_build(tt_envelope *e, tt_sim *sim, const double x0[2], int c0, double s,
                       double sdot, const tt_cycle *cy, const double *obs, long *cycles);
 
+/* The tip's positions at the probes (NULL: not recorded, NAN) into obs after the
+ * TT_ENV_EXTRA observables. */
+void tt_envelope_observe_probes(const tt_envelope *e, const tt_sample *probes, double *obs);
+
 /* Re-anchor on an integrated cycle (the Jacobians are kept). x1: its end state. */
 void tt_envelope_anchor(tt_envelope *e, const double x0[2], double s, double sdot,
                         const double x1[2], const tt_cycle *cy, const double *obs);
@@ -102,6 +115,14 @@ int tt_envelope_reduce(tt_envelope *e, int m, const double *R);
  * the TT_ENV_EXTRA observables. Needs tt_envelope_reduce. */
 void tt_envelope_predict_reduced(const tt_envelope *e, const double x[2], double s, double sdot,
                                  double x1[2], double *red);
+
+/* The model's probes alone (np tip positions, m) from x with the sample at s moving at sdot,
+ * to first order (the grazing model runs without noise, whose second order it lacks). */
+void tt_envelope_predict_probes(const tt_envelope *e, const double x[2], double s, double sdot,
+                                double *g);
+/* An observable vector reduced as tt_envelope_reduce asks: the m combinations, then the
+ * TT_ENV_EXTRA observables and the probes as they are. */
+void tt_envelope_reduce_obs(const tt_envelope *e, const double *obs, double *red);
 
 /* tt_envelope_predict2 with the samples reduced. */
 void tt_envelope_predict2_reduced(const tt_envelope *e, const double x[2], const double x2[2],
@@ -130,6 +151,11 @@ void tt_envelope_detector_noise(const tt_envelope *e, const double *g, double *d
  * integration): end states and observables, relative to the free amplitude. */
 double tt_envelope_error(const tt_envelope *e, const double xa[2], const double *oa,
                          const double xb[2], const double *ob);
+
+/* The same for two reduced versions (tt_envelope_reduce_obs), the combinations in units
+ * of the free amplitude. */
+double tt_envelope_error_reduced(const tt_envelope *e, const double xa[2], const double *ra,
+                                 const double xb[2], const double *rb);
 
 /* Whether a cycle touched the sample; the anchor's touch and start contact flag. */
 int tt_envelope_touched(const tt_cycle *cy);

@@ -102,6 +102,15 @@ void tt_sim_set_sampling(tt_sim *sim, int n, tt_sample *buf);
 /* The buffer the samples go to (NULL: none). */
 const tt_sample *tt_sim_samples(const tt_sim *sim);
 
+/* Record the state at n more times within each cycle, tau[0] < ... < tau[n-1] in
+ * [0, T) from the cycle's start, into buf (buf or tau NULL: none): the envelope tier's
+ * probes of the tip's closest approach (tiptap/solver/graze.h); their base position z
+ * is not computed (NAN). The sim keeps both
+ * pointers; they must outlive their use. */
+void tt_sim_set_probes(tt_sim *sim, int n, const double *tau, tt_sample *buf);
+/* The buffer the probes go to (NULL: none). */
+const tt_sample *tt_sim_probes(const tt_sim *sim);
+
 /* Change the cantilever's constants (a ramp of its stiffness), keeping the state and
  * the interaction damping coefficient. The drive frequency must stay the same. */
 void tt_sim_set_cantilever(tt_sim *sim, const tt_cantilever *c);

@@ -1,0 +1,686 @@
+/* The live console's instrument (include/tiptap/live/engine.h): a thread stepping the
+ * scan line by line on the instrument's clock, publishing pixels, scope and state. */
+#include "tiptap/live/engine.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <math.h>
+#include <pthread.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "tiptap/config/config.h"
+#include "tiptap/instrument/scan_oscillation.h"
+#include "tiptap/instrument/scan_scope.h"
+#include "tiptap/io/decimate.h"
+#include "tiptap/util/error.h"
+
+struct tt_live_engine {
+    pthread_t thread;
+    int started;
+    pthread_mutex_t mu;
+    pthread_cond_t cv;
+    int stop;
+    void (*wake)(void *);
+    void *user;
+    /* the next scene, from the console (the latest wins) */
+    tt_scene *next_scene;
+    tt_scan_params next_params;
+    int have_next, next_restart;
+    double next_at; /* when it arrived */
+    /* what runs: owned by the thread */
+    tt_scene *scene;
+    tt_scan_params params;
+    tt_scan *scan;
+    tt_scan_scope *scope;
+    double *line_buf;
+    int running; /* the thread is inside a line (under mu) */
+    /* the preview thread: the averaged tier's twin of the scan, its own scope and line,
+     * and the latest change for it (a copy of the engine's) */
+    pthread_t pthread;
+    int pstarted;
+    tt_scan *pscan;
+    tt_scan_scope *pscope;
+    double *pline;
+    long ppixels;
+    tt_scan_params pnext;
+    int pnext_have, prestart;
+    double pat;
+    unsigned long pwant, pdone, pchange;
+    /* exports */
+    int (*write)(void *, const tt_scan *, const tt_scene *, const char *);
+    void *write_user;
+    unsigned long export_asked, export_done;
+    int export_status;
+    char export_dir[4096], export_why[512];
+    /* published, under mu */
+    tt_live_view v;
+    double *rows[TT_LIVE_NCH][2];
+    unsigned long *row_version;
+    unsigned char *row_tier;
+    double *series[2][TT_LIVE_NS];
+    int ch_index[TT_LIVE_NCH];
+    long clean_pass; /* the first pass that runs wholly at the current settings */
+};
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* This thread's CPU time: the line's own cost, whatever else the machine runs. */
+static double cpu_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int channel_by_name(const char *name)
+{
+    for (int i = 0; i < TT_CH_COUNT; i++)
+        if (strcmp(tt_scan_channel_name(i), name) == 0)
+            return i;
+    return -1;
+}
+
+/* Free the frame's published arrays (under mu). */
+static void frame_free(tt_live_engine *e)
+{
+    for (int c = 0; c < TT_LIVE_NCH; c++)
+        for (int r = 0; r < 2; r++) {
+            free(e->rows[c][r]);
+            e->rows[c][r] = NULL;
+            e->v.rows[c][r] = NULL;
+        }
+    free(e->row_version);
+    free(e->row_tier);
+    e->row_version = NULL;
+    e->row_tier = NULL;
+    e->v.row_version = NULL;
+    e->v.row_tier = NULL;
+}
+
+/* The published frame of the running scan: its raster, channels and empty rows. */
+static int frame_publish(tt_live_engine *e)
+{
+    static const char *const names[TT_LIVE_NCH] = {"height", "error", "phase"};
+    const tt_scan *s = e->scan;
+    long px = tt_scan_fast_y(s) ? tt_scan_yres(s) : tt_scan_xres(s), nl = tt_scan_lines(s);
+    size_t n = (size_t)px * (size_t)nl;
+    int rc = TT_OK;
+    pthread_mutex_lock(&e->mu);
+    frame_free(e);
+    e->v.frame++;
+    e->v.pixels = px;
+    e->v.lines = nl;
+    e->v.fast_y = tt_scan_fast_y(s);
+    e->v.size_fast = e->v.fast_y ? tt_scan_size_y(s) : tt_scan_size_x(s);
+    e->v.size_slow = e->v.fast_y ? tt_scan_size_x(s) : tt_scan_size_y(s);
+    e->v.retrace = tt_scan_has_retrace(s);
+    e->row_version = calloc((size_t)nl, sizeof *e->row_version);
+    e->row_tier = calloc((size_t)nl, 1);
+    if (!e->row_version || !e->row_tier)
+        rc = tt_error_nomem("the console's image, %ld lines", nl);
+    for (int c = 0; c < TT_LIVE_NCH; c++) {
+        int k = channel_by_name(names[c]);
+        e->ch_index[c] = k >= 0 && tt_scan_image(s, k, 0) ? k : -1;
+        e->v.channel_name[c] = e->ch_index[c] >= 0 ? names[c] : NULL;
+        e->v.channel_unit[c] = e->ch_index[c] >= 0 ? tt_scan_channel_unit(k) : NULL;
+        e->v.channel_file[c] = e->ch_index[c] >= 0 ? tt_scan_channel_name(k) : NULL;
+        for (int r = 0; r < 2 && e->ch_index[c] >= 0 && !rc; r++) {
+            if (!(e->rows[c][r] = malloc(n * sizeof(double)))) {
+                rc = tt_error_nomem("the console's image, %ld x %ld pixels", px, nl);
+                break;
+            }
+            for (size_t i = 0; i < n; i++)
+                e->rows[c][r][i] = NAN;
+            e->v.rows[c][r] = e->rows[c][r];
+        }
+    }
+    e->v.row_version = e->row_version;
+    e->v.row_tier = e->row_tier;
+    e->v.lines_done = 0;
+    e->v.line = 0;
+    e->v.passes = 0;
+    e->v.first_line_as_set = 0;
+    e->v.reproducible = 0;
+    e->clean_pass = 0;
+    e->v.tier = (int)e->params.solver.tier;
+    e->v.frame_version = ++e->v.version;
+    e->v.status_version = e->v.version;
+    pthread_mutex_unlock(&e->mu);
+    free(e->line_buf);
+    e->line_buf = rc ? NULL : malloc((size_t)px * sizeof(double));
+    if (!rc && !e->line_buf)
+        rc = tt_error_nomem("the console's line, %ld pixels", px);
+    return rc;
+}
+
+/* The averaged tier's twin of a scan on a slower tier, for the preview lines; NULL
+ * where the scene is on the averaged tier already (its own line is as quick as a
+ * preview) or the averaged tier refuses it. */
+static tt_scan *preview_alloc(const tt_scan_params *p)
+{
+    tt_scan_params q = *p;
+    tt_scan *s = NULL;
+    if (p->solver.tier == TT_TIER_AVERAGED)
+        return NULL;
+    q.solver.tier = TT_TIER_AVERAGED;
+    if (!tt_scan_averaged_tier(&q) || tt_scan_alloc(&s, &q) != TT_OK)
+        return NULL;
+    return s;
+}
+
+/* The settings a running scan takes between lines (instrument/scan.h); 0 when all of
+ * them took, else a new scan is needed. */
+static int apply_live(tt_scan *s, const tt_scan_params *p)
+{
+    if (!s)
+        return -1;
+    tt_feedback_params fb = p->feedback;
+    if (fabs(tt_scan_free_amplitude(s) - p->cantilever.A0) > 0 &&
+        tt_scan_set_free_amplitude(s, p->cantilever.A0))
+        return -1;
+    if (tt_scan_set_feedback(s, &fb) || tt_scan_set_noise(s, &p->noise))
+        return -1;
+    if (tt_scan_line_rate(s) != p->raster.line_rate && tt_scan_set_line_rate(s, p->raster.line_rate))
+        return -1;
+    return 0;
+}
+
+static void note(tt_live_engine *e, const char *what)
+{
+    pthread_mutex_lock(&e->mu);
+    snprintf(e->v.note, sizeof e->v.note, "%.*s", (int)sizeof e->v.note - 1, what);
+    e->v.status_version = ++e->v.version;
+    pthread_mutex_unlock(&e->mu);
+    e->wake(e->user);
+}
+
+/* Take up a submitted scene: on the running scan where it can, else as a new scan and
+ * frame; a scene the scan refuses leaves the running one (and the message says so).
+ * Returns 1 when something changed (the next line is previewed). */
+static int take_change(tt_live_engine *e, tt_scene *scene, tt_scan_params *p, int restart)
+{
+    /* the console says which of its knobs need a new scan (controls.h) */
+    int fresh = restart || !e->scan;
+    if (!fresh && apply_live(e->scan, p))
+        fresh = 1;
+    if (fresh) {
+        tt_scan *s = NULL;
+        int rc = tt_scene_locate(scene, tt_scan_alloc(&s, p));
+        if (rc) {
+            char why[600];
+            snprintf(why, sizeof why, "refused: %s", tt_error_message());
+            note(e, why);
+            tt_scene_free(scene);
+            tt_config_scan_free(p);
+            return 0;
+        }
+        tt_scan_free(e->scan);
+        e->scan = s;
+    }
+    tt_scene_free(e->scene);
+    if (e->scene)
+        tt_config_scan_free(&e->params);
+    e->scene = scene;
+    e->params = *p;
+    if (fresh && frame_publish(e)) {
+        note(e, tt_error_message());
+        return 0;
+    }
+    if (!fresh) {
+        pthread_mutex_lock(&e->mu);
+        e->v.first_line_as_set = e->v.line;
+        e->v.reproducible = 0;
+        /* continuous lines carry the old settings' state into the new: only a pass that
+         * starts afresh at line 0 is what tiptap scan gives for the new scene */
+        e->clean_pass = e->v.line == 0 ? e->v.passes : e->v.passes + 1;
+        e->v.note[0] = '\0';
+        e->v.status_version = ++e->v.version;
+        pthread_mutex_unlock(&e->mu);
+    }
+    return 1;
+}
+
+/* A scope record, decimated for a screen, into the view (under mu). */
+static void publish_scope(tt_live_engine *e, const tt_scan_scope *sc, long line, int tier)
+{
+    static const int q[TT_LIVE_NS] = {TT_SCOPE_POSITION, TT_SCOPE_Z, TT_SCOPE_ERROR,
+                                      TT_SCOPE_AMPLITUDE, TT_SCOPE_PHASE, TT_SCOPE_SURFACE};
+    for (int r = 0; r < 2; r++) {
+        long n = tt_scan_scope_points(sc, r);
+        tt_decimate *d = NULL;
+        e->v.scope_n[r] = 0;
+        if (n <= 0 || tt_decimate_alloc(&d, TT_LIVE_NS, (double)n, TT_LIVE_SCOPE_BUDGET))
+            continue;
+        const double *src[TT_LIVE_NS];
+        for (int k = 0; k < TT_LIVE_NS; k++)
+            src[k] = tt_scan_scope_series(sc, r, q[k]);
+        const double *t = tt_scan_scope_series(sc, r, TT_SCOPE_TIME);
+        for (long i = 0; i < n; i++) {
+            double v[TT_LIVE_NS];
+            for (int k = 0; k < TT_LIVE_NS; k++)
+                v[k] = src[k] ? src[k][i] : NAN;
+            tt_decimate_push(d, v);
+        }
+        tt_decimate_finish(d);
+        size_t m = tt_decimate_count(d);
+        for (int k = 0; k < TT_LIVE_NS; k++) {
+            double *a = realloc(e->series[r][k], (m ? m : 1) * sizeof(double));
+            if (!a)
+                break;
+            memcpy(a, tt_decimate_line(d, (size_t)k), m * sizeof(double));
+            e->series[r][k] = a;
+            e->v.scope[r][k] = a;
+        }
+        e->v.scope_n[r] = m;
+        e->v.scope_t0[r] = t ? t[0] : 0;
+        e->v.scope_t1[r] = t ? t[n - 1] : 0;
+        tt_decimate_free(d);
+    }
+    e->v.scope_line = line;
+    e->v.scope_tier = tier;
+    e->v.scope_rate = tt_scan_scope_rate(sc);
+    e->v.scope_version = e->v.version;
+}
+
+/* Line `line`'s pixels from scan s (buf: a line's room) into the published rows, as
+ * tier's (under mu). */
+static void publish_row(tt_live_engine *e, const tt_scan *s, double *buf, long line, int tier)
+{
+    long px = e->v.pixels;
+    unsigned long ver = ++e->v.version;
+    for (int c = 0; c < TT_LIVE_NCH; c++)
+        for (int r = 0; r < 2; r++)
+            if (e->rows[c][r] && tt_scan_line_values(s, e->ch_index[c], r, line, buf) == TT_OK)
+                memcpy(e->rows[c][r] + line * px, buf, (size_t)px * sizeof(double));
+    e->row_version[line] = ver;
+    e->row_tier[line] = (unsigned char)tier;
+    e->v.status_version = ver;
+}
+
+/* The oscillation warning and the gain suggestion, from the line's record on the scan's
+ * own tier (instrument/scan_oscillation.h): z and the error at the loop's rate, not the
+ * pixel means, which hide a ring of a period a pixel (under mu). */
+static void judge_loop(tt_live_engine *e)
+{
+    tt_loop loop;
+    tt_oscillation o;
+    tt_scan_loop(e->scan, &loop);
+    if (tt_scan_oscillation(e->scope, &loop, &o) != TT_OK)
+        return;
+    e->v.oscillating = o.rings;
+    e->v.ring_hz = o.rings ? o.frequency : 0;
+    e->v.ring_nm = o.rings ? o.z_peak_to_peak : 0;
+    e->v.suggest_ki = o.rings && isfinite(o.ki_suggested) && o.ki_suggested > 0 ? o.ki_suggested : 0;
+}
+
+/* Run line `line` on the scan's own tier and publish it. */
+static int run_line(tt_live_engine *e, long line, double changed_at)
+{
+    pthread_mutex_lock(&e->mu);
+    e->running = 1;
+    pthread_mutex_unlock(&e->mu);
+    double t0 = now_s(), c0 = cpu_s();
+    int rc = tt_scan_step(e->scan, line, e->scope);
+    double t1 = now_s(), c1 = cpu_s();
+    pthread_mutex_lock(&e->mu);
+    e->running = 0;
+    if (rc) {
+        pthread_mutex_unlock(&e->mu);
+        return rc;
+    }
+    publish_row(e, e->scan, e->line_buf, line, (int)e->params.solver.tier);
+    publish_scope(e, e->scope, line, (int)e->params.solver.tier);
+    judge_loop(e);
+    if (changed_at > 0)
+        e->v.accurate_ms = 1e3 * (t1 - changed_at);
+    e->v.line_seconds = t1 - t0;
+    e->v.realtime = (1.0 / e->params.raster.line_rate) / (t1 - t0);
+    e->v.realtime_cpu = (1.0 / e->params.raster.line_rate) / (c1 - c0);
+    if (e->v.passes == 0)
+        e->v.lines_done = line + 1;
+    /* the next line, in the same lock as the end of this one: the preview thread reads
+     * "not running" and the line to run next together */
+    int wrapped = ++e->v.line >= e->v.lines;
+    if (wrapped) {
+        /* the next pass engages afresh at line 0, as a new tiptap scan would */
+        e->v.reproducible = e->v.passes >= e->clean_pass && !e->have_next;
+        e->v.line = 0;
+        e->v.passes++;
+        e->v.first_line_as_set = 0;
+        e->v.status_version = ++e->v.version;
+    }
+    pthread_mutex_unlock(&e->mu);
+    if (wrapped)
+        tt_scan_disengage(e->scan);
+    e->wake(e->user);
+    return TT_OK;
+}
+
+static void remove_folder(const char *dir)
+{
+    DIR *d = opendir(dir);
+    struct dirent *x;
+    char path[4400];
+    while (d && (x = readdir(d)))
+        if (strcmp(x->d_name, ".") && strcmp(x->d_name, "..")) {
+            snprintf(path, sizeof path, "%s/%s", dir, x->d_name);
+            unlink(path);
+        }
+    if (d)
+        closedir(d);
+    rmdir(dir);
+}
+
+/* An export asked for: the current scan's files in a fresh folder, the last one's
+ * removed (the server has read what it serves). */
+static void do_export(tt_live_engine *e)
+{
+    pthread_mutex_lock(&e->mu);
+    unsigned long want = e->export_asked;
+    pthread_mutex_unlock(&e->mu);
+    if (want == e->export_done || !e->write || !e->scan)
+        return;
+    char dir[4096], old[4096];
+    const char *tmp = getenv("TMPDIR");
+    snprintf(dir, sizeof dir, "%s/tiptap-live-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+    int rc = mkdtemp(dir) ? e->write(e->write_user, e->scan, e->scene, dir)
+                          : tt_error(TT_EIO, "cannot make a folder for the export: %s", strerror(errno));
+    pthread_mutex_lock(&e->mu);
+    snprintf(old, sizeof old, "%s", e->export_dir);
+    snprintf(e->export_dir, sizeof e->export_dir, "%s", dir);
+    e->export_status = rc;
+    snprintf(e->export_why, sizeof e->export_why, "%s", rc ? tt_error_message() : "");
+    e->export_done = want;
+    pthread_mutex_unlock(&e->mu);
+    if (old[0])
+        remove_folder(old);
+    e->wake(e->user);
+}
+
+/* Wait until `until` (monotonic s) or until a change, an export or the stop comes. */
+static void pace(tt_live_engine *e, double until)
+{
+    pthread_mutex_lock(&e->mu);
+    while (!e->stop && !e->have_next && e->export_asked == e->export_done) {
+        double left = until - now_s();
+        if (left <= 0)
+            break;
+        struct timespec ts;
+        clock_gettime(CLOCK_REALTIME, &ts);
+        double t = (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec + left;
+        ts.tv_sec = (time_t)t;
+        ts.tv_nsec = (long)((t - (double)ts.tv_sec) * 1e9);
+        pthread_cond_timedwait(&e->cv, &e->mu, &ts);
+    }
+    pthread_mutex_unlock(&e->mu);
+}
+
+static void *engine_main(void *arg)
+{
+    tt_live_engine *e = arg;
+    double changed_at = 0;
+    for (;;) {
+        pthread_mutex_lock(&e->mu);
+        int stop = e->stop, have = e->have_next, restart = e->next_restart;
+        tt_scene *scene = e->next_scene;
+        tt_scan_params p = e->next_params;
+        double at = e->next_at;
+        e->have_next = 0;
+        e->next_scene = NULL;
+        pthread_mutex_unlock(&e->mu);
+        if (stop) {
+            if (have) {
+                tt_scene_free(scene);
+                tt_config_scan_free(&p);
+            }
+            break;
+        }
+        /* an export asked for before the change shows the image and scene it was asked of */
+        do_export(e);
+        if (have && take_change(e, scene, &p, restart))
+            changed_at = at;
+        if (!e->scan || !e->line_buf) {
+            pace(e, now_s() + 1);
+            continue;
+        }
+        double t0 = now_s();
+        int rc = run_line(e, e->v.line, changed_at);
+        if (rc == TT_EINTR)
+            break;
+        if (rc)
+            note(e, tt_error_message());
+        changed_at = 0;
+        pace(e, t0 + 1.0 / e->params.raster.line_rate);
+    }
+    return NULL;
+}
+
+/* The preview: a change's next line on the averaged tier, at once, on a thread of its
+ * own, while the scan's own tier finishes the line under way. It runs the line the
+ * instrument will run next (the one after the line under way), engaged afresh at its
+ * first pixel, and publishes it unless the scan's own tier got there first. A change
+ * that starts a new frame is previewed by nothing: its frame comes with its first line. */
+static void preview_line(tt_live_engine *e, unsigned long change, double at)
+{
+    pthread_mutex_lock(&e->mu);
+    long line = e->running ? (e->v.line + 1) % e->v.lines : e->v.line, frame = e->v.frame;
+    int fits = e->v.pixels == e->ppixels && e->v.lines == tt_scan_lines(e->pscan);
+    pthread_mutex_unlock(&e->mu);
+    if (!fits)
+        return;
+    tt_scan_disengage(e->pscan);
+    if (tt_scan_step(e->pscan, line, e->pscope))
+        return;
+    pthread_mutex_lock(&e->mu);
+    if (e->v.frame == frame && e->row_version[line] < change) {
+        publish_row(e, e->pscan, e->pline, line, TT_TIER_AVERAGED);
+        publish_scope(e, e->pscope, line, TT_TIER_AVERAGED);
+        e->v.preview_ms = 1e3 * (now_s() - at);
+    }
+    pthread_mutex_unlock(&e->mu);
+    e->wake(e->user);
+}
+
+static void *preview_main(void *arg)
+{
+    tt_live_engine *e = arg;
+    for (;;) {
+        pthread_mutex_lock(&e->mu);
+        while (!e->stop && e->pwant == e->pdone)
+            pthread_cond_wait(&e->cv, &e->mu);
+        if (e->stop) {
+            pthread_mutex_unlock(&e->mu);
+            break;
+        }
+        tt_scan_params p = e->pnext;
+        int restart = e->prestart;
+        double at = e->pat;
+        unsigned long change = e->pchange;
+        e->pnext_have = 0;
+        e->prestart = 0;
+        e->pdone = e->pwant;
+        pthread_mutex_unlock(&e->mu);
+        if (restart || !e->pscan || apply_live(e->pscan, &p)) {
+            tt_scan_free(e->pscan);
+            e->pscan = preview_alloc(&p);
+            free(e->pline);
+            e->ppixels = e->pscan ? (p.raster.fast_y ? tt_scan_yres(e->pscan) : tt_scan_xres(e->pscan)) : 0;
+            e->pline = e->pscan ? malloc((size_t)e->ppixels * sizeof(double)) : NULL;
+        }
+        if (!restart && e->pscan && e->pline)
+            preview_line(e, change, at);
+        tt_config_scan_free(&p);
+    }
+    return NULL;
+}
+
+int tt_live_engine_alloc(tt_live_engine **out, tt_scene *scene, tt_scan_params *p,
+                         void (*wake)(void *user), void *user)
+{
+    tt_live_engine *e = calloc(1, sizeof *e);
+    if (!e) {
+        tt_scene_free(scene);
+        tt_config_scan_free(p);
+        return tt_error_nomem("the console's instrument");
+    }
+    pthread_mutex_init(&e->mu, NULL);
+    pthread_cond_init(&e->cv, NULL);
+    e->wake = wake;
+    e->user = user;
+    int rc = tt_scan_scope_alloc(&e->scope);
+    if (!rc)
+        rc = tt_scan_scope_alloc(&e->pscope);
+    /* the preview thread makes its scan at once (not previewed: the first change's
+     * preview then costs a line, not the averaged tier's tables too) */
+    tt_material *m = rc ? NULL : malloc((p->nmaterials ? p->nmaterials : 1) * sizeof *m);
+    if (m) {
+        memcpy(m, p->materials, p->nmaterials * sizeof *m);
+        e->pnext = *p;
+        e->pnext.materials = m;
+        e->pnext_have = 1;
+        e->prestart = 1;
+        e->pwant = 1;
+    }
+    if (!rc && !take_change(e, scene, p, 1))
+        rc = tt_error(TT_EINVAL, "%s", e->v.note);
+    else if (rc) {
+        tt_scene_free(scene);
+        tt_config_scan_free(p);
+    }
+    if (!rc) {
+        /* the signals stay with the server's thread, which stops the engine */
+        sigset_t all, old;
+        sigfillset(&all);
+        pthread_sigmask(SIG_BLOCK, &all, &old);
+        if (pthread_create(&e->thread, NULL, engine_main, e) != 0)
+            rc = tt_error(TT_ENOMEM, "cannot start the console's instrument thread");
+        else
+            e->started = 1;
+        if (!rc && pthread_create(&e->pthread, NULL, preview_main, e) != 0)
+            rc = tt_error(TT_ENOMEM, "cannot start the console's preview thread");
+        else if (!rc)
+            e->pstarted = 1;
+        pthread_sigmask(SIG_SETMASK, &old, NULL);
+    }
+    if (rc) {
+        tt_live_engine_free(e);
+        return rc;
+    }
+    *out = e;
+    return TT_OK;
+}
+
+void tt_live_engine_free(tt_live_engine *e)
+{
+    if (!e)
+        return;
+    pthread_mutex_lock(&e->mu);
+    e->stop = 1;
+    pthread_cond_broadcast(&e->cv);
+    pthread_mutex_unlock(&e->mu);
+    if (e->started)
+        pthread_join(e->thread, NULL);
+    if (e->pstarted)
+        pthread_join(e->pthread, NULL);
+    if (e->pnext_have)
+        tt_config_scan_free(&e->pnext);
+    tt_scan_free(e->pscan);
+    tt_scan_scope_free(e->pscope);
+    free(e->pline);
+    if (e->have_next) {
+        tt_scene_free(e->next_scene);
+        tt_config_scan_free(&e->next_params);
+    }
+    if (e->export_dir[0])
+        remove_folder(e->export_dir);
+    frame_free(e);
+    for (int r = 0; r < 2; r++)
+        for (int k = 0; k < TT_LIVE_NS; k++)
+            free(e->series[r][k]);
+    tt_scan_scope_free(e->scope);
+    tt_scan_free(e->scan);
+    if (e->scene) {
+        tt_scene_free(e->scene);
+        tt_config_scan_free(&e->params);
+    }
+    free(e->line_buf);
+    pthread_cond_destroy(&e->cv);
+    pthread_mutex_destroy(&e->mu);
+    free(e);
+}
+
+void tt_live_engine_submit(tt_live_engine *e, tt_scene *scene, tt_scan_params *p, int restart)
+{
+    pthread_mutex_lock(&e->mu);
+    if (e->have_next) {
+        tt_scene_free(e->next_scene);
+        tt_config_scan_free(&e->next_params);
+        restart |= e->next_restart;
+    }
+    e->next_scene = scene;
+    e->next_params = *p;
+    e->next_restart = restart;
+    e->have_next = 1;
+    e->next_at = now_s();
+    /* the preview thread's own copy (the materials are plain values) */
+    tt_material *m = malloc((p->nmaterials ? p->nmaterials : 1) * sizeof *m);
+    if (m) {
+        if (e->pnext_have)
+            tt_config_scan_free(&e->pnext);
+        memcpy(m, p->materials, p->nmaterials * sizeof *m);
+        e->pnext = *p;
+        e->pnext.materials = m;
+        e->pnext_have = 1;
+        e->prestart |= restart;
+        e->pat = e->next_at;
+        e->pwant++;
+    }
+    e->v.reproducible = 0; /* the image is no longer the current scene's */
+    e->v.status_version = ++e->v.version;
+    e->pchange = e->v.version;
+    pthread_cond_broadcast(&e->cv);
+    pthread_mutex_unlock(&e->mu);
+}
+
+void tt_live_engine_set_writer(tt_live_engine *e,
+                               int (*write)(void *, const tt_scan *, const tt_scene *, const char *),
+                               void *user)
+{
+    pthread_mutex_lock(&e->mu);
+    e->write = write;
+    e->write_user = user;
+    pthread_mutex_unlock(&e->mu);
+}
+
+unsigned long tt_live_engine_export(tt_live_engine *e)
+{
+    pthread_mutex_lock(&e->mu);
+    unsigned long n = ++e->export_asked;
+    pthread_cond_broadcast(&e->cv);
+    pthread_mutex_unlock(&e->mu);
+    return n;
+}
+
+/* Under the lock. */
+unsigned long tt_live_engine_exported(tt_live_engine *e, const char **dir, int *status,
+                                      const char **why)
+{
+    *dir = e->export_dir[0] ? e->export_dir : NULL;
+    *status = e->export_status;
+    *why = e->export_why;
+    return e->export_done;
+}
+
+void tt_live_engine_lock(tt_live_engine *e) { pthread_mutex_lock(&e->mu); }
+void tt_live_engine_unlock(tt_live_engine *e) { pthread_mutex_unlock(&e->mu); }
+const tt_live_view *tt_live_engine_view(const tt_live_engine *e) { return &e->v; }

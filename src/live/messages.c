@@ -1,0 +1,220 @@
+/* The live console's messages to the page, as JSON (docs/live.md, "Protocol"); numbers
+ * in the C locale, SI units, NaN as null. */
+#include "live_private.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void tt_live_buf_reset(tt_live_buf *b)
+{
+    b->len = 0;
+    b->failed = 0;
+}
+
+void tt_live_buf_printf(tt_live_buf *b, const char *fmt, ...)
+{
+    for (int tries = 0; tries < 2 && !b->failed; tries++) {
+        size_t room = b->cap > b->pre + b->len ? b->cap - b->pre - b->len : 0;
+        va_list ap;
+        va_start(ap, fmt);
+        int n = vsnprintf(room ? (char *)b->mem + b->pre + b->len : NULL, room, fmt, ap);
+        va_end(ap);
+        if (n < 0) {
+            b->failed = 1;
+            return;
+        }
+        if ((size_t)n < room) {
+            b->len += (size_t)n;
+            return;
+        }
+        size_t want = b->pre + b->len + (size_t)n + 1, cap = b->cap ? b->cap : 4096;
+        while (cap < want)
+            cap *= 2;
+        if (cap > b->max + b->pre + 1) {
+            b->failed = 1;
+            return;
+        }
+        unsigned char *m = realloc(b->mem, cap);
+        if (!m) {
+            b->failed = 1;
+            return;
+        }
+        b->mem = m;
+        b->cap = cap;
+    }
+}
+
+void tt_live_buf_free(tt_live_buf *b)
+{
+    free(b->mem);
+    b->mem = NULL;
+    b->cap = b->len = 0;
+}
+
+char *tt_live_buf_text(tt_live_buf *b) { return b->mem ? (char *)b->mem + b->pre : NULL; }
+
+/* A JSON string: quotes, backslashes and control characters escaped. */
+static void str(tt_live_buf *b, const char *s)
+{
+    tt_live_buf_printf(b, "\"");
+    for (; s && *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            tt_live_buf_printf(b, "\\%c", c);
+        else if (c < 0x20)
+            tt_live_buf_printf(b, "\\u%04x", c);
+        else
+            tt_live_buf_printf(b, "%c", c);
+    }
+    tt_live_buf_printf(b, "\"");
+}
+
+static void num(tt_live_buf *b, double x)
+{
+    if (isfinite(x))
+        tt_live_buf_printf(b, "%.7g", x);
+    else
+        tt_live_buf_printf(b, "null");
+}
+
+static void array(tt_live_buf *b, const double *x, size_t n)
+{
+    tt_live_buf_printf(b, "[");
+    for (size_t i = 0; i < n; i++) {
+        if (i)
+            tt_live_buf_printf(b, ",");
+        num(b, x ? x[i] : NAN);
+    }
+    tt_live_buf_printf(b, "]");
+}
+
+static const char *tier_name(int t)
+{
+    return t == 0 ? "every" : t == 1 ? "envelope" : "averaged";
+}
+
+void tt_live_msg_controls(tt_live_buf *b, const tt_live_controls *c)
+{
+    size_t n;
+    const tt_live_control *t = tt_live_control_table(&n);
+    char v[256];
+    tt_live_buf_printf(b, "{\"type\":\"controls\",\"controls\":[");
+    for (size_t i = 0; i < n; i++) {
+        tt_live_buf_printf(b, "%s{\"name\":", i ? "," : "");
+        str(b, t[i].name);
+        tt_live_buf_printf(b, ",\"label\":");
+        str(b, t[i].label);
+        tt_live_buf_printf(b, ",\"unit\":");
+        str(b, t[i].unit);
+        tt_live_buf_printf(b, ",\"restarts\":%s,\"value\":", t[i].restarts ? "true" : "false");
+        str(b, tt_live_controls_value(c, i, v, sizeof v));
+        tt_live_buf_printf(b, "}");
+    }
+    tt_live_buf_printf(b, "],\"samples\":[");
+    for (size_t i = 0; i < tt_live_controls_samples(c); i++) {
+        tt_live_buf_printf(b, "%s", i ? "," : "");
+        str(b, tt_live_controls_sample(c, i));
+    }
+    int si = tt_live_controls_sample_index(c);
+    tt_live_buf_printf(b, "],\"sample\":");
+    str(b, si >= 0 ? tt_live_controls_sample(c, (size_t)si) : "");
+    tt_live_buf_printf(b, "}");
+}
+
+void tt_live_msg_frame(tt_live_buf *b, const tt_live_view *v)
+{
+    tt_live_buf_printf(b, "{\"type\":\"frame\",\"frame\":%ld,\"pixels\":%ld,\"lines\":%ld,"
+                          "\"size_fast\":",
+                       v->frame, v->pixels, v->lines);
+    num(b, v->size_fast);
+    tt_live_buf_printf(b, ",\"size_slow\":");
+    num(b, v->size_slow);
+    tt_live_buf_printf(b, ",\"fast_y\":%s,\"retrace\":%s,\"channels\":[", v->fast_y ? "true" : "false",
+                       v->retrace ? "true" : "false");
+    for (int c = 0, k = 0; c < TT_LIVE_NCH; c++) {
+        if (!v->channel_name[c])
+            continue;
+        tt_live_buf_printf(b, "%s{\"name\":", k++ ? "," : "");
+        str(b, v->channel_name[c]);
+        tt_live_buf_printf(b, ",\"unit\":");
+        str(b, v->channel_unit[c]);
+        tt_live_buf_printf(b, ",\"file\":");
+        str(b, v->channel_file[c]);
+        tt_live_buf_printf(b, "}");
+    }
+    tt_live_buf_printf(b, "]}");
+}
+
+void tt_live_msg_status(tt_live_buf *b, const tt_live_view *v, int clients)
+{
+    tt_live_buf_printf(b, "{\"type\":\"status\",\"frame\":%ld,\"line\":%ld,\"lines_done\":%ld,"
+                          "\"passes\":%ld,\"first_line_as_set\":%ld,\"tier\":\"%s\",\"clients\":%d,"
+                          "\"oscillating\":%s,\"reproducible\":%s,\"realtime\":",
+                       v->frame, v->line, v->lines_done, v->passes, v->first_line_as_set,
+                       tier_name(v->tier), clients, v->oscillating ? "true" : "false",
+                       v->reproducible ? "true" : "false");
+    num(b, v->realtime);
+    tt_live_buf_printf(b, ",\"realtime_cpu\":");
+    num(b, v->realtime_cpu);
+    tt_live_buf_printf(b, ",\"line_s\":");
+    num(b, v->line_seconds);
+    tt_live_buf_printf(b, ",\"preview_ms\":");
+    num(b, v->preview_ms);
+    tt_live_buf_printf(b, ",\"accurate_ms\":");
+    num(b, v->accurate_ms);
+    tt_live_buf_printf(b, ",\"ring_hz\":");
+    num(b, v->ring_hz);
+    tt_live_buf_printf(b, ",\"ring_m\":");
+    num(b, v->ring_nm);
+    tt_live_buf_printf(b, ",\"suggest_ki\":");
+    num(b, v->suggest_ki);
+    tt_live_buf_printf(b, ",\"note\":");
+    str(b, v->note);
+    tt_live_buf_printf(b, "}");
+}
+
+void tt_live_msg_row(tt_live_buf *b, const tt_live_view *v, long line)
+{
+    tt_live_buf_printf(b, "{\"type\":\"row\",\"frame\":%ld,\"line\":%ld,\"tier\":\"%s\",\"data\":[",
+                       v->frame, line, tier_name(v->row_tier[line]));
+    for (int c = 0, k = 0; c < TT_LIVE_NCH; c++)
+        for (int r = 0; r < 2; r++) {
+            if (!v->rows[c][r])
+                continue;
+            tt_live_buf_printf(b, "%s", k++ ? "," : "");
+            array(b, v->rows[c][r] + line * v->pixels, (size_t)v->pixels);
+        }
+    tt_live_buf_printf(b, "]}");
+}
+
+void tt_live_msg_scope(tt_live_buf *b, const tt_live_view *v)
+{
+    static const char *const names[TT_LIVE_NS] = {"position", "z", "error", "amplitude", "phase",
+                                                  "surface"};
+    tt_live_buf_printf(b, "{\"type\":\"scope\",\"frame\":%ld,\"line\":%ld,\"tier\":\"%s\",\"rate\":",
+                       v->frame, v->scope_line, tier_name(v->scope_tier));
+    num(b, v->scope_rate);
+    for (int r = 0; r < 2; r++) {
+        tt_live_buf_printf(b, ",\"%s\":{\"t0\":", r ? "retrace" : "trace");
+        num(b, v->scope_t0[r]);
+        tt_live_buf_printf(b, ",\"t1\":");
+        num(b, v->scope_t1[r]);
+        for (int k = 0; k < TT_LIVE_NS; k++) {
+            tt_live_buf_printf(b, ",\"%s\":", names[k]);
+            array(b, v->scope_n[r] ? v->scope[r][k] : NULL, v->scope_n[r]);
+        }
+        tt_live_buf_printf(b, "}");
+    }
+    tt_live_buf_printf(b, "}");
+}
+
+void tt_live_msg_reply(tt_live_buf *b, int ok, const char *why, unsigned dropped)
+{
+    tt_live_buf_printf(b, "{\"type\":\"reply\",\"ok\":%s,\"dropped\":%u,\"error\":", ok ? "true" : "false",
+                       dropped);
+    str(b, why ? why : "");
+    tt_live_buf_printf(b, "}");
+}

@@ -1,0 +1,541 @@
+/* The live console's server (include/tiptap/live/server.h): libwebsockets' event loop on
+ * this thread, the instrument on the engine's. */
+#include "tiptap/live/server.h"
+
+#include <errno.h>
+#include <libwebsockets.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#include "live_private.h"
+#include "tiptap/live/engine.h"
+#include "tiptap/util/cancel.h"
+#include "tiptap/util/error.h"
+
+enum {
+    RX_MAX = 16384,         /* bytes of one message from a page */
+    RATE = 20, BURST = 40,  /* messages a second from one page, and its burst */
+    OUT_MAX = 64 << 20,     /* the largest message sent (a row of 16384 pixels is ~1 MB) */
+    EXPORT_MAX = 1 << 30,   /* the largest exported file served */
+    EXPORT_WAIT_S = 300     /* how long an export may wait for the line under way */
+};
+
+typedef struct pss pss;
+struct pss {
+    struct lws *wsi;
+    pss *next;
+    int ws;
+    /* HTTP */
+    const unsigned char *body;
+    unsigned char *owned;
+    size_t len, pos;
+    const char *mime;
+    int headers, waiting;
+    unsigned long export_id;
+    char export_name[128];
+    /* WebSocket: what it has seen */
+    unsigned long seen_controls, seen_frame, seen_rows, seen_scope, seen_status;
+    int have_reply, reply_ok;
+    unsigned dropped;
+    char reply[600];
+    char *rx;
+    size_t rxlen;
+    int rx_over;
+    double tokens, tokens_at;
+};
+
+typedef struct {
+    struct lws_context *ctx;
+    tt_live_controls *controls;
+    tt_live_engine *engine;
+    const tt_live_options *o;
+    unsigned long controls_version;
+    int clients, max_clients, port;
+    pss *all;
+    tt_live_buf out;
+    lws_sorted_usec_list_t sul;
+} server;
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void wake(void *user)
+{
+    server *s = user;
+    lws_cancel_service(s->ctx);
+}
+
+static void wake_all(server *s)
+{
+    for (pss *p = s->all; p; p = p->next)
+        if (p->ws || p->waiting)
+            lws_callback_on_writable(p->wsi);
+}
+
+/* Cancellation (Ctrl-C) is polled here too: lws_service may sleep past a signal
+ * that arrived just before it polled. */
+static void tick(lws_sorted_usec_list_t *sul)
+{
+    server *s = lws_container_of(sul, server, sul);
+    if (!tt_cancel_requested())
+        lws_sul_schedule(s->ctx, 0, &s->sul, tick, 200 * LWS_US_PER_MS);
+}
+
+static void unlink_pss(server *s, pss *p)
+{
+    for (pss **q = &s->all; *q; q = &(*q)->next)
+        if (*q == p) {
+            *q = p->next;
+            break;
+        }
+    free(p->owned);
+    free(p->rx);
+    p->owned = NULL;
+    p->rx = NULL;
+}
+
+/* The Origin (when a browser sends one) and the Host must be this server's: another
+ * web page open in the same browser may not drive the instrument. */
+static int trusted(struct lws *wsi, int port)
+{
+    char h[256], want[3][64];
+    snprintf(want[0], sizeof want[0], "127.0.0.1:%d", port);
+    snprintf(want[1], sizeof want[1], "localhost:%d", port);
+    snprintf(want[2], sizeof want[2], "[::1]:%d", port);
+    int ok = 0;
+    if (lws_hdr_copy(wsi, h, sizeof h, WSI_TOKEN_HOST) > 0)
+        for (int i = 0; i < 3; i++)
+            ok |= strcmp(h, want[i]) == 0;
+    if (!ok)
+        return 0;
+    if (lws_hdr_total_length(wsi, WSI_TOKEN_ORIGIN) <= 0)
+        return 1; /* not a browser */
+    if (lws_hdr_copy(wsi, h, sizeof h, WSI_TOKEN_ORIGIN) <= 0)
+        return 0;
+    for (int i = 0; i < 3; i++) {
+        char o[256];
+        snprintf(o, sizeof o, "http://%s", want[i]);
+        if (strcmp(h, o) == 0)
+            return 1;
+    }
+    return 0;
+}
+
+/* One message to a page: the buffer's text as a WebSocket text frame. */
+static int send_buf(server *s, struct lws *wsi)
+{
+    if (s->out.failed)
+        return 0; /* too large or out of memory: skipped, never half sent */
+    int n = lws_write(wsi, s->out.mem + s->out.pre, s->out.len, LWS_WRITE_TEXT);
+    return n < (int)s->out.len ? -1 : 0;
+}
+
+/* The next thing a page has not seen, newest first in importance: its reply, the
+ * controls, the frame, the status, the scope, then the oldest row it lacks. */
+static int ws_writeable(server *s, pss *p)
+{
+    tt_live_buf_reset(&s->out);
+    int more = 1;
+    if (p->have_reply) {
+        tt_live_msg_reply(&s->out, p->reply_ok, p->reply, p->dropped);
+        p->have_reply = 0;
+        p->dropped = 0;
+    } else if (p->seen_controls != s->controls_version) {
+        tt_live_msg_controls(&s->out, s->controls);
+        p->seen_controls = s->controls_version;
+    } else {
+        tt_live_engine_lock(s->engine);
+        const tt_live_view *v = tt_live_engine_view(s->engine);
+        if (p->seen_frame != v->frame_version && v->row_version) {
+            tt_live_msg_frame(&s->out, v);
+            p->seen_frame = v->frame_version;
+            p->seen_rows = v->frame_version;
+        } else if (p->seen_status < v->status_version) {
+            tt_live_msg_status(&s->out, v, s->clients);
+            p->seen_status = v->status_version;
+        } else if (p->seen_scope < v->scope_version && v->scope_line >= 0) {
+            tt_live_msg_scope(&s->out, v);
+            p->seen_scope = v->scope_version;
+        } else {
+            long best = -1;
+            for (long l = 0; v->row_version && l < v->lines; l++)
+                if (v->row_version[l] > p->seen_rows &&
+                    (best < 0 || v->row_version[l] < v->row_version[best]))
+                    best = l;
+            if (best >= 0) {
+                tt_live_msg_row(&s->out, v, best);
+                p->seen_rows = v->row_version[best];
+            } else {
+                more = 0;
+            }
+        }
+        tt_live_engine_unlock(s->engine);
+        if (!more)
+            return 0;
+    }
+    if (send_buf(s, p->wsi))
+        return -1;
+    lws_callback_on_writable(p->wsi);
+    return 0;
+}
+
+static void reply(pss *p, int ok, const char *why)
+{
+    p->have_reply = 1;
+    p->reply_ok = ok;
+    snprintf(p->reply, sizeof p->reply, "%s", why);
+    lws_callback_on_writable(p->wsi);
+}
+
+/* A whole message from a page: checked by the controls; an accepted change goes to the
+ * engine with its scene. */
+static void ws_message(server *s, pss *p)
+{
+    double t = now_s();
+    p->tokens += (t - p->tokens_at) * RATE;
+    if (p->tokens > BURST)
+        p->tokens = BURST;
+    p->tokens_at = t;
+    if (p->tokens < 1) {
+        p->dropped++;
+        char why[128];
+        snprintf(why, sizeof why, "console: more than %d messages a second: %u dropped", RATE,
+                 p->dropped);
+        reply(p, 0, why);
+        return;
+    }
+    p->tokens -= 1;
+    if (p->rx_over) {
+        char why[128];
+        snprintf(why, sizeof why, "console: a message of more than %d bytes: ignored", RX_MAX);
+        reply(p, 0, why);
+        return;
+    }
+    tt_live_change ch;
+    if (tt_live_controls_apply(s->controls, p->rx, p->rxlen, &ch)) {
+        reply(p, 0, ch.why);
+        return;
+    }
+    tt_scene *scene = NULL;
+    tt_scan_params prm;
+    if (tt_live_controls_scene(s->controls, &scene, &prm)) {
+        reply(p, 0, tt_error_message());
+        return;
+    }
+    tt_live_engine_submit(s->engine, scene, &prm, ch.restart);
+    s->controls_version++;
+    reply(p, 1, "");
+    wake_all(s);
+}
+
+static void ws_receive(server *s, pss *p, const void *in, size_t len)
+{
+    if (!p->rx && !(p->rx = malloc(RX_MAX))) {
+        p->rx_over = 1;
+    } else if (!p->rx_over && p->rxlen + len <= RX_MAX) {
+        memcpy(p->rx + p->rxlen, in, len);
+        p->rxlen += len;
+    } else {
+        p->rx_over = 1;
+    }
+    if (lws_is_final_fragment(p->wsi) && lws_remaining_packet_payload(p->wsi) == 0) {
+        ws_message(s, p);
+        p->rxlen = 0;
+        p->rx_over = 0;
+    }
+}
+
+static const tt_live_asset *find_asset(const char *uri)
+{
+    size_t n;
+    const tt_live_asset *a = tt_live_assets(&n);
+    if (strcmp(uri, "/") == 0)
+        uri = "/index.html";
+    for (size_t i = 0; i < n; i++)
+        if (strcmp(a[i].path, uri) == 0)
+            return &a[i];
+    return NULL;
+}
+
+/* The names an export may ask for: scene.ini, scan.gwy, CHANNEL_trace.gsf, ... */
+static int export_name_ok(const char *name)
+{
+    size_t n = strlen(name);
+    if (n == 0 || n > 100 || strchr(name, '/') || name[0] == '.')
+        return 0;
+    for (size_t i = 0; i < n; i++)
+        if (!((name[i] >= 'a' && name[i] <= 'z') || (name[i] >= '0' && name[i] <= '9') ||
+              name[i] == '_' || name[i] == '.'))
+            return 0;
+    return strcmp(name, "scene.ini") == 0 || strcmp(name, "scan.gwy") == 0 ||
+           (n > 4 && strcmp(name + n - 4, ".gsf") == 0);
+}
+
+static int http_headers(struct lws *wsi, unsigned code, const char *mime, size_t len,
+                        const char *disposition)
+{
+    unsigned char buf[LWS_PRE + 1024], *start = buf + LWS_PRE, *p = start, *end = buf + sizeof buf - 1;
+    if (lws_add_http_common_headers(wsi, code, mime, (lws_filepos_t)len, &p, end))
+        return -1;
+    if (lws_add_http_header_by_name(wsi, (const unsigned char *)"cache-control:",
+                                    (const unsigned char *)"no-store", 8, &p, end))
+        return -1;
+    if (disposition &&
+        lws_add_http_header_by_name(wsi, (const unsigned char *)"content-disposition:",
+                                    (const unsigned char *)disposition, (int)strlen(disposition),
+                                    &p, end))
+        return -1;
+    return lws_finalize_write_http_header(wsi, start, &p, end) ? -1 : 0;
+}
+
+static int http_request(server *s, pss *p, const char *uri)
+{
+    if (strncmp(uri, "/export/", 8) == 0) {
+        if (!export_name_ok(uri + 8))
+            return lws_return_http_status(p->wsi, HTTP_STATUS_NOT_FOUND, "no such export") ? -1 : 0;
+        snprintf(p->export_name, sizeof p->export_name, "%s", uri + 8);
+        p->export_id = tt_live_engine_export(s->engine);
+        p->waiting = 1;
+        /* the engine writes it between two lines: give it a slow line's time */
+        lws_set_timeout(p->wsi, PENDING_TIMEOUT_HTTP_CONTENT, EXPORT_WAIT_S);
+        return 0; /* answered when the engine has written it (http_export) */
+    }
+    const tt_live_asset *a = find_asset(uri);
+    if (!a)
+        return lws_return_http_status(p->wsi, HTTP_STATUS_NOT_FOUND, NULL) ? -1 : 0;
+    p->body = a->data;
+    p->len = a->len;
+    p->pos = 0;
+    if (http_headers(p->wsi, HTTP_STATUS_OK, a->mime, a->len, NULL))
+        return -1;
+    p->headers = 1;
+    lws_callback_on_writable(p->wsi);
+    return 0;
+}
+
+/* The export asked for, once written: read whole, then served. */
+static int http_export(server *s, pss *p)
+{
+    const char *dir, *why;
+    int status;
+    char path[4400], disp[200];
+    tt_live_engine_lock(s->engine);
+    unsigned long done = tt_live_engine_exported(s->engine, &dir, &status, &why);
+    if (done < p->export_id) {
+        tt_live_engine_unlock(s->engine);
+        return 0;
+    }
+    snprintf(path, sizeof path, "%s/%s", dir ? dir : "", p->export_name);
+    int bad = status != TT_OK || !dir;
+    char msg[600];
+    snprintf(msg, sizeof msg, "%s", bad ? why : "");
+    FILE *f = bad ? NULL : fopen(path, "rb");
+    struct stat st;
+    if (f && fstat(fileno(f), &st) == 0 && st.st_size <= EXPORT_MAX &&
+        (p->owned = malloc((size_t)st.st_size + 1)) &&
+        fread(p->owned, 1, (size_t)st.st_size, f) == (size_t)st.st_size)
+        p->len = (size_t)st.st_size;
+    else if (!bad)
+        snprintf(msg, sizeof msg, "%s: not written by this scan", p->export_name);
+    if (f)
+        fclose(f);
+    tt_live_engine_unlock(s->engine);
+    p->waiting = 0;
+    lws_set_timeout(p->wsi, NO_PENDING_TIMEOUT, 0);
+    if (!p->owned || msg[0]) {
+        free(p->owned);
+        p->owned = NULL;
+        return lws_return_http_status(p->wsi, HTTP_STATUS_NOT_FOUND, msg) ? -1 : 0;
+    }
+    p->body = p->owned;
+    p->pos = 0;
+    snprintf(disp, sizeof disp, "attachment; filename=\"%s\"", p->export_name);
+    const char *mime = strstr(p->export_name, ".ini") ? "text/plain" : "application/octet-stream";
+    if (http_headers(p->wsi, HTTP_STATUS_OK, mime, p->len, disp))
+        return -1;
+    p->headers = 1;
+    lws_callback_on_writable(p->wsi);
+    return 0;
+}
+
+static int http_writeable(server *s, pss *p)
+{
+    if (p->waiting)
+        return http_export(s, p);
+    if (!p->headers)
+        return 0;
+    unsigned char buf[LWS_PRE + 16384];
+    size_t n = p->len - p->pos < 16384 ? p->len - p->pos : 16384;
+    memcpy(buf + LWS_PRE, p->body + p->pos, n);
+    p->pos += n;
+    int final = p->pos >= p->len;
+    if (lws_write(p->wsi, buf + LWS_PRE, n, final ? LWS_WRITE_HTTP_FINAL : LWS_WRITE_HTTP) < (int)n)
+        return -1;
+    if (final) {
+        free(p->owned);
+        p->owned = NULL;
+        p->headers = 0;
+        return lws_http_transaction_completed(p->wsi) ? -1 : 0;
+    }
+    lws_callback_on_writable(p->wsi);
+    return 0;
+}
+
+static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *user, void *in,
+                    size_t len)
+{
+    server *s = lws_context_user(lws_get_context(wsi));
+    pss *p = user;
+    switch (reason) {
+    case LWS_CALLBACK_EVENT_WAIT_CANCELLED:
+        wake_all(s);
+        return 0;
+    case LWS_CALLBACK_HTTP:
+        if (!p->wsi) {
+            p->wsi = wsi;
+            p->next = s->all;
+            s->all = p;
+        }
+        return http_request(s, p, in);
+    case LWS_CALLBACK_HTTP_WRITEABLE:
+        return http_writeable(s, p);
+    case LWS_CALLBACK_CLOSED_HTTP:
+    case LWS_CALLBACK_HTTP_DROP_PROTOCOL:
+        if (p && p->wsi && !p->ws)
+            unlink_pss(s, p);
+        if (p)
+            p->wsi = NULL;
+        return 0;
+    case LWS_CALLBACK_FILTER_PROTOCOL_CONNECTION:
+        if (s->clients >= s->max_clients || !trusted(wsi, s->port))
+            return 1;
+        return 0;
+    case LWS_CALLBACK_ESTABLISHED:
+        if (p->wsi) /* an HTTP connection upgraded: it was listed as one */
+            unlink_pss(s, p);
+        memset(p, 0, sizeof *p);
+        p->wsi = wsi;
+        p->ws = 1;
+        p->tokens = BURST;
+        p->tokens_at = now_s();
+        p->next = s->all;
+        s->all = p;
+        s->clients++;
+        lws_callback_on_writable(wsi);
+        return 0;
+    case LWS_CALLBACK_SERVER_WRITEABLE:
+        return ws_writeable(s, p);
+    case LWS_CALLBACK_RECEIVE:
+        ws_receive(s, p, in, len);
+        return 0;
+    case LWS_CALLBACK_CLOSED:
+        unlink_pss(s, p);
+        s->clients--;
+        return 0;
+    default:
+        return 0;
+    }
+}
+
+static const struct lws_protocols protocols[] = {
+    {"tiptap-live", callback, sizeof(pss), 4096, 0, NULL, 0},
+    {NULL, NULL, 0, 0, 0, NULL, 0}};
+
+/* libwebsockets' own words, kept for the one line that tells a failure (a port in use
+ * is its "ERROR on binding fd 5 to port 8421 (-1 98)") rather than printed. */
+static char lws_last[256];
+static void log_line(int level, const char *line)
+{
+    (void)level;
+    if (!lws_last[0]) {
+        snprintf(lws_last, sizeof lws_last, "%s", line);
+        lws_last[strcspn(lws_last, "\r\n")] = '\0';
+    }
+}
+
+/* A port another program holds, told in one line before libwebsockets tries it (which
+ * would log its own lines, and keeps a few bytes when its context fails). */
+static int port_free(int port)
+{
+    if (port == 0)
+        return TT_OK;
+    int fd = socket(AF_INET, SOCK_STREAM, 0), one = 1, rc = TT_OK;
+    struct sockaddr_in a;
+    memset(&a, 0, sizeof a);
+    a.sin_family = AF_INET;
+    a.sin_port = htons((unsigned short)port);
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (fd >= 0)
+        setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+    if (fd >= 0 && bind(fd, (struct sockaddr *)&a, sizeof a) != 0)
+        rc = tt_error(TT_EIO, "cannot listen on 127.0.0.1:%d: %s%s", port, strerror(errno),
+                      errno == EADDRINUSE ? " (another program's; --port picks another)" : "");
+    if (fd >= 0)
+        close(fd);
+    return rc;
+}
+
+int tt_live_serve(tt_live_controls *c, const tt_live_options *o)
+{
+    server s;
+    memset(&s, 0, sizeof s);
+    s.controls = c;
+    s.o = o;
+    s.max_clients = o->max_clients > 0 ? o->max_clients : 16;
+    s.controls_version = 1;
+    s.out.pre = LWS_PRE;
+    s.out.max = OUT_MAX;
+    lws_set_log_level(LLL_ERR, log_line);
+    struct lws_context_creation_info info;
+    memset(&info, 0, sizeof info);
+    info.port = o->port;
+    info.iface = "127.0.0.1";
+    info.protocols = protocols;
+    info.user = &s;
+    info.gid = -1;
+    info.uid = -1;
+    info.options = LWS_SERVER_OPTION_DISABLE_IPV6;
+    info.timeout_secs = 30;
+    info.timeout_secs_ah_idle = EXPORT_WAIT_S; /* an export's request waits for a line */
+    int rc = port_free(o->port);
+    if (rc)
+        return rc;
+    lws_last[0] = '\0';
+    s.ctx = lws_create_context(&info);
+    if (!s.ctx)
+        return tt_error(TT_EIO, "cannot listen on 127.0.0.1:%d (a port in use? --port picks "
+                                "another): %s", o->port,
+                        lws_last[0] ? lws_last : "libwebsockets failed to start");
+    s.port = lws_get_vhost_listen_port(lws_get_vhost_by_name(s.ctx, "default"));
+    tt_scene *scene = NULL;
+    tt_scan_params prm;
+    rc = tt_live_controls_scene(c, &scene, &prm);
+    if (!rc)
+        rc = tt_live_engine_alloc(&s.engine, scene, &prm, wake, &s);
+    if (rc) {
+        lws_context_destroy(s.ctx);
+        return rc;
+    }
+    tt_live_engine_set_writer(s.engine, o->write, o->write_user);
+    if (o->ready)
+        o->ready(o->ready_user, s.port);
+    lws_sul_schedule(s.ctx, 0, &s.sul, tick, 200 * LWS_US_PER_MS);
+    while (!tt_cancel_requested())
+        if (lws_service(s.ctx, 0) < 0)
+            break;
+    /* the engine first: its line stops at the cancellation; then the connections */
+    tt_live_engine_free(s.engine);
+    lws_context_destroy(s.ctx);
+    tt_live_buf_free(&s.out);
+    return TT_OK;
+}

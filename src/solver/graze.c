@@ -1,0 +1,494 @@
+/* Grazing touches on the envelope tier (see include/tiptap/solver/graze.h). */
+#include "tiptap/solver/graze.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <stdio.h>
+
+#include "tiptap/util/error.h"
+
+enum {
+    NP = TT_GRAZE_PROBES,
+    HIST = 32,     /* touch cycles held */
+    PAIR = 6,      /* and the star: the deepest moved in d, d' and the sample */
+    NMIN = 8,      /* held (besides the star) before a fit is tried */
+    NF = 7,        /* fit features: 1, d, d', s, and the cubic in t_c */
+    STAR = 5       /* the star's reach in the sample, in the touches' */
+};
+
+/* A fit of the touch branch: outputs = coef^T phi(inputs), phi the features scaled
+ * about a centre; the ranges of the samples and the jump-in times of the cycles fitted. */
+typedef struct {
+    double centre[4], scale[4], smin, smax, tmin, tmax;
+    double lo[2], hi[2]; /* and of the states d, d' they started from */
+    double *coef; /* NF x no, by feature */
+} fit_t;
+
+typedef struct {
+    double f[NF]; /* inputs: d, d' (at the start), s (mid-cycle), t_c in f[1..4] */
+    double *out;  /* end state, then the m reduced observables */
+} point;
+
+struct tt_graze {
+    int m, no;           /* reduced observables; outputs 2 + m */
+    double T, L, V;      /* period, free amplitude, w A0 */
+    double jumpin;       /* the material's jump-in penetration, m */
+    double margin;       /* a reach within this of jump-in is too close to call, m */
+    double reach;        /* the sample's reach of a fit, m */
+    double *oscale;      /* the outputs' scales */
+    double *otol;        /* and the least tolerance each is held to (in its scale) */
+    double tau[NP];      /* probe times from the cycle's start, s */
+    tt_sample buf[NP];
+    point hist[HIST + PAIR];
+    int nh, head, npair;
+    int fitted;          /* fit holds one; trial: the next one, until it proves good */
+    fit_t fit, trial;
+};
+
+int tt_graze_alloc(tt_graze **out, const tt_cantilever *c, int m, const double *scale,
+                   const double *floor)
+{
+    *out = NULL;
+    tt_graze *g = calloc(1, sizeof *g);
+    if (!g)
+        return tt_error_nomem("the envelope tier's grazing model");
+    g->m = m;
+    g->no = 2 + m;
+    g->T = c->T;
+    g->L = c->A0;
+    g->V = c->wd * c->A0;
+    /* fifty times the sim's event margin: no touch the model calls is one the
+     * integration would miss, or the reverse */
+    g->margin = 2e-6 * c->A0;
+    g->reach = 1e-3 * c->A0;
+    g->jumpin = NAN;
+    g->fit.coef = calloc((size_t)NF * (size_t)g->no, sizeof *g->fit.coef);
+    g->trial.coef = calloc((size_t)NF * (size_t)g->no, sizeof *g->trial.coef);
+    g->oscale = malloc(2 * (size_t)g->no * sizeof *g->oscale);
+    g->otol = g->oscale ? g->oscale + g->no : NULL;
+    int ok = g->fit.coef && g->trial.coef && g->oscale;
+    for (int i = 0; i < g->no && ok; i++) {
+        g->oscale[i] = i == 1 ? g->V : i < 2 ? g->L : scale[i - 2];
+        g->otol[i] = i < 2 ? 0 : floor[i - 2];
+    }
+    for (int i = 0; i < HIST + PAIR && ok; i++)
+        ok = (g->hist[i].out = malloc((size_t)g->no * sizeof *g->hist[i].out)) != NULL;
+    if (!ok) {
+        tt_graze_free(g);
+        return tt_error_nomem("the envelope tier's grazing model");
+    }
+    *out = g;
+    return TT_OK;
+}
+
+void tt_graze_free(tt_graze *g)
+{
+    if (!g)
+        return;
+    for (int i = 0; i < HIST + PAIR; i++)
+        free(g->hist[i].out);
+    free(g->fit.coef);
+    free(g->trial.coef);
+    free(g->oscale);
+    free(g);
+}
+
+void tt_graze_reset(tt_graze *g, double jumpin)
+{
+    g->jumpin = jumpin;
+    g->nh = g->head = g->npair = 0;
+    g->fitted = 0;
+}
+
+/* The closest approach among n gaps at times t: the greatest, refined by the parabola
+ * through it and its neighbours (i0 - 1, i0 + 1 within [0, n)); -1 at an end. */
+static int closest(const double *gap, const double *t, int n, double *tm, double *gm)
+{
+    int k = 0;
+    for (int i = 1; i < n; i++)
+        if (gap[i] > gap[k])
+            k = i;
+    if (k == 0 || k == n - 1)
+        return -1;
+    const double a = gap[k - 1], b = gap[k], c = gap[k + 1], den = a - 2 * b + c;
+    const double off = den < 0 ? 0.5 * (a - c) / den : 0; /* in steps, within +-1/2 */
+    *tm = t[k] + off * 0.5 * (t[k + 1] - t[k - 1]);
+    *gm = b - 0.25 * (a - c) * off;
+    return k;
+}
+
+int tt_graze_aim(tt_graze *g, tt_sim *sim, const tt_sample *smp, int n)
+{
+    tt_graze_disarm(g, sim);
+    double gap[3], t[3], tm, gm;
+    int k = 0;
+    for (int q = 1; q < n; q++)
+        if (smp[q].d - smp[q].s > smp[k].d - smp[k].s)
+            k = q;
+    if (k == 0 || k == n - 1)
+        return 0;
+    for (int i = 0; i < 3; i++) {
+        gap[i] = smp[k - 1 + i].d - smp[k - 1 + i].s;
+        t[i] = g->T * (k - 1 + i) / n;
+    }
+    if (closest(gap, t, 3, &tm, &gm) < 0)
+        return 0;
+    /* the touch starts before the closest approach, by sqrt(2 e / a) for a reach e past
+     * jump-in (a = w^2 A): 0.06 T covers reaches up to a tenth of the amplitude */
+    const double t0 = tm - 0.06 * g->T, t1 = tm + 0.015 * g->T;
+    if (t0 <= 0 || t1 >= g->T)
+        return 0;
+    for (int i = 0; i < NP; i++)
+        g->tau[i] = t0 + (t1 - t0) * i / (NP - 1);
+    tt_sim_set_probes(sim, NP, g->tau, g->buf);
+    return 1;
+}
+
+double tt_graze_probe_time(const tt_graze *g, int i) { return g->tau[i]; }
+
+void tt_graze_disarm(tt_graze *g, tt_sim *sim)
+{
+    (void)g;
+    tt_sim_set_probes(sim, 0, NULL, NULL);
+}
+
+/* The cubic through the gaps at the equally spaced probes i0 .. i0 + 3 at time t,
+ * minus jump-in (Lagrange's weights in the probe index u). */
+static double cubic(const tt_graze *g, const double *gap, int i0, double t)
+{
+    const double u = (t - g->tau[i0]) / (g->tau[1] - g->tau[0]);
+    const double a = u * (u - 1), b = (u - 2) * (u - 3);
+    const double *y = gap + i0;
+    return -(u - 1) * b / 6 * y[0] + u * b / 2 * y[1] - a * (u - 3) / 2 * y[2] +
+           a * (u - 2) / 6 * y[3] - g->jumpin;
+}
+
+/* Where the path, rising from probe k - 1 (below jump-in) to time b (at or past it,
+ * gb), meets jump-in (Illinois on the cubic through the probes about k), to 1e-10 of
+ * the period: the touch branch moves by about 0.1 A0 per period of t_c, so this is
+ * 1e-11 of A0. */
+static double crossing(const tt_graze *g, const double *gap, int k, double b, double gb)
+{
+    int i0 = k - 2 < 0 ? 0 : k - 2;
+    if (i0 + 3 >= NP)
+        i0 = NP - 4;
+    double a = g->tau[k - 1], fa = gap[k - 1] - g->jumpin, fb = gb - g->jumpin;
+    int side = 0;
+    for (int it = 0; it < 60 && b - a > 1e-10 * g->T; it++) {
+        double t = (a * fb - b * fa) / (fb - fa);
+        if (!(t > a && t < b))
+            t = 0.5 * (a + b);
+        double ft = cubic(g, gap, i0, t);
+        if (fabs(ft) <= 1e-9 * g->L)
+            return t;
+        if ((ft > 0) == (fb > 0)) {
+            b = t;
+            fb = ft;
+            if (side == 1)
+                fa *= 0.5;
+            side = 1;
+        } else {
+            a = t;
+            fa = ft;
+            if (side == -1)
+                fb *= 0.5;
+            side = -1;
+        }
+    }
+    return 0.5 * (a + b);
+}
+
+int tt_graze_branch(const tt_graze *g, const double *d, double s0, double sdot, double *tc,
+                    double *reach)
+{
+    double gap[NP], tm, gm;
+    for (int i = 0; i < NP; i++)
+        gap[i] = d[i] - (s0 + sdot * g->tau[i]);
+    const int km = closest(gap, g->tau, NP, &tm, &gm);
+    if (km < 0 || !(gap[0] < g->jumpin)) {
+        *tc = *reach = NAN;
+        return TT_GRAZE_UNSURE; /* the probes miss the closest approach or the touch */
+    }
+    *tc = tm;
+    *reach = gm;
+    if (gm < g->jumpin)
+        return gm < g->jumpin - g->margin ? TT_GRAZE_FREE : TT_GRAZE_UNSURE;
+    int k = 1;
+    while (k < NP && gap[k] < g->jumpin)
+        k++;
+    if (k < NP)
+        *tc = crossing(g, gap, k, g->tau[k], gap[k]);
+    else /* the probes fall short of jump-in, the closest approach between them not */
+        *tc = crossing(g, gap, km, tm, gm);
+    return gm > g->jumpin + g->margin ? TT_GRAZE_TOUCH : TT_GRAZE_UNSURE;
+}
+
+static void store(tt_graze *g, point *p, const double x0[2], double s_mid, double tc,
+                  const double x1[2], const double *red)
+{
+    p->f[0] = 1;
+    p->f[1] = x0[0];
+    p->f[2] = x0[1];
+    p->f[3] = s_mid;
+    p->f[4] = tc;
+    p->out[0] = x1[0];
+    p->out[1] = x1[1];
+    memcpy(p->out + 2, red, (size_t)g->m * sizeof *red);
+}
+
+void tt_graze_add(tt_graze *g, const double x0[2], double s_mid, double tc, const double x1[2],
+                  const double *red)
+{
+    store(g, &g->hist[g->head], x0, s_mid, tc, x1, red);
+    g->head = (g->head + 1) % HIST;
+    if (g->nh < HIST)
+        g->nh++;
+}
+
+int tt_graze_count(const tt_graze *g) { return g->nh; }
+int tt_graze_fitted(const tt_graze *g) { return g->fitted; }
+
+/* The latest touch's sample (mid-cycle). */
+static double latest_s(const tt_graze *g)
+{
+    return g->hist[(g->head + HIST - 1) % HIST].f[3];
+}
+
+int tt_graze_star_due(const tt_graze *g, int fresh)
+{
+    if (g->npair < PAIR || g->nh == 0)
+        return 1;
+    const double s = latest_s(g), far = (fresh ? 0.5 : STAR) * g->reach;
+    for (int i = 0; i < PAIR; i++)
+        if (fabs(g->hist[HIST + i].f[3] - s) > far)
+            return 1;
+    return 0;
+}
+
+int tt_graze_near(const tt_graze *g)
+{
+    int n = 0;
+    const double s = g->nh ? latest_s(g) : 0;
+    for (int i = 0; i < g->nh; i++)
+        n += fabs(g->hist[i].f[3] - s) <= g->reach;
+    return n;
+}
+
+int tt_graze_outputs(const tt_graze *g) { return g->no; }
+
+int tt_graze_deepest(const tt_graze *g, double x0[2], double *s_mid)
+{
+    if (g->nh == 0)
+        return 0;
+    const point *deep = &g->hist[0];
+    for (int i = 1; i < g->nh; i++)
+        if (g->hist[i].f[4] < deep->f[4])
+            deep = &g->hist[i];
+    x0[0] = deep->f[1];
+    x0[1] = deep->f[2];
+    *s_mid = deep->f[3];
+    return 1;
+}
+
+void tt_graze_add_pair(tt_graze *g, int i, const double x0[2], double s_mid, double tc,
+                       const double x1[2], const double *red)
+{
+    store(g, &g->hist[HIST + i], x0, s_mid, tc, x1, red);
+    g->npair = i + 1;
+}
+
+/* The scaled features of a cycle's inputs about the fit's centre. */
+static void features(const fit_t *F, const double *f, double *phi)
+{
+    phi[0] = 1;
+    for (int i = 0; i < 3; i++)
+        phi[1 + i] = (f[1 + i] - F->centre[i]) / F->scale[i];
+    const double tau = (f[4] - F->centre[3]) / F->scale[3];
+    phi[4] = tau;
+    phi[5] = tau * tau;
+    phi[6] = tau * tau * tau;
+}
+
+/* Least squares by modified Gram-Schmidt (twice, for orthogonality), a column that the
+ * ones before it nearly span dropped (its coefficient 0): Q (n x NF, by columns) and R
+ * (NF x NF); keep[j] tells the columns kept. */
+static void orthogonalise(int n, double *Q, double *R, int *keep)
+{
+    for (int j = 0; j < NF; j++) {
+        double *v = Q + (size_t)j * (size_t)n, norm0 = 0, norm = 0;
+        for (int r = 0; r < n; r++)
+            norm0 += v[r] * v[r];
+        for (int i = 0; i < NF; i++)
+            R[i * NF + j] = 0;
+        for (int pass = 0; pass < 2; pass++)
+            for (int i = 0; i < j; i++) {
+                if (!keep[i])
+                    continue;
+                const double *q = Q + (size_t)i * (size_t)n;
+                double dot = 0;
+                for (int r = 0; r < n; r++)
+                    dot += q[r] * v[r];
+                R[i * NF + j] += dot;
+                for (int r = 0; r < n; r++)
+                    v[r] -= dot * q[r];
+            }
+        for (int r = 0; r < n; r++)
+            norm += v[r] * v[r];
+        keep[j] = norm0 > 0 && norm > 1e-18 * norm0;
+        norm = sqrt(norm);
+        R[j * NF + j] = keep[j] ? norm : 0;
+        for (int r = 0; r < n && keep[j]; r++)
+            v[r] /= norm;
+    }
+}
+
+/* The cycles held whose sample is within the fit's reach of the latest's, into pts:
+ * over a transient (engaging) the sample moves by several thousandths of A0 among the
+ * cycles held, and the map is not linear in it that far; the star's within its wider
+ * reach. Sets the trial fit's centre (the latest cycle), scales and the ranges the
+ * touches among them span. */
+static int select_points(tt_graze *g, const point **pts)
+{
+    fit_t *F = &g->trial;
+    const point *last = &g->hist[(g->head + HIST - 1) % HIST];
+    for (int i = 0; i < 4; i++)
+        F->centre[i] = last->f[1 + i];
+    F->scale[0] = g->L;
+    F->scale[1] = g->V;
+    F->scale[2] = g->L;
+    F->scale[3] = 0.01 * g->T;
+    F->smin = F->tmin = F->lo[0] = F->lo[1] = INFINITY;
+    F->smax = F->tmax = F->hi[0] = F->hi[1] = -INFINITY;
+    int n = 0;
+    for (int i = 0; i < g->nh + g->npair; i++) {
+        const point *p = i < g->nh ? &g->hist[i] : &g->hist[HIST + i - g->nh];
+        if (fabs(p->f[3] - F->centre[2]) > (i < g->nh ? 1 : STAR) * g->reach)
+            continue;
+        pts[n++] = p;
+        if (i < g->nh) { /* the ranges the fit covers are the touches' */
+            F->smin = fmin(F->smin, p->f[3]);
+            F->smax = fmax(F->smax, p->f[3]);
+            F->tmin = fmin(F->tmin, p->f[4]);
+            F->tmax = fmax(F->tmax, p->f[4]);
+            for (int j = 0; j < 2; j++) {
+                F->lo[j] = fmin(F->lo[j], p->f[1 + j]);
+                F->hi[j] = fmax(F->hi[j], p->f[1 + j]);
+            }
+        }
+    }
+    return n;
+}
+
+/* Output o's coefficients from Q and R, and whether they reproduce every point within
+ * tol of its scale (an output not tracked is NAN throughout and passes). */
+static int solve_output(tt_graze *g, int o, int n, const point **pts, const double *Q,
+                        const double *R, const int *keep, double tol)
+{
+    fit_t *F = &g->trial;
+    double b[NF], *c = F->coef, phi[NF];
+    for (int j = 0; j < NF; j++) {
+        b[j] = 0;
+        for (int r = 0; r < n && keep[j]; r++)
+            b[j] += Q[(size_t)j * (size_t)n + (size_t)r] * pts[r]->out[o];
+    }
+    for (int j = NF - 1; j >= 0; j--) {
+        double v = 0;
+        if (keep[j]) {
+            v = b[j];
+            for (int i = j + 1; i < NF; i++)
+                v -= R[j * NF + i] * c[i * g->no + o];
+            v /= R[j * NF + j];
+        }
+        c[j * g->no + o] = v;
+    }
+    const double sc = g->oscale[o] * fmax(tol, g->otol[o]);
+    for (int r = 0; r < n; r++) {
+        features(F, pts[r]->f, phi);
+        double y = 0;
+        for (int j = 0; j < NF; j++)
+            y += phi[j] * c[j * g->no + o];
+        if (fabs(y - pts[r]->out[o]) > sc)
+            return 0;
+    }
+    return 1;
+}
+
+int tt_graze_fit(tt_graze *g, double tol)
+{
+    if (g->nh < NMIN || g->npair < PAIR)
+        return 0;
+    const point *pts[HIST + PAIR];
+    const int n = select_points(g, pts);
+    if (n < NMIN + PAIR)
+        return 0;
+    double *Q = malloc(((size_t)n * NF + NF * NF) * sizeof *Q);
+    if (!Q)
+        return 0;
+    double *R = Q + (size_t)n * NF;
+    int keep[NF];
+    for (int r = 0; r < n; r++) {
+        double ph[NF];
+        features(&g->trial, pts[r]->f, ph);
+        for (int j = 0; j < NF; j++)
+            Q[(size_t)j * (size_t)n + (size_t)r] = ph[j];
+    }
+    orthogonalise(n, Q, R, keep);
+    /* the state and the sample must be resolved; the cubic in t_c may drop terms */
+    int ok = keep[0] && keep[1] && keep[2] && keep[3];
+    for (int o = 0; o < g->no && ok; o++)
+        ok = solve_output(g, o, n, pts, Q, R, keep, tol);
+    free(Q);
+    if (ok) { /* the trial becomes the fit; a failed one leaves the last fit in use */
+        fit_t t = g->fit;
+        g->fit = g->trial;
+        g->trial = t;
+        g->fitted = 1;
+    }
+    return ok;
+}
+
+void tt_graze_predict(const tt_graze *g, const double x[2], double s_mid, double tc, double x1[2],
+                      double *red)
+{
+    const double f[5] = {1, x[0], x[1], s_mid, tc};
+    double phi[NF];
+    features(&g->fit, f, phi);
+    const double *c = g->fit.coef;
+    for (int o = 0; o < g->no; o++) {
+        double y = 0;
+        for (int j = 0; j < NF; j++)
+            y += phi[j] * c[j * g->no + o];
+        if (o < 2)
+            x1[o] = y;
+        else
+            red[o - 2] = y;
+    }
+}
+
+double tt_graze_error(const tt_graze *g, const double xa[2], const double *ra, const double xb[2],
+                      const double *rb, double tol)
+{
+    double err = fmax(fabs(xa[0] - xb[0]) / (g->L * tol), fabs(xa[1] - xb[1]) / (g->V * tol));
+    for (int o = 2; o < g->no; o++) {
+        double d = fabs(ra[o - 2] - rb[o - 2]) / (g->oscale[o] * fmax(tol, g->otol[o]));
+        if (d > err)
+            err = d; /* NAN (not tracked) is skipped */
+    }
+    return err;
+}
+
+/* Whether v lies within [lo, hi] widened by a twentieth of its span on each side. */
+static int within(double v, double lo, double hi)
+{
+    const double w = 0.05 * (hi - lo);
+    return v >= lo - w && v <= hi + w;
+}
+
+int tt_graze_covers(const tt_graze *g, const double x[2], double s_mid, double tc)
+{
+    const fit_t *F = &g->fit;
+    return g->fitted && s_mid >= F->smin - g->reach && s_mid <= F->smax + g->reach &&
+           within(tc, F->tmin, F->tmax) && within(x[0], F->lo[0], F->hi[0]) &&
+           within(x[1], F->lo[1], F->hi[1]);
+}

@@ -1,0 +1,160 @@
+#!/usr/bin/python3
+"""tiptap live under abuse and in use, over its WebSocket and HTTP (no browser): bad
+messages get a clear reply and change nothing; a page from another origin is refused;
+four pages at once, one closed mid-stream, one flooding and one never reading: the
+others keep their updates and the server's memory stays bounded; the exports are what
+tiptap scan writes for the exported scene, byte for byte.
+
+usage: live_robust.py PORT SERVER_PID TIPTAP WORKDIR"""
+import filecmp
+import os
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from live_ws import WS, Refused  # noqa: E402
+
+port, pid, tiptap, work = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3], sys.argv[4]
+fails = 0
+
+
+def ok(cond, what):
+    global fails
+    print(("ok " if cond else "FAIL ") + what)
+    fails += not cond
+
+
+def rss_kb():
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1])
+    return 0
+
+
+def control(ws_msgs, name):
+    for c in ws_msgs["controls"]:
+        if c["name"] == name:
+            return c["value"]
+    return None
+
+
+def ask(ws, text):
+    """Send a message; its reply (the other messages in between are skipped)."""
+    ws.send(text)
+    return ws.recv_type("reply")
+
+
+# ---- one page: the first messages, then bad messages
+a = WS(port)
+first = a.recv_type("controls")
+ki0 = control(first, "feedback.integral_gain")
+frame = a.recv_type("frame")
+a.recv_type("row")
+ok(frame["pixels"] > 0 and frame["lines"] > 0, "a page gets the controls, the frame (%d x %d) "
+   "and rows" % (frame["pixels"], frame["lines"]))
+bad = [
+    ("set feedback.integral_gain = abc", "console: [feedback] integral_gain:"),
+    ("set feedback.integral_gain = -3 kHz", "console: [feedback] integral_gain:"),
+    ("set feedback.integral_gain = 6", "console: [feedback] integral_gain:"),
+    ("set scan.pixels = 0", "console: [scan] pixels:"),
+    ("set cantilever.spring_constant = 2 N/m", "no such control"),
+    ("set sample = ../../etc/passwd", "not a bundled sample"),
+    ("{\"set\": 1}", "expected set NAME = VALUE or restart"),
+    ("set feedback.integral_gain = 5 kHz\nset noise = loud", "expected on or off"),
+    ("x" * 20000, "more than 16384 bytes"),
+]
+for text, want in bad:
+    r = ask(a, text)
+    ok(not r["ok"] and want in r["error"] and "\n" not in r["error"],
+       "refused %r: %s" % (text[:40], r["error"][:110]))
+r = ask(a, b"\xff\xfe\x00binary")
+ok(not r["ok"], "a binary message is refused: %s" % r["error"][:80])
+b = WS(port)
+ok(control(b.recv_type("controls"), "feedback.integral_gain") == ki0,
+   "after the refusals the I gain is still %s Hz" % ki0)
+b.close()
+
+# ---- another origin (a web page elsewhere) and another Host (DNS rebinding) are refused
+for kw in ({"origin": "http://example.com"}, {"host": "evil.example:%d" % port}):
+    try:
+        WS(port, **kw).close()
+        ok(False, "a WebSocket with %s is refused" % kw)
+    except (Refused, ConnectionError, OSError) as e:
+        ok(True, "a WebSocket with %s is refused (%s)" % (kw, str(e)[:40]))
+
+# ---- four pages; one flooding, one never reading, one closed mid-stream
+rss0 = rss_kb()
+pages = [WS(port) for _ in range(4)]
+flood, mute, gone, calm = pages
+raw = socket.create_connection(("127.0.0.1", port))  # half a handshake, then nothing
+raw.sendall(b"GET / HTTP/1.1\r\nHost: 127.0.0.1\r\n")
+gone.recv_type("row")
+gone.s.close()  # no close frame: a tab killed
+t_end = time.time() + 6
+sent = 0
+while time.time() < t_end:  # 6 s of flood: far more than 20 messages a second
+    flood.send("set feedback.integral_gain = %d Hz" % (1000 + sent % 7))
+    sent += 1
+    if sent % 200 == 0:
+        calm.recv()  # the calm page reads as a browser does
+scopes, t0 = 0, time.time()
+t_end = t0 + float(os.environ.get("TT_LIVE_WAIT", "300"))
+while time.time() < t_end and scopes < 3:  # three lines' scopes after the flood
+    m = calm.recv()
+    scopes += m["type"] == "scope"
+ok(scopes >= 3, "a calm page kept its scope updates through the flood (%d in %.1f s)"
+   % (scopes, time.time() - t0))
+replies, dropped = 0, 0
+t_end = time.time() + 20
+while time.time() < t_end and dropped == 0:  # the pages' own stream goes on meanwhile
+    m = flood.recv()
+    if m["type"] == "reply":
+        replies += 1
+        dropped = max(dropped, m.get("dropped", 0))
+ok(dropped > 0 and replies < sent, "the flood of %d messages got %d replies, %d dropped at most "
+   "in one" % (sent, replies, dropped))
+rss1 = rss_kb()
+ok(rss1 - rss0 < 64 * 1024, "the server's memory grew %.1f MB through it (%d to %d kB)"
+   % ((rss1 - rss0) / 1024, rss0, rss1))
+for p in (flood, mute, calm):
+    p.close()
+raw.close()
+
+# ---- the exports: wait for a whole frame at one setting, then tiptap scan its scene
+c = WS(port)
+ok(ask(c, "set feedback.integral_gain = 2 kHz")["ok"], "a good gain accepted")
+deadline = time.time() + float(os.environ.get("TT_LIVE_WAIT", "300"))
+st = None
+while time.time() < deadline:
+    m = c.recv()
+    if m["type"] == "status" and m["reproducible"]:
+        st = m
+        break
+ok(st is not None, "a whole frame ran at one setting")
+c.close()
+exp = os.path.join(work, "export")
+os.makedirs(exp, exist_ok=True)
+names = ["scene.ini", "scan.gwy", "height_trace.gsf", "height_retrace.gsf", "phase_trace.gsf"]
+for n in names:
+    with urllib.request.urlopen("http://127.0.0.1:%d/export/%s" % (port, n), timeout=300) as r:
+        with open(os.path.join(exp, n), "wb") as f:
+            f.write(r.read())
+try:
+    urllib.request.urlopen("http://127.0.0.1:%d/export/..%%2Fscene.ini" % port, timeout=20)
+    ok(False, "an export outside the export folder is refused")
+except urllib.error.HTTPError as e:
+    ok(e.code == 404, "an export outside the export folder is refused (%d)" % e.code)
+out = os.path.join(work, "rescan")
+run = subprocess.run([tiptap, "scan", os.path.join(exp, "scene.ini"), "-o", out, "-q", "-j", "2"],
+                     capture_output=True, text=True)
+ok(run.returncode == 0, "tiptap scan of the exported scene ran (%s)" % run.stderr.strip()[:200])
+for n in names[1:]:
+    ok(filecmp.cmp(os.path.join(exp, n), os.path.join(out, n), shallow=False),
+       "%s: the export and tiptap scan's are the same bytes" % n)
+ok(filecmp.cmp(os.path.join(exp, "scene.ini"), os.path.join(out, "scene.ini"), shallow=False),
+   "scene.ini: tiptap scan writes back the exported scene unchanged")
+sys.exit(1 if fails else 0)
