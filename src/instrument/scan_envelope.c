@@ -614,32 +614,48 @@ static void fail(const line_ctx *L, line_state *st, controller *c, long k)
     c->wait = c->wait * 2 < WAIT_MAX ? c->wait * 2 : WAIT_MAX;
 }
 
-/* A model cycle, unless the stretch is done, this or the next cycle crosses an edge,
- * the sample is out of the anchor's reach, or it is the phase's last (the next phase
- * starts integrating from the sim's state): then a check. The sample's reach counts its
- * smooth course only: the z piezo's noise moves it as an input the model takes, held by
- * the check's error (docs/dynamics.md, "Noise on the envelope tier"); with noise the
- * model's inputs are held within L->reach of the anchor too (the second-order model's
- * trust region). 1: the model ran the cycle, its samples reduced to the lock-in's
- * components in obs. */
-static int model_step(const line_ctx *L, line_state *st, controller *c,
-                      const cycle_in *in, int edge, double *obs)
+/* model_step with noise that moves the state (thermal, z piezo): the second-order model,
+ * its part of the state carried beside it, within its reach of the anchor (L->reach);
+ * the sample's reach from the anchor counts its smooth course only, the z piezo's noise
+ * being an input the model takes, held by the check's error (docs/dynamics.md, "Noise on
+ * the envelope tier"). Never grazing (graze_possible). */
+static int model_step2(const line_ctx *L, line_state *st, const controller *c,
+                       const cycle_in *in, double sdot, double *obs)
 {
     const tt_envelope *env = L->W->env;
-    const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
-    if (!c->model || c->left <= 0 || edge || in->edge_next || in->mat != st->current ||
-        in->k + 1 >= L->ncyc ||
-        !(fabs(tt_envelope_sample_offset(env, in->sa, sdot) - (in->zn - c->zn)) <= L->edge) ||
-        (L->reach > 0 && !(tt_envelope_reach(env, st->x, in->sa, sdot) <= L->reach)))
+    const double off = tt_envelope_sample_offset(env, in->sa, sdot) - (in->zn - c->zn);
+    if (!(fabs(off) <= L->edge) || !(tt_envelope_reach(env, st->x, in->sa, sdot) <= L->reach))
         return 0;
-    if (c->graze)
-        return graze_step(L, st, c, in, obs);
     double x1[2], x21[2];
     tt_envelope_predict2_reduced(env, st->x, st->x2, in->sa, sdot, x1, x21, obs);
     st->x[0] = x1[0];
     st->x[1] = x1[1];
     st->x2[0] = x21[0];
     st->x2[1] = x21[1];
+    return 1;
+}
+
+/* A model cycle, unless the stretch is done, this or the next cycle crosses an edge,
+ * the sample is out of the anchor's reach, or it is the phase's last (the next phase
+ * starts integrating from the sim's state): then a check. 1: the model ran the cycle,
+ * its samples reduced to the lock-in's components in obs. */
+static int model_step(const line_ctx *L, line_state *st, controller *c,
+                      const cycle_in *in, int edge, double *obs)
+{
+    const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
+    if (!c->model || c->left <= 0 || edge || in->edge_next || in->mat != st->current ||
+        in->k + 1 >= L->ncyc)
+        return 0;
+    if (L->reach > 0)
+        return model_step2(L, st, c, in, sdot, obs);
+    if (!(fabs(tt_envelope_sample_offset(L->W->env, in->sa, sdot)) <= L->edge))
+        return 0;
+    if (c->graze)
+        return graze_step(L, st, c, in, obs);
+    double x1[2];
+    tt_envelope_predict_reduced(L->W->env, st->x, in->sa, sdot, x1, obs);
+    st->x[0] = x1[0];
+    st->x[1] = x1[1];
     return 1;
 }
 

@@ -226,7 +226,8 @@ void tt_envelope_observe_probes(const tt_envelope *e, const tt_sample *probes, d
 
 /* The model's inputs' offsets u from the anchor: d, d', the sample mid-cycle and its
  * travel within the cycle (0 unless the travel is an input). */
-static void offsets(const tt_envelope *e, const double x[2], double s, double sdot, double u[NIN])
+static inline void offsets(const tt_envelope *e, const double x[2], double s, double sdot,
+                           double u[NIN])
 {
     u[0] = x[0] - e->xa[0];
     u[1] = x[1] - e->xa[1];
@@ -594,30 +595,54 @@ int tt_envelope_build(tt_envelope *e, tt_sim *sim, const double x0[2], int c0, d
     return ok;
 }
 
-/* The model's end state from x, and the inputs' offsets u. */
-static void step(const tt_envelope *e, const double x[2], double s, double sdot, double u[NIN],
-                 double x1[2])
+/* The model's end state from x, and the inputs' offsets u, in the first three inputs (the
+ * travel's part: add_travel). */
+static inline void step(const tt_envelope *e, const double x[2], double s, double sdot,
+                        double u[NIN], double x1[2])
 {
-    offsets(e, x, s, sdot, u);
-    for (int i = 0; i < 2; i++) {
+    u[0] = x[0] - e->xa[0];
+    u[1] = x[1] - e->xa[1];
+    u[2] = s + 0.5 * sdot * e->T - e->sa;
+    for (int i = 0; i < 2; i++)
         x1[i] = e->x1[i] + e->J[i][0] * u[0] + e->J[i][1] * u[1] + e->J[i][2] * u[2];
-        if (e->nin > 3)
-            x1[i] += e->J[i][3] * u[3];
-    }
 }
 
-/* Observables o = oa + C u (no of them), C by columns of length ld (nin of them). */
-static void linear(int no, int ld, int nin, const double *restrict oa, const double *restrict C,
-                   const double u[NIN], double *restrict o)
+/* Observables o = oa + C u (no of them) in the first three inputs, C by columns of length
+ * ld. */
+static inline void linear(int no, int ld, const double *restrict oa, const double *restrict C,
+                          const double u[NIN], double *restrict o)
 {
     const double *restrict c0 = C, *restrict c1 = c0 + ld, *restrict c2 = c1 + ld;
-    const double *restrict c3 = c2 + ld;
-    if (nin > 3)
-        for (int i = 0; i < no; i++)
-            o[i] = oa[i] + c0[i] * u[0] + c1[i] * u[1] + c2[i] * u[2] + c3[i] * u[3];
-    else
-        for (int i = 0; i < no; i++)
-            o[i] = oa[i] + c0[i] * u[0] + c1[i] * u[1] + c2[i] * u[2];
+    for (int i = 0; i < no; i++)
+        o[i] = oa[i] + c0[i] * u[0] + c1[i] * u[1] + c2[i] * u[2];
+}
+
+/* The travel's part where it is an input (tt_envelope_use_travel): its offset u[3], and
+ * its column of J and of C (length ld) times it added to x1 and the no outputs o, term
+ * by term as one sum over the four inputs would. */
+static inline void add_travel(const tt_envelope *e, double sdot, double u[NIN], double x1[2],
+                              int no, int ld, const double *restrict C, double *restrict o)
+{
+    u[3] = sdot * e->T - e->ta;
+    for (int i = 0; i < 2; i++)
+        x1[i] += e->J[i][3] * u[3];
+    const double *restrict c3 = C + 3 * (size_t)ld;
+    for (int i = 0; i < no; i++)
+        o[i] += c3[i] * u[3];
+}
+
+/* A first-order prediction with the travel an input: the end state x1 and no outputs
+ * from oa and C (columns of length ld). Out of line, so that the three inputs' paths, a
+ * noise-free scan's, compile as lean as without it. */
+__attribute__((noinline)) static void predict_travel(const tt_envelope *e, const double x[2],
+                                                     double s, double sdot, double x1[2],
+                                                     int no, int ld, const double *oa,
+                                                     const double *C, double *o)
+{
+    double u[NIN];
+    step(e, x, s, sdot, u, x1);
+    linear(no, ld, oa, C, u, o);
+    add_travel(e, sdot, u, x1, no, ld, C, o);
 }
 
 /* Second order (a second-order perturbation expansion about the anchor): the state is
@@ -654,9 +679,11 @@ static void second_order(const tt_envelope *e, const double u[NIN], const double
 void tt_envelope_predict2(const tt_envelope *e, const double x[2], const double x2[2], double s,
                           double sdot, double x1[2], double x21[2], double *obs)
 {
-    double u[NIN], xl[2] = {x[0] - x2[0], x[1] - x2[1]};
+    double u[NIN] = {0, 0, 0, 0}, xl[2] = {x[0] - x2[0], x[1] - x2[1]};
     step(e, xl, s, sdot, u, x1);
-    linear(e->no, e->no, e->nin, e->oa, e->C, u, obs);
+    linear(e->no, e->no, e->oa, e->C, u, obs);
+    if (e->nin > 3)
+        add_travel(e, sdot, u, x1, e->no, e->no, e->C, obs);
     x21[0] = x21[1] = 0;
     if (e->second && e->built) {
         second_order(e, u, x2, x21, e->no, e->no, e->H + 2 * NPAIR, e->C, obs);
@@ -668,16 +695,20 @@ void tt_envelope_predict2(const tt_envelope *e, const double x[2], const double 
 void tt_envelope_predict2_reduced(const tt_envelope *e, const double x[2], const double x2[2],
                                   double s, double sdot, double x1[2], double x21[2], double *red)
 {
-    double u[NIN], xl[2] = {x[0] - x2[0], x[1] - x2[1]};
+    x21[0] = x21[1] = 0;
+    if (!(e->second && e->built)) {
+        tt_envelope_predict_reduced(e, x, s, sdot, x1, red);
+        return;
+    }
+    double u[NIN] = {0, 0, 0, 0}, xl[2] = {x[0] - x2[0], x[1] - x2[1]};
     const int nr = e->m + TT_ENV_EXTRA, ld = nr + e->np;
     step(e, xl, s, sdot, u, x1);
-    linear(nr, ld, e->nin, e->ra, e->Cr, u, red);
-    x21[0] = x21[1] = 0;
-    if (e->second && e->built) {
-        second_order(e, u, x2, x21, nr, ld, e->Hr, e->Cr, red);
-        x1[0] += x21[0];
-        x1[1] += x21[1];
-    }
+    linear(nr, ld, e->ra, e->Cr, u, red);
+    if (e->nin > 3)
+        add_travel(e, sdot, u, x1, nr, ld, e->Cr, red);
+    second_order(e, u, x2, x21, nr, ld, e->Hr, e->Cr, red);
+    x1[0] += x21[0];
+    x1[1] += x21[1];
 }
 
 void tt_envelope_predict(const tt_envelope *e, const double x[2], double s, double sdot,
@@ -691,9 +722,14 @@ void tt_envelope_predict(const tt_envelope *e, const double x[2], double s, doub
 void tt_envelope_predict_reduced(const tt_envelope *e, const double x[2], double s, double sdot,
                                  double x1[2], double *red)
 {
-    const double x2[2] = {0, 0};
-    double x21[2];
-    tt_envelope_predict2_reduced(e, x, x2, s, sdot, x1, x21, red);
+    double u[NIN];
+    const int nr = e->m + TT_ENV_EXTRA, ld = nr + e->np;
+    if (e->nin > 3) {
+        predict_travel(e, x, s, sdot, x1, nr, ld, e->ra, e->Cr, red);
+        return;
+    }
+    step(e, x, s, sdot, u, x1);
+    linear(nr, ld, e->ra, e->Cr, u, red);
 }
 
 void tt_envelope_predict_probes(const tt_envelope *e, const double x[2], double s, double sdot,
@@ -702,7 +738,7 @@ void tt_envelope_predict_probes(const tt_envelope *e, const double x[2], double 
     double u[NIN], x1[2];
     const int k = e->m + TT_ENV_EXTRA;
     step(e, x, s, sdot, u, x1);
-    linear(e->np, k + e->np, e->nin, e->ra + k, e->Cr + k, u, g);
+    linear(e->np, k + e->np, e->ra + k, e->Cr + k, u, g);
 }
 
 double tt_envelope_error_reduced(const tt_envelope *e, const double xa[2], const double *ra,

@@ -117,7 +117,8 @@ void tt_envelope_predict_reduced(const tt_envelope *e, const double x[2], double
                                  double x1[2], double *red);
 
 /* The model's probes alone (np tip positions, m) from x with the sample at s moving at sdot,
- * to first order (the grazing model runs without noise, whose second order it lacks). */
+ * to first order in d, d' and s: neither the travel (tt_envelope_use_travel) nor the
+ * second order is taken, as the grazing model that reads them runs only without noise. */
 void tt_envelope_predict_probes(const tt_envelope *e, const double x[2], double s, double sdot,
                                 double *g);
 /* An observable vector reduced as tt_envelope_reduce asks: the m combinations, then the
