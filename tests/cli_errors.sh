@@ -47,6 +47,17 @@ expect_error "missing scene" "$tmp/none.ini" "$tiptap" contact "$tmp/none.ini"
 expect_error "unwritable output" "$tmp/no/such/dir/c.csv" "$tiptap" contact --lambda 1 -o "$tmp/no/such/dir/c.csv"
 expect_error "unknown material" "no [material quartz]" "$tiptap" contact "$tmp/good.ini" --material quartz
 expect_error "both moduli" "[material glass] reduced_modulus: given together with youngs_modulus" "$tiptap" contact "$tmp/good.ini" --set "material.glass.youngs_modulus=70 GPa"
+# the z piezo noise's bandwidth: a frequency above 0, at most half the drive frequency
+# (it is drawn once per drive cycle), refused before anything runs and no output written
+zset=(--set "noise.z_piezo=0.3 pm/sqrt(Hz)" --set scan.pixels=4 --set scan.lines=1)
+expect_error "z piezo bandwidth negative" "[noise] z_piezo_bandwidth: -1 kHz is out of range; expected above 0 Hz" \
+  "$tiptap" scan "$tmp/good.ini" "${zset[@]}" --set "noise.z_piezo_bandwidth=-1 kHz" -o "$tmp/zbw"
+expect_error "z piezo bandwidth unit" "[noise] z_piezo_bandwidth: missing unit in '2'" \
+  "$tiptap" scan "$tmp/good.ini" "${zset[@]}" --set "noise.z_piezo_bandwidth=2" -o "$tmp/zbw"
+expect_error "z piezo bandwidth above the drive's Nyquist" \
+  "[noise] z_piezo_bandwidth: the z piezo's noise bandwidth (200 kHz) is above half the drive frequency (150 kHz)" \
+  "$tiptap" scan "$tmp/good.ini" "${zset[@]}" --set "noise.z_piezo_bandwidth=200 kHz" -o "$tmp/zbw"
+[ ! -e "$tmp/zbw" ] && echo "ok   z piezo bandwidth: no output" || { echo "FAIL z piezo bandwidth wrote $tmp/zbw"; fail=1; }
 
 # no temporary or partial files left behind
 if ls "$tmp"/*.tmp.* >/dev/null 2>&1; then echo "FAIL temporary files left"; fail=1; fi

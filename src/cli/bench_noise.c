@@ -205,11 +205,11 @@ int bench_noise_figure(const bench_sample *s, const bench_run *ref, int seeds)
     memset(t, 0, sizeof t);
     size_t units = (size_t)(2 * ref->lines * seeds);
     printf("\n# noise: the same lines with noise, seeds 1 to %d, on the every-cycle tier and the default\n"
-           "# tier (dopri5 tol 1e-8). full noise: 300 K, detector 100 fm/sqrt(Hz), z piezo 0.3 pm/sqrt(Hz);\n"
-           "# thermal + detector: without the z piezo's (which the envelope tier integrates);\n"
-           "# detector noise: the detector's alone. Each image's difference from the noise-free reference\n"
-           "# above, per line and direction (%zu of them): sd, its standard deviation over the line's\n"
-           "# pixels (the noise the image shows); shift, its mean\n",
+           "# tier (dopri5 tol 1e-8). full noise: 300 K, detector 100 fm/sqrt(Hz), z piezo 0.3 pm/sqrt(Hz)\n"
+           "# through its bandwidth ([noise] z_piezo_bandwidth, default); thermal + detector: without\n"
+           "# the z piezo's; detector noise: the detector's alone. Each image's difference from the\n"
+           "# noise-free reference above, per line and direction (%zu of them): sd, its standard\n"
+           "# deviation over the line's pixels (the noise the image shows); shift, its mean\n",
            seeds, units);
     printf("%-40s %8s %8s %9s %17s %17s %19s %19s\n", "setting", "rtf_j2", "rtf_cpu", "integr_%", "h_sd_pm",
            "h_shift_pm", "ph_sd_deg", "ph_shift_deg");

@@ -515,8 +515,7 @@ int cmd_scan(int argc, char **argv)
         /* the reason from the scan's own test: a tier that ran yet integrated every
          * cycle (a grazing tip) is not a fallback */
         const char *why = !tt_scan_envelope_tier(&params)
-                              ? ": every cycle, since Q is below 30 or above 3000 or noise is on "
-                                "(docs/dynamics.md)"
+                              ? ": every cycle, since Q is below 30 (docs/dynamics.md)"
                           : done < all ? ": the rest followed on the cycle map's model"
                                        : ": the model held on none (docs/dynamics.md)";
         fprintf(stderr, "cycles_integrated = %ld (%.1f %%; envelope tier%s)\n", done,

@@ -358,7 +358,7 @@ size_t tt_config_scan_unused(const tt_scan_params *p, size_t *idx, size_t max)
     return k;
 }
 
-int tt_config_noise(const tt_scene *s, const tt_solver *solver, tt_scan_noise *n)
+int tt_config_noise(const tt_scene *s, const tt_solver *solver, double fd, tt_scan_noise *n)
 {
     int rc;
     long seed, points;
@@ -366,7 +366,8 @@ int tt_config_noise(const tt_scene *s, const tt_solver *solver, tt_scan_noise *n
         (rc = tt_scene_get_int(s, "noise", NULL, "points", &points)) ||
         (rc = tt_scene_get_double(s, "noise", NULL, "temperature", &n->temperature)) ||
         (rc = tt_scene_get_double(s, "noise", NULL, "detector", &n->detector)) ||
-        (rc = tt_scene_get_double(s, "noise", NULL, "z_piezo", &n->z_piezo)))
+        (rc = tt_scene_get_double(s, "noise", NULL, "z_piezo", &n->z_piezo)) ||
+        (rc = tt_scene_get_double(s, "noise", NULL, "z_piezo_bandwidth", &n->z_bandwidth)))
         return rc;
     n->seed = (uint64_t)seed;
     n->points = (int)points;
@@ -374,13 +375,22 @@ int tt_config_noise(const tt_scene *s, const tt_solver *solver, tt_scan_noise *n
         return tt_scene_fail(s, "noise", NULL, "points",
                              "rk4's steps_per_cycle (%d) must be a multiple of it (%d)",
                              solver->steps_per_cycle, n->points);
+    /* the z piezo's noise is drawn once per drive cycle (linear between): its band must
+     * lie below that rate's Nyquist frequency */
+    static const char *const band[] = {"noise.z_piezo_bandwidth", "cantilever.drive_frequency",
+                                       "cantilever.resonance_frequency", NULL};
+    if (n->z_piezo > 0 && n->z_bandwidth > 0.5 * fd)
+        return tt_scene_fail_set(s, band,
+                                 "the z piezo's noise bandwidth (%.4g kHz) is above half the drive "
+                                 "frequency (%.4g kHz): the noise is drawn once per drive cycle",
+                                 n->z_bandwidth * 1e-3, 0.5e-3 * fd);
     return TT_OK;
 }
 
 /* [noise] and [scan] lines_mode. */
 static int read_noise(const tt_scene *s, tt_scan_params *p)
 {
-    int rc = tt_config_noise(s, &p->solver, &p->noise);
+    int rc = tt_config_noise(s, &p->solver, p->cantilever.fd, &p->noise);
     if (rc)
         return rc;
     const char *mode = tt_scene_get_string(s, "scan", NULL, "lines_mode");

@@ -56,7 +56,9 @@ int tt_config_trace(const tt_scene *s, tt_trace_params *p)
     if ((rc = tt_config_check_rk4(s, "trace", fmin(p->separation, p->separation_end))))
         return rc;
     tt_solver solver;
-    if ((rc = tt_solver_from_scene(&solver, s)) || (rc = tt_config_noise(s, &solver, &p->noise)))
+    tt_cantilever c;
+    if ((rc = tt_solver_from_scene(&solver, s)) || (rc = tt_config_cantilever(s, &c)) ||
+        (rc = tt_config_noise(s, &solver, c.fd, &p->noise)))
         return rc;
     if (!p->ramp)
         return TT_OK;

@@ -210,7 +210,10 @@ static const tt_scene_key noise_keys[] = {
     {"detector", Q(TT_DIM_NOISE_DENSITY), "0 m/sqrt(Hz)", 0, INF, 0, NULL,
      "deflection detector noise density (one-sided), added to the samples the lock-in reads"},
     {"z_piezo", Q(TT_DIM_NOISE_DENSITY), "0 m/sqrt(Hz)", 0, INF, 0, NULL,
-     "z piezo position noise density (one-sided), drawn once per drive cycle"},
+     "z piezo position noise density (one-sided) below the z piezo's bandwidth"},
+    {"z_piezo_bandwidth", Q(TT_DIM_FREQUENCY), "2 kHz", 0, INF, POS, NULL,
+     "bandwidth of the z piezo's noise, the corner of a first-order low-pass (the stage and its "
+     "high-voltage amplifier); at most half the drive frequency"},
 };
 
 /* [instrument]: the imperfections of a real instrument (tiptap scan), each off by default. */

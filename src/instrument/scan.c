@@ -101,6 +101,16 @@ static int build_contacts(tt_scan *S, const tt_material *m, size_t n)
     return TT_OK;
 }
 
+int tt_scan_piezo_noise(const tt_scan_noise *n, const tt_cantilever *c, tt_noise_ou *zn)
+{
+    *zn = (tt_noise_ou){0, 0, 0};
+    if (n->z_piezo > 0 && tt_noise_ou_init(zn, n->z_piezo, n->z_bandwidth, c->T))
+        return tt_error(TT_EINVAL, "[noise] z_piezo_bandwidth: %g Hz is not above 0 and at most "
+                                   "half the drive frequency (%g Hz)",
+                        n->z_bandwidth, 0.5 * c->fd);
+    return TT_OK;
+}
+
 /* Copy the parameters; the lock-in demodulates only up to the highest harmonic a
  * channel records, since nothing else reads the rest. */
 static int take_params(tt_scan *S, const tt_scan_params *p)
@@ -118,7 +128,9 @@ static int take_params(tt_scan *S, const tt_scan_params *p)
     S->continuous = p->continuous;
     /* white noise of one-sided density n sampled at rate fs has variance n^2 fs / 2 */
     S->sd = p->noise.detector * sqrt(0.5 * p->lockin.samples_per_period / p->cantilever.T);
-    S->sz = p->noise.z_piezo * sqrt(0.5 / p->cantilever.T);
+    int rc = tt_scan_piezo_noise(&p->noise, &p->cantilever, &S->zn);
+    if (rc)
+        return rc;
     S->lockin = p->lockin;
     S->lockin.drive_frequency = p->cantilever.fd;
     S->lockin.harmonics = 1;
@@ -245,19 +257,6 @@ void tt_scan_worker_free(worker *W)
     free(W->indent);
 }
 
-/* The envelope tier falls back to every cycle with z piezo noise: a draw per cycle
- * moves the sample by 0.1 nm (0.3 pm/sqrt(Hz)), and the map's response to it is far
- * from linear (docs/dynamics.md, "Noise on the envelope tier"). Thermal and detector
- * noise run on it to first order. At any Q: above Q 3000 its checks bound a stretch's
- * drift (scan_envelope.c); at low Q the map contracts within a few cycles and the model
- * follows it (Q 10, 3, 1 and 0.3 skipped 89 to 98 % of the cycles within their estimates;
- * a fallback below Q 30 was a guess, never measured). */
-static int envelope_allowed(const tt_cantilever *c, const tt_scan_noise *n)
-{
-    (void)c;
-    return n->z_piezo == 0;
-}
-
 /* The averaged tier takes the drive, the damping and the tip-sample force for small
  * against the cantilever's own forces at the drive frequency (Krylov-Bogoliubov): below
  * Q 30 (a liquid's Q 1 gave NaN before this bound) or with the drive more than 5 % from
@@ -279,7 +278,7 @@ int tt_scan_envelope_tier(const tt_scan_params *p)
     int tier = p->solver.tier == TT_TIER_AVERAGED && !averaged_allowed(&p->cantilever)
                    ? TT_TIER_ENVELOPE
                    : p->solver.tier;
-    return tier == TT_TIER_ENVELOPE && envelope_allowed(&p->cantilever, &p->noise);
+    return tier == TT_TIER_ENVELOPE;
 }
 
 /* Whether a solver setting runs on the averaged tier here. */
@@ -289,16 +288,36 @@ static int averaged_usable(const tt_scan *S, const tt_solver *solver)
 }
 
 /* Whether a solver setting runs on the envelope tier here (the averaged tier's
- * fallback included). */
+ * fallback included). It runs at any Q and with any noise: above Q 3000 its checks bound a
+ * stretch's drift (scan_envelope.c); at low Q the map contracts within a few cycles and
+ * the model follows it (Q 10, 3, 1 and 0.3 skipped 89 to 98 % of the cycles within
+ * their estimates; a fallback below Q 30 was a guess, never measured); thermal and
+ * detector noise run on it to first order, the z piezo's (smooth below its bandwidth)
+ * as the sample's position it is (docs/dynamics.md, "Noise on the envelope tier"). */
 static int envelope_usable(const tt_scan *S, const tt_solver *solver)
 {
     int tier = solver->tier == TT_TIER_AVERAGED && !averaged_usable(S, solver) ? TT_TIER_ENVELOPE
                                                                               : solver->tier;
-    return tier == TT_TIER_ENVELOPE && envelope_allowed(&S->cantilever, &S->noise);
+    return tier == TT_TIER_ENVELOPE;
+}
+
+/* Noise that moves the tip's state (the thermal force, the z piezo's) takes the envelope
+ * tier's model to second order (tiptap/solver/envelope.h); the detector's does not. */
+static int second_order(const tt_scan *S)
+{
+    return S->noise.temperature > 0 || S->zn.sd > 0;
+}
+
+/* What the envelope model's shape follows from the noise: 1, the travel as an input (z
+ * piezo noise); 2, second order. */
+static int model_shape(const tt_scan *S)
+{
+    return (S->zn.sd > 0 ? 1 : 0) | (second_order(S) ? 2 : 0);
 }
 
 static int envelope_alloc(tt_scan *S, worker *W)
 {
+    W->env_shape = model_shape(S);
     size_t n = (size_t)S->lockin.samples_per_period * (size_t)S->lockin.periods_per_block;
     int rc = tt_envelope_alloc(&W->env, &S->cantilever, S->lockin.samples_per_period);
     /* the gaps around the closest approach, from which a grazing tip's branch and the
@@ -335,6 +354,12 @@ static int envelope_alloc(tt_scan *S, worker *W)
     rc = tt_envelope_reduce(W->env, tt_lockin_components(W->lockin),
                             tt_lockin_component_matrix(W->lockin));
     if (rc)
+        return rc;
+    /* the z piezo's noise moves the sample within each cycle by a travel of its own
+     * (about pi n fc sqrt(2 T) rms): an input of the model, as the sample's position is */
+    if (S->zn.sd > 0)
+        tt_envelope_use_travel(W->env);
+    if (second_order(S) && (rc = tt_envelope_use_second_order(W->env)))
         return rc;
     /* noise to first order in the model's cycles: the thermal force's PSD (2 c kB T) and
      * the detector's per-sample rms; the sim integrates without the thermal force */
@@ -385,7 +410,8 @@ int tt_scan_worker_retune(tt_scan *S, worker *W)
     const int env = envelope_usable(S, &S->solver);
     if (W->averaged)
         return TT_OK; /* noiseless (docs/dynamics.md, Averaged) */
-    if (!env && W->env) {
+    /* the model's inputs and order follow the noise: made anew when they change */
+    if (W->env && (!env || W->env_shape != model_shape(S))) {
         tt_envelope_free(W->env);
         tt_graze_free(W->graze); /* envelope_alloc makes a new one when the tier returns */
         tt_lockin_free(W->lockin_save);
@@ -466,7 +492,7 @@ double tt_scan_sample_at(const tt_scan *S, double *x, double *y, double t, doubl
 /* Engage at the line's first pixel: the material there on the sim, and, unless
  * continuous lines carry on from the last retrace, the feedback at that pixel's height,
  * the piezo at rest there, the tip and the lock-in on the free oscillation. */
-static void engage(tt_scan *S, worker *W, long line, long nc, line_state *st)
+static void engage(tt_scan *S, worker *W, long line, long nc, uint64_t kz, line_state *st)
 {
     const tt_raster *R = &S->raster;
     double x, y, h0, topo;
@@ -482,8 +508,11 @@ static void engage(tt_scan *S, worker *W, long line, long nc, line_state *st)
     st->z_to = W->z_to;
     st->pz = W->pz;
     st->z_act = W->z_act;
+    st->zn = W->zn;
     if (S->continuous && W->engaged)
         return;
+    /* the z piezo's noise starts each line from its stationary distribution */
+    st->zn = tt_noise_ou_first(&S->zn, kz);
     W->s_ref = S->setpoint;
     /* heights are reported against the surface's own zero, the piezo's range centred
      * on it; creep follows the whole line */
@@ -508,6 +537,7 @@ static void line_done(const tt_scan *S, worker *W, long line, const line_state *
     W->z_to = st->z_to;
     W->pz = st->pz;
     W->z_act = st->z_act;
+    W->zn = st->zn;
     for (int dir = 0; dir < (R->retrace ? 2 : 1); dir++)
         for (long px = 0; px < R->pixels; px++) {
             const pixel_acc *a = &pix[(size_t)dir * (size_t)R->pixels + (size_t)px];
@@ -547,7 +577,14 @@ static line_ctx line_context(tt_scan *S, worker *W, long line)
      * held to 1e-3 of the reach as well at the default tolerance (proportional to it),
      * so the noise the model carries is right to 0.1 % (docs/dynamics.md, "Noise on the
      * envelope tier"). Without noise, the tolerance alone. */
-    L.rel = S->noise.temperature > 0 || S->sd > 0 ? 5e5 * W->tolerance : 0;
+    L.rel = S->noise.temperature > 0 || S->sd > 0 || S->zn.sd > 0 ? 5e5 * W->tolerance : 0;
+    /* The noise that moves the state (thermal, z piezo) runs the model to second order,
+     * whose inputs are held within 5e-3 of A0 of the anchor: beyond it the slow orbit's
+     * curvature (the cycle map's second derivatives reach 30 / A0 on the edge sample's
+     * stiff disks, against 1 - |mu| of 0.008) drives the model off in a stretch whose
+     * last cycle still passes its check (docs/dynamics.md, "Noise on the envelope
+     * tier") */
+    L.reach = second_order(S) ? 5e-3 : 0;
     L.edge = 1e-3 * S->A0;
     /* the noise of this line: keyed by (seed, line), counted in cycles from its start */
     L.kd = tt_noise_key(S->noise.seed, TT_NOISE_DETECTOR, line);
@@ -565,7 +602,7 @@ int tt_scan_line_run(tt_scan *S, worker *W, long line, const line_out *out, scan
     /* Continuous lines engage once and carry on from where the last retrace ended, with
      * no settling. */
     const int carry = S->continuous && W->engaged;
-    engage(S, W, line, L.nc, &st);
+    engage(S, W, line, L.nc, L.kz, &st);
     L.s_ref = W->s_ref;
     int contact;
     tt_sim_get_state(W->sim, &st.x[0], &st.x[1], &contact);
@@ -615,16 +652,11 @@ static void block_samples(const line_ctx *L, const line_state *st, int j)
 static int every_phase(const line_ctx *L, line_state *st, void *tier)
 {
     (void)tier;
-    const double sz = L->S->sz;
     while (st->k < L->ncyc) {
         cycle_in in;
         int rc = tt_scan_cycle_begin(L, st, &in);
         if (rc)
             return rc;
-        if (sz > 0) {
-            in.sa += sz * tt_noise_gauss(L->kz, (uint64_t)st->cycles);
-            in.sb += sz * tt_noise_gauss(L->kz, (uint64_t)st->cycles + 1);
-        }
         tt_cycle cy;
         if ((rc = tt_scan_integrate(L, st, &in, &cy)))
             return rc;

@@ -67,6 +67,17 @@ int tt_scan_cycle_begin(const line_ctx *L, line_state *st, cycle_in *in)
     }
     in->sa = L->s_ref - in->ha + pa;
     in->sb = L->s_ref - in->hb + pb;
+    /* The z piezo's noise moves the sample too (its height, not the command): exact at the
+     * cycle's start and end, linear between; the step's normal is a function of (seed,
+     * line, cycle), so a stretch run again draws the same. */
+    in->zn = 0;
+    if (S->zn.sd > 0) {
+        in->sa += st->zn;
+        in->zn = 0.5 * st->zn;
+        st->zn = tt_noise_ou_next(&S->zn, L->kz, (uint64_t)st->cycles + 1, st->zn);
+        in->sb += st->zn;
+        in->zn += 0.5 * st->zn;
+    }
     return TT_OK;
 }
 

@@ -163,6 +163,7 @@ typedef struct {
     long same;       /* integrated cycles in a row on the last one's branch (grazing) */
     lookahead la;
     double *red, *pred; /* a check's reduced observables and their prediction */
+    double zn;       /* the z piezo's noise in the anchor's sample position */
     snapshot sn;
     long integrated; /* cycles of the run integrated, each once */
     char *seen;      /* the phase's cycles integrated so far: a cycle integrated again
@@ -186,6 +187,7 @@ static int integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_c
     tt_envelope_observe(L->W->env, tt_sim_samples(sim), cy, obs);
     tt_envelope_observe_probes(L->W->env, tt_sim_probes(sim), obs);
     tt_sim_get_state(sim, &st->x[0], &st->x[1], c1);
+    st->x2[0] = st->x2[1] = 0;
     return TT_OK;
 }
 
@@ -213,8 +215,8 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
     const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
     const double x0[2] = {st->x[0], st->x[1]};
     const int c0 = tt_envelope_anchor_contact(env);
-    double xp[2], *pred = obs + tt_envelope_size(env);
-    tt_envelope_predict(env, x0, in->sa, sdot, xp, pred);
+    double xp[2], xp2[2], *pred = obs + tt_envelope_size(env);
+    tt_envelope_predict2(env, x0, st->x2, in->sa, sdot, xp, xp2, pred);
     tt_sim_set_state(L->W->sim, x0[0], x0[1], c0);
     tt_cycle cy;
     int c1;
@@ -233,6 +235,7 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
     if (!(err <= L->tol + L->rel * tt_envelope_reach(env, x0, in->sa, sdot)) || c1 != c0 || tt_envelope_touched(&cy) != tt_envelope_anchor_touched(env))
         return 0;
     tt_envelope_anchor(env, x0, in->sa, sdot, st->x, &cy, obs);
+    c->zn = in->zn;
     return 1;
 }
 
@@ -240,11 +243,15 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
  * not in others, the free branch's model (its probes of the gap near the closest
  * approach among its observables) predicts whether a cycle reaches jump-in and when,
  * and the touch branch's model, fitted to the touch cycles integrated lately, gives a
- * touch cycle from its start, the sample and that time. Not with noise on: its linear
- * response is that of one branch. */
+ * touch cycle from its start, the sample and that time. Not with noise on: the thermal
+ * and detector noise's linear response is that of one branch; the z piezo's moves the
+ * sample by tens of picometres from cycle to cycle, enough to change a grazing cycle's
+ * branch, and the branch models (first order, the touch fit linear in d, d', s) lack the
+ * travel input and the second order the noisy model needs. There the cycles that
+ * change contact are integrated, each one. */
 static int graze_possible(const line_ctx *L, const line_state *st)
 {
-    return L->W->graze && !tt_envelope_noise_size(L->W->env) &&
+    return L->W->graze && !tt_envelope_noise_size(L->W->env) && !(L->S->zn.sd > 0) &&
            isfinite(tt_contact_jumpin(L->S->contacts[st->current]));
 }
 
@@ -555,11 +562,13 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
     if (!c->rebuild && c0 == tt_envelope_anchor_contact(env) &&
         touch == tt_envelope_anchor_touched(env)) {
         tt_envelope_anchor(env, x0, in->sa, sdot, st->x, &cy, obs);
+        c->zn = in->zn;
         return 1;
     }
     if (c->quiet < c->wait)
         return 0;
     long jacobian = 0; /* its cycles are not the run's */
+    c->zn = in->zn;
     if (tt_envelope_build(env, sim, x0, c0, in->sa, sdot, &cy, obs, &jacobian)) {
         c->rebuild = 0;
         return 1;
@@ -605,6 +614,27 @@ static void fail(const line_ctx *L, line_state *st, controller *c, long k)
     c->wait = c->wait * 2 < WAIT_MAX ? c->wait * 2 : WAIT_MAX;
 }
 
+/* model_step with noise that moves the state (thermal, z piezo): the second-order model,
+ * its part of the state carried beside it, within its reach of the anchor (L->reach);
+ * the sample's reach from the anchor counts its smooth course only, the z piezo's noise
+ * being an input the model takes, held by the check's error (docs/dynamics.md, "Noise on
+ * the envelope tier"). Never grazing (graze_possible). */
+static int model_step2(const line_ctx *L, line_state *st, const controller *c,
+                       const cycle_in *in, double sdot, double *obs)
+{
+    const tt_envelope *env = L->W->env;
+    const double off = tt_envelope_sample_offset(env, in->sa, sdot) - (in->zn - c->zn);
+    if (!(fabs(off) <= L->edge) || !(tt_envelope_reach(env, st->x, in->sa, sdot) <= L->reach))
+        return 0;
+    double x1[2], x21[2];
+    tt_envelope_predict2_reduced(env, st->x, st->x2, in->sa, sdot, x1, x21, obs);
+    st->x[0] = x1[0];
+    st->x[1] = x1[1];
+    st->x2[0] = x21[0];
+    st->x2[1] = x21[1];
+    return 1;
+}
+
 /* A model cycle, unless the stretch is done, this or the next cycle crosses an edge,
  * the sample is out of the anchor's reach, or it is the phase's last (the next phase
  * starts integrating from the sim's state): then a check. 1: the model ran the cycle,
@@ -614,8 +644,11 @@ static int model_step(const line_ctx *L, line_state *st, controller *c,
 {
     const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
     if (!c->model || c->left <= 0 || edge || in->edge_next || in->mat != st->current ||
-        in->k + 1 >= L->ncyc ||
-        !(fabs(tt_envelope_sample_offset(L->W->env, in->sa, sdot)) <= L->edge))
+        in->k + 1 >= L->ncyc)
+        return 0;
+    if (L->reach > 0)
+        return model_step2(L, st, c, in, sdot, obs);
+    if (!(fabs(tt_envelope_sample_offset(L->W->env, in->sa, sdot)) <= L->edge))
         return 0;
     if (c->graze)
         return graze_step(L, st, c, in, obs);

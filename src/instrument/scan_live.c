@@ -49,11 +49,15 @@ int tt_scan_set_noise(tt_scan *S, const tt_scan_noise *n)
         return tt_error(TT_EINVAL, "[noise] detector: %g m/sqrt(Hz) must be 0 or more", n->detector);
     if (!(n->z_piezo >= 0 && isfinite(n->z_piezo)))
         return tt_error(TT_EINVAL, "[noise] z_piezo: %g m/sqrt(Hz) must be 0 or more", n->z_piezo);
+    tt_noise_ou zn;
+    int rc = tt_scan_piezo_noise(n, &S->cantilever, &zn);
+    if (rc)
+        return rc;
     S->noise = *n;
     /* as tt_scan_alloc sets them: white noise of one-sided density n sampled at rate fs
-     * has variance n^2 fs / 2 */
+     * has variance n^2 fs / 2; the z piezo's through its bandwidth */
     S->sd = n->detector * sqrt(0.5 * S->lockin.samples_per_period / S->cantilever.T);
-    S->sz = n->z_piezo * sqrt(0.5 / S->cantilever.T);
+    S->zn = zn;
     return S->step ? tt_scan_worker_retune(S, S->step) : TT_OK;
 }
 

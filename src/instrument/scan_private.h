@@ -11,6 +11,7 @@
 #include "tiptap/solver/averaged.h"
 #include "tiptap/solver/envelope.h"
 #include "tiptap/solver/graze.h"
+#include "tiptap/solver/noise.h"
 
 enum { NHARM = TT_CH_HARMONIC_MAX - 1 }; /* harmonic channels of each kind */
 _Static_assert(TT_CH_COUNT <= 8 * sizeof(unsigned), "a channel mask holds every channel");
@@ -30,10 +31,12 @@ typedef struct {
     double z_from, z_to;
     tt_piezo pz;
     double z_act;
+    double zn; /* the z piezo's noise */
     /* the envelope tier (NULL: every cycle): its model, a snapshot of the lock-in and
      * of the block's periods (y) to roll back to, and two observable vectors */
     tt_envelope *env;
     tt_graze *graze; /* the touch branch of a grazing tip (the free one: env) */
+    int env_shape;   /* the noise the model was made for (scan.c, model_shape) */
     tt_lockin *lockin_save;
     double *y_save, *obs;
     /* the greatest indentation of the trace and retrace cycles, per material */
@@ -67,7 +70,8 @@ struct tt_scan {
     long settle_cycles;
     long profile_line;
     tt_scan_noise noise;
-    double sd, sz;       /* per-sample detector and per-cycle z piezo noise, m rms */
+    double sd;           /* per-sample detector noise, m rms */
+    tt_noise_ou zn;      /* the z piezo's noise, sampled at each drive cycle's start (sd 0: off) */
     int continuous;
     /* lock-in and feedback */
     tt_lockin_params lockin;
@@ -131,8 +135,10 @@ typedef struct {
     tt_feedback fb;
     double z_from, z_to, z_act; /* the z piezo's command ramp and actual height */
     tt_piezo pz;
+    double zn;        /* the z piezo's noise at cycle k's start, m (drawn in cycle_begin) */
     size_t current;   /* the material on the sim */
     double x[2];      /* the tip's state at cycle k's start: the sim's, or the model's */
+    double x2[2];     /* the second-order part of a model's x (0 after an integration) */
     surf_pt ahead[2]; /* the surface at the next two cycles' starts */
     long cycles;      /* the line's cycles so far (the noise's cycle count) */
     double worst;
@@ -145,6 +151,7 @@ typedef struct {
     long k; /* the cycle of this phase */
     int j;  /* its place in the lock-in block */
     double ha, hb, topo, za, sa, sb;
+    double zn; /* the z piezo's noise in sa, sb at the cycle's middle (0: none) */
     size_t mat, mat_next;
     int edge_next; /* the next cycle crosses an edge (edge heights or materials) */
 } cycle_in;
@@ -158,7 +165,9 @@ typedef struct {
     double s_ref;
     double tol, edge; /* the envelope tier's error per cycle and edge height */
     double rel;       /* and with noise on, its error per reach of the inputs from the anchor */
-    uint64_t kd, kz;  /* the every-cycle tier's detector and z piezo noise keys */
+    double reach;     /* the largest reach of the second-order model's stretches, of A0 (0: any) */
+    uint64_t kd;      /* the every-cycle tier's detector noise key */
+    uint64_t kz;      /* the z piezo noise's key (both tiers draw the same) */
     uint64_t ke;      /* the envelope tier's noise key (thermal and detector, per cycle) */
     pixel_acc *pix;   /* [direction][pixel] */
 } line_ctx;
@@ -194,8 +203,12 @@ int tt_scan_block_end(const line_ctx *L, line_state *st, long b);
 /* A worker's buffers freed (scan.c). */
 void tt_scan_worker_free(worker *W);
 /* A worker made to fit the scan's noise after a change (scan.c): the thermal force on
- * its sim, the envelope tier's model made or dropped (z piezo noise) and its noise. */
+ * its sim, the envelope tier's model made anew where the noise changes its inputs or
+ * order (z piezo noise: the travel; thermal or z piezo: second order) and its noise. */
 int tt_scan_worker_retune(tt_scan *S, worker *W);
+/* The z piezo's noise of n for the cantilever's drive period (sd 0: off); TT_EINVAL naming
+ * [noise] z_piezo_bandwidth when its band is not within (0, fd / 2]. */
+int tt_scan_piezo_noise(const tt_scan_noise *n, const tt_cantilever *c, tt_noise_ou *zn);
 
 /* The scope (scan_scope.c): made ready for line `line` before it runs (its points NaN),
  * block b's point written at the block's end from the lock-in's filtered amplitude A

@@ -20,8 +20,11 @@ struct tt_trace {
     tt_sample *raw;          /* the sim's samples of the current cycle */
     tt_trace_sample *out;    /* the same with force and pressure */
     long cycles;             /* cycles run, settling included: the noise's count */
-    double sd, sz;           /* detector noise per sample, z piezo noise per cycle, m rms */
-    uint64_t kd, kz;         /* their keys */
+    double sd;               /* detector noise per sample, m rms */
+    tt_noise_ou zn;          /* the z piezo's noise through its bandwidth (sd 0: off) */
+    double za;               /* its value at cycle zk's start */
+    long zk;
+    uint64_t kd, kz;         /* the detector's and the z piezo's keys */
 };
 
 /* Set the ramped key to one end's value; a refusal names that end ("[trace] ramp_to:
@@ -70,9 +73,13 @@ int tt_trace_alloc(tt_trace **out, tt_setup *st, const tt_trace_params *p)
     /* white noise of one-sided density n sampled at rate fs has variance n^2 fs / 2 */
     const double T = tt_setup_cantilever(st)->T;
     t->sd = p->noise.detector * sqrt(0.5 * (double)p->samples_per_cycle / T);
-    t->sz = p->noise.z_piezo * sqrt(0.5 / T);
+    if (p->noise.z_piezo > 0 && (rc = tt_noise_ou_init(&t->zn, p->noise.z_piezo, p->noise.z_bandwidth, T))) {
+        tt_trace_free(t);
+        return rc;
+    }
     t->kd = tt_noise_key(p->noise.seed, TT_NOISE_DETECTOR, 0);
     t->kz = tt_noise_key(p->noise.seed, TT_NOISE_PIEZO, 0);
+    t->za = tt_noise_ou_first(&t->zn, t->kz); /* from its stationary distribution */
     tt_sim *sim = tt_setup_sim(st);
     if ((rc = tt_sim_set_thermal(sim, p->noise.temperature, p->noise.points))) {
         tt_trace_free(t);
@@ -100,13 +107,15 @@ void tt_trace_free(tt_trace *t)
 size_t tt_trace_rows(const tt_trace *t) { return (size_t)t->p.cycles; }
 int tt_trace_done(const tt_trace *t) { return t->row >= t->p.cycles; }
 
-/* The sample for the next cycle: at s, moving at sdot, plus the z piezo's noise (a
- * draw at each cycle's start, linear between). */
+/* The sample for the next cycle: at s, moving at sdot, plus the z piezo's noise through
+ * its bandwidth (exact at each cycle's start, linear between; as a scan draws it,
+ * src/instrument/scan_cycle.c). Set again for the same cycle, it is the same. */
 static void set_sample(tt_trace *t, double s, double sdot)
 {
-    if (t->sz > 0) {
-        double a = t->sz * tt_noise_gauss(t->kz, (uint64_t)t->cycles),
-               b = t->sz * tt_noise_gauss(t->kz, (uint64_t)t->cycles + 1);
+    if (t->zn.sd > 0) {
+        for (; t->zk < t->cycles; t->zk++)
+            t->za = tt_noise_ou_next(&t->zn, t->kz, (uint64_t)t->zk + 1, t->za);
+        const double a = t->za, b = tt_noise_ou_next(&t->zn, t->kz, (uint64_t)t->cycles + 1, a);
         s += a;
         sdot += (b - a) / tt_setup_cantilever(t->st)->T;
     }
@@ -122,7 +131,7 @@ static int settle(tt_trace *t)
     tt_sim_reset_free(sim);
     set_sample(t, t->p.separation, 0);
     for (long i = 0; i < t->p.settle_cycles && rc == TT_OK; i++, t->cycles++) {
-        if (i > 0 && t->sz > 0) /* a sample at rest is set once: the stepper keeps its state */
+        if (i > 0 && t->zn.sd > 0) /* a sample at rest is set once: the stepper keeps its state */
             set_sample(t, t->p.separation, 0);
         rc = tt_sim_cycle(sim, &cy);
     }

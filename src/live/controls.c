@@ -34,8 +34,9 @@ enum { NKNOBS = sizeof table / sizeof table[0], NSAMPLES_MAX = 64 };
 
 /* The noise that "noise = on" gives a scene without any: a good instrument's thermal
  * and detector noise (examples/feedback-tuning/common.ini), which the envelope tier
- * carries; not its z piezo's, which would put every cycle on the integrator
- * (docs/dynamics.md) for 0.3 pm/sqrt(Hz) that no image shows. */
+ * carries; not its z piezo's 0.3 pm/sqrt(Hz), which no image of the teaching scene
+ * shows and which adds the sample's travel to the envelope tier's inputs (more cycles
+ * a build, and checks at its reach; docs/dynamics.md, "Noise on the envelope tier"). */
 static const char good_noise[] = "temperature = 300 K\ndetector = 100 fm/sqrt(Hz)\n";
 
 struct tt_live_controls {

@@ -7,8 +7,16 @@
 
 #include "tiptap/util/error.h"
 
-/* Inputs of the model: d, d' at the cycle start and the sample's position mid-cycle. */
-enum { NIN = 3 };
+/* Inputs of the model: d, d' at the cycle start, the sample's position mid-cycle and,
+ * where the caller asks for it (tt_envelope_use_travel), the sample's travel within the
+ * cycle. */
+enum { NIN = 4, NPAIR = NIN * (NIN + 1) / 2 };
+
+/* The place of the input pair (i, j), i <= j, among the NPAIR second derivatives. */
+static int pair_of(int i, int j)
+{
+    return i * NIN - i * (i - 1) / 2 + (j - i);
+}
 
 struct tt_envelope {
     int n, no;            /* samples per cycle; observables (n + TT_ENV_EXTRA + np) */
@@ -17,8 +25,15 @@ struct tt_envelope {
     double mass, w0, sig; /* the cantilever's effective mass, resonance and decay rate */
     double *oscale;       /* per observable: its scale */
     /* the anchor: a cycle integrated from xa with the sample at sa (mid-cycle) */
-    double xa[2], sa, x1[2];
+    double xa[2], sa, ta, x1[2];
     int contact, touched;
+    int nin;              /* inputs in use: 3, or 4 with the travel */
+    /* second order (tt_envelope_use_second_order): the second derivatives of the end
+     * state and of the observables, by input pair (NPAIR per output, outputs by rows:
+     * the end state's 2, then the observables'), and of the reduced observables;
+     * built: they belong to the present Jacobians */
+    int second, built;
+    double *H, *Hr;
     double *oa;
     /* Jacobians: of the end state and of the observables, by input */
     double J[2][NIN];
@@ -47,6 +62,7 @@ int tt_envelope_alloc(tt_envelope **out, const tt_cantilever *c, int n)
         return tt_error_nomem("the envelope tier's cycle map");
     e->n = n;
     e->no = n + TT_ENV_EXTRA;
+    e->nin = 3;
     e->T = c->T;
     e->L = c->A0;
     e->V = c->wd * c->A0;
@@ -92,6 +108,8 @@ void tt_envelope_free(tt_envelope *e)
     free(e->Ld);
     free(e->phi);
     free(e->Lf);
+    free(e->H);
+    free(e->Hr);
     free(e);
 }
 
@@ -118,6 +136,21 @@ int tt_envelope_set_probes(tt_envelope *e, int np)
 }
 
 int tt_envelope_probes(const tt_envelope *e) { return e->np; }
+
+void tt_envelope_use_travel(tt_envelope *e) { e->nin = 4; }
+
+int tt_envelope_use_second_order(tt_envelope *e)
+{
+    free(e->H);
+    free(e->Hr);
+    e->H = calloc((size_t)(2 + e->no) * NPAIR, sizeof *e->H);
+    e->Hr = calloc((size_t)(e->m + TT_ENV_EXTRA + e->np) * NPAIR, sizeof *e->Hr);
+    if (!e->H || !e->Hr)
+        return tt_error_nomem("the envelope tier's second-order model");
+    e->second = 1;
+    e->built = 0;
+    return TT_OK;
+}
 
 int tt_envelope_reduce(tt_envelope *e, int m, const double *R)
 {
@@ -169,6 +202,8 @@ double tt_envelope_sample_offset(const tt_envelope *e, double s, double sdot)
 double tt_envelope_reach(const tt_envelope *e, const double x[2], double s, double sdot)
 {
     double u = fmax(fabs(x[0] - e->xa[0]) / e->L, fabs(x[1] - e->xa[1]) / e->V);
+    if (e->nin > 3)
+        u = fmax(u, fabs(sdot * e->T - e->ta) / e->L);
     return fmax(u, fabs(tt_envelope_sample_offset(e, s, sdot)) / e->L);
 }
 
@@ -189,12 +224,47 @@ void tt_envelope_observe_probes(const tt_envelope *e, const tt_sample *probes, d
         g[q] = probes ? probes[q].d : NAN;
 }
 
+/* The model's inputs' offsets u from the anchor: d, d', the sample mid-cycle and its
+ * travel within the cycle (0 unless the travel is an input). */
+static inline void offsets(const tt_envelope *e, const double x[2], double s, double sdot,
+                           double u[NIN])
+{
+    u[0] = x[0] - e->xa[0];
+    u[1] = x[1] - e->xa[1];
+    u[2] = s + 0.5 * sdot * e->T - e->sa;
+    u[3] = e->nin > 3 ? sdot * e->T - e->ta : 0;
+}
+
+/* Second order: the Jacobians at a new anchor, u from the old one, are the old ones plus
+ * the second derivatives times u (exact to that order), so that re-anchoring does not
+ * leave them a step behind. */
+static void carry(tt_envelope *e, const double u[NIN])
+{
+    const int no = e->no, nr = e->m + TT_ENV_EXTRA + e->np;
+    for (int j = 0; j < e->nin; j++)
+        for (int k = 0; k < e->nin; k++) {
+            const int p = j <= k ? pair_of(j, k) : pair_of(k, j);
+            for (int i = 0; i < 2; i++)
+                e->J[i][j] += e->H[i * NPAIR + p] * u[k];
+            for (int i = 0; i < no; i++)
+                e->C[(size_t)j * (size_t)no + (size_t)i] += e->H[(size_t)(2 + i) * NPAIR + (size_t)p] * u[k];
+            for (int i = 0; e->Cr && i < nr; i++)
+                e->Cr[(size_t)j * (size_t)nr + (size_t)i] += e->Hr[(size_t)i * NPAIR + (size_t)p] * u[k];
+        }
+}
+
 void tt_envelope_anchor(tt_envelope *e, const double x0[2], double s, double sdot,
                         const double x1[2], const tt_cycle *cy, const double *obs)
 {
+    if (e->second && e->built) {
+        double u[NIN];
+        offsets(e, x0, s, sdot, u);
+        carry(e, u);
+    }
     e->xa[0] = x0[0];
     e->xa[1] = x0[1];
     e->sa = s + 0.5 * sdot * e->T;
+    e->ta = sdot * e->T;
     e->x1[0] = x1[0];
     e->x1[1] = x1[1];
     e->touched = tt_envelope_touched(cy);
@@ -202,8 +272,9 @@ void tt_envelope_anchor(tt_envelope *e, const double x0[2], double s, double sdo
     reduce(e, e->oa, e->ra);
 }
 
-/* One perturbed cycle from x0 + dx with the sample at s + ds: end state and
- * observables; 0 if it failed or left the anchor's branch (touch, end contact flag). */
+/* One perturbed cycle from x0 + dx with the sample at s + ds mid-cycle travelling dt more
+ * within it (dx = (dd, dd', ds, dt)): end state and observables; 0 if it failed or left
+ * the anchor's branch (touch, end contact flag). */
 static int perturbed(tt_envelope *e, tt_sim *sim, const double x0[2], int c0, double s,
                      double sdot, const double dx[NIN], int c1, double x1[2], double *obs,
                      double *trk)
@@ -211,7 +282,7 @@ static int perturbed(tt_envelope *e, tt_sim *sim, const double x0[2], int c0, do
     tt_cycle cy;
     int c;
     tt_sim_set_state(sim, x0[0] + dx[0], x0[1] + dx[1], c0);
-    tt_sim_set_sample(sim, s + dx[2], sdot);
+    tt_sim_set_sample(sim, s + dx[2] - 0.5 * dx[3], sdot + dx[3] / e->T);
     if (tt_sim_cycle(sim, &cy) != TT_OK) {
         tt_error_clear();
         return 0;
@@ -415,53 +486,119 @@ void tt_envelope_detector_noise(const tt_envelope *e, const double *g, double *d
     }
 }
 
+/* The second derivatives (second order), by differences over steps hq: the diagonal
+ * ones from cycles at +-hq of each input, the mixed ones from one more at (+hq_j, +hq_k)
+ * each (P0: the anchor's outputs, end state then observables). */
+static int second_derivatives(tt_envelope *e, tt_sim *sim, const double x0[2], int c0,
+                              double s, double sdot, int c1, const double hq[NIN],
+                              const double *P0, long *cycles)
+{
+    const int nq = 2 + e->no, nr = e->m + TT_ENV_EXTRA + e->np;
+    double *q = malloc((2 + (size_t)NIN) * (size_t)nq * sizeof *q);
+    if (!q)
+        return 0;
+    double *r = q + nq, *pp = r + nq; /* pp: the cycles at +hq_j, by input */
+    int ok = 1;
+    for (int j = 0; j < e->nin && ok; j++) {
+        double dp[NIN] = {0}, dm[NIN] = {0};
+        dp[j] = hq[j];
+        dm[j] = -hq[j];
+        double *a = pp + (size_t)j * (size_t)nq;
+        ok = perturbed(e, sim, x0, c0, s, sdot, dp, c1, a, a + 2, NULL) &&
+             perturbed(e, sim, x0, c0, s, sdot, dm, c1, q, q + 2, NULL);
+        *cycles += 2;
+        for (int i = 0; i < nq && ok; i++)
+            e->H[(size_t)i * NPAIR + (size_t)pair_of(j, j)] = (a[i] - 2 * P0[i] + q[i]) / (hq[j] * hq[j]);
+    }
+    for (int j = 0; j < e->nin && ok; j++)
+        for (int k = j + 1; k < e->nin && ok; k++) {
+            double d[NIN] = {0};
+            d[j] = hq[j];
+            d[k] = hq[k];
+            ok = perturbed(e, sim, x0, c0, s, sdot, d, c1, q, q + 2, NULL);
+            *cycles += 1;
+            const double *a = pp + (size_t)j * (size_t)nq, *b = pp + (size_t)k * (size_t)nq;
+            for (int i = 0; i < nq && ok; i++)
+                e->H[(size_t)i * NPAIR + (size_t)pair_of(j, k)] = (q[i] - a[i] - b[i] + P0[i]) / (hq[j] * hq[k]);
+        }
+    /* an observable not tracked (NaN) has no curvature to add */
+    for (size_t i = 0; i < (size_t)nq * NPAIR; i++)
+        if (isnan(e->H[i]))
+            e->H[i] = 0;
+    for (int p = 0; p < NPAIR && ok && e->R; p++) {
+        for (int i = 0; i < e->no; i++)
+            q[i] = e->H[(size_t)(2 + i) * NPAIR + (size_t)p];
+        reduce(e, q, r);
+        for (int i = 0; i < nr; i++)
+            e->Hr[(size_t)i * NPAIR + (size_t)p] = r[i];
+    }
+    free(q);
+    return ok;
+}
+
 int tt_envelope_build(tt_envelope *e, tt_sim *sim, const double x0[2], int c0, double s,
                       double sdot, const tt_cycle *cy, const double *obs, long *cycles)
 {
-    double x1[2], xp[2], xm[2];
+    double x1[2];
     int c1;
     tt_sim_get_state(sim, &x1[0], &x1[1], &c1);
+    e->built = 0;
     tt_envelope_anchor(e, x0, s, sdot, x1, cy, obs);
     e->contact = c0;
     /* central differences: steps of 1e-4 of the scales, where the stepper's noise
      * (about the tolerance) costs 1e-4 of the Jacobian at the default, and the
      * contact's length scales (a nanometre) are far */
-    const double h[NIN] = {1e-4 * e->L, 1e-4 * e->V, 1e-4 * e->L};
-    double *op = malloc(2 * (size_t)e->no * sizeof *op);
-    if (!op)
+    const double h[NIN] = {1e-4 * e->L, 1e-4 * e->V, 1e-4 * e->L, 1e-4 * e->L};
+    const int nq = 2 + e->no;
+    /* the anchor's outputs and the perturbed ones, by input: end state, observables */
+    double *P = malloc((size_t)(1 + 2 * NIN) * (size_t)nq * sizeof *P);
+    if (!P)
         return 0;
-    double *om = op + e->no;
+    double *pp = P + nq, *pm = pp + (size_t)NIN * (size_t)nq;
+    P[0] = x1[0];
+    P[1] = x1[1];
+    memcpy(P + 2, obs, (size_t)e->no * sizeof *obs);
     int ok = 1;
-    for (int j = 0; j < NIN && ok; j++) {
+    for (int j = 0; j < e->nin && ok; j++) {
         double dp[NIN] = {0}, dm[NIN] = {0};
         dp[j] = h[j];
         dm[j] = -h[j];
         /* the states along the cycles perturbed in d and d' give the flow's Jacobian for
          * the thermal noise's covariance */
         double *tp = e->trk && j < 2 ? e->trk + (size_t)(4 * j) * (size_t)e->n : NULL;
-        ok = perturbed(e, sim, x0, c0, s, sdot, dp, c1, xp, op, tp) &&
-             perturbed(e, sim, x0, c0, s, sdot, dm, c1, xm, om, tp ? tp + 2 * e->n : NULL);
+        double *a = pp + (size_t)j * (size_t)nq, *b = pm + (size_t)j * (size_t)nq;
+        ok = perturbed(e, sim, x0, c0, s, sdot, dp, c1, a, a + 2, tp) &&
+             perturbed(e, sim, x0, c0, s, sdot, dm, c1, b, b + 2, tp ? tp + 2 * e->n : NULL);
         *cycles += 2;
         for (int i = 0; i < 2 && ok; i++)
-            e->J[i][j] = (xp[i] - xm[i]) / (2 * h[j]);
+            e->J[i][j] = (a[i] - b[i]) / (2 * h[j]);
         for (int i = 0; i < e->no && ok; i++)
-            e->C[j * e->no + i] = (op[i] - om[i]) / (2 * h[j]);
+            e->C[j * e->no + i] = (a[2 + i] - b[2 + i]) / (2 * h[j]);
     }
-    free(op);
-    for (int j = 0; j < NIN && ok; j++)
+    for (int j = 0; j < e->nin && ok; j++)
         reduce(e, e->C + (size_t)j * (size_t)e->no,
                e->Cr + (size_t)j * (size_t)(e->m + TT_ENV_EXTRA + e->np));
+    /* second differences over ten times those steps: over h itself the stepper's noise
+     * (about 1e-7 of A0 a cycle, over h^2) biased the curvature of outputs that barely
+     * respond (the phase on a soft polymer) enough for u^2 H / 2 to drift it over a
+     * stretch; thirty times erred by their third-order term on stiff contact (30 GPa) */
+    const double hq[NIN] = {10 * h[0], 10 * h[1], 10 * h[2], 10 * h[3]};
+    if (ok && e->second)
+        ok = second_derivatives(e, sim, x0, c0, s, sdot, c1, hq, P, cycles);
+    free(P);
     if (ok && e->trk) {
         flow_measured(e, h);
         ok = thermal_covariance(e);
     }
+    e->built = ok && e->second;
     tt_sim_set_state(sim, x1[0], x1[1], c1);
     return ok;
 }
 
-/* The model's inputs' offsets from the anchor, and its end state from x. */
-static void step(const tt_envelope *e, const double x[2], double s, double sdot, double u[NIN],
-                 double x1[2])
+/* The model's end state from x, and the inputs' offsets u, in the first three inputs (the
+ * travel's part: add_travel). */
+static inline void step(const tt_envelope *e, const double x[2], double s, double sdot,
+                        double u[NIN], double x1[2])
 {
     u[0] = x[0] - e->xa[0];
     u[1] = x[1] - e->xa[1];
@@ -470,29 +607,129 @@ static void step(const tt_envelope *e, const double x[2], double s, double sdot,
         x1[i] = e->x1[i] + e->J[i][0] * u[0] + e->J[i][1] * u[1] + e->J[i][2] * u[2];
 }
 
-/* Observables o = oa + C u (no of them), C by columns of length ld. */
-static void linear(int no, int ld, const double *restrict oa, const double *restrict C,
-                   const double u[NIN], double *restrict o)
+/* Observables o = oa + C u (no of them) in the first three inputs, C by columns of length
+ * ld. */
+static inline void linear(int no, int ld, const double *restrict oa, const double *restrict C,
+                          const double u[NIN], double *restrict o)
 {
     const double *restrict c0 = C, *restrict c1 = c0 + ld, *restrict c2 = c1 + ld;
     for (int i = 0; i < no; i++)
         o[i] = oa[i] + c0[i] * u[0] + c1[i] * u[1] + c2[i] * u[2];
 }
 
-void tt_envelope_predict(const tt_envelope *e, const double x[2], double s, double sdot,
-                         double x1[2], double *obs)
+/* The travel's part where it is an input (tt_envelope_use_travel): its offset u[3], and
+ * its column of J and of C (length ld) times it added to x1 and the no outputs o, term
+ * by term as one sum over the four inputs would. */
+static inline void add_travel(const tt_envelope *e, double sdot, double u[NIN], double x1[2],
+                              int no, int ld, const double *restrict C, double *restrict o)
+{
+    u[3] = sdot * e->T - e->ta;
+    for (int i = 0; i < 2; i++)
+        x1[i] += e->J[i][3] * u[3];
+    const double *restrict c3 = C + 3 * (size_t)ld;
+    for (int i = 0; i < no; i++)
+        o[i] += c3[i] * u[3];
+}
+
+/* A first-order prediction with the travel an input: the end state x1 and no outputs
+ * from oa and C (columns of length ld). Out of line, so that the three inputs' paths, a
+ * noise-free scan's, compile as lean as without it. */
+__attribute__((noinline)) static void predict_travel(const tt_envelope *e, const double x[2],
+                                                     double s, double sdot, double x1[2],
+                                                     int no, int ld, const double *oa,
+                                                     const double *C, double *o)
 {
     double u[NIN];
     step(e, x, s, sdot, u, x1);
+    linear(no, ld, oa, C, u, o);
+    add_travel(e, sdot, u, x1, no, ld, C, o);
+}
+
+/* Second order (a second-order perturbation expansion about the anchor): the state is
+ * x = xl + x2, its first-order part xl iterated by the linear model from the inputs'
+ * offsets u, and its second-order part x2 by x2' = dP/dx x2 + H(u, u) / 2; the
+ * observables get C (x2, 0) + H(u, u) / 2. Iterating the quadratic map itself would have
+ * a spurious fixed point at |u| about (1 - |mu|) / |H| (50 pm at the Floquet multiplier
+ * 0.99 and the curvature 4 / A0), past which it runs off; the expansion is as accurate to
+ * second order and as stable as the linear model. Ho: the outputs' second derivatives
+ * (no rows of NPAIR), Co: their Jacobian by columns of length ld. */
+static void second_order(const tt_envelope *e, const double u[NIN], const double x2[2],
+                         double x21[2], int no, int ld, const double *Ho, const double *Co,
+                         double *o)
+{
+    double w[NPAIR];
+    for (int j = 0; j < NIN; j++)
+        for (int k = j; k < NIN; k++)
+            w[pair_of(j, k)] = (j == k ? 0.5 : 1.0) * u[j] * u[k];
+    for (int i = 0; i < 2; i++) {
+        double sum = e->J[i][0] * x2[0] + e->J[i][1] * x2[1];
+        for (int p = 0; p < NPAIR; p++)
+            sum += e->H[i * NPAIR + p] * w[p];
+        x21[i] = sum;
+    }
+    for (int i = 0; i < no; i++) {
+        double sum = Co[i] * x2[0] + Co[ld + i] * x2[1];
+        const double *row = Ho + (size_t)i * NPAIR;
+        for (int p = 0; p < NPAIR; p++)
+            sum += row[p] * w[p];
+        o[i] += sum;
+    }
+}
+
+void tt_envelope_predict2(const tt_envelope *e, const double x[2], const double x2[2], double s,
+                          double sdot, double x1[2], double x21[2], double *obs)
+{
+    double u[NIN] = {0, 0, 0, 0}, xl[2] = {x[0] - x2[0], x[1] - x2[1]};
+    step(e, xl, s, sdot, u, x1);
     linear(e->no, e->no, e->oa, e->C, u, obs);
+    if (e->nin > 3)
+        add_travel(e, sdot, u, x1, e->no, e->no, e->C, obs);
+    x21[0] = x21[1] = 0;
+    if (e->second && e->built) {
+        second_order(e, u, x2, x21, e->no, e->no, e->H + 2 * NPAIR, e->C, obs);
+        x1[0] += x21[0];
+        x1[1] += x21[1];
+    }
+}
+
+void tt_envelope_predict2_reduced(const tt_envelope *e, const double x[2], const double x2[2],
+                                  double s, double sdot, double x1[2], double x21[2], double *red)
+{
+    x21[0] = x21[1] = 0;
+    if (!(e->second && e->built)) {
+        tt_envelope_predict_reduced(e, x, s, sdot, x1, red);
+        return;
+    }
+    double u[NIN] = {0, 0, 0, 0}, xl[2] = {x[0] - x2[0], x[1] - x2[1]};
+    const int nr = e->m + TT_ENV_EXTRA, ld = nr + e->np;
+    step(e, xl, s, sdot, u, x1);
+    linear(nr, ld, e->ra, e->Cr, u, red);
+    if (e->nin > 3)
+        add_travel(e, sdot, u, x1, nr, ld, e->Cr, red);
+    second_order(e, u, x2, x21, nr, ld, e->Hr, e->Cr, red);
+    x1[0] += x21[0];
+    x1[1] += x21[1];
+}
+
+void tt_envelope_predict(const tt_envelope *e, const double x[2], double s, double sdot,
+                         double x1[2], double *obs)
+{
+    const double x2[2] = {0, 0};
+    double x21[2];
+    tt_envelope_predict2(e, x, x2, s, sdot, x1, x21, obs);
 }
 
 void tt_envelope_predict_reduced(const tt_envelope *e, const double x[2], double s, double sdot,
                                  double x1[2], double *red)
 {
     double u[NIN];
+    const int nr = e->m + TT_ENV_EXTRA, ld = nr + e->np;
+    if (e->nin > 3) {
+        predict_travel(e, x, s, sdot, x1, nr, ld, e->ra, e->Cr, red);
+        return;
+    }
     step(e, x, s, sdot, u, x1);
-    linear(e->m + TT_ENV_EXTRA, e->m + TT_ENV_EXTRA + e->np, e->ra, e->Cr, u, red);
+    linear(nr, ld, e->ra, e->Cr, u, red);
 }
 
 void tt_envelope_predict_probes(const tt_envelope *e, const double x[2], double s, double sdot,
@@ -521,7 +758,21 @@ double tt_envelope_error(const tt_envelope *e, const double xa[2], const double 
                          const double xb[2], const double *ob)
 {
     double err = fmax(fabs(xa[0] - xb[0]) / e->L, fabs(xa[1] - xb[1]) / e->V);
-    for (int i = 0; i < e->no; i++) {
+    int i0 = 0;
+    if (e->second && e->R) {
+        /* the samples as the lock-in reads them, its components (over A0), rather than
+         * each sample: near the impact single samples move far from the model at second
+         * order (a sample crosses into contact), and the projection averages that out */
+        for (int i = 0; i < e->m; i++) {
+            const double *row = e->R + (size_t)i * (size_t)e->n;
+            double d = 0;
+            for (int q = 0; q < e->n; q++)
+                d += row[q] * (oa[q] - ob[q]);
+            err = fmax(err, fabs(d) / e->L);
+        }
+        i0 = e->n;
+    }
+    for (int i = i0; i < e->no; i++) {
         double d = fabs(oa[i] - ob[i]) / e->oscale[i];
         if (d > err)
             err = d; /* NAN (a channel not tracked) is skipped */

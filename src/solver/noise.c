@@ -1,7 +1,9 @@
-/* Seeded thermal noise of the cantilever (see include/tiptap/solver/noise.h): the
- * counter-based generator and the per-cycle table of the Langevin force. */
+/* Seeded noise (see include/tiptap/solver/noise.h): the counter-based generator, the
+ * per-cycle table of the cantilever's Langevin force and the z piezo's low-passed
+ * position noise. */
 #include "tiptap/solver/noise.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 #include "stepper.h"
@@ -33,6 +35,33 @@ double tt_noise_gauss(uint64_t key, uint64_t index)
      * value is shared between indices */
     double u1 = uniform(key, 2 * index), u2 = uniform(key, 2 * index + 1);
     return sqrt(-2.0 * log(u1)) * cos(2.0 * M_PI * u2);
+}
+
+int tt_noise_ou_init(tt_noise_ou *p, double n, double fc, double dt)
+{
+    p->sd = p->a = p->b = 0;
+    if (!(n >= 0 && n < INFINITY && fc > 0 && dt > 0 && fc * dt <= 0.5 && dt < INFINITY))
+        return tt_error(TT_EINVAL,
+                        "a noise of density %g m/sqrt(Hz) and bandwidth %g Hz sampled every %g s: "
+                        "expected a density of 0 or more and a bandwidth above 0 and at most "
+                        "half the sampling rate",
+                        n, fc, dt);
+    /* the low-pass's noise bandwidth is pi fc / 2 */
+    const double w = 2 * M_PI * fc * dt;
+    p->sd = n * sqrt(M_PI * fc / 2);
+    p->a = exp(-w);
+    p->b = p->sd * sqrt(-expm1(-2 * w));
+    return TT_OK;
+}
+
+double tt_noise_ou_first(const tt_noise_ou *p, uint64_t key)
+{
+    return p->sd * tt_noise_gauss(key, 0);
+}
+
+double tt_noise_ou_next(const tt_noise_ou *p, uint64_t key, uint64_t index, double z)
+{
+    return p->a * z + p->b * tt_noise_gauss(key, index);
 }
 
 int tt_sim_set_thermal(tt_sim *S, double temperature, int points)

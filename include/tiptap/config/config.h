@@ -62,10 +62,11 @@ int tt_config_feedback(const tt_scene *s, double A0, tt_feedback_params *p);
 /* [tip] shape and half_angle, with the [tip] radius (tiptap scan). */
 int tt_config_tip_shape(const tt_scene *s, tt_tip_shape *t);
 
-/* [noise] (seed, temperature, points, detector, z_piezo) for a run on this solver
- * setting: rk4's steps_per_cycle must be a multiple of points when the temperature is
- * on (tiptap scan and tiptap trace). */
-int tt_config_noise(const tt_scene *s, const tt_solver *solver, tt_scan_noise *n);
+/* [noise] (seed, temperature, points, detector, z_piezo, z_piezo_bandwidth) for a run on
+ * this solver setting at drive frequency fd (Hz): rk4's steps_per_cycle must be a
+ * multiple of points when the temperature is on, and the z piezo's bandwidth at most
+ * fd / 2 when its noise is (tiptap scan and tiptap trace). */
+int tt_config_noise(const tt_scene *s, const tt_solver *solver, double fd, tt_scan_noise *n);
 
 /* [instrument]: tilt, drift, the z piezo's dynamics and creep (all zero by default). */
 int tt_config_instrument(const tt_scene *s, tt_instrument_params *p);

@@ -95,8 +95,12 @@ typedef struct {
     int points;         /* thermal force points per drive cycle */
     double detector;    /* deflection noise density of the detector, m/sqrt(Hz) (one-sided),
                          * added to every sample the lock-in reads */
-    double z_piezo;     /* position noise density of the z piezo, m/sqrt(Hz), drawn once per
-                         * drive cycle and linear between: moves the sample, not the height */
+    double z_piezo;     /* position noise density of the z piezo, m/sqrt(Hz) (one-sided),
+                         * through a first-order low-pass of corner z_bandwidth (an
+                         * Ornstein-Uhlenbeck process, exact at each drive cycle's start and
+                         * linear between): moves the sample, not the height */
+    double z_bandwidth; /* Hz: the low-pass's corner, above 0 and at most half the drive
+                         * frequency when z_piezo is on */
 } tt_scan_noise;
 
 /* Everything a scan needs, in SI units. */
@@ -177,9 +181,10 @@ int tt_scan_line_values(const tt_scan *s, int channel_index, int retrace, long l
  * image as the loop settles elsewhere, as on an instrument. */
 void tt_scan_get_feedback(const tt_scan *s, tt_feedback_params *p);
 int tt_scan_set_feedback(tt_scan *s, const tt_feedback_params *p);
-/* The noise (all its kinds and the seed; zero amplitudes: off). Z piezo noise moves the
- * envelope tier's lines to every cycle (tt_scan_envelope_tier), and back when it is
- * off again. */
+/* The noise (all its kinds and the seed; zero amplitudes: off). Z piezo noise gives the
+ * envelope tier's model the sample's travel as an input and second order, and thermal
+ * noise second order, from the next line on; they are dropped when it is off again. A
+ * z piezo bandwidth above half the drive frequency is refused (TT_EINVAL). */
 void tt_scan_get_noise(const tt_scan *s, tt_scan_noise *n);
 int tt_scan_set_noise(tt_scan *s, const tt_scan_noise *n);
 /* Lines per second (the cycles of a line follow it; the images keep their size).
@@ -231,7 +236,7 @@ double tt_scan_averaged_table_error(const tt_scan *s);
 long tt_scan_averaged_collapsed(const tt_scan *s, long *line, long *pixel);
 long tt_scan_averaged_outside(const tt_scan *s);
 /* Whether a scan of these parameters runs on the envelope tier: [solver] tier asks for
- * it and the scan allows it (Q 30 or more, no z piezo noise); else every cycle. */
+ * it and the scan allows it (Q 30 or more); else every cycle. */
 int tt_scan_envelope_tier(const tt_scan_params *p);
 /* Whether it runs on the averaged tier: [solver] tier asks for it and the scan allows
  * it (Q 30 or more, the drive within 5 % of resonance); else on the envelope tier's

@@ -9,7 +9,8 @@
  *
  * Noise ([noise], as a scan's: tiptap/instrument/scan.h) keyed by (seed, line 0) and
  * counted in cycles from the settling's start: the thermal force on the cantilever,
- * z piezo noise moving the sample (a draw a cycle, linear between) and the detector's
+ * z piezo noise moving the sample (through its bandwidth, exact at each cycle's start,
+ * linear between) and the detector's
  * noise added to each sample's measured deflection (tt_trace_sample deflection), not
  * to the tip's position.
  *

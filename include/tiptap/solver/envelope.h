@@ -49,9 +49,25 @@ int tt_envelope_size(const tt_envelope *e);
  * predicts the tip's path near its closest approach (the gap to the sample is then
  * taken from the sample's own position at those times, which the model's input, the
  * sample's position mid-cycle, does not fix). Call it after tt_envelope_alloc and before
- * tt_envelope_reduce. */
+ * tt_envelope_reduce and tt_envelope_use_second_order. */
 int tt_envelope_set_probes(tt_envelope *e, int np);
 int tt_envelope_probes(const tt_envelope *e);
+
+/* Take the sample's travel within the cycle (sdot T) as a fourth input of the model, for
+ * a sample whose travel changes from cycle to cycle by more than its position's smooth
+ * course explains (the z piezo's noise): its Jacobian column costs 2 more cycles a build,
+ * and the travel's offset from the anchor's counts in tt_envelope_reach. Without it the
+ * model holds the travel at the anchor's. Call it before the model is first built. */
+void tt_envelope_use_travel(tt_envelope *e);
+
+/* Second order in the inputs, for noise that takes the inputs further from the anchor
+ * than a linear model holds (docs/dynamics.md, "Noise on the envelope tier"): the
+ * second derivatives from the build's cycles and one more cycle per pair of inputs (3
+ * or 6), the Jacobians carried to each new anchor, the state's second-order part
+ * carried by the caller (tt_envelope_predict2), and tt_envelope_error holding the
+ * samples as the lock-in's components (the reduction's rows) rather than one by one.
+ * Call it after tt_envelope_reduce and before the model is first built. */
+int tt_envelope_use_second_order(tt_envelope *e);
 
 /* A cycle's observable vector from its samples (deflection d - z) and results. */
 void tt_envelope_observe(const tt_envelope *e, const tt_sample *samples, const tt_cycle *cy,
@@ -81,6 +97,13 @@ void tt_envelope_anchor(tt_envelope *e, const double x0[2], double s, double sdo
 void tt_envelope_predict(const tt_envelope *e, const double x[2], double s, double sdot,
                          double x1[2], double *obs);
 
+/* The same for a second-order model (tt_envelope_use_second_order): x is the state, x2
+ * its second-order part (0 after an integrated cycle); x21 the end state's. Without
+ * second order, or before it is built, x21 is 0 and the prediction tt_envelope_predict's
+ * (which is this with x2 = 0). */
+void tt_envelope_predict2(const tt_envelope *e, const double x[2], const double x2[2], double s,
+                          double sdot, double x1[2], double x21[2], double *obs);
+
 /* Reduce the model's deflection samples to m linear combinations of them, R (m x n, by
  * rows; copied), for a caller that needs only those (the lock-in's per-period
  * components, tiptap/instrument/lockin.h): tt_envelope_predict_reduced then costs
@@ -92,12 +115,18 @@ int tt_envelope_reduce(tt_envelope *e, int m, const double *R);
 void tt_envelope_predict_reduced(const tt_envelope *e, const double x[2], double s, double sdot,
                                  double x1[2], double *red);
 
-/* The model's probes alone (np tip positions, m) from x with the sample at s moving at sdot. */
+/* The model's probes alone (np tip positions, m) from x with the sample at s moving at sdot,
+ * to first order in d, d' and s: neither the travel (tt_envelope_use_travel) nor the
+ * second order is taken, as the grazing model that reads them runs only without noise. */
 void tt_envelope_predict_probes(const tt_envelope *e, const double x[2], double s, double sdot,
                                 double *g);
 /* An observable vector reduced as tt_envelope_reduce asks: the m combinations, then the
  * TT_ENV_EXTRA observables and the probes as they are. */
 void tt_envelope_reduce_obs(const tt_envelope *e, const double *obs, double *red);
+
+/* tt_envelope_predict2 with the samples reduced. */
+void tt_envelope_predict2_reduced(const tt_envelope *e, const double x[2], const double x2[2],
+                                  double s, double sdot, double x1[2], double x21[2], double *red);
 
 /* Noise of the model's cycles (docs/dynamics.md, "Noise on the envelope tier"): the
  * thermal force (two-sided PSD psd, N^2/Hz; 0: none) and detector noise of rms sd (m)

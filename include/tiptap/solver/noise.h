@@ -40,6 +40,23 @@ double tt_noise_gauss(uint64_t key, uint64_t index);
  * outputs of one Box-Muller pair (the envelope tier's draws, where half the cost counts). */
 void tt_noise_pair(uint64_t key, uint64_t index, double g[2]);
 
+/* A position noise of one-sided density n (m/sqrt(Hz)) through a first-order low-pass of
+ * corner fc, the z piezo's (docs/dynamics.md, "Noise"): an Ornstein-Uhlenbeck process of
+ * variance n^2 pi fc / 2 and spectrum n^2 / (1 + (f / fc)^2), sampled exactly every dt,
+ * z' = a z + b g with a = exp(-2 pi fc dt), b = sd sqrt(1 - a^2), g a standard normal of
+ * (key, index): so a stretch drawn again draws the same. */
+typedef struct {
+    double sd, a, b;
+} tt_noise_ou;
+
+/* The process of density n and corner fc sampled every dt. TT_EINVAL unless n >= 0, fc > 0
+ * and fc <= 1 / (2 dt) (the samples' Nyquist frequency), all finite. */
+int tt_noise_ou_init(tt_noise_ou *p, double n, double fc, double dt);
+/* The first sample: from the stationary distribution (index 0 of key). */
+double tt_noise_ou_first(const tt_noise_ou *p, uint64_t key);
+/* The sample after z, drawing index (1 and up) of key. */
+double tt_noise_ou_next(const tt_noise_ou *p, uint64_t key, uint64_t index, double z);
+
 /* Thermal force noise at temperature (K) on `points` times per cycle (temperature 0:
  * off, the default). TT_EINVAL when points < 4, or for rk4 when its steps_per_cycle
  * is not a multiple of points (its grid must hold the interpolation's corners). The free
