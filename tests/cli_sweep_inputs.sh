@@ -22,14 +22,16 @@ expect_error "10^400 combinations refused" "about 10^400 combinations" \
   "$tiptap" sweep "$blend" --vary "approach.from=1nm:2nm:$n400" -o big.csv
 expect_error "one over the maximum refused exactly" ": 10001000 combinations, more than the 10000000" \
   "$tiptap" sweep "$blend" --vary approach.from=1nm:2nm:1000 --vary cantilever.free_amplitude=1nm:2nm:10001 -o big.csv
-# at once: within a generous bound (the issue asks for O(1)), 20 grids in a row
+# at once: within a generous bound (the issue asks for O(1)), 20 grids in a row; the
+# bound tells a refusal from counting 1e14 points (years), not one machine from another:
+# 20 starts of the sanitizer build took 11 to 12 s at a load of 7 to 8
 start=$(date +%s%N)
 for _ in $(seq 20); do
   "$tiptap" sweep "$blend" --vary approach.from=1nm:2nm:10000000 --vary approach.points=1:1000:10000000 \
     -o big.csv 2>/dev/null
 done
 ms=$((($(date +%s%N) - start) / 1000000))
-[ "$ms" -lt 10000 ] && ok "20 refusals of 1e14 combinations in $ms ms" || bad "refusals took $ms ms"
+[ "$ms" -lt 60000 ] && ok "20 refusals of 1e14 combinations in $ms ms" || bad "refusals took $ms ms"
 
 # ranges: duplicates, a dropped end, alike ends
 expect_error "whole-number range with repeats" "approach.points=2:4:5: 5 whole numbers from 2 to 4 would repeat" \
