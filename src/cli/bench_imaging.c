@@ -125,7 +125,7 @@ const char *bench_blend_scene(void)
            "setpoint = 80 %\n"
            "\n"
            "; A quick look trades accuracy for time: at 3e-8 the default envelope tier runs the\n"
-           "; README's main job in about 70 % of the CPU time it takes at the default 1e-8, and its\n"
+           "; README's main job in about 80 % of the CPU time it takes at the default 1e-8, and its\n"
            "; images stay within 0.4 pm rms in height and 0.01 deg rms in phase of the every-cycle\n"
            "; tier at 1e-10 (docs/dynamics.md, Tiers); the run's own error estimate says so.\n"
            "[solver]\n"
