@@ -12,6 +12,7 @@
 #include "tiptap/version.h"
 
 #include "tiptap/util/cancel.h"
+#include "tiptap/util/clock.h"
 #include "tiptap/util/error.h"
 #include "tiptap/util/str.h"
 #include "tiptap/util/table.h"

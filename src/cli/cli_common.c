@@ -22,6 +22,7 @@
 #include "tiptap/io/outfile.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
+#include "tiptap/util/clock.h"
 
 int cli_fail(int status, const char *msg)
 {
@@ -327,12 +328,7 @@ void cli_interrupt_at_once(const char *why)
 }
 void cli_catch_interrupt(void) { catch_signals(on_sigint); }
 
-double cli_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+double cli_now(void) { return tt_clock(TT_CLOCK_WALL); }
 
 const char *cli_duration(double s, char *buf, size_t len)
 {

@@ -9,6 +9,7 @@
 
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
+#include "tiptap/util/clock.h"
 
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -99,22 +100,6 @@ struct tt_accuracy {
     run_result ref;
     int ref_done;
 };
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* CPU time of the process: unlike the wall clock, barely changed by other programs
- * sharing the cores (the runs are single-threaded). */
-static double cpu_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* A solver's accuracy knob by the name of its [solver] key: a method joins the study
  * with its ladder row and, for a new knob, a row here. */
@@ -369,7 +354,7 @@ static int run_point(tt_accuracy *A, run_result *res)
     double worst = 0, amp = NAN;
     tt_cycle cy;
     memset(&cy, 0, sizeof cy);
-    double t0 = now(), c0 = cpu_now();
+    double t0 = tt_clock(TT_CLOCK_WALL), c0 = tt_clock(TT_CLOCK_PROCESS);
     for (long n = 0; n < A->cycles; n++) {
         if ((n & 255) == 0 && tt_cancel_requested()) {
             rc = tt_error(TT_EINTR, "interrupted");
@@ -383,8 +368,8 @@ static int run_point(tt_accuracy *A, run_result *res)
         if (cy.residual_rel > worst)
             worst = cy.residual_rel;
     }
-    res->seconds = now() - t0;
-    res->cpu_seconds = cpu_now() - c0;
+    res->seconds = tt_clock(TT_CLOCK_WALL) - t0;
+    res->cpu_seconds = tt_clock(TT_CLOCK_PROCESS) - c0;
     tt_sim_free(sim);
     if (rc)
         return rc;
@@ -402,10 +387,10 @@ static int run_line(tt_accuracy *A, run_result *res)
     int rc = tt_scan_alloc(&scan, &A->scan);
     if (rc)
         return rc;
-    double t0 = now(), c0 = cpu_now();
+    double t0 = tt_clock(TT_CLOCK_WALL), c0 = tt_clock(TT_CLOCK_PROCESS);
     rc = tt_scan_run(scan, 1, NULL, NULL);
-    res->seconds = now() - t0;
-    res->cpu_seconds = cpu_now() - c0;
+    res->seconds = tt_clock(TT_CLOCK_WALL) - t0;
+    res->cpu_seconds = tt_clock(TT_CLOCK_PROCESS) - c0;
     if (!rc) {
         free(res->profile);
         res->profile = malloc(2 * A->nprofile * sizeof *res->profile);

@@ -13,6 +13,7 @@
 #include "tiptap/solver/noise.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
+#include "tiptap/util/clock.h"
 
 static const struct {
     const char *name, *unit;
@@ -374,21 +375,13 @@ static int envelope_alloc(tt_scan *S, worker *W)
     return TT_OK;
 }
 
-/* This thread's CPU time, s: what a table costs one core, whatever else runs. */
-static double thread_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* The averaged tier's tables, once per scan (before any thread runs a line): every
  * material's, with the harmonics the lock-in keeps. */
 static int averaged_tables(tt_scan *S)
 {
     if (S->avg)
         return TT_OK;
-    double t0 = thread_seconds();
+    double t0 = tt_clock(TT_CLOCK_THREAD);
     S->avg = calloc(S->nmaterials, sizeof *S->avg);
     if (!S->avg)
         return tt_error_nomem("the averaged tier's tables of %zu materials", S->nmaterials);
@@ -401,7 +394,7 @@ static int averaged_tables(tt_scan *S)
         if (e > S->avg_error)
             S->avg_error = e;
     }
-    S->avg_seconds = thread_seconds() - t0; /* with the check */
+    S->avg_seconds = tt_clock(TT_CLOCK_THREAD) - t0; /* with the check */
     return TT_OK;
 }
 

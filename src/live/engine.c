@@ -18,6 +18,7 @@
 #include "tiptap/instrument/scan_scope.h"
 #include "tiptap/io/decimate.h"
 #include "tiptap/util/error.h"
+#include "tiptap/util/clock.h"
 
 struct tt_live_engine {
     pthread_t thread;
@@ -66,21 +67,6 @@ struct tt_live_engine {
     int ch_index[TT_LIVE_NCH];
     long clean_pass; /* the first pass that runs wholly at the current settings */
 };
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* This thread's CPU time: the line's own cost, whatever else the machine runs. */
-static double cpu_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static int channel_by_name(const char *name)
 {
@@ -329,9 +315,9 @@ static int run_line(tt_live_engine *e, long line, double changed_at)
     pthread_mutex_lock(&e->mu);
     e->running = 1;
     pthread_mutex_unlock(&e->mu);
-    double t0 = now_s(), c0 = cpu_s();
+    double t0 = tt_clock(TT_CLOCK_WALL), c0 = tt_clock(TT_CLOCK_THREAD);
     int rc = tt_scan_step(e->scan, line, e->scope);
-    double t1 = now_s(), c1 = cpu_s();
+    double t1 = tt_clock(TT_CLOCK_WALL), c1 = tt_clock(TT_CLOCK_THREAD);
     pthread_mutex_lock(&e->mu);
     e->running = 0;
     if (rc) {
@@ -412,7 +398,7 @@ static void pace(tt_live_engine *e, double until)
 {
     pthread_mutex_lock(&e->mu);
     while (!e->stop && !e->have_next && e->export_asked == e->export_done) {
-        double left = until - now_s();
+        double left = until - tt_clock(TT_CLOCK_WALL);
         if (left <= 0)
             break;
         struct timespec ts;
@@ -450,10 +436,10 @@ static void *engine_main(void *arg)
         if (have && take_change(e, scene, &p, restart))
             changed_at = at;
         if (!e->scan || !e->line_buf) {
-            pace(e, now_s() + 1);
+            pace(e, tt_clock(TT_CLOCK_WALL) + 1);
             continue;
         }
-        double t0 = now_s();
+        double t0 = tt_clock(TT_CLOCK_WALL);
         int rc = run_line(e, e->v.line, changed_at);
         if (rc == TT_EINTR)
             break;
@@ -485,7 +471,7 @@ static void preview_line(tt_live_engine *e, unsigned long change, double at)
     if (e->v.frame == frame && e->row_version[line] < change) {
         publish_row(e, e->pscan, e->pline, line, TT_TIER_AVERAGED);
         publish_scope(e, e->pscope, line, TT_TIER_AVERAGED);
-        e->v.preview_ms = 1e3 * (now_s() - at);
+        e->v.preview_ms = 1e3 * (tt_clock(TT_CLOCK_WALL) - at);
     }
     pthread_mutex_unlock(&e->mu);
     e->wake(e->user);
@@ -631,7 +617,7 @@ void tt_live_engine_submit(tt_live_engine *e, tt_scene *scene, tt_scan_params *p
     e->next_params = *p;
     e->next_restart = restart;
     e->have_next = 1;
-    e->next_at = now_s();
+    e->next_at = tt_clock(TT_CLOCK_WALL);
     /* the preview thread's own copy (the materials are plain values) */
     tt_material *m = malloc((p->nmaterials ? p->nmaterials : 1) * sizeof *m);
     if (m) {

@@ -17,6 +17,7 @@
 #include "tiptap/live/engine.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
+#include "tiptap/util/clock.h"
 
 enum {
     RX_MAX = 16384,         /* bytes of one message from a page */
@@ -61,13 +62,6 @@ typedef struct {
     tt_live_buf out;
     lws_sorted_usec_list_t sul;
 } server;
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static void wake(void *user)
 {
@@ -201,7 +195,7 @@ static void reply(pss *p, int ok, const char *why)
  * engine with its scene. */
 static void ws_message(server *s, pss *p)
 {
-    double t = now_s();
+    double t = tt_clock(TT_CLOCK_WALL);
     p->tokens += (t - p->tokens_at) * RATE;
     if (p->tokens > BURST)
         p->tokens = BURST;
@@ -427,7 +421,7 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
         p->wsi = wsi;
         p->ws = 1;
         p->tokens = BURST;
-        p->tokens_at = now_s();
+        p->tokens_at = tt_clock(TT_CLOCK_WALL);
         p->next = s->all;
         s->all = p;
         s->clients++;

@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include "tiptap/util/error.h"
+#include "tiptap/util/clock.h"
 
 enum {
     NQ = 24,      /* Gauss-Legendre nodes on each piece of a cycle (contact, flight halves) */
@@ -34,14 +35,6 @@ struct tt_averaged {
     double seconds;
     double *t;          /* [NB][NX][ncol] */
 };
-
-/* This thread's CPU time, s: what a table costs one core, whatever else runs. */
-static double thread_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* Gauss-Legendre nodes by Newton's iteration on P_n (Golub-Welsch not needed at n = 24). */
 static void gauss_legendre(int n, double *x, double *w)
@@ -172,7 +165,7 @@ int tt_averaged_alloc(tt_averaged **out, const tt_cantilever *c, const tt_contac
     *out = NULL;
     if (harmonics < 1 || harmonics > TT_AVG_HMAX)
         return tt_error(TT_EINVAL, "averaged tier: %d harmonics (1 to %d)", harmonics, TT_AVG_HMAX);
-    double t0 = thread_seconds();
+    double t0 = tt_clock(TT_CLOCK_THREAD);
     tt_averaged *a = calloc(1, sizeof *a);
     if (!a)
         return tt_error_nomem("the averaged tier's table");
@@ -195,7 +188,7 @@ int tt_averaged_alloc(tt_averaged **out, const tt_cantilever *c, const tt_contac
     for (int i = 0; i < NB; i++)
         for (int j = 0; j < NX; j++)
             direct(a, i * a->db, node_x(a, j), 0, a->t + ((size_t)i * NX + (size_t)j) * (size_t)a->ncol);
-    a->seconds = thread_seconds() - t0;
+    a->seconds = tt_clock(TT_CLOCK_THREAD) - t0;
     *out = a;
     return TT_OK;
 }
