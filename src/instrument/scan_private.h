@@ -166,6 +166,8 @@ typedef struct {
     double tol, edge; /* the envelope tier's error per cycle and edge height */
     double rel;       /* and with noise on, its error per reach of the inputs from the anchor */
     double reach;     /* the largest reach of the second-order model's stretches, of A0 (0: any) */
+    double retake;    /* the reach from where its derivatives were taken past which they are
+                       * recalled or taken anew, of A0 (0: carried on) */
     uint64_t kd;      /* the every-cycle tier's detector noise key */
     uint64_t kz;      /* the z piezo noise's key (both tiers draw the same) */
     uint64_t ke;      /* the envelope tier's noise key (thermal and detector, per cycle) */

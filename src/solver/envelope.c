@@ -6,53 +6,13 @@
 #include <string.h>
 
 #include "tiptap/util/error.h"
-
-/* Inputs of the model: d, d' at the cycle start, the sample's position mid-cycle and,
- * where the caller asks for it (tt_envelope_use_travel), the sample's travel within the
- * cycle. */
-enum { NIN = 4, NPAIR = NIN * (NIN + 1) / 2 };
+#include "envelope_private.h"
 
 /* The place of the input pair (i, j), i <= j, among the NPAIR second derivatives. */
 static int pair_of(int i, int j)
 {
     return i * NIN - i * (i - 1) / 2 + (j - i);
 }
-
-struct tt_envelope {
-    int n, no;            /* samples per cycle; observables (n + TT_ENV_EXTRA + np) */
-    int np;               /* probes of the gap (tt_envelope_set_probes) */
-    double T, L, V;       /* period; length and velocity scales (A0, w A0) */
-    double mass, w0, sig; /* the cantilever's effective mass, resonance and decay rate */
-    double *oscale;       /* per observable: its scale */
-    /* the anchor: a cycle integrated from xa with the sample at sa (mid-cycle) */
-    double xa[2], sa, ta, x1[2];
-    int contact, touched;
-    int nin;              /* inputs in use: 3, or 4 with the travel */
-    /* second order (tt_envelope_use_second_order): the second derivatives of the end
-     * state and of the observables, by input pair (NPAIR per output, outputs by rows:
-     * the end state's 2, then the observables'), and of the reduced observables;
-     * built: they belong to the present Jacobians */
-    int second, built;
-    double *H, *Hr;
-    double *oa;
-    /* Jacobians: of the end state and of the observables, by input */
-    double J[2][NIN];
-    double *C;            /* no x NIN, by columns (the prediction's loop vectorises) */
-    /* the samples reduced (tt_envelope_reduce): m x n rows R; the anchor's reduced
-     * observables ra (nr = m + TT_ENV_EXTRA + np) and their Jacobian Cr, by columns */
-    int m;
-    double *R, *ra, *Cr;
-    /* noise (tt_envelope_set_noise): the thermal force's two-sided PSD and the
-     * detector's per-sample rms; the tip's states at the samples of the four cycles
-     * perturbed in d and d' (the flow's Jacobian along the cycle); the lower Cholesky
-     * factors, by rows, of the joint covariance of the end state's and the reduced
-     * samples' noise per cycle (nn = 2 + m; thermal and detector) and of the
-     * detector's alone (m) */
-    double psd, sd;
-    int nn;
-    double *trk, *Lj, *Ld, *phi; /* phi: the flow's Jacobian at the samples and the end */
-    double *Lf;                  /* Lj for the free cantilever, until a model is built */
-};
 
 int tt_envelope_alloc(tt_envelope **out, const tt_cantilever *c, int n)
 {
@@ -110,6 +70,7 @@ void tt_envelope_free(tt_envelope *e)
     free(e->Lf);
     free(e->H);
     free(e->Hr);
+    tt_envelope_models_free(e);
     free(e);
 }
 
@@ -201,10 +162,7 @@ double tt_envelope_sample_offset(const tt_envelope *e, double s, double sdot)
 
 double tt_envelope_reach(const tt_envelope *e, const double x[2], double s, double sdot)
 {
-    double u = fmax(fabs(x[0] - e->xa[0]) / e->L, fabs(x[1] - e->xa[1]) / e->V);
-    if (e->nin > 3)
-        u = fmax(u, fabs(sdot * e->T - e->ta) / e->L);
-    return fmax(u, fabs(tt_envelope_sample_offset(e, s, sdot)) / e->L);
+    return tt_envelope_distance(e, e->xa, e->sa, e->ta, x, s, sdot);
 }
 
 void tt_envelope_observe(const tt_envelope *e, const tt_sample *samples, const tt_cycle *cy,
@@ -421,7 +379,7 @@ int tt_envelope_set_noise(tt_envelope *e, double psd, double sd)
     e->sd = sd;
     e->nn = 2 + e->m;
     if (!(psd > 0) && !(sd > 0))
-        return TT_OK;
+        return e->nk ? tt_envelope_keep_models(e, e->nk) : TT_OK;
     const int m = e->m, nn = e->nn;
     e->Lj = calloc((size_t)nn * (size_t)nn, sizeof *e->Lj);
     e->Ld = calloc((size_t)m * (size_t)m, sizeof *e->Ld);
@@ -448,7 +406,8 @@ int tt_envelope_set_noise(tt_envelope *e, double psd, double sd)
             return tt_error_nomem("the envelope tier's noise");
     }
     memcpy(e->Lf, e->Lj, (size_t)nn * (size_t)nn * sizeof *e->Lf);
-    return TT_OK;
+    /* the kept models hold a noise factor now, or of another size */
+    return e->nk ? tt_envelope_keep_models(e, e->nk) : TT_OK;
 }
 
 void tt_envelope_noise_reset(tt_envelope *e)
@@ -591,6 +550,10 @@ int tt_envelope_build(tt_envelope *e, tt_sim *sim, const double x0[2], int c0, d
         ok = thermal_covariance(e);
     }
     e->built = ok && e->second;
+    e->xb[0] = e->xa[0];
+    e->xb[1] = e->xa[1];
+    e->sb = e->sa;
+    e->tb = e->ta;
     tt_sim_set_state(sim, x1[0], x1[1], c1);
     return ok;
 }

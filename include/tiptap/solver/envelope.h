@@ -69,6 +69,28 @@ void tt_envelope_use_travel(tt_envelope *e);
  * Call it after tt_envelope_reduce and before the model is first built. */
 int tt_envelope_use_second_order(tt_envelope *e);
 
+/* Kept models, for noise whose reach of the inputs outruns one model's (docs/dynamics.md,
+ * "Noise on the envelope tier"): the second-order model holds near where its
+ * derivatives were taken, and noise brings the inputs back near the same places again
+ * and again. Room for k models (0: none kept), each its derivatives and its thermal
+ * noise's factor as taken by a build (a few kB). Call it after
+ * tt_envelope_use_second_order and tt_envelope_set_noise. */
+int tt_envelope_keep_models(tt_envelope *e, int k);
+/* Forget the kept models (a new line, whose cycles must not depend on another's). */
+void tt_envelope_forget(tt_envelope *e);
+/* Keep the model just built (tt_envelope_build, second order) under the caller's tag
+ * (a material), replacing the one unused the longest when all room is taken. */
+void tt_envelope_keep(tt_envelope *e, int tag);
+/* The inputs' largest offset from where the present model's derivatives were taken (in
+ * tt_envelope_reach's units). */
+double tt_envelope_model_reach(const tt_envelope *e, const double x[2], double s, double sdot);
+/* Make the kept model nearest to the inputs, within `within` of where its derivatives
+ * were taken, with the contact flag, touch and tag given, the present one. 1: recalled;
+ * the caller then anchors it on an integrated cycle (tt_envelope_anchor), which carries
+ * its derivatives there, before it predicts. 0: none is near enough. */
+int tt_envelope_recall(tt_envelope *e, const double x[2], double s, double sdot, int contact,
+                       int touched, int tag, double within);
+
 /* A cycle's observable vector from its samples (deflection d - z) and results. */
 void tt_envelope_observe(const tt_envelope *e, const tt_sample *samples, const tt_cycle *cy,
                          double *obs);
