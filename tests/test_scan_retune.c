@@ -48,6 +48,19 @@ static void compare_line(const tt_scan *a, const tt_scan *b, long line, int same
 
 /* Independent lines: line 1 after a change is the line of a scan made with the new
  * value; line 0, before it, that of the old. */
+/* The three scans a retune test compares (changed live, old scene, new scene) and
+ * their scenes. */
+static void free_three(tt_scan *live, tt_scan *old, tt_scan *neu, tt_scene *s1, tt_scene *s2,
+                       tt_scene *s3)
+{
+    tt_scan_free(live);
+    tt_scan_free(old);
+    tt_scan_free(neu);
+    tt_scene_free(s1);
+    tt_scene_free(s2);
+    tt_scene_free(s3);
+}
+
 static void check_change(const char *fresh, void (*change)(tt_scan *, const tt_scan *))
 {
     tt_scene *s1, *s2, *s3;
@@ -61,12 +74,7 @@ static void check_change(const char *fresh, void (*change)(tt_scan *, const tt_s
     compare_line(live, old, 0, 1);
     compare_line(live, neu, 1, 1);
     compare_line(live, old, 1, 0); /* the change did something */
-    tt_scan_free(live);
-    tt_scan_free(old);
-    tt_scan_free(neu);
-    tt_scene_free(s1);
-    tt_scene_free(s2);
-    tt_scene_free(s3);
+    free_three(live, old, neu, s1, s2, s3);
 }
 
 /* Each change sets the value the fresh scan's scene gave (ref), as read back from it. */
@@ -218,12 +226,7 @@ static void piezo_noise_change_is_the_noisy_line(void **st)
     const long a = all[2] - all[1], i = integrated[2] - integrated[1];
     assert_true(i < a - a / 20);
     assert_true(integrated[1] - integrated[0] < a / 5);
-    tt_scan_free(live);
-    tt_scan_free(old);
-    tt_scan_free(neu);
-    tt_scene_free(s1);
-    tt_scene_free(s2);
-    tt_scene_free(s3);
+    free_three(live, old, neu, s1, s2, s3);
 }
 
 /* Out of range: refused, with the key named, and nothing changes. */
