@@ -149,6 +149,7 @@ typedef struct {
 typedef struct {
     int model;       /* the model runs; else every cycle is integrated */
     long left;       /* model cycles before the stretch's check */
+    long ran;        /* model cycles run in the stretch so far */
     long m;          /* the next stretch's length */
     long quiet, wait; /* integrated cycles without a change of contact or surface; needed */
     long redo;       /* integrate every cycle up to this one (a rolled-back stretch) */
@@ -163,13 +164,20 @@ typedef struct {
     long same;       /* integrated cycles in a row on the last one's branch (grazing) */
     lookahead la;
     double *red, *pred; /* a check's reduced observables and their prediction */
-    double zn;       /* the z piezo's noise in the anchor's sample position */
+    double smooth;   /* the sample's smooth course (its position mid-cycle less the z
+                      * piezo's noise) where the model was last anchored on a cycle */
     snapshot sn;
     long integrated; /* cycles of the run integrated, each once */
     char *seen;      /* the phase's cycles integrated so far: a cycle integrated again
                       * (rolled back, a failed check) or a Jacobian's is not counted */
     long nseen;
 } controller;
+
+/* The sample's position mid-cycle, the envelope model's input. */
+static double sample_mid(const cycle_in *in)
+{
+    return 0.5 * (in->sa + in->sb);
+}
 
 /* Integrate cycle k from the sim's state: its observables and end state (st->x). */
 static int integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_cycle *cy,
@@ -265,10 +273,21 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
     double err = tt_envelope_error(env, xp, pred, st->x, obs) * drift(L, c->m);
     if (!(err <= L->tol + L->rel * tt_envelope_reach(env, x0, in->sa, sdot)) || c1 != c0 || tt_envelope_touched(&cy) != tt_envelope_anchor_touched(env))
         return 0;
-    if (far_off(L, x0, in, tt_envelope_touched(&cy), c0))
-        recall(L, st, c, in, x0, c0, &cy);
+    c->smooth = sample_mid(in) - in->zn;
+    if (far_off(L, x0, in, tt_envelope_touched(&cy), c0) && !recall(L, st, c, in, x0, c0, &cy) &&
+        tt_envelope_revisit(env, x0, in->sa, sdot, (int)st->current, L->retake)) {
+        /* no kept model near a place the state comes back to: one is built here, for
+         * the stretches to switch to (a transient after an edge sweeps through places
+         * once, and builds none) */
+        long jacobian = 0; /* its cycles are not the run's */
+        if (!tt_envelope_build(env, L->W->sim, x0, c0, in->sa, sdot, &cy, obs, &jacobian)) {
+            c->rebuild = 1;
+            return 3;
+        }
+        tt_envelope_keep(env, (int)st->current);
+        return 1;
+    }
     tt_envelope_anchor(env, x0, in->sa, sdot, st->x, &cy, obs);
-    c->zn = in->zn;
     return 1;
 }
 
@@ -310,12 +329,6 @@ static void graze_leave(const line_ctx *L, controller *c)
     c->free_ok = 0;
     c->rebuild = 1;
     tt_graze_disarm(L->W->graze, L->W->sim);
-}
-
-/* The sample's position mid-cycle, the envelope model's input. */
-static double sample_mid(const cycle_in *in)
-{
-    return 0.5 * (in->sa + in->sb);
 }
 
 /* A free cycle just integrated from x0 (the sim at its end): the probes aimed at its
@@ -598,16 +611,17 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
      * built here at once; a kept model near enough needs no wait after a change either:
      * the map is the same wherever the line is */
     const int far = same && far_off(L, x0, in, touch, c0);
-    if ((same && !far) || (L->retake > 0 && recall(L, st, c, in, x0, c0, &cy))) {
+    if ((same && !far) || (L->retake > 0 && recall(L, st, c, in, x0, c0, &cy)) ||
+        (far && !tt_envelope_revisit(env, x0, in->sa, sdot, (int)st->current, L->retake))) {
         tt_envelope_anchor(env, x0, in->sa, sdot, st->x, &cy, obs);
-        c->zn = in->zn;
+        c->smooth = sample_mid(in) - in->zn;
         c->rebuild = 0;
         return 1;
     }
     if (!far && c->quiet < c->wait)
         return 0;
     long jacobian = 0; /* its cycles are not the run's */
-    c->zn = in->zn;
+    c->smooth = sample_mid(in) - in->zn;
     if (tt_envelope_build(env, sim, x0, c0, in->sa, sdot, &cy, obs, &jacobian)) {
         tt_envelope_keep(env, (int)st->current);
         c->rebuild = 0;
@@ -624,8 +638,13 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
 static void fail(const line_ctx *L, line_state *st, controller *c, long k)
 {
     snap_restore(L, &c->sn, st);
-    if (c->m > M_MIN) {
-        c->m = c->m / 4 > M_MIN ? c->m / 4 : M_MIN;
+    /* a stretch that the reach bound ended early is retried on a quarter of what it ran
+     * (a fast transient's, a few cycles, fails as the shortest at once, rather than
+     * again at the same cycle) */
+    const long len = L->reach > 0 && c->ran < c->m ? c->ran : c->m;
+    c->ran = 0;
+    if (len > M_MIN) {
+        c->m = len / 4 > M_MIN ? len / 4 : M_MIN;
         c->left = c->m; /* the snapshot covers the shorter stretch too */
         return;
     }
@@ -658,14 +677,22 @@ static void fail(const line_ctx *L, line_state *st, controller *c, long k)
  * its part of the state carried beside it, within its reach of the anchor (L->reach);
  * the sample's reach from the anchor counts its smooth course only, the z piezo's noise
  * being an input the model takes, held by the check's error (docs/dynamics.md, "Noise on
- * the envelope tier"). Never grazing (graze_possible). */
+ * the envelope tier"). Past the reach the kept model nearest to the inputs, within
+ * L->retake of where it was built, takes over from its own anchor, and the expansion
+ * starts anew there: the noise rings the state round an orbit many times the reach
+ * wide (0.7 nm on the edge sample's disks, every 100 cycles), and the models built on
+ * it tile it. Never grazing (graze_possible). */
 static int model_step2(const line_ctx *L, line_state *st, const controller *c,
                        const cycle_in *in, double sdot, double *obs)
 {
-    const tt_envelope *env = L->W->env;
-    const double off = tt_envelope_sample_offset(env, in->sa, sdot) - (in->zn - c->zn);
-    if (!(fabs(off) <= L->edge) || !(tt_envelope_reach(env, st->x, in->sa, sdot) <= L->reach))
+    tt_envelope *env = L->W->env;
+    if (!(fabs(sample_mid(in) - in->zn - c->smooth) <= L->edge))
         return 0;
+    if (!(tt_envelope_reach(env, st->x, in->sa, sdot) <= L->reach)) {
+        if (!tt_envelope_switch(env, st->x, in->sa, sdot, (int)st->current, L->reach))
+            return 0;
+        st->x2[0] = st->x2[1] = 0;
+    }
     double x1[2], x21[2];
     tt_envelope_predict2_reduced(env, st->x, st->x2, in->sa, sdot, x1, x21, obs);
     st->x[0] = x1[0];
@@ -720,6 +747,7 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c)
         int snap = 0, reduced = model_step(L, st, c, &in, edge, obs), pass = 0;
         if (reduced) {
             c->left--;
+            c->ran++;
         } else if (c->model) {
             pass = c->graze ? graze_check(L, st, &in, obs, c, &rc) : check(L, st, &in, obs, c, &rc);
             if (!pass) {
@@ -730,9 +758,12 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c)
             }
             if (pass == 1) /* a check, not a cycle from an integrated state */
                 c->m = 2 * c->m < M_MAX ? 2 * c->m : M_MAX;
-            c->wait = WAIT_MIN;
+            /* with the reach bound, a transient's stretches pass a cycle or two before
+             * the Jacobians go stale: the wait is reset only by one that held */
+            if (!(L->reach > 0) || c->ran >= WAIT_MIN)
+                c->wait = WAIT_MIN;
             c->fails = 0;
-            c->model = !edge && !in.edge_next;
+            c->model = pass != 3 && !edge && !in.edge_next;
             c->quiet = 0;
             snap = c->model;
         } else {
@@ -745,6 +776,7 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c)
         c->exact = !reduced;
         if (snap) {
             c->left = c->m;
+            c->ran = 0;
             snap_take(L, st, tt_envelope_anchor_contact(L->W->env), c->left, &c->sn);
         }
     }

@@ -12,14 +12,22 @@
  * cycle. */
 enum { NIN = 4, NPAIR = NIN * (NIN + 1) / 2 };
 
-/* A model kept for recall (envelope_models.c): the derivatives as taken at xb, sb, tb. */
+/* A model kept for recall (envelope_models.c): the derivatives as taken at xb, sb, tb,
+ * and the cycle integrated there (its end state x1, observables oa, reduced ra). */
 typedef struct {
-    double xb[2], sb, tb;
+    double xb[2], sb, tb, x1[2];
     int contact, touched, tag;
     long used;         /* when it was last kept or recalled: the oldest is replaced */
     double J[2][NIN];
-    double *C, *Cr, *H, *Hr, *Lj; /* as the model's, in one block */
+    double *C, *Cr, *H, *Hr, *Lj, *oa, *ra; /* as the model's, in one block */
 } tt_envelope_kept;
+
+/* Places where no kept model was near (tt_envelope_revisit), the last MISSES of them. */
+enum { MISSES = 64 };
+typedef struct {
+    double x[2], s, t;
+    int tag;
+} tt_envelope_miss;
 
 struct tt_envelope {
     int n, no;            /* samples per cycle; observables (n + TT_ENV_EXTRA + np) */
@@ -59,8 +67,12 @@ struct tt_envelope {
      * models kept for recall (tt_envelope_keep_models): nk of them, the first ik in use */
     double xb[2], sb, tb;
     tt_envelope_kept *kept;
+    double *kq;      /* per kept model, for the search: xb over L and V, sb and tb over L */
+    int *kkey;       /* and its contact flag, touch and tag in one key */
     int nk, ik;
     long clock;
+    tt_envelope_miss miss[MISSES];
+    int nmiss; /* misses recorded (the ring holds the last MISSES) */
 };
 
 /* The kept models' storage freed (tt_envelope_free). */

@@ -90,6 +90,18 @@ double tt_envelope_model_reach(const tt_envelope *e, const double x[2], double s
  * its derivatives there, before it predicts. 0: none is near enough. */
 int tt_envelope_recall(tt_envelope *e, const double x[2], double s, double sdot, int contact,
                        int touched, int tag, double within);
+/* Make the kept model nearest to the inputs, within `within` of where its derivatives
+ * were taken, with the present anchor's contact flag and touch and the tag given, the
+ * present one, anchored where it was built (on the cycle its build integrated there):
+ * the model predicts on from there with no cycle integrated. 1: switched; 0: none is
+ * near enough, and the present model is as it was. */
+int tt_envelope_switch(tt_envelope *e, const double x[2], double s, double sdot, int tag,
+                       double within);
+/* Whether the inputs come back within `within` of a place where the caller found no kept
+ * model near (tagged as given) among the last 64 such places: 1, a place worth a model
+ * of its own; 0, and this place is noted. Forgotten with the kept models. */
+int tt_envelope_revisit(tt_envelope *e, const double x[2], double s, double sdot, int tag,
+                        double within);
 
 /* A cycle's observable vector from its samples (deflection d - z) and results. */
 void tt_envelope_observe(const tt_envelope *e, const tt_sample *samples, const tt_cycle *cy,
