@@ -593,7 +593,9 @@ static line_ctx line_context(tt_scan *S, worker *W, long line)
     /* and its derivatives, carried from anchor to anchor, hold within 2e-3 of A0 of
      * where they were taken (its third derivatives reach 3000 / A0^2 on that silicon,
      * and a model carried further missed its checks by a Jacobian a few per cent off):
-     * past it the nearest kept model is recalled (scan_envelope.c) */
+     * past it the nearest kept model is recalled at a check (scan_envelope.c); between
+     * checks a stretch past the reach switches to the kept model nearest, within the
+     * reach, anchored where it was built */
     L.retake = second_order(S) ? 2e-3 : 0;
     L.edge = 1e-3 * S->A0;
     /* the noise of this line: keyed by (seed, line), counted in cycles from its start */

@@ -106,6 +106,7 @@ int tt_envelope_use_second_order(tt_envelope *e)
     free(e->Hr);
     e->H = calloc((size_t)(2 + e->no) * NPAIR, sizeof *e->H);
     e->Hr = calloc((size_t)(e->m + TT_ENV_EXTRA + e->np) * NPAIR, sizeof *e->Hr);
+    tt_envelope_own_views(e);
     if (!e->H || !e->Hr)
         return tt_error_nomem("the envelope tier's second-order model");
     e->second = 1;
@@ -203,11 +204,11 @@ static void carry(tt_envelope *e, const double u[NIN])
         for (int k = 0; k < e->nin; k++) {
             const int p = j <= k ? pair_of(j, k) : pair_of(k, j);
             for (int i = 0; i < 2; i++)
-                e->J[i][j] += e->H[i * NPAIR + p] * u[k];
+                e->J[i][j] += e->Hv[i * NPAIR + p] * u[k];
             for (int i = 0; i < no; i++)
-                e->C[(size_t)j * (size_t)no + (size_t)i] += e->H[(size_t)(2 + i) * NPAIR + (size_t)p] * u[k];
+                e->C[(size_t)j * (size_t)no + (size_t)i] += e->Hv[(size_t)(2 + i) * NPAIR + (size_t)p] * u[k];
             for (int i = 0; e->Cr && i < nr; i++)
-                e->Cr[(size_t)j * (size_t)nr + (size_t)i] += e->Hr[(size_t)i * NPAIR + (size_t)p] * u[k];
+                e->Cr[(size_t)j * (size_t)nr + (size_t)i] += e->Hrv[(size_t)i * NPAIR + (size_t)p] * u[k];
         }
 }
 
@@ -375,6 +376,7 @@ int tt_envelope_set_noise(tt_envelope *e, double psd, double sd)
     free(e->phi);
     free(e->Lf);
     e->trk = e->Lj = e->Ld = e->phi = e->Lf = NULL;
+    tt_envelope_own_views(e);
     e->psd = psd;
     e->sd = sd;
     e->nn = 2 + e->m;
@@ -406,6 +408,7 @@ int tt_envelope_set_noise(tt_envelope *e, double psd, double sd)
             return tt_error_nomem("the envelope tier's noise");
     }
     memcpy(e->Lf, e->Lj, (size_t)nn * (size_t)nn * sizeof *e->Lf);
+    tt_envelope_own_views(e);
     /* the kept models hold a noise factor now, or of another size */
     return e->nk ? tt_envelope_keep_models(e, e->nk) : TT_OK;
 }
@@ -414,6 +417,7 @@ void tt_envelope_noise_reset(tt_envelope *e)
 {
     if (e->Lf)
         memcpy(e->Lj, e->Lf, (size_t)e->nn * (size_t)e->nn * sizeof *e->Lj);
+    e->Ljv = e->Lj;
 }
 
 int tt_envelope_noise_size(const tt_envelope *e) { return e->Lj ? e->nn : 0; }
@@ -422,7 +426,7 @@ void tt_envelope_noise(const tt_envelope *e, const double *g, double dx[2], doub
 {
     const int nn = e->nn;
     for (int i = 0; i < nn; i++) {
-        const double *row = e->Lj + (size_t)i * (size_t)nn;
+        const double *row = e->Ljv + (size_t)i * (size_t)nn;
         double sum = 0;
         for (int k = 0; k <= i; k++)
             sum += row[k] * g[k];
@@ -446,28 +450,24 @@ void tt_envelope_detector_noise(const tt_envelope *e, const double *g, double *d
 }
 
 /* The second derivatives (second order), by differences over steps hq: the diagonal
- * ones from cycles at +-hq of each input, the mixed ones from one more at (+hq_j, +hq_k)
- * each (P0: the anchor's outputs, end state then observables). */
+ * ones from the build's cycles at +-hq of each input (pp, pm: their outputs, by input),
+ * the mixed ones from one more at (+hq_j, +hq_k) each (P0: the anchor's outputs, end
+ * state then observables). */
 static int second_derivatives(tt_envelope *e, tt_sim *sim, const double x0[2], int c0,
                               double s, double sdot, int c1, const double hq[NIN],
-                              const double *P0, long *cycles)
+                              const double *P0, const double *pp, const double *pm,
+                              long *cycles)
 {
     const int nq = 2 + e->no, nr = e->m + TT_ENV_EXTRA + e->np;
-    double *q = malloc((2 + (size_t)NIN) * (size_t)nq * sizeof *q);
+    double *q = malloc(2 * (size_t)nq * sizeof *q);
     if (!q)
         return 0;
-    double *r = q + nq, *pp = r + nq; /* pp: the cycles at +hq_j, by input */
+    double *r = q + nq;
     int ok = 1;
-    for (int j = 0; j < e->nin && ok; j++) {
-        double dp[NIN] = {0}, dm[NIN] = {0};
-        dp[j] = hq[j];
-        dm[j] = -hq[j];
-        double *a = pp + (size_t)j * (size_t)nq;
-        ok = perturbed(e, sim, x0, c0, s, sdot, dp, c1, a, a + 2, NULL) &&
-             perturbed(e, sim, x0, c0, s, sdot, dm, c1, q, q + 2, NULL);
-        *cycles += 2;
-        for (int i = 0; i < nq && ok; i++)
-            e->H[(size_t)i * NPAIR + (size_t)pair_of(j, j)] = (a[i] - 2 * P0[i] + q[i]) / (hq[j] * hq[j]);
+    for (int j = 0; j < e->nin; j++) {
+        const double *a = pp + (size_t)j * (size_t)nq, *b = pm + (size_t)j * (size_t)nq;
+        for (int i = 0; i < nq; i++)
+            e->H[(size_t)i * NPAIR + (size_t)pair_of(j, j)] = (a[i] - 2 * P0[i] + b[i]) / (hq[j] * hq[j]);
     }
     for (int j = 0; j < e->nin && ok; j++)
         for (int k = j + 1; k < e->nin && ok; k++) {
@@ -502,12 +502,17 @@ int tt_envelope_build(tt_envelope *e, tt_sim *sim, const double x0[2], int c0, d
     int c1;
     tt_sim_get_state(sim, &x1[0], &x1[1], &c1);
     e->built = 0;
+    tt_envelope_own_views(e);
     tt_envelope_anchor(e, x0, s, sdot, x1, cy, obs);
     e->contact = c0;
     /* central differences: steps of 1e-4 of the scales, where the stepper's noise
      * (about the tolerance) costs 1e-4 of the Jacobian at the default, and the
-     * contact's length scales (a nanometre) are far */
-    const double h[NIN] = {1e-4 * e->L, 1e-4 * e->V, 1e-4 * e->L, 1e-4 * e->L};
+     * contact's length scales (a nanometre) are far. Second order: over the second
+     * differences' steps (below), whose cycles then give both: the Jacobian's error from
+     * the third derivatives, hq^2 / 6 of them, is a ninth of the model's own third-order
+     * error at its reach (3e-3 of A0 against 1e-3) */
+    const double h1 = e->second ? 1e-3 : 1e-4;
+    const double h[NIN] = {h1 * e->L, h1 * e->V, h1 * e->L, h1 * e->L};
     const int nq = 2 + e->no;
     /* the anchor's outputs and the perturbed ones, by input: end state, observables */
     double *P = malloc((size_t)(1 + 2 * NIN) * (size_t)nq * sizeof *P);
@@ -537,13 +542,12 @@ int tt_envelope_build(tt_envelope *e, tt_sim *sim, const double x0[2], int c0, d
     for (int j = 0; j < e->nin && ok; j++)
         reduce(e, e->C + (size_t)j * (size_t)e->no,
                e->Cr + (size_t)j * (size_t)(e->m + TT_ENV_EXTRA + e->np));
-    /* second differences over ten times those steps: over h itself the stepper's noise
-     * (about 1e-7 of A0 a cycle, over h^2) biased the curvature of outputs that barely
-     * respond (the phase on a soft polymer) enough for u^2 H / 2 to drift it over a
-     * stretch; thirty times erred by their third-order term on stiff contact (30 GPa) */
-    const double hq[NIN] = {10 * h[0], 10 * h[1], 10 * h[2], 10 * h[3]};
+    /* second differences over 1e-3 of the scales: over 1e-4 the stepper's noise (about
+     * 1e-7 of A0 a cycle, over h^2) biased the curvature of outputs that barely respond
+     * (the phase on a soft polymer) enough for u^2 H / 2 to drift it over a stretch;
+     * three times more erred by their third-order term on stiff contact (30 GPa) */
     if (ok && e->second)
-        ok = second_derivatives(e, sim, x0, c0, s, sdot, c1, hq, P, cycles);
+        ok = second_derivatives(e, sim, x0, c0, s, sdot, c1, h, P, pp, pm, cycles);
     free(P);
     if (ok && e->trk) {
         flow_measured(e, h);
@@ -627,7 +631,7 @@ static void second_order(const tt_envelope *e, const double u[NIN], const double
     for (int i = 0; i < 2; i++) {
         double sum = e->J[i][0] * x2[0] + e->J[i][1] * x2[1];
         for (int p = 0; p < NPAIR; p++)
-            sum += e->H[i * NPAIR + p] * w[p];
+            sum += e->Hv[i * NPAIR + p] * w[p];
         x21[i] = sum;
     }
     for (int i = 0; i < no; i++) {
@@ -649,7 +653,7 @@ void tt_envelope_predict2(const tt_envelope *e, const double x[2], const double 
         add_travel(e, sdot, u, x1, e->no, e->no, e->C, obs);
     x21[0] = x21[1] = 0;
     if (e->second && e->built) {
-        second_order(e, u, x2, x21, e->no, e->no, e->H + 2 * NPAIR, e->C, obs);
+        second_order(e, u, x2, x21, e->no, e->no, e->Hv + 2 * NPAIR, e->C, obs);
         x1[0] += x21[0];
         x1[1] += x21[1];
     }
@@ -669,7 +673,7 @@ void tt_envelope_predict2_reduced(const tt_envelope *e, const double x[2], const
     linear(nr, ld, e->ra, e->Cr, u, red);
     if (e->nin > 3)
         add_travel(e, sdot, u, x1, nr, ld, e->Cr, red);
-    second_order(e, u, x2, x21, nr, ld, e->Hr, e->Cr, red);
+    second_order(e, u, x2, x21, nr, ld, e->Hrv, e->Cr, red);
     x1[0] += x21[0];
     x1[1] += x21[1];
 }

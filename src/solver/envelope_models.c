@@ -25,11 +25,14 @@ static void block_sizes(const tt_envelope *e, size_t sz[NBLOCK])
 
 static void free_kept(tt_envelope *e)
 {
+    tt_envelope_own_views(e);
     for (int i = 0; i < e->nk; i++)
         free(e->kept[i].C);
     free(e->kept);
     free(e->kq);
     free(e->kkey);
+    free(e->korder);
+    e->korder = NULL;
     e->kept = NULL;
     e->kq = NULL;
     e->kkey = NULL;
@@ -48,7 +51,8 @@ int tt_envelope_keep_models(tt_envelope *e, int k)
     e->kept = calloc((size_t)k, sizeof *e->kept);
     e->kq = calloc(4 * (size_t)k, sizeof *e->kq);
     e->kkey = calloc((size_t)k, sizeof *e->kkey);
-    if (!e->kept || !e->kq || !e->kkey) {
+    e->korder = calloc((size_t)k, sizeof *e->korder);
+    if (!e->kept || !e->kq || !e->kkey || !e->korder) {
         free_kept(e);
         return tt_error_nomem("the envelope tier's %d kept models", k);
     }
@@ -72,20 +76,21 @@ void tt_envelope_models_free(tt_envelope *e) { free_kept(e); }
 
 void tt_envelope_forget(tt_envelope *e)
 {
+    tt_envelope_own_views(e); /* none points into the store that is reused */
     e->ik = 0;
     e->clock = 0;
     e->nmiss = 0;
 }
 
-/* Copies of the model's derivatives and noise factor (the first n blocks: 5), and of the
- * cycle its anchor holds (7), one way or the other. */
-static void copy_blocks(const tt_envelope *e, int n, double *const to[NBLOCK],
+/* Copies of the blocks in the mask (bit i: block i of block_sizes), one way or the other. */
+enum { ALL = (1 << NBLOCK) - 1, JACOBIANS = 1 | 2, ANCHOR = 32 | 64 };
+static void copy_blocks(const tt_envelope *e, int mask, double *const to[NBLOCK],
                         const double *const from[NBLOCK])
 {
     size_t sz[NBLOCK];
     block_sizes(e, sz);
-    for (int i = 0; i < n; i++)
-        if (sz[i])
+    for (int i = 0; i < NBLOCK; i++)
+        if (mask & (1 << i) && sz[i])
             memcpy(to[i], from[i], sz[i] * sizeof *to[i]);
 }
 
@@ -93,6 +98,30 @@ static void copy_blocks(const tt_envelope *e, int n, double *const to[NBLOCK],
 static int key_of(int contact, int touched, int tag)
 {
     return tag * 4 + (contact ? 2 : 0) + (touched ? 1 : 0);
+}
+
+/* The first place in korder whose model's first scaled input is at least u0. */
+static int lower_bound(const tt_envelope *e, double u0)
+{
+    int lo = 0, hi = e->ik;
+    while (lo < hi) {
+        const int mid = (lo + hi) / 2;
+        if (e->kq[4 * (size_t)e->korder[mid]] < u0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* Slot's place in korder taken out (n: the models in the order). */
+static void order_remove(tt_envelope *e, int slot, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (e->korder[i] == slot) {
+            memmove(e->korder + i, e->korder + i + 1, (size_t)(n - 1 - i) * sizeof *e->korder);
+            return;
+        }
 }
 
 void tt_envelope_keep(tt_envelope *e, int tag)
@@ -104,8 +133,8 @@ void tt_envelope_keep(tt_envelope *e, int tag)
         for (int i = slot = 0; i < e->nk; i++)
             if (e->kept[i].used < e->kept[slot].used)
                 slot = i;
-    } else {
-        e->ik++;
+        order_remove(e, slot, e->ik);
+        e->ik--;
     }
     tt_envelope_kept *m = &e->kept[slot];
     m->xb[0] = e->xb[0];
@@ -122,12 +151,16 @@ void tt_envelope_keep(tt_envelope *e, int tag)
     q[2] = m->sb / e->L;
     q[3] = e->nin > 3 ? m->tb / e->L : 0;
     e->kkey[slot] = key_of(m->contact, m->touched, tag);
+    const int at = lower_bound(e, q[0]);
+    memmove(e->korder + at + 1, e->korder + at, (size_t)(e->ik - at) * sizeof *e->korder);
+    e->korder[at] = slot;
+    e->ik++;
     m->x1[0] = e->x1[0];
     m->x1[1] = e->x1[1];
     memcpy(m->J, e->J, sizeof m->J);
     double *const to[NBLOCK] = {m->C, m->Cr, m->H, m->Hr, m->Lj, m->oa, m->ra};
-    const double *const from[NBLOCK] = {e->C, e->Cr, e->H, e->Hr, e->Lj, e->oa, e->ra};
-    copy_blocks(e, NBLOCK, to, from);
+    const double *const from[NBLOCK] = {e->C, e->Cr, e->Hv, e->Hrv, e->Ljv, e->oa, e->ra};
+    copy_blocks(e, ALL, to, from);
 }
 
 double tt_envelope_model_reach(const tt_envelope *e, const double x[2], double s, double sdot)
@@ -137,7 +170,8 @@ double tt_envelope_model_reach(const tt_envelope *e, const double x[2], double s
 
 /* The kept model nearest to the inputs, within `within` of where its derivatives were
  * taken (tt_envelope_distance, on the inputs scaled beforehand), with the contact flag,
- * touch and tag given; -1: none. */
+ * touch and tag given; -1: none. Only the models within reach in the first input are
+ * looked at, from the order by it. */
 static int nearest(const tt_envelope *e, const double x[2], double s, double sdot, int contact,
                    int touched, int tag, double within)
 {
@@ -146,13 +180,14 @@ static int nearest(const tt_envelope *e, const double x[2], double s, double sdo
                  u3 = e->nin > 3 ? sdot * e->T / e->L : 0;
     int best = -1;
     double dbest = within;
-    for (int i = 0; i < e->ik; i++) {
+    for (int j = lower_bound(e, u0 - within); j < e->ik; j++) {
+        const int i = e->korder[j];
+        const double *q = e->kq + 4 * (size_t)i;
+        if (q[0] > u0 + dbest)
+            break;
         if (e->kkey[i] != key)
             continue;
-        const double *q = e->kq + 4 * (size_t)i;
         double d = fabs(u0 - q[0]);
-        if (d > dbest)
-            continue;
         const double d1 = fabs(u1 - q[1]), d2 = fabs(u2 - q[2]), d3 = fabs(u3 - q[3]);
         d = d1 > d ? d1 : d;
         d = d2 > d ? d2 : d;
@@ -165,21 +200,25 @@ static int nearest(const tt_envelope *e, const double x[2], double s, double sdo
     return best;
 }
 
-/* Kept model i made the present one: its derivatives and noise factor (nb = 5), or
- * those and the cycle integrated where they were taken as the anchor (nb = NBLOCK). */
-static void install(tt_envelope *e, int i, int nb)
+/* Kept model i made the present one: its Jacobians copied (the anchor carries them), its
+ * second derivatives and noise factor in use where they are, and with anchor set, the
+ * cycle integrated where they were taken as the anchor. */
+static void install(tt_envelope *e, int i, int anchor)
 {
     tt_envelope_kept *m = &e->kept[i];
     m->used = ++e->clock;
     memcpy(e->J, m->J, sizeof e->J);
-    double *const to[NBLOCK] = {e->C, e->Cr, e->H, e->Hr, e->Lj, e->oa, e->ra};
-    const double *const from[NBLOCK] = {m->C, m->Cr, m->H, m->Hr, m->Lj, m->oa, m->ra};
-    copy_blocks(e, nb, to, from);
+    double *const to[NBLOCK] = {e->C, e->Cr, NULL, NULL, NULL, e->oa, e->ra};
+    const double *const from[NBLOCK] = {m->C, m->Cr, NULL, NULL, NULL, m->oa, m->ra};
+    copy_blocks(e, anchor ? JACOBIANS | ANCHOR : JACOBIANS, to, from);
+    e->Hv = m->H;
+    e->Hrv = m->Hr;
+    e->Ljv = m->Lj;
     e->xa[0] = e->xb[0] = m->xb[0];
     e->xa[1] = e->xb[1] = m->xb[1];
     e->sa = e->sb = m->sb;
     e->ta = e->tb = m->tb;
-    if (nb == NBLOCK) {
+    if (anchor) {
         e->x1[0] = m->x1[0];
         e->x1[1] = m->x1[1];
     }
@@ -195,7 +234,7 @@ int tt_envelope_recall(tt_envelope *e, const double x[2], double s, double sdot,
     /* the derivatives belong to the place they were taken at: the caller's anchor
      * carries them from there (tt_envelope_anchor) */
     if (i >= 0)
-        install(e, i, 5);
+        install(e, i, 0);
     return i >= 0;
 }
 
@@ -204,7 +243,7 @@ int tt_envelope_switch(tt_envelope *e, const double x[2], double s, double sdot,
 {
     const int i = nearest(e, x, s, sdot, e->contact, e->touched, tag, within);
     if (i >= 0)
-        install(e, i, NBLOCK);
+        install(e, i, 1);
     return i >= 0;
 }
 

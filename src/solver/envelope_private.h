@@ -45,6 +45,9 @@ struct tt_envelope {
      * built: they belong to the present Jacobians */
     int second, built;
     double *H, *Hr;
+    /* the second derivatives and the noise factor in use, read only: the model's own (H,
+     * Hr, Lj) or a kept one's (tt_envelope_switch, _recall), which are not copied */
+    const double *Hv, *Hrv, *Ljv;
     double *oa;
     /* Jacobians: of the end state and of the observables, by input */
     double J[2][NIN];
@@ -69,11 +72,21 @@ struct tt_envelope {
     tt_envelope_kept *kept;
     double *kq;      /* per kept model, for the search: xb over L and V, sb and tb over L */
     int *kkey;       /* and its contact flag, touch and tag in one key */
+    int *korder;     /* the kept models in use by their first scaled input, ascending */
     int nk, ik;
     long clock;
     tt_envelope_miss miss[MISSES];
     int nmiss; /* misses recorded (the ring holds the last MISSES) */
 };
+
+/* The model's own second derivatives and noise factor in use (after a build, or before
+ * the kept ones they may point into change). */
+static inline void tt_envelope_own_views(tt_envelope *e)
+{
+    e->Hv = e->H;
+    e->Hrv = e->Hr;
+    e->Ljv = e->Lj;
+}
 
 /* The kept models' storage freed (tt_envelope_free). */
 void tt_envelope_models_free(tt_envelope *e);

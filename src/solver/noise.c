@@ -6,35 +6,20 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "noise_hash.h"
 #include "stepper.h"
 #include "tiptap/util/error.h"
 
-/* splitmix64's finaliser: a bijection whose output bits each depend on every input bit. */
-static uint64_t mix64(uint64_t z)
-{
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-
 uint64_t tt_noise_key(uint64_t seed, unsigned stream, long line)
 {
-    return mix64(mix64(mix64(seed + 0x9e3779b97f4a7c15ULL) ^ (uint64_t)stream) + (uint64_t)line);
-}
-
-/* A uniform number in (0, 1) from 53 bits of the hash of (key, counter). */
-static double uniform(uint64_t key, uint64_t ctr)
-{
-    uint64_t u = mix64(key ^ mix64(ctr * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL));
-    return ((double)(u >> 11) + 0.5) * (1.0 / 9007199254740992.0);
+    return tt_noise_mix64(tt_noise_mix64(tt_noise_mix64(seed + 0x9e3779b97f4a7c15ULL) ^ (uint64_t)stream) +
+                          (uint64_t)line);
 }
 
 double tt_noise_gauss(uint64_t key, uint64_t index)
 {
-    /* Box-Muller on two uniforms of their own counters: each index its own pair, so no
-     * value is shared between indices */
-    double u1 = uniform(key, 2 * index), u2 = uniform(key, 2 * index + 1);
-    return sqrt(-2.0 * log(u1)) * cos(2.0 * M_PI * u2);
+    /* the ziggurat: each index its own counters, so no value is shared between indices */
+    return tt_noise_ziggurat(key, index);
 }
 
 int tt_noise_ou_init(tt_noise_ou *p, double n, double fc, double dt)
@@ -99,10 +84,8 @@ void tt_sim_noise_key(tt_sim *S, uint64_t key)
 
 void tt_noise_pair(uint64_t key, uint64_t index, double g[2])
 {
-    double u1 = uniform(key, 2 * index), u2 = uniform(key, 2 * index + 1);
-    double r = sqrt(-2.0 * log(u1)), a = 2.0 * M_PI * u2;
-    g[0] = r * cos(a);
-    g[1] = r * sin(a);
+    g[0] = tt_noise_ziggurat(key, 2 * index);
+    g[1] = tt_noise_ziggurat(key, 2 * index + 1);
 }
 
 void tt_noise_cycle(tt_sim *S)

@@ -1,7 +1,8 @@
 /* tiptap: seeded noise, reproducible on any number of threads.
  *
  * Every random number is a pure function of (key, index): a counter-based generator
- * (a splitmix64 hash of the key and the counter, two of them to a Box-Muller pair), so
+ * (a splitmix64 hash of the key and the counter, one of them to most of the ziggurat's
+ * normal numbers), so
  * a value never depends on which thread drew what before it. A key is made from the
  * scene's seed, a stream (thermal, detector, z piezo) and a line of the scan; the index
  * counts the cycles (and the points or samples within them) from that line's start.
@@ -36,8 +37,8 @@ uint64_t tt_noise_key(uint64_t seed, unsigned stream, long line);
 /* A standard normal number, a pure function of (key, index). */
 double tt_noise_gauss(uint64_t key, uint64_t index);
 
-/* Two independent standard normal numbers, a pure function of (key, index): both
- * outputs of one Box-Muller pair (the envelope tier's draws, where half the cost counts). */
+/* Two independent standard normal numbers, a pure function of (key, index), by the
+ * ziggurat (the envelope tier's draws, a few pairs a cycle, where the cost counts). */
 void tt_noise_pair(uint64_t key, uint64_t index, double g[2]);
 
 /* A position noise of one-sided density n (m/sqrt(Hz)) through a first-order low-pass of
