@@ -106,16 +106,23 @@ static double model_error(fixture *f, const double x[2], double s)
     return fmax(fabs(xm[0] - xi[0]) / f->c.A0, fabs(xm[1] - xi[1]) / (f->c.wd * f->c.A0));
 }
 
+/* A store of 8 with models of material 0 kept at the steady cycle's start (xa) and db of
+ * A0 from it along d (xb), the present one. */
+static void two_models(fixture *f, double db, double xa[2], double xb[2])
+{
+    fixture_init(f, 8);
+    offset(f, 0, 0, xa);
+    offset(f, db, 0, xb);
+    build_keep(f, xa, f->s, 0);
+    build_keep(f, xb, f->s, 0);
+}
+
 static void switch_predicts_from_its_anchor(void **st)
 {
     (void)st;
     fixture f;
-    fixture_init(&f, 8);
     double xa[2], xb[2], x[2];
-    offset(&f, 0, 0, xa);
-    offset(&f, 4e-3, 0, xb);
-    build_keep(&f, xa, f.s, 0);
-    build_keep(&f, xb, f.s, 0); /* the present model: xb's */
+    two_models(&f, 4e-3, xa, xb);
     /* from 1e-3 of A0 off xa, the model built there, anchored on its own cycle */
     offset(&f, 1e-3, 0, x);
     assert_int_equal(tt_envelope_switch(f.e, x, f.s, 0, 0, 3e-3), 1);
@@ -143,12 +150,8 @@ static void switch_takes_the_nearest_of_its_kind(void **st)
 {
     (void)st;
     fixture f;
-    fixture_init(&f, 8);
     double xa[2], xb[2], x[2];
-    offset(&f, 0, 0, xa);
-    offset(&f, 5e-3, 0, xb);
-    build_keep(&f, xa, f.s, 0);
-    build_keep(&f, xb, f.s, 0);
+    two_models(&f, 5e-3, xa, xb);
     build_keep(&f, xa, f.s, 1);  /* the same place, another material */
     build_keep(&f, xa, 1e-6, 0); /* the same state with the sample far: free, untouched */
     build_keep(&f, xb, f.s, 0);  /* back to a touching model of material 0, at xb */
