@@ -245,8 +245,9 @@ static int recall(const line_ctx *L, const line_state *st, const controller *c,
 }
 
 /* The check closing a stretch: cycle k integrated from the model's state, against the
- * model's own prediction of it. 1: the stretch stands (the model is re-anchored); 0: it
- * does not, or the run was cancelled (*rc = TT_EINTR). */
+ * model's own prediction of it. 1: the stretch stands (the model is re-anchored, or
+ * built there); 3: it stands, but the model built there failed (the model is off until
+ * one is built anew); 0: it does not, or the run was cancelled (*rc = TT_EINTR). */
 static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *obs,
                  controller *c, int *rc)
 {
@@ -608,8 +609,9 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
     const int same = !c->rebuild && c0 == tt_envelope_anchor_contact(env) &&
                      touch == tt_envelope_anchor_touched(env);
     /* a model gone too far is recalled nearer or, this cycle being integrated anyway,
-     * built here at once; a kept model near enough needs no wait after a change either:
-     * the map is the same wherever the line is */
+     * built here at once where the state comes back (elsewhere, a transient's place, it
+     * is anchored here as it is); a kept model near enough needs no wait after a change
+     * either: the map is the same wherever the line is */
     const int far = same && far_off(L, x0, in, touch, c0);
     if ((same && !far) || (L->retake > 0 && recall(L, st, c, in, x0, c0, &cy)) ||
         (far && !tt_envelope_revisit(env, x0, in->sa, sdot, (int)st->current, L->retake))) {
@@ -677,8 +679,8 @@ static void fail(const line_ctx *L, line_state *st, controller *c, long k)
  * its part of the state carried beside it, within its reach of the anchor (L->reach);
  * the sample's reach from the anchor counts its smooth course only, the z piezo's noise
  * being an input the model takes, held by the check's error (docs/dynamics.md, "Noise on
- * the envelope tier"). Past the reach the kept model nearest to the inputs, within
- * L->retake of where it was built, takes over from its own anchor, and the expansion
+ * the envelope tier"). Past the reach the kept model nearest to the inputs, within the
+ * reach of where it was built, takes over from its own anchor, and the expansion
  * starts anew there: the noise rings the state round an orbit many times the reach
  * wide (0.7 nm on the edge sample's disks, every 100 cycles), and the models built on
  * it tile it. Never grazing (graze_possible). */
