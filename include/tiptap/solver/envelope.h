@@ -72,9 +72,12 @@ int tt_envelope_use_second_order(tt_envelope *e);
 /* Kept models, for noise whose reach of the inputs outruns one model's (docs/dynamics.md,
  * "Noise on the envelope tier"): the second-order model holds near where its
  * derivatives were taken, and noise brings the inputs back near the same places again
- * and again. Room for k models (0: none kept), each its derivatives and its thermal
- * noise's factor as taken by a build (a few kB). Call it after
- * tt_envelope_use_second_order and tt_envelope_set_noise. */
+ * and again. Room for k models (0: none kept), each its derivatives, its thermal
+ * noise's factor and the cycle its build integrated (a few kB). The envelope owns them;
+ * a model recalled or switched to is used from the store, its Jacobians copied, its
+ * second derivatives and noise factor read where they are kept (until a build or
+ * tt_envelope_forget). Call it after tt_envelope_use_second_order and
+ * tt_envelope_set_noise. */
 int tt_envelope_keep_models(tt_envelope *e, int k);
 /* Forget the kept models (a new line, whose cycles must not depend on another's). */
 void tt_envelope_forget(tt_envelope *e);
