@@ -244,6 +244,16 @@ static int recall(const line_ctx *L, const line_state *st, const controller *c,
                                                L->retake);
 }
 
+/* No kept model near an integrated cycle from x0: whether the state has missed near
+ * there before (a place it comes back to, worth a model of its own) rather than passing
+ * through once, as a transient after an edge does (tt_envelope_revisit). */
+static int worth_a_model(const line_ctx *L, const line_state *st, const cycle_in *in,
+                         const double x0[2])
+{
+    const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
+    return tt_envelope_revisit(L->W->env, x0, in->sa, sdot, (int)st->current, L->retake);
+}
+
 /* The check closing a stretch: cycle k integrated from the model's state, against the
  * model's own prediction of it. 1: the stretch stands (the model is re-anchored, or
  * built there); 3: it stands, but the model built there failed (the model is off until
@@ -276,7 +286,7 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
         return 0;
     c->smooth = sample_mid(in) - in->zn;
     if (far_off(L, x0, in, tt_envelope_touched(&cy), c0) && !recall(L, st, c, in, x0, c0, &cy) &&
-        tt_envelope_revisit(env, x0, in->sa, sdot, (int)st->current, L->retake)) {
+        worth_a_model(L, st, in, x0)) {
         /* no kept model near a place the state comes back to: one is built here, for
          * the stretches to switch to (a transient after an edge sweeps through places
          * once, and builds none) */
@@ -614,7 +624,7 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
      * either: the map is the same wherever the line is */
     const int far = same && far_off(L, x0, in, touch, c0);
     if ((same && !far) || (L->retake > 0 && recall(L, st, c, in, x0, c0, &cy)) ||
-        (far && !tt_envelope_revisit(env, x0, in->sa, sdot, (int)st->current, L->retake))) {
+        (far && !worth_a_model(L, st, in, x0))) {
         tt_envelope_anchor(env, x0, in->sa, sdot, st->x, &cy, obs);
         c->smooth = sample_mid(in) - in->zn;
         c->rebuild = 0;

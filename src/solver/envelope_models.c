@@ -29,13 +29,9 @@ static void free_kept(tt_envelope *e)
     for (int i = 0; i < e->nk; i++)
         free(e->kept[i].C);
     free(e->kept);
-    free(e->kq);
-    free(e->kkey);
     free(e->korder);
-    e->korder = NULL;
     e->kept = NULL;
-    e->kq = NULL;
-    e->kkey = NULL;
+    e->korder = NULL;
     e->nk = e->ik = 0;
 }
 
@@ -49,10 +45,8 @@ int tt_envelope_keep_models(tt_envelope *e, int k)
     for (int i = 0; i < NBLOCK; i++)
         total += sz[i];
     e->kept = calloc((size_t)k, sizeof *e->kept);
-    e->kq = calloc(4 * (size_t)k, sizeof *e->kq);
-    e->kkey = calloc((size_t)k, sizeof *e->kkey);
     e->korder = calloc((size_t)k, sizeof *e->korder);
-    if (!e->kept || !e->kq || !e->kkey || !e->korder) {
+    if (!e->kept || !e->korder) {
         free_kept(e);
         return tt_error_nomem("the envelope tier's %d kept models", k);
     }
@@ -106,7 +100,7 @@ static int lower_bound(const tt_envelope *e, double u0)
     int lo = 0, hi = e->ik;
     while (lo < hi) {
         const int mid = (lo + hi) / 2;
-        if (e->kq[4 * (size_t)e->korder[mid]] < u0)
+        if (e->kept[e->korder[mid]].q[0] < u0)
             lo = mid + 1;
         else
             hi = mid;
@@ -145,13 +139,12 @@ void tt_envelope_keep(tt_envelope *e, int tag)
     m->touched = e->touched;
     m->tag = tag;
     m->used = ++e->clock;
-    double *q = e->kq + 4 * (size_t)slot;
-    q[0] = m->xb[0] / e->L;
-    q[1] = m->xb[1] / e->V;
-    q[2] = m->sb / e->L;
-    q[3] = e->nin > 3 ? m->tb / e->L : 0;
-    e->kkey[slot] = key_of(m->contact, m->touched, tag);
-    const int at = lower_bound(e, q[0]);
+    m->q[0] = m->xb[0] / e->L;
+    m->q[1] = m->xb[1] / e->V;
+    m->q[2] = m->sb / e->L;
+    m->q[3] = e->nin > 3 ? m->tb / e->L : 0;
+    m->key = key_of(m->contact, m->touched, tag);
+    const int at = lower_bound(e, m->q[0]);
     memmove(e->korder + at + 1, e->korder + at, (size_t)(e->ik - at) * sizeof *e->korder);
     e->korder[at] = slot;
     e->ik++;
@@ -182,10 +175,10 @@ static int nearest(const tt_envelope *e, const double x[2], double s, double sdo
     double dbest = within;
     for (int j = lower_bound(e, u0 - within); j < e->ik; j++) {
         const int i = e->korder[j];
-        const double *q = e->kq + 4 * (size_t)i;
+        const double *q = e->kept[i].q;
         if (q[0] > u0 + dbest)
             break;
-        if (e->kkey[i] != key)
+        if (e->kept[i].key != key)
             continue;
         double d = fabs(u0 - q[0]);
         const double d1 = fabs(u1 - q[1]), d2 = fabs(u2 - q[2]), d3 = fabs(u3 - q[3]);

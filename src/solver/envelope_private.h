@@ -16,7 +16,9 @@ enum { NIN = 4, NPAIR = NIN * (NIN + 1) / 2 };
  * and the cycle integrated there (its end state x1, observables oa, reduced ra). */
 typedef struct {
     double xb[2], sb, tb, x1[2];
+    double q[4];       /* for the search: xb over L and V, sb and tb over L */
     int contact, touched, tag;
+    int key;           /* and its contact flag, touch and tag in one key */
     long used;         /* when it was last kept or recalled: the oldest is replaced */
     double J[2][NIN];
     double *C, *Cr, *H, *Hr, *Lj, *oa, *ra; /* as the model's, in one block */
@@ -70,8 +72,6 @@ struct tt_envelope {
      * models kept for recall (tt_envelope_keep_models): nk of them, the first ik in use */
     double xb[2], sb, tb;
     tt_envelope_kept *kept;
-    double *kq;      /* per kept model, for the search: xb over L and V, sb and tb over L */
-    int *kkey;       /* and its contact flag, touch and tag in one key */
     int *korder;     /* the kept models in use by their first scaled input, ascending */
     int nk, ik;
     long clock;

@@ -6,7 +6,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "noise_hash.h"
+#include "noise_private.h"
 #include "stepper.h"
 #include "tiptap/util/error.h"
 

@@ -5,7 +5,7 @@
  * number is a pure function of (key, index): its tries take counters of their own. */
 #include <math.h>
 
-#include "noise_hash.h"
+#include "noise_private.h"
 
 enum {
     LAYERS = 128, /* the ziggurat's boxes */

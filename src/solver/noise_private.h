@@ -1,7 +1,8 @@
-/* The counter-based generator's hash (noise.c, noise_ziggurat.c): random bits that are a
- * pure function of (key, counter). Private to libtiptap. */
-#ifndef TIPTAP_SOLVER_NOISE_HASH_H
-#define TIPTAP_SOLVER_NOISE_HASH_H
+/* What noise.c and noise_ziggurat.c share: the counter-based generator's hash (random
+ * bits that are a pure function of (key, counter)) and the ziggurat's normal numbers.
+ * Private to libtiptap. */
+#ifndef TIPTAP_SOLVER_NOISE_PRIVATE_H
+#define TIPTAP_SOLVER_NOISE_PRIVATE_H
 
 #include <stdint.h>
 
