@@ -16,6 +16,7 @@
 #include "tiptap/util/error.h"
 #include "tiptap/util/str.h"
 #include "tiptap/util/table.h"
+#include "tiptap/util/warning.h"
 
 #include "tiptap/io/decimate.h"
 #include "tiptap/io/files.h"
