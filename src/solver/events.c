@@ -6,36 +6,31 @@
 
 #include "stepper.h"
 #include "tiptap/util/error.h"
+#include "util/root.h"
 
-/* Illinois root finder on [a, b] with fa, fb of opposite signs; which = 0 for
- * penetration minus thr, 1 for the relative velocity. Returns the end of the final
- * bracket on b's side, so that the switch happens just past the root. */
+/* What tt_event_root() seeks the zero of: which = 0 the penetration minus thr, 1 the
+ * relative velocity, on the step's dense output. */
+typedef struct {
+    const tt_sim *S;
+    int which;
+    double thr;
+} event_fn;
+
+static double event_value(double th, void *data)
+{
+    const event_fn *e = data;
+    return e->which ? tt_event_vel(e->S, th) : tt_event_delta(e->S, th, e->thr);
+}
+
+/* The root on [a, b] (fa, fb of opposite signs) to 1e-14 of the step; the end of the
+ * final bracket on b's side, so that the switch happens just past the root. */
 double tt_event_root(const tt_sim *S, int which, double thr, double a, double b, double fa,
                      double fb)
 {
-    int side = 0;
-    for (int it = 0; it < 100 && b - a > 1e-14; it++) {
-        double m = (a * fb - b * fa) / (fb - fa);
-        if (!(m > a && m < b))
-            m = 0.5 * (a + b);
-        double fm = which ? tt_event_vel(S, m) : tt_event_delta(S, m, thr);
-        if (fm == 0)
-            return m;
-        if ((fm > 0) == (fb > 0)) {
-            b = m;
-            fb = fm;
-            if (side == 1)
-                fa *= 0.5;
-            side = 1;
-        } else {
-            a = m;
-            fa = fm;
-            if (side == -1)
-                fb *= 0.5;
-            side = -1;
-        }
-    }
-    return b;
+    event_fn e = {S, which, thr};
+    tt_root_bracket br = {a, b, fa, fb};
+    double m;
+    return tt_root_illinois(event_value, &e, &br, 1e-14, 0, 100, &m) ? m : br.b;
 }
 
 /* Switches closer together than this (a millionth of a millionth of the cycle) are made

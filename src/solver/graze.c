@@ -7,6 +7,7 @@
 #include <stdio.h>
 
 #include "tiptap/util/error.h"
+#include "util/root.h"
 
 enum {
     NP = TT_GRAZE_PROBES,
@@ -164,6 +165,18 @@ static double cubic(const tt_graze *g, const double *gap, int i0, double t)
            a * (u - 2) / 6 * y[3] - g->jumpin;
 }
 
+typedef struct {
+    const tt_graze *g;
+    const double *gap;
+    int i0;
+} crossing_fn;
+
+static double crossing_value(double t, void *data)
+{
+    const crossing_fn *c = data;
+    return cubic(c->g, c->gap, c->i0, t);
+}
+
 /* Where the path, rising from probe k - 1 (below jump-in) to time b (at or past it,
  * gb), meets jump-in (Illinois on the cubic through the probes about k), to 1e-10 of
  * the period: the touch branch moves by about 0.1 A0 per period of t_c, so this is
@@ -173,30 +186,12 @@ static double crossing(const tt_graze *g, const double *gap, int k, double b, do
     int i0 = k - 2 < 0 ? 0 : k - 2;
     if (i0 + 3 >= NP)
         i0 = NP - 4;
-    double a = g->tau[k - 1], fa = gap[k - 1] - g->jumpin, fb = gb - g->jumpin;
-    int side = 0;
-    for (int it = 0; it < 60 && b - a > 1e-10 * g->T; it++) {
-        double t = (a * fb - b * fa) / (fb - fa);
-        if (!(t > a && t < b))
-            t = 0.5 * (a + b);
-        double ft = cubic(g, gap, i0, t);
-        if (fabs(ft) <= 1e-9 * g->L)
-            return t;
-        if ((ft > 0) == (fb > 0)) {
-            b = t;
-            fb = ft;
-            if (side == 1)
-                fa *= 0.5;
-            side = 1;
-        } else {
-            a = t;
-            fa = ft;
-            if (side == -1)
-                fb *= 0.5;
-            side = -1;
-        }
-    }
-    return 0.5 * (a + b);
+    crossing_fn c = {g, gap, i0};
+    tt_root_bracket br = {g->tau[k - 1], b, gap[k - 1] - g->jumpin, gb - g->jumpin};
+    double t;
+    if (tt_root_illinois(crossing_value, &c, &br, 1e-10 * g->T, 1e-9 * g->L, 60, &t))
+        return t;
+    return 0.5 * (br.a + br.b);
 }
 
 int tt_graze_branch(const tt_graze *g, const double *d, double s0, double sdot, double *tc,
