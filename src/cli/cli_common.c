@@ -17,6 +17,7 @@
 #include "commands.h"
 #include "tiptap/config/config.h"
 #include "tiptap/config/units.h"
+#include "tiptap/util/str.h"
 #include "tiptap/io/files.h"
 #include "tiptap/io/lock.h"
 #include "tiptap/io/outfile.h"

@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "commands.h"
-#include "tiptap/config/units.h"
+#include "tiptap/util/str.h"
 #include "tiptap/io/files.h"
 #include "tiptap/io/plot.h"
 #include "tiptap/util/error.h"

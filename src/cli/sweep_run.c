@@ -10,7 +10,7 @@
 #include "commands.h"
 #include "sweep.h"
 #include "tiptap/config/config.h"
-#include "tiptap/config/units.h"
+#include "tiptap/util/str.h"
 #include "tiptap/instrument/scan.h"
 #include "tiptap/io/outfile.h"
 #include "tiptap/util/error.h"

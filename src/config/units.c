@@ -1,10 +1,9 @@
 /* Parsing of "value unit" quantities with SI prefixes (see include/tiptap/config/units.h). */
 #include "tiptap/config/units.h"
+#include "tiptap/util/str.h"
 
 #include <ctype.h>
-#include <locale.h>
 #include <math.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -72,19 +71,6 @@ static const struct {
 };
 
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
-
-/* A C locale made once, whichever thread parses first; strtod_l never consults the
- * process locale. */
-static locale_t c_locale = (locale_t)0;
-static pthread_once_t c_locale_once = PTHREAD_ONCE_INIT;
-
-static void make_c_locale(void) { c_locale = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0); }
-
-double tt_strtod(const char *s, char **end)
-{
-    pthread_once(&c_locale_once, make_c_locale);
-    return strtod_l(s, end, c_locale);
-}
 
 const char *tt_units_symbol(tt_dim dim)
 {

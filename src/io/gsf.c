@@ -9,7 +9,7 @@
 #include "tiptap/util/error.h"
 #include "tiptap/io/files.h"
 #include "tiptap/io/outfile.h"
-#include "tiptap/config/units.h"
+#include "tiptap/util/str.h"
 
 static void put_f32le(FILE *f, double v)
 {

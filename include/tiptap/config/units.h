@@ -44,8 +44,5 @@ const char *tt_units_describe(unsigned dims);
 /* The SI unit symbol of one dimension ("m", "Hz", "N/m", ...; "" for none). */
 const char *tt_units_symbol(tt_dim dim);
 
-/* strtod in the C locale, whatever the process locale. */
-double tt_strtod(const char *s, char **end);
-
 TT_END_DECLS
 #endif

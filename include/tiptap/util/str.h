@@ -17,5 +17,9 @@ char *tt_strdup(const char *s);
  * binding, another language's runtime). NULL is ignored. */
 void tt_free(void *p);
 
+/* strtod in the C locale, whatever the process locale: scene values, GSF headers and
+ * sweep journals read the same on any machine. */
+double tt_strtod(const char *s, char **end);
+
 TT_END_DECLS
 #endif
