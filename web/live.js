@@ -436,6 +436,8 @@ const panels = [
 ];
 const colours = { trace: "#1565c0", retrace: "#c62828", surface: "#888", reftrace: "#ef6c00", refretrace: "#2e7d32" };
 function scope(m) {
+  // the gains in force when the line arrived, for a reference's legend
+  m.gains = "I gain " + inForce("feedback.integral_gain") + " Hz, P gain " + inForce("feedback.proportional_gain");
   state.scope = m;
   state.scopes++;
   if (state.hold && state.scopeShown) return;
@@ -672,8 +674,7 @@ function scopeUi() {
   $("storeref").onclick = () => {
     if (!state.scopeShown) return;
     state.reference = state.scopeShown;
-    const ki = inForce("feedback.integral_gain"), kp = inForce("feedback.proportional_gain");
-    state.referenceNote = "reference: line " + state.reference.line + ", I gain " + ki + " Hz, P gain " + kp;
+    state.referenceNote = "reference: line " + state.reference.line + ", " + state.reference.gains;
     $("refinfo").textContent = state.referenceNote;
     for (const s of document.querySelectorAll(".reftrace, .refretrace, #clearref")) s.hidden = false;
     drawScope();
