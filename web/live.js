@@ -186,6 +186,16 @@ function ticks(lo, hi, n) {
     if (at.length >= 2 || j === steps.length - 1) return { step, at };
   }
 }
+// ticks whose labels (about 8 px a character at 13 px) fit side by side in width px
+function fitTicks(lo, hi, width) {
+  let t = { step: 1, at: [] };
+  for (let n = Math.max(2, Math.floor(width / 60)); n >= 1; n--) {
+    t = ticks(lo, hi, n);
+    const widest = Math.max(...t.at.map((x) => tickText(x, t.step).length)) * 8 + 12;
+    if (t.at.length * widest <= width) return t;
+  }
+  return t;
+}
 function tickText(t, step) {
   const d = Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
   return (Math.abs(t) < step * 1e-6 ? 0 : t).toFixed(d);
@@ -202,7 +212,7 @@ function colour(map, t) {
   const i = Math.min(map.length - 2, Math.floor(t)), f = t - i;
   return map[i].map((a, k) => a + (map[i + 1][k] - a) * f);
 }
-const ranges = [["lines", "typical line"], ["pct", "1 to 99 %"], ["frame", "frame min to max"],
+const ranges = [["lines", "typical lines"], ["pct", "1 to 99 %"], ["frame", "frame min to max"],
   ["line", "last line"], ["manual", "manual"]];
 const flattens = [["none", "none"], ["offset", "offset per line"], ["slope", "slope per line"]];
 // a channel's display unit: heights in nm, angles in deg
@@ -328,18 +338,15 @@ function flattenLine(src, dst, n, how) {
   }
   for (let i = 0; i < n; i++) dst[i] = src[i] - a - b * i;
 }
-function median(x) {
-  const s = x.slice().sort((a, b) => a - b), h = s.length >> 1;
-  return s.length % 2 ? s[h] : (s[h - 1] + s[h]) / 2;
-}
 function percentile(sorted, q) {
   const x = q * (sorted.length - 1), i = Math.floor(x), f = x - i;
   return i + 1 < sorted.length ? sorted[i] + (sorted[i + 1] - sorted[i]) * f : sorted[i];
 }
-// The colour range of an image's data as shown: auto (a typical line's: the median over
-// the lines of each line's lowest and highest value, which a band of ringing lines fewer
-// than half leaves alone; the 1st to 99th percentile; the frame's; the newest line's) or
-// manual; the error's auto range symmetric about zero.
+// The colour range of an image's data as shown: auto (typical lines: from the 20th
+// percentile of the lines' lowest values to the 80th of their highest, which a band of
+// ringing lines up to a fifth of the frame leaves alone, and which spans features along
+// the slow axis too; the 1st to 99th percentile of the pixels; the frame's; the newest
+// line's) or manual; the error's auto range symmetric about zero.
 function rangeOf(c, v, data, f) {
   if (v.range === "manual" && v.min != null) return [v.min, v.max];
   let lo = Infinity, hi = -Infinity;
@@ -350,7 +357,10 @@ function rangeOf(c, v, data, f) {
       for (let i = l * f.pixels; i < (l + 1) * f.pixels; i++) { const x = data[i]; if (isFinite(x)) { if (x < a) a = x; if (x > b) b = x; } }
       if (a <= b) { los.push(a); his.push(b); }
     }
-    if (los.length) { lo = median(los); hi = median(his); }
+    if (los.length) {
+      los.sort((a, b) => a - b); his.sort((a, b) => a - b);
+      lo = percentile(los, 0.2); hi = percentile(his, 0.8);
+    }
   } else if (v.range === "pct") {
     const fin = Array.from(data).filter(isFinite).sort((a, b) => a - b);
     if (fin.length) { lo = percentile(fin, 0.01); hi = percentile(fin, 0.99); }
@@ -413,7 +423,7 @@ function colourBar(id, lo, hi, unit) {
   tk.textContent = "";
   if (!(hi > lo)) return;
   const w = tk.clientWidth || 200;
-  const t = ticks(lo, hi, Math.max(2, Math.floor(w / 70)));
+  const t = fitTicks(lo, hi, w);
   for (const x of t.at) {
     const s = document.createElement("span");
     s.className = "tick";
@@ -487,7 +497,7 @@ function drawScope() {
   if (!(x1 > x0)) return;
   if (state.zoom) { x0 = Math.max(x0, state.zoom[0]); x1 = Math.min(x1, state.zoom[1]); if (!(x1 > x0)) { state.zoom = null; return drawScope(); } }
   const X = (x) => g.left + (x - x0) / (x1 - x0) * g.pw;
-  const xt = ticks(x0, x1, Math.max(3, Math.floor(g.pw / 90)));
+  const xt = fitTicks(x0, x1, g.pw);
   const geo = { x0, x1, g, panels: [] };
   panels.forEach((p, k) => {
     const y0 = g.top + k * (g.ph + g.gap);
