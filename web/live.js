@@ -661,7 +661,7 @@ function scopeUi() {
     state.drag = null;
     if (!d) return;
     const to = px(ev);
-    if (Math.abs(to - d.from) >= 6) {
+    if (Math.abs(to - d.from) >= 6 && state.scopeGeom) {
       const geo = state.scopeGeom, g = geo.g;
       const clamp = (q) => Math.min(g.left + g.pw, Math.max(g.left, q));
       const a = xAt(clamp(Math.min(d.from, to))), b = xAt(clamp(Math.max(d.from, to)));
