@@ -6,15 +6,24 @@
 const state = {
   frame: null, images: {}, tiers: [], scope: null, status: null, controls: [],
   scopes: 0, rows: 0, replies: 0, lastReply: null, ws: null, sent: 0,
+  // the display: what each image shows (per image, kept across frames), the scope shown
+  // (the newest, or the one held), the reference, the zoom and the cursor
+  view: {}, shown: {}, lastLine: null, scopeShown: null, hold: false, reference: null,
+  xmode: "position", zoom: null, cursor: null, scopeTextPx: 0,
 };
 window.tiptapLive = state; // for the browser test and the curious
 
 const $ = (id) => document.getElementById(id);
+const FONT_PX = 13; // the smallest text on the page: readable on a projector at 1024 x 768
 
 function connect() {
   const ws = new WebSocket("ws://" + location.host + "/", "tiptap-live");
   state.ws = ws;
-  ws.onopen = () => { $("conn").textContent = "connected"; $("conn").className = "ok"; };
+  ws.onopen = () => {
+    $("conn").textContent = "connected"; $("conn").className = "ok";
+    // a new connection gets the controls afresh; nothing sent before waits for a reply
+    for (const el of document.querySelectorAll("#controls [data-name]")) el.dataset.pending = "";
+  };
   ws.onclose = () => {
     $("conn").textContent = "disconnected: retrying"; $("conn").className = "bad";
     setTimeout(connect, 1000);
@@ -28,14 +37,37 @@ function connect() {
 }
 
 function send(text) {
-  if (state.ws && state.ws.readyState === 1) { state.ws.send(text); state.sent++; }
+  if (state.ws && state.ws.readyState === 1) { state.ws.send(text); state.sent++; return true; }
+  return false;
 }
 
 // ---- controls
+// A field shows the value in force, except while it holds text the user typed and has
+// not sent yet (edited since its last send, in focus): that text is never overwritten.
+// A sent value waits for the server's reply; accepted, the controls message brings the
+// value in force (another page's changes come the same way); refused, every field that
+// holds no unsent text returns to the value in force.
 const choices = {
   "noise": ["on", "off"], "scan.fast_axis": ["x", "y"],
   "solver.tier": ["averaged", "envelope", "every"],
 };
+const optionText = { "solver.tier": { every: "every (far slower than real time)" } };
+const hints = {
+  "solver.tier": "averaged: the slow flow of amplitude and phase; envelope: cycles integrated " +
+    "only where needed; every: every drive cycle integrated, the reference, far slower than real time",
+};
+// units the server leaves blank: shown, never sent (a bare number is what the key takes)
+const shownUnit = { "feedback.proportional_gain": "m/m" };
+function inForce(name) {
+  const c = state.controls.find((k) => k.name === name);
+  return c ? c.value : null;
+}
+function restore(el) {
+  const v = inForce(el.dataset.name);
+  if (v != null) el.value = v;
+  el.dataset.dirty = "";
+  el.dataset.pending = "";
+}
 function controls(m) {
   state.controls = m.controls;
   const form = $("controls");
@@ -48,27 +80,41 @@ function controls(m) {
       const span = document.createElement("span");
       span.textContent = c.label;
       if (c.restarts) { span.className = "restarts"; span.title = "a change starts a new frame"; }
+      if (hints[c.name]) span.title = (span.title ? span.title + "; " : "") + hints[c.name];
       el = document.createElement(opts ? "select" : "input");
       el.id = id;
       el.dataset.name = c.name;
       el.dataset.unit = c.unit;
-      if (opts) for (const o of opts) { const op = document.createElement("option"); op.value = op.textContent = o; el.appendChild(op); }
+      if (opts) for (const o of opts) {
+        const op = document.createElement("option");
+        op.value = o;
+        op.textContent = (optionText[c.name] || {})[o] || o;
+        el.appendChild(op);
+      }
       else { el.type = "text"; el.inputMode = "decimal"; }
+      el.addEventListener("input", () => { el.dataset.dirty = "1"; });
       el.addEventListener("change", () => setControl(el));
+      el.addEventListener("keydown", (ev) => { if (ev.key === "Escape") restore(el); });
+      // left without a change sent (typed, then put back): the value in force again
+      el.addEventListener("blur", () => { if (el.dataset.dirty) restore(el); });
       const u = document.createElement("span");
-      u.className = "unit"; u.textContent = c.unit;
+      u.className = "unit"; u.textContent = c.unit || shownUnit[c.name] || "";
       lab.append(span, el, u);
       form.appendChild(lab);
     }
-    if (document.activeElement !== el) el.value = c.value;
+    const editing = el.dataset.dirty && document.activeElement === el;
+    if (!editing && !el.dataset.pending) { el.value = c.value; el.dataset.dirty = ""; }
   }
+  state.controlsSeen = (state.controlsSeen || 0) + 1;
 }
 function setControl(el) {
   const v = el.value.trim();
   const unit = el.dataset.unit;
   // a bare number takes the control's unit; a value with its own unit goes as written
   const withUnit = unit && /^[-+0-9.eE]+$/.test(v) ? v + " " + unit : v;
-  send("set " + el.dataset.name + " = " + withUnit);
+  el.dataset.dirty = "";
+  if (send("set " + el.dataset.name + " = " + withUnit)) el.dataset.pending = "1";
+  else restore(el);
 }
 window.tiptapSet = (name, value) => {
   const el = document.querySelector('[data-name="' + name + '"]');
@@ -79,14 +125,24 @@ function reply(m) {
   state.replies++;
   state.lastReply = m;
   $("reply").textContent = m.ok ? "" : m.error;
+  // replies may coalesce (the server keeps the newest), so one answers all that are pending
+  for (const el of document.querySelectorAll("#controls [data-name]")) {
+    if (m.ok) el.dataset.pending = "";
+    else if (!(el.dataset.dirty && document.activeElement === el)) restore(el);
+  }
+  // accepted: the controls message that follows (the server sends it after the reply)
+  // brings the value in force, as the server writes it
 }
 
 // ---- status, warning
 function status(m) {
   state.status = m;
   const rt = m.realtime ? m.realtime.toFixed(2) + "x real time (" + m.realtime_cpu.toFixed(2) + "x per CPU second)" : "";
-  const lat = m.preview_ms != null ? ", last change: " + m.preview_ms.toFixed(0) + " ms (preview), " +
-    (m.accurate_ms != null ? m.accurate_ms.toFixed(0) + " ms (" + m.tier + ")" : "") : "";
+  // latencies only once there has been a change (the server sends 0 or null before)
+  const parts = [];
+  if (m.preview_ms > 0) parts.push(m.preview_ms.toFixed(0) + " ms (preview)");
+  if (m.accurate_ms > 0) parts.push(m.accurate_ms.toFixed(0) + " ms (" + m.tier + ")");
+  const lat = parts.length ? ", last change: " + parts.join(", ") : "";
   $("status").textContent = "frame " + m.frame + ", line " + m.line + ", " + m.tier + " tier, " + rt + lat +
     (m.clients > 1 ? ", " + m.clients + " pages" : "") + (m.note ? " | " + m.note : "");
   const w = $("warning");
@@ -115,6 +171,36 @@ function fmt(x, unit) {
   return x.toPrecision(3) + " " + unit;
 }
 
+// ---- axes: ticks at 1, 2 or 5 times a power of ten, about n of them between lo and hi
+function ticks(lo, hi, n) {
+  if (!(hi > lo) || !isFinite(lo) || !isFinite(hi)) return { step: 1, at: [] };
+  const raw = (hi - lo) / Math.max(1, n);
+  const p = Math.pow(10, Math.floor(Math.log10(raw)));
+  const steps = [10, 5, 2, 1, 0.5].map((k) => k * p);
+  // the nice step nearest to the raw one (on a log scale), smaller where it gives one tick only
+  let j = 0;
+  for (let k = 1; k < steps.length; k++) if (Math.abs(Math.log(steps[k] / raw)) < Math.abs(Math.log(steps[j] / raw))) j = k;
+  for (;; j++) {
+    const step = steps[j], at = [];
+    for (let k = Math.ceil(lo / step - 1e-9); k * step <= hi + step * 1e-9 && at.length < 50; k++) at.push(k * step);
+    if (at.length >= 2 || j === steps.length - 1) return { step, at };
+  }
+}
+// ticks whose labels (about 8 px a character at 13 px) fit side by side in width px
+function fitTicks(lo, hi, width) {
+  let t = { step: 1, at: [] };
+  for (let n = Math.max(2, Math.floor(width / 60)); n >= 1; n--) {
+    t = ticks(lo, hi, n);
+    const widest = Math.max(...t.at.map((x) => tickText(x, t.step).length)) * 8 + 12;
+    if (t.at.length * widest <= width) return t;
+  }
+  return t;
+}
+function tickText(t, step) {
+  const d = Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
+  return (Math.abs(t) < step * 1e-6 ? 0 : t).toFixed(d);
+}
+
 // ---- frame and image
 const cmaps = {
   height: [[0, 0, 0], [120, 60, 10], [230, 170, 60], [255, 250, 220]],
@@ -126,25 +212,86 @@ function colour(map, t) {
   const i = Math.min(map.length - 2, Math.floor(t)), f = t - i;
   return map[i].map((a, k) => a + (map[i + 1][k] - a) * f);
 }
+const ranges = [["lines", "typical lines"], ["pct", "1 to 99 %"], ["frame", "frame min to max"],
+  ["line", "last line"], ["manual", "manual"]];
+const flattens = [["none", "none"], ["offset", "offset per line"], ["slope", "slope per line"]];
+// a channel's display unit: heights in nm, angles in deg
+function unitOf(c) { return c.unit === "m" ? { unit: "nm", sc: 1e9 } : { unit: c.unit, sc: 1 }; }
+function dirs(f) { return f.retrace ? ["trace", "retrace"] : ["trace"]; }
+function select(options, value, onchange) {
+  const s = document.createElement("select");
+  for (const [v, t] of options) { const o = document.createElement("option"); o.value = v; o.textContent = t; s.appendChild(o); }
+  s.value = value;
+  s.addEventListener("change", () => onchange(s.value));
+  return s;
+}
 function frame(m) {
   state.frame = m;
   state.images = {};
+  state.shown = {};
+  state.lastLine = null;
   state.tiers = new Array(m.lines).fill(null);
   const box = $("images");
   box.textContent = "";
   // a row of channels for the trace, one for the retrace
-  for (const dir of m.retrace ? ["trace", "retrace"] : ["trace"]) for (const c of m.channels) {
-    state.images[c.name + "_" + dir] = new Float64Array(m.pixels * m.lines).fill(NaN);
+  for (const dir of dirs(m)) for (const c of m.channels) {
+    const key = c.name + "_" + dir;
+    state.images[key] = new Float64Array(m.pixels * m.lines).fill(NaN);
+    const v = state.view[key] || (state.view[key] = { range: "lines", flatten: "none", min: null, max: null });
+    const id = c.name + "-" + dir;
     const fig = document.createElement("figure");
     const cv = document.createElement("canvas");
-    cv.id = "img-" + c.name + "-" + dir;
+    cv.id = "img-" + id;
     cv.width = m.pixels; cv.height = m.lines;
     // drawn in the scan's own proportions, as an instrument shows a frame
     cv.style.aspectRatio = (m.fast_y ? m.size_slow / m.size_fast : m.size_fast / m.size_slow).toString();
+    const bar = document.createElement("div");
+    bar.className = "cbar"; bar.id = "cbar-" + id;
+    const grad = document.createElement("div");
+    grad.className = "cbar-grad";
+    const map = cmaps[c.name] || cmaps.phase;
+    grad.style.background = "linear-gradient(to right, " +
+      map.map((rgb, k) => "rgb(" + rgb.join(",") + ") " + (100 * k / (map.length - 1)).toFixed(1) + "%").join(", ") + ")";
+    const tk = document.createElement("div");
+    tk.className = "cbar-ticks"; tk.id = "ticks-" + id;
+    bar.append(grad, tk);
     const cap = document.createElement("figcaption");
-    cap.id = "cap-" + c.name + "-" + dir;
+    cap.id = "cap-" + id;
     cap.textContent = c.name + " (" + dir + ")";
-    fig.append(cv, cap);
+    const u = unitOf(c);
+    const ctl = document.createElement("div");
+    ctl.className = "imgctl";
+    const lr = document.createElement("label");
+    const man = document.createElement("span");
+    man.className = "manual"; man.id = "man-" + id;
+    const min = document.createElement("input"), max = document.createElement("input");
+    min.id = "min-" + id; max.id = "max-" + id;
+    for (const inp of [min, max]) {
+      inp.type = "text"; inp.inputMode = "decimal";
+      inp.addEventListener("change", () => {
+        const a = parseFloat(min.value), b = parseFloat(max.value);
+        const ok = isFinite(a) && isFinite(b) && b > a;
+        min.classList.toggle("invalid", !ok); max.classList.toggle("invalid", !ok);
+        if (ok) { v.min = a / u.sc; v.max = b / u.sc; drawImages(); }
+      });
+    }
+    const rsel = select(ranges, v.range, (r) => {
+      if (r === "manual" && v.min == null) {
+        const s = state.shown[key];
+        if (s && isFinite(s.lo)) { v.min = s.lo; v.max = s.hi; }
+      }
+      v.range = r;
+      drawImages();
+    });
+    rsel.id = "range-" + id;
+    lr.append("colour ", rsel);
+    man.append(min, " to ", max, " " + u.unit);
+    const lf = document.createElement("label");
+    const fsel = select(flattens, v.flatten, (x) => { v.flatten = x; drawImages(); });
+    fsel.id = "flatten-" + id;
+    lf.append("flatten ", fsel);
+    ctl.append(lr, man, lf);
+    fig.append(cv, bar, cap, ctl);
     box.appendChild(fig);
   }
   box.style.gridTemplateColumns = "repeat(" + m.channels.length + ", minmax(0, 1fr))";
@@ -153,13 +300,14 @@ function frame(m) {
   const ex = $("exports");
   ex.textContent = "";
   const names = ["scan.gwy", "scene.ini"];
-  for (const c of m.channels) for (const d of m.retrace ? ["trace", "retrace"] : ["trace"])
+  for (const c of m.channels) for (const d of dirs(m))
     names.push(c.file + "_" + d + ".gsf");
   for (const n of names) {
     const a = document.createElement("a");
     a.href = "/export/" + n; a.textContent = n; a.download = n;
     ex.appendChild(a);
   }
+  drawImages();
 }
 
 function row(m) {
@@ -167,100 +315,389 @@ function row(m) {
   state.rows++;
   const f = state.frame;
   let k = 0;
-  for (const c of f.channels) for (const dir of f.retrace ? ["trace", "retrace"] : ["trace"]) {
+  for (const c of f.channels) for (const dir of dirs(f)) {
     const img = state.images[c.name + "_" + dir], d = m.data[k++];
     if (!img || !d) continue;
     for (let i = 0; i < f.pixels; i++) img[m.line * f.pixels + i] = d[i] == null ? NaN : d[i];
   }
   state.tiers[m.line] = m.tier;
+  state.lastLine = m.line;
   drawImages(m.line);
+}
+
+// A line flattened as consoles do while scanning: its mean (offset) or its least-squares
+// straight line (slope) taken off, each line on its own.
+function flattenLine(src, dst, n, how) {
+  let s = 0, sx = 0, sxx = 0, sy = 0, sxy = 0;
+  for (let i = 0; i < n; i++) if (isFinite(src[i])) { s++; sx += i; sxx += i * i; sy += src[i]; sxy += i * src[i]; }
+  let a = 0, b = 0;
+  if (how !== "none" && s > 0) {
+    a = sy / s;
+    const den = s * sxx - sx * sx;
+    if (how === "slope" && s > 1 && den > 0) { b = (s * sxy - sx * sy) / den; a = (sy - b * sx) / s; }
+  }
+  for (let i = 0; i < n; i++) dst[i] = src[i] - a - b * i;
+}
+function percentile(sorted, q) {
+  const x = q * (sorted.length - 1), i = Math.floor(x), f = x - i;
+  return i + 1 < sorted.length ? sorted[i] + (sorted[i + 1] - sorted[i]) * f : sorted[i];
+}
+// The colour range of an image's data as shown: auto (typical lines: from the 20th
+// percentile of the lines' lowest values to the 80th of their highest, which a band of
+// ringing lines up to a fifth of the frame leaves alone, and which spans features along
+// the slow axis too; the 1st to 99th percentile of the pixels; the frame's; the newest
+// line's) or manual; the error's auto range symmetric about zero.
+function rangeOf(c, v, data, f) {
+  if (v.range === "manual" && v.min != null) return [v.min, v.max];
+  let lo = Infinity, hi = -Infinity;
+  if (v.range === "lines") {
+    const los = [], his = [];
+    for (let l = 0; l < f.lines; l++) {
+      let a = Infinity, b = -Infinity;
+      for (let i = l * f.pixels; i < (l + 1) * f.pixels; i++) { const x = data[i]; if (isFinite(x)) { if (x < a) a = x; if (x > b) b = x; } }
+      if (a <= b) { los.push(a); his.push(b); }
+    }
+    if (los.length) {
+      los.sort((a, b) => a - b); his.sort((a, b) => a - b);
+      lo = percentile(los, 0.2); hi = percentile(his, 0.8);
+    }
+  } else if (v.range === "pct") {
+    const fin = Array.from(data).filter(isFinite).sort((a, b) => a - b);
+    if (fin.length) { lo = percentile(fin, 0.01); hi = percentile(fin, 0.99); }
+  } else {
+    const one = v.range === "line" && state.lastLine != null;
+    const from = one ? state.lastLine * f.pixels : 0, to = one ? from + f.pixels : data.length;
+    for (let i = from; i < to; i++) { const x = data[i]; if (isFinite(x)) { if (x < lo) lo = x; if (x > hi) hi = x; } }
+  }
+  if (c.name === "error" && isFinite(lo)) { const a = Math.max(Math.abs(lo), Math.abs(hi)); lo = -a; hi = a; }
+  return [lo, hi];
 }
 function drawImages(line) {
   const f = state.frame;
-  for (const c of f.channels) for (const dir of f.retrace ? ["trace", "retrace"] : ["trace"]) {
-    const img = state.images[c.name + "_" + dir];
-    const cv = $("img-" + c.name + "-" + dir);
+  if (!f) return;
+  for (const c of f.channels) for (const dir of dirs(f)) {
+    const key = c.name + "_" + dir, id = c.name + "-" + dir;
+    const img = state.images[key], v = state.view[key];
+    const cv = $("img-" + id);
     if (!img || !cv) continue;
-    let lo = Infinity, hi = -Infinity;
-    for (const v of img) if (isFinite(v)) { if (v < lo) lo = v; if (v > hi) hi = v; }
-    if (c.name === "error") { const a = Math.max(Math.abs(lo), Math.abs(hi)); lo = -a; hi = a; }
+    const data = new Float64Array(img.length);
+    for (let l = 0; l < f.lines; l++)
+      flattenLine(img.subarray(l * f.pixels, (l + 1) * f.pixels), data.subarray(l * f.pixels, (l + 1) * f.pixels),
+        f.pixels, v.flatten);
+    const [lo, hi] = rangeOf(c, v, data, f);
+    state.shown[key] = { lo, hi, data };
     // the sample's orientation: line l is row l with x fast, column l with y fast
     const W = f.fast_y ? f.lines : f.pixels, H = f.fast_y ? f.pixels : f.lines;
     if (cv.width !== W || cv.height !== H) { cv.width = W; cv.height = H; }
     const ctx = cv.getContext("2d");
-    const data = ctx.createImageData(W, H);
+    const out = ctx.createImageData(W, H);
+    const map = cmaps[c.name] || cmaps.phase;
     for (let l = 0; l < f.lines; l++) for (let i = 0; i < f.pixels; i++) {
-      const v = img[l * f.pixels + i];
-      const x = f.fast_y ? l : i, y = f.fast_y ? i : l;
-      const o = 4 * (y * W + x);
-      if (!isFinite(v)) { data.data[o + 3] = 0; continue; }
-      const rgb = colour(cmaps[c.name] || cmaps.phase, hi > lo ? (v - lo) / (hi - lo) : 0.5);
-      data.data[o] = rgb[0]; data.data[o + 1] = rgb[1]; data.data[o + 2] = rgb[2]; data.data[o + 3] = 255;
+      const x = data[l * f.pixels + i];
+      const o = 4 * ((f.fast_y ? i : l) * W + (f.fast_y ? l : i));
+      if (!isFinite(x)) { out.data[o + 3] = 0; continue; }
+      const rgb = colour(map, hi > lo ? (x - lo) / (hi - lo) : 0.5);
+      out.data[o] = rgb[0]; out.data[o + 1] = rgb[1]; out.data[o + 2] = rgb[2]; out.data[o + 3] = 255;
     }
-    ctx.putImageData(data, 0, 0);
-    const unit = c.unit === "m" ? "nm" : c.unit, sc = c.unit === "m" ? 1e9 : 1;
-    $("cap-" + c.name + "-" + dir).textContent = c.name + " (" + dir + "): " +
-      (isFinite(lo) ? (lo * sc).toPrecision(3) + " to " + (hi * sc).toPrecision(3) + " " + unit : "") +
-      (line != null && state.tiers[line] === "averaged" ? "; line " + line + " from the averaged preview" : "");
+    ctx.putImageData(out, 0, 0);
+    const u = unitOf(c);
+    colourBar(id, lo * u.sc, hi * u.sc, u.unit);
+    $("man-" + id).hidden = v.range !== "manual";
+    const min = $("min-" + id), max = $("max-" + id);
+    if (v.range === "manual" && document.activeElement !== min && document.activeElement !== max &&
+        !min.classList.contains("invalid")) {
+      min.value = (v.min * u.sc).toPrecision(3).replace(/\.?0+$/, "");
+      max.value = (v.max * u.sc).toPrecision(3).replace(/\.?0+$/, "");
+    }
+    const ln = line != null ? line : state.lastLine;
+    $("cap-" + id).textContent = c.name + " (" + dir + "), " + u.unit + (v.flatten !== "none" ? ", flattened" : "") +
+      (ln != null && state.tiers[ln] === "averaged" ? "; line " + ln + " from the averaged preview" : "");
   }
+}
+// The colour bar under an image: the map from lo to hi, ticks in the display unit.
+function colourBar(id, lo, hi, unit) {
+  const tk = $("ticks-" + id);
+  const sig = [lo, hi, unit].join();
+  if (tk.dataset.sig === sig) return;
+  tk.dataset.sig = sig;
+  tk.textContent = "";
+  if (!(hi > lo)) return;
+  const w = tk.clientWidth || 200;
+  const t = fitTicks(lo, hi, w);
+  for (const x of t.at) {
+    const s = document.createElement("span");
+    s.className = "tick";
+    const f = (x - lo) / (hi - lo);
+    s.style.left = (100 * f).toFixed(2) + "%";
+    // a label at either end is kept inside the bar, its tick mark at its own end
+    if (f < 0.08) s.classList.add("first"); else if (f > 0.92) s.classList.add("last");
+    s.textContent = tickText(x, t.step);
+    tk.appendChild(s);
+  }
+  tk.dataset.lo = lo; tk.dataset.hi = hi;
 }
 
 // ---- scope
 const panels = [
-  { key: "z", label: "height z (nm)", scale: 1e9, surface: true },
-  { key: "error", label: "error (nm)", scale: 1e9 },
-  { key: "amplitude", label: "amplitude (nm)", scale: 1e9 },
-  { key: "phase", label: "phase (deg)", scale: 1 },
+  { key: "z", label: "height z", unit: "nm", scale: 1e9, surface: true },
+  { key: "error", label: "error", unit: "nm", scale: 1e9 },
+  { key: "amplitude", label: "amplitude", unit: "nm", scale: 1e9 },
+  { key: "phase", label: "phase", unit: "deg", scale: 1 },
 ];
+const colours = { trace: "#1565c0", retrace: "#c62828", surface: "#888", reftrace: "#ef6c00", refretrace: "#2e7d32" };
 function scope(m) {
+  // the gains in force when the line arrived, for a reference's legend
+  m.gains = "I gain " + inForce("feedback.integral_gain") + " Hz, P gain " + inForce("feedback.proportional_gain");
   state.scope = m;
   state.scopes++;
-  $("scopeinfo").textContent = "line " + m.line + " (" + m.tier + " tier), " +
-    (m.rate ? (m.rate / 1000).toFixed(1) + " kHz record" : "") + ", against the tip's position";
+  if (state.hold && state.scopeShown) return;
+  state.scopeShown = m;
   drawScope();
 }
+// One direction's abscissa as drawn: the tip's position in nm, or the instrument time in
+// ms from the trace's start (the decimated points spaced evenly between the ends' times).
+function xsOf(m, dir) {
+  const d = m[dir];
+  if (state.xmode === "position") return d.position.map((v) => (v == null ? null : v * 1e9));
+  const n = d.position.length, t0 = m.trace.t0;
+  return d.position.map((_, i) => 1e3 * (d.t0 + (n > 1 ? (d.t1 - d.t0) * i / (n - 1) : 0) - t0));
+}
+function seriesOf(m, ref) {
+  const out = [];
+  for (const dir of ["trace", "retrace"]) {
+    if (!m[dir] || !m[dir].position.length) continue;
+    out.push({ dir, ref, xs: xsOf(m, dir), d: m[dir], colour: colours[(ref ? "ref" : "") + dir] });
+  }
+  return out;
+}
+function geometry() {
+  const cv = $("scope");
+  const W = cv.clientWidth, H = cv.clientHeight;
+  const left = 64, right = 12, top = 6, bottom = 40, gap = 10;
+  const ph = (H - top - bottom - gap * (panels.length - 1)) / panels.length;
+  return { W, H, left, right, top, bottom, gap, ph, pw: W - left - right };
+}
 function drawScope() {
-  const m = state.scope, cv = $("scope"), ctx = cv.getContext("2d");
-  const W = cv.width, H = cv.height, left = 70, right = 10, top = 8, gap = 22;
-  const ph = (H - top - gap * panels.length) / panels.length;
-  ctx.fillStyle = "#fff"; ctx.fillRect(0, 0, W, H);
-  ctx.font = "12px DejaVu Sans, sans-serif";
-  const pos = [m.trace.position, m.retrace.position];
+  const cv = $("scope"), dpr = window.devicePixelRatio || 1;
+  const g = geometry();
+  // the canvas's pixels are the screen's: its text is drawn at the size it is read
+  const BW = Math.round(g.W * dpr), BH = Math.round(g.H * dpr);
+  if (cv.width !== BW || cv.height !== BH) { cv.width = BW; cv.height = BH; }
+  const ctx = cv.getContext("2d");
+  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+  ctx.fillStyle = "#fff"; ctx.fillRect(0, 0, g.W, g.H);
+  ctx.font = FONT_PX + "px DejaVu Sans, sans-serif";
+  state.scopeTextPx = FONT_PX * (cv.clientWidth / (cv.width / dpr));
+  const m = state.scopeShown;
+  if (!m) return;
+  const series = seriesOf(m, false);
+  const refs = state.reference ? seriesOf(state.reference, true) : [];
   let x0 = Infinity, x1 = -Infinity;
-  for (const p of pos) for (const v of p) if (v != null) { x0 = Math.min(x0, v); x1 = Math.max(x1, v); }
+  for (const s of series) for (const v of s.xs) if (v != null) { x0 = Math.min(x0, v); x1 = Math.max(x1, v); }
   if (!(x1 > x0)) return;
+  if (state.zoom) { x0 = Math.max(x0, state.zoom[0]); x1 = Math.min(x1, state.zoom[1]); if (!(x1 > x0)) { state.zoom = null; return drawScope(); } }
+  const X = (x) => g.left + (x - x0) / (x1 - x0) * g.pw;
+  const xt = fitTicks(x0, x1, g.pw);
+  const geo = { x0, x1, g, panels: [] };
   panels.forEach((p, k) => {
-    const y0 = top + k * (ph + gap);
-    const series = [[m.trace[p.key], "#1565c0"], [m.retrace[p.key], "#c62828"]];
-    if (p.surface) series.push([m.trace.surface, "#888"], [m.retrace.surface, "#888"]);
+    const y0 = g.top + k * (g.ph + g.gap);
+    // the y range of what is in view, the reference's too
     let lo = Infinity, hi = -Infinity;
-    for (const [s] of series) for (const v of s) if (v != null) { lo = Math.min(lo, v * p.scale); hi = Math.max(hi, v * p.scale); }
-    if (!(hi > lo)) { hi = lo + 1; lo -= 1; }
-    const pad = 0.05 * (hi - lo); lo -= pad; hi += pad;
-    ctx.strokeStyle = "#ccc"; ctx.strokeRect(left, y0, W - left - right, ph);
-    ctx.fillStyle = "#222";
-    ctx.fillText(p.label, 4, y0 + 12);
-    ctx.fillText(hi.toPrecision(3), 4, y0 + 26);
-    ctx.fillText(lo.toPrecision(3), 4, y0 + ph - 2);
-    series.forEach(([s, col], j) => {
-      const xs = pos[j % 2];
-      ctx.strokeStyle = col; ctx.lineWidth = j >= 2 ? 1 : 1.2;
-      ctx.setLineDash(j >= 2 ? [4, 3] : []);
+    const look = (xs, ys) => {
+      for (let i = 0; i < ys.length; i++) {
+        if (ys[i] == null || xs[i] == null || xs[i] < x0 || xs[i] > x1) continue;
+        const v = ys[i] * p.scale; if (v < lo) lo = v; if (v > hi) hi = v;
+      }
+    };
+    for (const s of series.concat(refs)) { look(s.xs, s.d[p.key]); if (p.surface && !s.ref) look(s.xs, s.d.surface); }
+    if (!(hi > lo)) { hi = (isFinite(hi) ? hi : 0) + 1; lo = hi - 2; }
+    const pad = 0.06 * (hi - lo); lo -= pad; hi += pad;
+    const Y = (v) => y0 + g.ph - (v - lo) / (hi - lo) * g.ph;
+    geo.panels.push({ y0, lo, hi });
+    // grid and ticks
+    ctx.strokeStyle = "#e3e3e3"; ctx.lineWidth = 1; ctx.fillStyle = "#222";
+    ctx.textAlign = "right"; ctx.textBaseline = "middle";
+    const yt = ticks(lo, hi, Math.max(3, Math.floor(g.ph / 24)));
+    for (const t of yt.at) {
+      const y = Math.round(Y(t)) + 0.5;
+      ctx.beginPath(); ctx.moveTo(g.left, y); ctx.lineTo(g.left + g.pw, y); ctx.stroke();
+      ctx.fillText(tickText(t, yt.step), g.left - 5, y);
+    }
+    for (const t of xt.at) {
+      const x = Math.round(X(t)) + 0.5;
+      ctx.beginPath(); ctx.moveTo(x, y0); ctx.lineTo(x, y0 + g.ph); ctx.stroke();
+    }
+    ctx.strokeStyle = "#999"; ctx.strokeRect(g.left + 0.5, y0 + 0.5, g.pw, g.ph);
+    ctx.save();
+    ctx.beginPath(); ctx.rect(g.left, y0, g.pw, g.ph); ctx.clip();
+    const line = (xs, ys, col, width, dash) => {
+      ctx.strokeStyle = col; ctx.lineWidth = width; ctx.setLineDash(dash);
       ctx.beginPath();
       let pen = false;
-      for (let i = 0; i < s.length; i++) {
-        if (s[i] == null || xs[i] == null) { pen = false; continue; }
-        const X = left + (xs[i] - x0) / (x1 - x0) * (W - left - right);
-        const Y = y0 + ph - (s[i] * p.scale - lo) / (hi - lo) * ph;
-        if (pen) ctx.lineTo(X, Y); else ctx.moveTo(X, Y);
+      for (let i = 0; i < ys.length; i++) {
+        if (ys[i] == null || xs[i] == null) { pen = false; continue; }
+        const px = X(xs[i]), py = Y(ys[i] * p.scale);
+        if (pen) ctx.lineTo(px, py); else ctx.moveTo(px, py);
         pen = true;
       }
       ctx.stroke();
-    });
+    };
+    for (const s of refs) line(s.xs, s.d[p.key], s.colour, 1.5, []);
+    if (p.surface) for (const s of series) line(s.xs, s.d.surface, colours.surface, 1, [4, 3]);
+    for (const s of series) line(s.xs, s.d[p.key], s.colour, 1.3, []);
     ctx.setLineDash([]);
+    ctx.restore();
+    // the panel's name and unit, on a white ground at its top left
+    const name = p.label + " (" + p.unit + ")";
+    ctx.textAlign = "left"; ctx.textBaseline = "top";
+    const tw = ctx.measureText(name).width;
+    ctx.fillStyle = "rgba(255,255,255,0.85)"; ctx.fillRect(g.left + 2, y0 + 2, tw + 6, FONT_PX + 4);
+    ctx.fillStyle = "#222"; ctx.fillText(name, g.left + 5, y0 + 3);
   });
-  ctx.fillStyle = "#222";
-  ctx.fillText("position along the fast axis: 0 to " + ((x1 - x0) * 1e9).toPrecision(4) + " nm", left, H - 4);
+  // the x axis under the last panel
+  const yb = g.top + panels.length * (g.ph + g.gap) - g.gap;
+  ctx.fillStyle = "#222"; ctx.textAlign = "center"; ctx.textBaseline = "top";
+  for (const t of xt.at) ctx.fillText(tickText(t, xt.step), X(t), yb + 3);
+  ctx.fillText(state.xmode === "position" ? "position along the fast axis (nm)" :
+    "time from the trace's start (ms): trace, then retrace", g.left + g.pw / 2, yb + 4 + FONT_PX + 4);
+  // the cursor: a vertical line and each line's point under it
+  if (state.cursor != null && state.cursor >= x0 && state.cursor <= x1) {
+    const cx = Math.round(X(state.cursor)) + 0.5;
+    ctx.strokeStyle = "#000"; ctx.lineWidth = 1; ctx.setLineDash([2, 2]);
+    ctx.beginPath(); ctx.moveTo(cx, g.top); ctx.lineTo(cx, yb); ctx.stroke();
+    ctx.setLineDash([]);
+  }
+  // a drag in progress: the span it would zoom to
+  if (state.drag && state.drag.to != null) {
+    ctx.fillStyle = "rgba(21,101,192,0.15)";
+    const a = Math.min(state.drag.from, state.drag.to), b = Math.max(state.drag.from, state.drag.to);
+    ctx.fillRect(a, g.top, b - a, yb - g.top);
+  }
+  state.scopeGeom = geo;
+  const held = state.hold ? "held: " : "";
+  $("scopeinfo").textContent = held + "line " + m.line + " (" + m.tier + " tier), " +
+    (m.rate ? (m.rate / 1000).toFixed(1) + " kHz record" : "") +
+    (state.zoom ? ", zoomed: " + tickText(x0, xt.step / 10) + " to " + tickText(x1, xt.step / 10) +
+      (state.xmode === "position" ? " nm" : " ms") : "");
+  readout();
+}
+// The values under the cursor: each line's point nearest to it along x.
+function nearest(xs, x) {
+  let best = -1, bd = Infinity;
+  for (let i = 0; i < xs.length; i++) if (xs[i] != null) { const d = Math.abs(xs[i] - x); if (d < bd) { bd = d; best = i; } }
+  return best;
+}
+function readout() {
+  const tab = $("readout");
+  tab.textContent = "";
+  const m = state.scopeShown;
+  const x = state.cursor;
+  const head = tab.insertRow();
+  const u = state.xmode === "position" ? "nm" : "ms";
+  const h0 = document.createElement("th");
+  h0.textContent = x == null ? "cursor: point at the scope" : "at " + x.toPrecision(4) + " " + u;
+  head.appendChild(h0);
+  for (const p of panels.map((q) => q.label + " (" + q.unit + ")").concat([state.xmode === "position" ? "time (ms)" : "position (nm)"])) {
+    const th = document.createElement("th"); th.textContent = p; head.appendChild(th);
+  }
+  const values = [];
+  if (m && x != null) {
+    const rows = seriesOf(m, false).concat(state.reference ? seriesOf(state.reference, true) : []);
+    for (const s of rows) {
+      const i = nearest(s.xs, x);
+      if (i < 0) continue;
+      const r = tab.insertRow();
+      r.className = (s.ref ? "ref" : "") + s.dir;
+      const c0 = r.insertCell(); c0.textContent = (s.ref ? "reference " : "") + s.dir;
+      const vals = { series: (s.ref ? "ref" : "") + s.dir, index: i };
+      for (const p of panels) {
+        const v = s.d[p.key][i];
+        vals[p.key] = v == null ? null : v * p.scale;
+        r.insertCell().textContent = v == null ? "-" : (v * p.scale).toFixed(p.key === "phase" ? 2 : 3);
+      }
+      const n = s.d.position.length;
+      const t = 1e3 * (s.d.t0 + (n > 1 ? (s.d.t1 - s.d.t0) * i / (n - 1) : 0) - (s.ref ? state.reference : m).trace.t0);
+      vals.time_ms = t;
+      vals.position_nm = s.d.position[i] == null ? null : s.d.position[i] * 1e9;
+      r.insertCell().textContent = state.xmode === "position" ? t.toFixed(2) : (vals.position_nm == null ? "-" : vals.position_nm.toFixed(1));
+      values.push(vals);
+    }
+  }
+  state.cursorValues = values;
+}
+// pointer x on the canvas (CSS px) to the scope's x, or null outside the plot
+function xAt(px) {
+  const geo = state.scopeGeom;
+  if (!geo || px < geo.g.left || px > geo.g.left + geo.g.pw) return null;
+  return geo.x0 + (px - geo.g.left) / geo.g.pw * (geo.x1 - geo.x0);
+}
+function zoomBy(f) {
+  const geo = state.scopeGeom;
+  if (!geo) return;
+  const c = (geo.x0 + geo.x1) / 2, h = (geo.x1 - geo.x0) / 2 / f;
+  state.zoom = f < 1 && state.zoom && h * 2 >= fullSpan() ? null : [c - h, c + h];
+  drawScope();
+}
+function fullSpan() {
+  const m = state.scopeShown;
+  if (!m) return 0;
+  let a = Infinity, b = -Infinity;
+  for (const s of seriesOf(m, false)) for (const v of s.xs) if (v != null) { a = Math.min(a, v); b = Math.max(b, v); }
+  return b - a;
+}
+function scopeUi() {
+  const cv = $("scope");
+  const px = (ev) => ev.clientX - cv.getBoundingClientRect().left;
+  cv.addEventListener("mousedown", (ev) => { if (ev.button === 0) state.drag = { from: px(ev), to: null }; });
+  cv.addEventListener("mousemove", (ev) => {
+    const p = px(ev);
+    if (state.drag && (ev.buttons & 1)) state.drag.to = p;
+    const x = xAt(p);
+    if (x != null) state.cursor = x;
+    drawScope();
+  });
+  window.addEventListener("mouseup", (ev) => {
+    const d = state.drag;
+    state.drag = null;
+    if (!d) return;
+    const to = px(ev);
+    if (Math.abs(to - d.from) >= 6 && state.scopeGeom) {
+      const geo = state.scopeGeom, g = geo.g;
+      const clamp = (q) => Math.min(g.left + g.pw, Math.max(g.left, q));
+      const a = xAt(clamp(Math.min(d.from, to))), b = xAt(clamp(Math.max(d.from, to)));
+      if (b > a) state.zoom = [a, b];
+    }
+    drawScope();
+  });
+  cv.addEventListener("dblclick", () => { state.zoom = null; drawScope(); });
+  $("zoomin").onclick = () => zoomBy(2);
+  $("zoomout").onclick = () => zoomBy(0.5);
+  $("zoomreset").onclick = () => { state.zoom = null; drawScope(); };
+  $("xmode").onchange = () => { state.xmode = $("xmode").value; state.zoom = null; state.cursor = null; drawScope(); };
+  $("hold").onclick = () => {
+    state.hold = !state.hold;
+    $("hold").setAttribute("aria-pressed", state.hold ? "true" : "false");
+    $("hold").textContent = state.hold ? "release" : "hold";
+    if (!state.hold && state.scope) state.scopeShown = state.scope;
+    drawScope();
+  };
+  $("storeref").onclick = () => {
+    if (!state.scopeShown) return;
+    state.reference = state.scopeShown;
+    state.referenceNote = "reference: line " + state.reference.line + ", " + state.reference.gains;
+    $("refinfo").textContent = state.referenceNote;
+    for (const s of document.querySelectorAll(".reftrace, .refretrace, #clearref")) s.hidden = false;
+    drawScope();
+  };
+  $("clearref").onclick = () => {
+    state.reference = null;
+    $("refinfo").textContent = "";
+    for (const s of document.querySelectorAll(".reftrace, .refretrace, #clearref")) s.hidden = true;
+    drawScope();
+  };
+  if (window.ResizeObserver) new ResizeObserver(() => { drawScope(); if (state.frame) { for (const t of document.querySelectorAll(".cbar-ticks")) t.dataset.sig = ""; drawImages(); } }).observe($("right"));
 }
 
+scopeUi();
+drawScope();
 connect();
