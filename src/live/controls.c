@@ -184,7 +184,10 @@ static int build(const tt_live_controls *c, char *const *given, int sample, int 
 
 static const char *gb(double bytes, char *buf, size_t len)
 {
-    snprintf(buf, len, bytes < 1e9 ? "%.0f MB" : "%.1f GB", bytes < 1e9 ? bytes / 1e6 : bytes / 1e9);
+    if (bytes < 1e6)
+        snprintf(buf, len, "%.0f kB", bytes / 1e3);
+    else
+        snprintf(buf, len, bytes < 1e9 ? "%.0f MB" : "%.1f GB", bytes < 1e9 ? bytes / 1e6 : bytes / 1e9);
     return buf;
 }
 

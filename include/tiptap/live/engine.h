@@ -8,7 +8,8 @@
  *
  * A change from the console (tt_live_engine_submit) takes effect at the next line: the
  * gains, setpoint, line rate, free amplitude and noise on the running scan (its setters
- * in instrument/scan.h), anything else as a new scan and a new frame. When the scan is
+ * in instrument/scan.h), anything else as a new scan and a new frame, made by the
+ * submitter. A new frame or line rate abandons the line under way. When the scan is
  * on the envelope or every-cycle tier, the next line after a change runs first on the
  * averaged tier (a preview, published at once, tier "averaged") and then on the scan's
  * own tier, which replaces it; the averaged tier's preview has its own scan object, so
