@@ -16,10 +16,13 @@ here=$(dirname "$0")
 teach=("$src/examples/feedback-tuning/common.ini" "$src/surfaces/grating.ini")
 small=(--set scan.pixels=32 --set scan.lines=4 --set scan.line_rate=8Hz --set scan.size=1um)
 
-# Start-up: refused with one line naming the key, before it listens. Outside the
-# sanitizers (whose shadow memory needs more) the address space is held to 8 GB, so that
-# a console that allocated first fails at once rather than filling the machine.
-limit() { ldd "$tiptap" | grep -q libasan || ulimit -v 8000000; exec timeout 120 "$@"; }
+# Outside the sanitizers (whose shadow memory needs more) the address space is held to
+# 8 GB, so that a console that allocated first fails at once rather than filling the
+# machine (the console's check then counts 8 GB available).
+ldd "$tiptap" | grep -q libasan || ulimit -v 8000000
+
+# Start-up: refused with one line naming the key, before it listens.
+limit() { exec timeout 120 "$@"; }
 expect_error "0.0002 Hz at start-up (27 GB a scope record)" "[scan] line_rate:" \
   limit "$tiptap" live --port 0 "${teach[@]}" --set scan.line_rate=0.0002Hz
 expect_error "16384 x 16384 pixels at start-up" "[scan] pixels:" \

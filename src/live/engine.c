@@ -13,6 +13,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "live_private.h"
 #include "tiptap/config/config.h"
 #include "tiptap/instrument/scan_oscillation.h"
 #include "tiptap/instrument/scan_scope.h"
@@ -235,7 +236,7 @@ static int apply_live(tt_scan *s, const tt_scan_params *p)
 static void note(tt_live_engine *e, const char *what)
 {
     pthread_mutex_lock(&e->mu);
-    snprintf(e->v.note, sizeof e->v.note, "%.*s", (int)sizeof e->v.note - 1, what);
+    tt_live_text(e->v.note, sizeof e->v.note, what);
     e->v.status_version = ++e->v.version;
     pthread_mutex_unlock(&e->mu);
     e->wake(e->user);
@@ -427,7 +428,7 @@ static void do_export(tt_live_engine *e)
     snprintf(old, sizeof old, "%s", e->export_dir);
     snprintf(e->export_dir, sizeof e->export_dir, "%s", dir);
     e->export_status = rc;
-    snprintf(e->export_why, sizeof e->export_why, "%s", rc ? tt_error_message() : "");
+    tt_live_text(e->export_why, sizeof e->export_why, rc ? tt_error_message() : "");
     e->export_done = want;
     pthread_mutex_unlock(&e->mu);
     if (old[0])
