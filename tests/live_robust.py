@@ -1,12 +1,16 @@
 #!/usr/bin/python3
 """tiptap live under abuse and in use, over its WebSocket and HTTP (no browser): bad
-messages get a clear reply and change nothing; a page from another origin is refused;
+messages get a clear reply and change nothing, in UTF-8 whatever the page sent; a page or
+a request from another origin or Host is refused (DNS rebinding), and only GET and HEAD
+are served; refused handshakes do not lift the 16-page limit; 300 idle connections hold
+a bounded number of the server's descriptors;
 four pages at once, one closed mid-stream, one flooding and one never reading: the
 others keep their updates and the server's memory stays bounded; the exports are what
 tiptap scan writes for the exported scene, byte for byte.
 
 usage: live_robust.py PORT SERVER_PID TIPTAP WORKDIR"""
 import filecmp
+import http.client
 import os
 import socket
 import subprocess
@@ -73,18 +77,128 @@ for text, want in bad:
        "refused %r: %s" % (text[:40], r["error"][:110]))
 r = ask(a, b"\xff\xfe\x00binary")
 ok(not r["ok"], "a binary message is refused: %s" % r["error"][:80])
+# every text the server sends is UTF-8 (a browser drops the socket otherwise): a reply
+# that quotes the page's text cuts it on a character's boundary, and bytes that are not
+# UTF-8 are refused, not echoed (WS.recv decodes strictly)
+for text in ["set x" + "\u00e9" * 40 + " = 1", "set sample = x" + "\u00e9" * 40,
+             "set noise = " + "\u20ac" * 60, "set feedback.integral_gain = x" + "\u00fc" * 90,
+             b"set f\xff\xfeo = 1", b"set feedback.integral_gain = \xc3", "x\u00e9" * 5000]:
+    try:
+        r = ask(a, text)
+        ok(not r["ok"] and "\ufffd" not in r["error"],
+           "the reply to %r is UTF-8: %s" % (text[:24], r["error"][:60]))
+    except UnicodeDecodeError as e:
+        ok(False, "the reply to %r is UTF-8 (%s)" % (text[:24], e))
+        a = WS(port)
 b = WS(port)
 ok(control(b.recv_type("controls"), "feedback.integral_gain") == ki0,
    "after the refusals the I gain is still %s Hz" % ki0)
 b.close()
 
-# ---- another origin (a web page elsewhere) and another Host (DNS rebinding) are refused
-for kw in ({"origin": "http://example.com"}, {"host": "evil.example:%d" % port}):
+# ---- another origin (a web page elsewhere) and another Host (DNS rebinding) are refused,
+# for a WebSocket as for a plain request (the page, an export); this server's names pass
+foreign = ({"origin": "http://example.com"}, {"host": "evil.example:%d" % port},
+           {"origin": "null"}, {"host": "127.0.0.1"}, {"origin": "http://127.0.0.1:%d.evil" % port})
+for kw in foreign:
     try:
         WS(port, **kw).close()
         ok(False, "a WebSocket with %s is refused" % kw)
     except (Refused, ConnectionError, OSError) as e:
         ok(True, "a WebSocket with %s is refused (%s)" % (kw, str(e)[:40]))
+
+
+def request(method, path, headers=None):
+    """status, headers and body of one plain request"""
+    c = http.client.HTTPConnection("127.0.0.1", port, timeout=300)
+    c.putrequest(method, path, skip_host="Host" in (headers or {}))
+    for k, v in (headers or {}).items():
+        c.putheader(k, v)
+    c.endheaders()
+    r = c.getresponse()
+    body = r.read()
+    c.close()
+    return r.status, r, body
+
+
+for path in ("/", "/export/scene.ini", "/export/scan.gwy"):
+    for kw in foreign:
+        h = {"Host": kw["host"]} if "host" in kw else {"Origin": kw["origin"]}
+        st, _, body = request("GET", path, h)
+        ok(st == 403 and b"[scan]" not in body, "GET %s with %s: %d" % (path, h, st))
+for h in ({"Host": "localhost:%d" % port}, {"Host": "[::1]:%d" % port},
+          {"Origin": "http://localhost:%d" % port}):
+    st, _, body = request("GET", "/export/scene.ini", h)
+    ok(st == 200 and b"[scan]" in body, "GET /export/scene.ini with %s: %d" % (h, st))
+# ---- only GET and HEAD: the others are told 405 and change nothing
+for method in ("DELETE", "PUT", "POST", "OPTIONS", "PATCH"):
+    for path in ("/", "/export/scene.ini"):
+        st, r, _ = request(method, path)
+        ok(st == 405 and "GET" in (r.getheader("allow") or ""), "%s %s: %d, allow %s"
+           % (method, path, st, r.getheader("allow")))
+st, r, body = request("HEAD", "/")
+ok(st == 200 and body == b"" and int(r.getheader("content-length")) > 0,
+   "HEAD /: %d, %s bytes said, none sent" % (st, r.getheader("content-length")))
+
+# ---- refused handshakes never count as pages: after 40 of them, 16 pages are let in and
+# the 17th is not, and the count the pages are told is 16
+a.close()
+for i in range(40):
+    try:
+        WS(port, **foreign[i % len(foreign)]).close()
+    except (Refused, ConnectionError, OSError):
+        pass
+many, why = [], ""
+for _ in range(100):  # the closed pages' ends may take the server a moment
+    try:
+        while len(many) < 16:
+            many.append(WS(port))
+        break
+    except (Refused, ConnectionError, OSError) as e:
+        why = str(e)
+        time.sleep(0.1)
+ok(len(many) == 16, "16 pages let in after 40 refused handshakes (%d; %s)" % (len(many), why))
+try:
+    WS(port).close()
+    ok(False, "a 17th page is refused")
+except (Refused, ConnectionError, OSError):
+    ok(True, "a 17th page is refused")
+counts = set()
+for _ in range(200):
+    m = many[-1].recv()
+    if m["type"] == "status":
+        counts.add(m["clients"])
+        if m["clients"] == 16:
+            break
+ok(16 in counts and min(counts) > 0, "the pages are told %s pages" % sorted(counts))
+for w in many:
+    w.close()
+
+# ---- connections at once are bounded: 300 idle ones hold under 100 of the server's
+# descriptors (64 connections and its own), and once they close it serves again
+
+
+def fds():
+    return len(os.listdir("/proc/%d/fd" % pid))
+
+
+idle = []
+for i in range(300):
+    c = socket.socket()
+    c.settimeout(10)
+    c.connect(("127.0.0.1", port))  # the kernel's backlog completes what lws does not take
+    idle.append(c)
+held = 0
+for _ in range(100):  # until the server took what it takes
+    time.sleep(0.1)
+    n = fds()
+    if n == held and n > 60:
+        break
+    held = n
+ok(held < 100, "300 idle connections: the server holds %d descriptors" % held)
+for c in idle:
+    c.close()
+st, _, _ = request("GET", "/")
+ok(st == 200, "served again once they closed (%d)" % st)
 
 # ---- four pages; one flooding, one never reading, one closed mid-stream
 rss0 = rss_kb()

@@ -112,11 +112,39 @@ static void steady_points_return_eintr(void **st)
     tt_scene_free(s);
 }
 
+static void *ask_on_another_thread(void *arg)
+{
+    *(int *)arg = tt_cancel_requested();
+    return NULL;
+}
+
+/* A thread's own cancellation (tt_cancel_watch): its runs see it, the other threads do
+ * not, and clearing the flag ends it. */
+static void a_watched_flag_cancels_its_thread_only(void **st)
+{
+    (void)st;
+    int flag = 0, other = -1;
+    assert_null(tt_cancel_watch(&flag));
+    assert_false(tt_cancel_requested());
+    __atomic_store_n(&flag, 1, __ATOMIC_RELAXED);
+    assert_true(tt_cancel_requested());
+    pthread_t t;
+    assert_int_equal(pthread_create(&t, NULL, ask_on_another_thread, &other), 0);
+    pthread_join(t, NULL);
+    assert_int_equal(other, 0);
+    __atomic_store_n(&flag, 0, __ATOMIC_RELAXED);
+    assert_false(tt_cancel_requested());
+    assert_ptr_equal(tt_cancel_watch(NULL), &flag);
+    __atomic_store_n(&flag, 1, __ATOMIC_RELAXED);
+    assert_false(tt_cancel_requested());
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(cycle_stops_part_way),
         cmocka_unit_test(steady_points_return_eintr),
+        cmocka_unit_test(a_watched_flag_cancels_its_thread_only),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

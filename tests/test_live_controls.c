@@ -6,6 +6,7 @@
 #include "tiptap/config/config.h"
 #include "tiptap/live/controls.h"
 #include "tiptap/util/error.h"
+#include "live/live_private.h"
 
 #define SRC TT_SOURCE_DIR
 static char *files[] = {SRC "/scans/quick.ini", SRC "/surfaces/grating.ini"};
@@ -13,7 +14,7 @@ static char *files[] = {SRC "/scans/quick.ini", SRC "/surfaces/grating.ini"};
 static tt_live_controls *make(void)
 {
     tt_live_controls *c = NULL;
-    if (tt_live_controls_alloc(&c, files, 2, NULL, 0, SRC "/surfaces") != TT_OK)
+    if (tt_live_controls_alloc(&c, files, 2, NULL, 0, SRC "/surfaces", NULL) != TT_OK)
         fail_msg("%s", tt_error_message());
     return c;
 }
@@ -31,7 +32,7 @@ static double ki_of(const tt_live_controls *c)
 
 static int apply(tt_live_controls *c, const char *msg, tt_live_change *ch)
 {
-    return tt_live_controls_apply(c, msg, strlen(msg), ch);
+    return tt_live_controls_apply(c, msg, strlen(msg), ch, NULL, NULL);
 }
 
 static void a_gain_is_set_in_the_scene(void **st)
@@ -88,7 +89,7 @@ static void refused_values_change_nothing(void **st)
     }
     tt_live_change ch;
     const char nul[] = "set feedback.integral_gain = 9\0 kHz";
-    assert_int_equal(tt_live_controls_apply(c, nul, sizeof nul - 1, &ch), TT_EINVAL);
+    assert_int_equal(tt_live_controls_apply(c, nul, sizeof nul - 1, &ch, NULL, NULL), TT_EINVAL);
     assert_close(ki_of(c), ki0, 0);
     tt_live_controls_free(c);
 }
@@ -120,12 +121,165 @@ static void sample_and_noise(void **st)
     tt_live_controls_free(c);
 }
 
+/* A machine of 1 GB for the memory checks. */
+static double one_gb(void) { return 1e9; }
+
+/* A scene whose scans, page images or scope records do not fit is refused before
+ * anything is made, at start-up and as a change, naming the key; one that fits is
+ * taken. quick.ini's 300 kHz drive at 0.0002 Hz: 1.9e8 scope points a direction. */
+static void memory_is_checked_before_anything_is_made(void **st)
+{
+    (void)st;
+    static const struct {
+        const char *set, *key;
+    } big[] = {
+        {"scan.line_rate=0.0002Hz", "[scan] line_rate:"},
+        {"scan.pixels=16384", "[scan] pixels:"},
+    };
+    for (size_t i = 0; i < sizeof big / sizeof big[0]; i++) {
+        tt_live_controls *c = NULL;
+        char *sets[] = {(char *)big[i].set, (char *)"scan.lines=16384", (char *)"scan.line_rate=0.0002Hz"};
+        int nsets = i == 0 ? 1 : 3;
+        if (i == 1)
+            sets[2] = (char *)"scan.line_rate=1Hz";
+        assert_int_equal(tt_live_controls_alloc(&c, files, 2, sets, nsets, SRC "/surfaces", one_gb),
+                         TT_EINVAL);
+        if (!strstr(tt_error_message(), big[i].key) || !strstr(tt_error_message(), "more than the 1.0 GB"))
+            fail_msg("start-up with %s: '%s'", big[i].set, tt_error_message());
+    }
+    tt_live_controls *c = NULL;
+    assert_int_equal(tt_live_controls_alloc(&c, files, 2, NULL, 0, SRC "/surfaces", one_gb), TT_OK);
+    tt_live_change ch;
+    double ki0 = ki_of(c);
+    assert_int_equal(apply(c, "set feedback.integral_gain = 7 kHz\nset scan.line_rate = 0.0002 Hz", &ch),
+                     TT_EINVAL);
+    if (!strstr(ch.why, "console: [scan] line_rate:") || !strstr(ch.why, "memory"))
+        fail_msg("a change to 0.0002 Hz: '%s'", ch.why);
+    assert_int_equal(apply(c, "set scan.pixels = 16384\nset scan.lines = 16384\nset scan.line_rate = 1 Hz",
+                           &ch), TT_EINVAL);
+    if (!strstr(ch.why, "console: [scan] pixels:") || !strstr(ch.why, "memory"))
+        fail_msg("a change to 16384 x 16384: '%s'", ch.why);
+    assert_close(ki_of(c), ki0, 0);
+    assert_int_equal(apply(c, "set scan.pixels = 256\nset scan.lines = 256", &ch), TT_OK);
+    tt_live_controls_free(c);
+}
+
+static int refuse(void *user, tt_scene *scene, tt_scan_params *p, int restart)
+{
+    (void)restart;
+    ++*(int *)user;
+    tt_scene_free(scene);
+    tt_config_scan_free(p);
+    return tt_error(TT_EINVAL, "cannot build it");
+}
+
+static int accept_it(void *user, tt_scene *scene, tt_scan_params *p, int restart)
+{
+    *(int *)user = restart ? 2 : 1;
+    tt_scene_free(scene);
+    tt_config_scan_free(p);
+    return TT_OK;
+}
+
+/* A change the taker (the engine) refuses leaves the controls as they were: the value
+ * shown and the scene built are the ones in force. */
+static void a_change_is_taken_whole_or_not_at_all(void **st)
+{
+    (void)st;
+    tt_live_controls *c = make();
+    tt_live_change ch;
+    int calls = 0;
+    double ki0 = ki_of(c);
+    const char *msg = "set feedback.integral_gain = 7 kHz\nset sample = particles";
+    assert_int_equal(tt_live_controls_apply(c, msg, strlen(msg), &ch, refuse, &calls), TT_EINVAL);
+    assert_int_equal(calls, 1);
+    assert_string_equal(ch.why, "cannot build it");
+    assert_close(ki_of(c), ki0, 0);
+    assert_string_equal(tt_live_controls_sample(c, (size_t)tt_live_controls_sample_index(c)), "grating");
+    char buf[64], want[64];
+    size_t n;
+    const tt_live_control *t = tt_live_control_table(&n);
+    snprintf(want, sizeof want, "%.6g", ki0);
+    for (size_t i = 0; i < n; i++)
+        if (strcmp(t[i].name, "feedback.integral_gain") == 0)
+            assert_string_equal(tt_live_controls_value(c, i, buf, sizeof buf), want);
+    assert_int_equal(tt_live_controls_apply(c, msg, strlen(msg), &ch, accept_it, &calls), TT_OK);
+    assert_int_equal(calls, 2); /* the sample restarts the frame */
+    assert_close(ki_of(c), 7000, 0);
+    tt_live_controls_free(c);
+}
+
+/* Text from a page that is not UTF-8 is refused; a refusal that quotes the page's text
+ * cuts it on a character's boundary. */
+static void replies_are_utf8(void **st)
+{
+    (void)st;
+    tt_live_controls *c = make();
+    tt_live_change ch;
+    assert_int_equal(apply(c, "set f\xff\xfeo = 1", &ch), TT_EINVAL);
+    assert_true(tt_live_utf8_valid(ch.why, strlen(ch.why)));
+    assert_non_null(strstr(ch.why, "not UTF-8"));
+    char msg[200] = "set x";
+    for (int i = 0; i < 40; i++)
+        strcat(msg, "\xc3\xa9"); /* e acute: the cut at 60 bytes falls inside one */
+    strcat(msg, " = 1");
+    assert_int_equal(apply(c, msg, &ch), TT_EINVAL);
+    if (!tt_live_utf8_valid(ch.why, strlen(ch.why)))
+        fail_msg("not UTF-8: '%s'", ch.why);
+    tt_live_controls_free(c);
+    /* the one decoder: overlong forms, surrogates, stray and cut bytes are not characters */
+    assert_int_equal(tt_live_utf8_char("\xc3\xa9", 2), 2);
+    assert_int_equal(tt_live_utf8_char("\xf0\x9f\x94\xac", 4), 4);
+    assert_int_equal(tt_live_utf8_char("\xc0\xaf", 2), 0);
+    assert_int_equal(tt_live_utf8_char("\xed\xa0\x80", 3), 0);
+    assert_int_equal(tt_live_utf8_char("\xf4\x90\x80\x80", 4), 0);
+    assert_int_equal(tt_live_utf8_char("\xe2\x82", 2), 0);
+    assert_int_equal(tt_live_utf8_fit("a\xe2\x82\xac", 3), 1);
+    assert_int_equal(tt_live_utf8_fit("a\xe2\x82\xac", 4), 4);
+    char out[8];
+    tt_live_text(out, sizeof out, "ab\xff" "c\xe2\x82\xac\xe2\x82\xac");
+    assert_string_equal(out, "ab?c\xe2\x82\xac"); /* the second euro does not fit: cut before it */
+}
+
+/* The Host and the Origin this server answers: 127.0.0.1, localhost and [::1] with its
+ * port, or without one where the port is HTTP's default 80. */
+static void hosts_and_origins(void **st)
+{
+    (void)st;
+    assert_true(tt_live_authority_ok("127.0.0.1:8421", 0, 8421));
+    assert_true(tt_live_authority_ok("localhost:8421", 0, 8421));
+    assert_true(tt_live_authority_ok("LocalHost:8421", 0, 8421));
+    assert_true(tt_live_authority_ok("[::1]:8421", 0, 8421));
+    assert_true(tt_live_authority_ok("http://127.0.0.1:8421", 1, 8421));
+    assert_true(tt_live_authority_ok("127.0.0.1", 0, 80));
+    assert_true(tt_live_authority_ok("localhost", 0, 80));
+    assert_true(tt_live_authority_ok("[::1]", 0, 80));
+    assert_true(tt_live_authority_ok("http://127.0.0.1", 1, 80));
+    assert_true(tt_live_authority_ok("http://localhost", 1, 80));
+    assert_true(tt_live_authority_ok("http://[::1]:80", 1, 80));
+    assert_false(tt_live_authority_ok("127.0.0.1", 0, 8421));
+    assert_false(tt_live_authority_ok("127.0.0.1:80", 0, 8421));
+    assert_false(tt_live_authority_ok("127.0.0.1:84210", 0, 8421));
+    assert_false(tt_live_authority_ok("127.0.0.1:", 0, 80));
+    assert_false(tt_live_authority_ok("evil.example:8421", 0, 8421));
+    assert_false(tt_live_authority_ok("127.0.0.1.evil.example:8421", 0, 8421));
+    assert_false(tt_live_authority_ok("localhost.:8421", 0, 8421));
+    assert_false(tt_live_authority_ok("http://127.0.0.1:8421/", 1, 8421));
+    assert_false(tt_live_authority_ok("https://127.0.0.1:8421", 1, 8421));
+    assert_false(tt_live_authority_ok("null", 1, 8421));
+    assert_false(tt_live_authority_ok("127.0.0.1:8421", 1, 8421));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(a_gain_is_set_in_the_scene),
         cmocka_unit_test(refused_values_change_nothing),
         cmocka_unit_test(sample_and_noise),
+        cmocka_unit_test(memory_is_checked_before_anything_is_made),
+        cmocka_unit_test(a_change_is_taken_whole_or_not_at_all),
+        cmocka_unit_test(replies_are_utf8),
+        cmocka_unit_test(hosts_and_origins),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

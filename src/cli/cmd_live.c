@@ -85,8 +85,9 @@ int cmd_live(int argc, char **argv)
         return CLI_USAGE;
     }
     tt_live_controls *controls = NULL;
+    /* the same memory as tiptap scan's check of its own scene (commands.h) */
     int rc = tt_live_controls_alloc(&controls, argv + optind, argc - optind, args.sets, args.nsets,
-                                    surfaces);
+                                    surfaces, cli_memory_available);
     cli_args_free(&args);
     if (rc)
         return cli_fail(rc, NULL);

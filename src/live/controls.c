@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "live_private.h"
 #include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 #include "tiptap/util/str.h"
@@ -54,6 +55,7 @@ struct tt_live_controls {
     char *given[NKNOBS]; /* the values the user gave, NULL: the scene's */
     tt_scan_params params; /* of the accepted scene */
     int have_params;
+    double (*memory)(void); /* the bytes this process may still take (NULL: no check) */
 };
 
 const tt_live_control *tt_live_control_table(size_t *count)
@@ -180,25 +182,66 @@ static int build(const tt_live_controls *c, char *const *given, int sample, int 
     return TT_OK;
 }
 
+static const char *gb(double bytes, char *buf, size_t len)
+{
+    if (bytes < 1e6)
+        snprintf(buf, len, "%.0f kB", bytes / 1e3);
+    else
+        snprintf(buf, len, bytes < 1e9 ? "%.0f MB" : "%.1f GB", bytes < 1e9 ? bytes / 1e6 : bytes / 1e9);
+    return buf;
+}
+
+/* The memory the console holds for a scene, from tiptap scan's estimate (config.h): up
+ * to three scans with the page's copy of their images (three channels, both ways): the
+ * running one, a change's waiting for the line's end and the next change's being built;
+ * the preview's twin of the scan; and two scope records, the scan's and the preview's.
+ * More than the machine has is refused before anything is made. */
+static int check_memory(const tt_live_controls *c, const tt_scene *s, const tt_scan_params *p)
+{
+    if (!c->memory)
+        return TT_OK;
+    tt_estimate e;
+    tt_config_scan_estimate(p, &e);
+    double image = (double)p->raster.pixels * (double)p->raster.lines * sizeof(double);
+    double scan = e.bytes + 2 * TT_LIVE_NCH * image + e.thread_bytes;
+    double need = 3 * scan + (p->solver.tier == TT_TIER_AVERAGED ? 0 : e.bytes) + 2 * e.scope_bytes;
+    double avail = c->memory();
+    if (need <= avail)
+        return TT_OK;
+    static const char *const rate[] = {"scan.line_rate", NULL};
+    static const char *const raster[] = {"scan.pixels", "scan.lines", NULL};
+    char a[32], b[32], d[32], f[32];
+    return tt_scene_fail_set(s, 2 * e.scope_bytes > need / 2 ? rate : raster,
+                             "%ld x %ld pixels at %g Hz need about %s of memory in the console "
+                             "(three scans of %s and the page's images, two scope records of %s: "
+                             "a point a lock-in block), more than the %s available; fewer "
+                             "pixels or lines, or a faster line rate",
+                             p->raster.pixels, p->raster.lines, p->raster.line_rate,
+                             gb(need, a, sizeof a), gb(scan, b, sizeof b),
+                             gb(e.scope_bytes, d, sizeof d), gb(avail, f, sizeof f));
+}
+
 /* What tiptap scan checks before it runs, without making the scan: every key, rule and
- * material, and the rk4 setting. */
-static int check(const tt_scene *s, tt_scan_params *p)
+ * material, the rk4 setting, and the memory the console would hold. */
+static int check(const tt_live_controls *c, const tt_scene *s, tt_scan_params *p)
 {
     int rc = tt_config_scan(s, p);
     if (rc)
         return rc;
-    if ((rc = tt_config_check_rk4(s, NULL, 0)))
+    if ((rc = tt_config_check_rk4(s, NULL, 0)) || (rc = check_memory(c, s, p)))
         tt_config_scan_free(p);
     return rc;
 }
 
 int tt_live_controls_alloc(tt_live_controls **out, char *const *files, int nfiles,
-                           char *const *sets, int nsets, const char *surfaces)
+                           char *const *sets, int nsets, const char *surfaces,
+                           double (*memory)(void))
 {
     tt_live_controls *c = calloc(1, sizeof *c);
     if (!c)
         return tt_error_nomem("the console's controls");
     int rc = TT_OK;
+    c->memory = memory;
     c->files = calloc((size_t)nfiles + 1, sizeof *c->files);
     c->sets = calloc((size_t)nsets + 1, sizeof *c->sets);
     c->surfaces = tt_strdup(surfaces);
@@ -220,7 +263,7 @@ int tt_live_controls_alloc(tt_live_controls **out, char *const *files, int nfile
     /* the files' own noise decides what "noise = on" means */
     tt_scene *s = NULL;
     c->scene_noise = 1;
-    if (!rc && !(rc = build(c, c->given, -1, 0, &s)) && !(rc = check(s, &c->params))) {
+    if (!rc && !(rc = build(c, c->given, -1, 0, &s)) && !(rc = check(c, s, &c->params))) {
         c->have_params = 1;
         c->scene_noise = has_noise(&c->params.noise);
         c->noise_off = !c->scene_noise;
@@ -228,7 +271,7 @@ int tt_live_controls_alloc(tt_live_controls **out, char *const *files, int nfile
         c->have_params = 0;
         tt_scene_free(s);
         s = NULL;
-        if (!(rc = build(c, c->given, -1, c->noise_off, &s)) && !(rc = check(s, &c->params)))
+        if (!(rc = build(c, c->given, -1, c->noise_off, &s)) && !(rc = check(c, s, &c->params)))
             c->have_params = 1;
     }
     tt_scene_free(s);
@@ -277,7 +320,8 @@ static int parse_set(const char *line, size_t n, int *k, const char **v, size_t 
     while (p < line + n && (*p == ' ' || *p == '\t'))
         p++;
     if (!eq) {
-        snprintf(why, wl, "console: '%.*s': expected set NAME = VALUE", (int)(n > 80 ? 80 : n), line);
+        snprintf(why, wl, "console: '%.*s': expected set NAME = VALUE", (int)tt_live_utf8_fit(line, n > 80 ? 80 : n),
+                 line);
         return -1;
     }
     for (e = eq; e > p && (e[-1] == ' ' || e[-1] == '\t'); e--)
@@ -287,7 +331,7 @@ static int parse_set(const char *line, size_t n, int *k, const char **v, size_t 
         for (size_t i = 0, u = 0; i < NKNOBS; i++)
             u += (size_t)snprintf(names + u, sizeof names - u, "%s%s", i ? ", " : "", table[i].name);
         snprintf(why, wl, "console: '%.*s': no such control; the console sets %s",
-                 (int)(e - p > 60 ? 60 : e - p), p, names);
+                 (int)tt_live_utf8_fit(p, (size_t)(e - p > 60 ? 60 : e - p)), p, names);
         return -1;
     }
     for (p = eq + 1; p < line + n && (*p == ' ' || *p == '\t'); p++)
@@ -314,7 +358,7 @@ static int own_knob(const tt_live_controls *c, int k, const char *v, size_t vn, 
         else if (vn == 3 && strncmp(v, "off", 3) == 0)
             *noise_off = 1;
         else {
-            snprintf(why, wl, "console: noise: '%.*s': expected on or off", (int)vn, v);
+            snprintf(why, wl, "console: noise: '%.*s': expected on or off", (int)tt_live_utf8_fit(v, vn), v);
             return -1;
         }
         return 0;
@@ -325,13 +369,26 @@ static int own_knob(const tt_live_controls *c, int k, const char *v, size_t vn, 
             return 0;
         }
     size_t u = (size_t)snprintf(why, wl, "console: sample: '%.*s': not a bundled sample; one of ",
-                                (int)(vn > 60 ? 60 : vn), v);
+                                (int)tt_live_utf8_fit(v, vn > 60 ? 60 : vn), v);
     for (size_t i = 0; i < c->nsamples && u < wl; i++)
         u += (size_t)snprintf(why + u, wl - u, "%s%s", i ? ", " : "", c->samples[i]);
     return -1;
 }
 
-int tt_live_controls_apply(tt_live_controls *c, const char *text, size_t len, tt_live_change *ch)
+/* A copy of p that owns its materials. */
+static int copy_params(tt_scan_params *dst, const tt_scan_params *src)
+{
+    tt_material *m = malloc((src->nmaterials ? src->nmaterials : 1) * sizeof *m);
+    if (!m)
+        return tt_error_nomem("the console's scene");
+    memcpy(m, src->materials, src->nmaterials * sizeof *m);
+    *dst = *src;
+    dst->materials = m;
+    return TT_OK;
+}
+
+int tt_live_controls_apply(tt_live_controls *c, const char *text, size_t len, tt_live_change *ch,
+                           tt_live_take_fn take, void *user)
 {
     char *given[NKNOBS] = {0};
     int sample = c->sample, noise_off = c->noise_off, bad = 0, any = 0, restart = 0;
@@ -340,6 +397,11 @@ int tt_live_controls_apply(tt_live_controls *c, const char *text, size_t len, tt
         given[i] = c->given[i];
     const char *p = text, *end = text + len;
     char *fresh[NKNOBS] = {0}; /* the values this message gave */
+    /* text from a page is UTF-8 (its replies quote it back) */
+    if (!tt_live_utf8_valid(text, len)) {
+        snprintf(ch->why, sizeof ch->why, "console: the message is not UTF-8 text");
+        bad = 1;
+    }
     while (p < end && !bad) {
         const char *nl = memchr(p, '\n', (size_t)(end - p));
         const char *le = nl ? nl : end;
@@ -377,7 +439,8 @@ int tt_live_controls_apply(tt_live_controls *c, const char *text, size_t len, tt
             any = 1;
         } else {
             snprintf(ch->why, sizeof ch->why,
-                     "console: '%.*s': expected set NAME = VALUE or restart", (int)(n > 80 ? 80 : n), p);
+                     "console: '%.*s': expected set NAME = VALUE or restart",
+                     (int)tt_live_utf8_fit(p, n > 80 ? 80 : n), p);
             bad = 1;
         }
         p = nl ? nl + 1 : end;
@@ -387,13 +450,30 @@ int tt_live_controls_apply(tt_live_controls *c, const char *text, size_t len, tt
         bad = 1;
     }
     tt_scene *s = NULL;
-    tt_scan_params prm;
-    if (!bad && (build(c, given, sample, noise_off, &s) || check(s, &prm))) {
-        snprintf(ch->why, sizeof ch->why, "%s", tt_error_message());
+    tt_scan_params prm, q;
+    int have_prm = 0;
+    if (!bad && (build(c, given, sample, noise_off, &s) || !(have_prm = !check(c, s, &prm)))) {
+        tt_live_text(ch->why, sizeof ch->why, tt_error_message());
         bad = 1;
+    }
+    /* the taker (the engine) makes all it needs or refuses, and owns the scene and q
+     * either way: the controls change only when it took the change */
+    if (!bad && take) {
+        tt_scene *t = s;
+        s = NULL;
+        if (copy_params(&q, &prm)) {
+            tt_scene_free(t);
+            bad = 1;
+        } else if (take(user, t, &q, restart) != TT_OK) {
+            bad = 1;
+        }
+        if (bad)
+            tt_live_text(ch->why, sizeof ch->why, tt_error_message());
     }
     tt_scene_free(s);
     if (bad) {
+        if (have_prm)
+            tt_config_scan_free(&prm);
         for (size_t i = 0; i < NKNOBS; i++)
             free(fresh[i]);
         return TT_EINVAL;
@@ -421,7 +501,7 @@ int tt_live_controls_scene(const tt_live_controls *c, tt_scene **scene, tt_scan_
     int rc = build(c, c->given, c->sample, c->noise_off, scene);
     if (rc || !p)
         return rc;
-    if ((rc = check(*scene, p))) {
+    if ((rc = check(c, *scene, p))) {
         tt_scene_free(*scene);
         *scene = NULL;
     }

@@ -13,12 +13,26 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "live_private.h"
 #include "tiptap/config/config.h"
 #include "tiptap/instrument/scan_oscillation.h"
 #include "tiptap/instrument/scan_scope.h"
 #include "tiptap/io/decimate.h"
+#include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 #include "tiptap/util/clock.h"
+
+/* What a change needs made before the engine takes it: the scan of a new frame and the
+ * page's images of it, made on the submitting thread, so that taking a change cannot
+ * fail (a running scan that takes it between lines frees them unused). */
+typedef struct {
+    tt_scan *scan;
+    double *rows[TT_LIVE_NCH][2];
+    unsigned long *row_version;
+    unsigned char *row_tier;
+    double *line_buf;
+    int ch_index[TT_LIVE_NCH];
+} fresh;
 
 struct tt_live_engine {
     pthread_t thread;
@@ -31,8 +45,14 @@ struct tt_live_engine {
     /* the next scene, from the console (the latest wins) */
     tt_scene *next_scene;
     tt_scan_params next_params;
+    fresh next_fresh;
     int have_next, next_restart;
     double next_at; /* when it arrived */
+    double rate;    /* the line rate in force (under mu) */
+    /* set (under mu, read atomically by tt_cancel_requested on each thread) when a change
+     * makes the line under way meaningless: a new frame or line rate abandons the engine's
+     * line; any change, the preview's */
+    int abandon, pabandon;
     /* what runs: owned by the thread */
     tt_scene *scene;
     tt_scan_params params;
@@ -93,42 +113,74 @@ static void frame_free(tt_live_engine *e)
     e->v.row_tier = NULL;
 }
 
-/* The published frame of the running scan: its raster, channels and empty rows. */
-static int frame_publish(tt_live_engine *e)
+static void fresh_free(fresh *f)
+{
+    tt_scan_free(f->scan);
+    for (int c = 0; c < TT_LIVE_NCH; c++)
+        for (int r = 0; r < 2; r++)
+            free(f->rows[c][r]);
+    free(f->row_version);
+    free(f->row_tier);
+    free(f->line_buf);
+    memset(f, 0, sizeof *f);
+}
+
+/* The scan of scene p and the page's empty images of it (the channels it records of
+ * height, error and phase). */
+static int fresh_alloc(fresh *f, const tt_scene *scene, const tt_scan_params *p)
+{
+    static const char *const names[TT_LIVE_NCH] = {"height", "error", "phase"};
+    memset(f, 0, sizeof *f);
+    int rc = tt_scene_locate(scene, tt_scan_alloc(&f->scan, p));
+    if (rc)
+        return rc;
+    const tt_scan *s = f->scan;
+    long px = tt_scan_fast_y(s) ? tt_scan_yres(s) : tt_scan_xres(s), nl = tt_scan_lines(s);
+    size_t n = (size_t)px * (size_t)nl;
+    f->row_version = calloc((size_t)nl, sizeof *f->row_version);
+    f->row_tier = calloc((size_t)nl, 1);
+    f->line_buf = malloc((size_t)px * sizeof(double));
+    if (!f->row_version || !f->row_tier || !f->line_buf)
+        rc = tt_error_nomem("the console's image, %ld lines of %ld pixels", nl, px);
+    for (int c = 0; c < TT_LIVE_NCH && !rc; c++) {
+        int k = channel_by_name(names[c]);
+        f->ch_index[c] = k >= 0 && tt_scan_image(s, k, 0) ? k : -1;
+        for (int r = 0; r < 2 && f->ch_index[c] >= 0 && !rc; r++) {
+            if (!(f->rows[c][r] = malloc(n * sizeof(double))))
+                rc = tt_error_nomem("the console's image, %ld x %ld pixels", px, nl);
+            for (size_t i = 0; i < n && !rc; i++)
+                f->rows[c][r][i] = NAN;
+        }
+    }
+    if (rc)
+        fresh_free(f);
+    return rc;
+}
+
+/* The published frame of the running scan (f's, made for it): its raster, channels and
+ * empty rows; f is left empty. */
+static void frame_publish(tt_live_engine *e, fresh *f)
 {
     static const char *const names[TT_LIVE_NCH] = {"height", "error", "phase"};
     const tt_scan *s = e->scan;
-    long px = tt_scan_fast_y(s) ? tt_scan_yres(s) : tt_scan_xres(s), nl = tt_scan_lines(s);
-    size_t n = (size_t)px * (size_t)nl;
-    int rc = TT_OK;
     pthread_mutex_lock(&e->mu);
     frame_free(e);
     e->v.frame++;
-    e->v.pixels = px;
-    e->v.lines = nl;
+    e->v.pixels = tt_scan_fast_y(s) ? tt_scan_yres(s) : tt_scan_xres(s);
+    e->v.lines = tt_scan_lines(s);
     e->v.fast_y = tt_scan_fast_y(s);
     e->v.size_fast = e->v.fast_y ? tt_scan_size_y(s) : tt_scan_size_x(s);
     e->v.size_slow = e->v.fast_y ? tt_scan_size_x(s) : tt_scan_size_y(s);
     e->v.retrace = tt_scan_has_retrace(s);
-    e->row_version = calloc((size_t)nl, sizeof *e->row_version);
-    e->row_tier = calloc((size_t)nl, 1);
-    if (!e->row_version || !e->row_tier)
-        rc = tt_error_nomem("the console's image, %ld lines", nl);
+    e->row_version = f->row_version;
+    e->row_tier = f->row_tier;
     for (int c = 0; c < TT_LIVE_NCH; c++) {
-        int k = channel_by_name(names[c]);
-        e->ch_index[c] = k >= 0 && tt_scan_image(s, k, 0) ? k : -1;
-        e->v.channel_name[c] = e->ch_index[c] >= 0 ? names[c] : NULL;
-        e->v.channel_unit[c] = e->ch_index[c] >= 0 ? tt_scan_channel_unit(k) : NULL;
-        e->v.channel_file[c] = e->ch_index[c] >= 0 ? tt_scan_channel_name(k) : NULL;
-        for (int r = 0; r < 2 && e->ch_index[c] >= 0 && !rc; r++) {
-            if (!(e->rows[c][r] = malloc(n * sizeof(double)))) {
-                rc = tt_error_nomem("the console's image, %ld x %ld pixels", px, nl);
-                break;
-            }
-            for (size_t i = 0; i < n; i++)
-                e->rows[c][r][i] = NAN;
-            e->v.rows[c][r] = e->rows[c][r];
-        }
+        int k = e->ch_index[c] = f->ch_index[c];
+        e->v.channel_name[c] = k >= 0 ? names[c] : NULL;
+        e->v.channel_unit[c] = k >= 0 ? tt_scan_channel_unit(k) : NULL;
+        e->v.channel_file[c] = k >= 0 ? tt_scan_channel_name(k) : NULL;
+        for (int r = 0; r < 2; r++)
+            e->v.rows[c][r] = e->rows[c][r] = f->rows[c][r];
     }
     e->v.row_version = e->row_version;
     e->v.row_tier = e->row_tier;
@@ -137,16 +189,16 @@ static int frame_publish(tt_live_engine *e)
     e->v.passes = 0;
     e->v.first_line_as_set = 0;
     e->v.reproducible = 0;
+    e->v.note[0] = '\0';
     e->clean_pass = 0;
     e->v.tier = (int)e->params.solver.tier;
     e->v.frame_version = ++e->v.version;
     e->v.status_version = e->v.version;
     pthread_mutex_unlock(&e->mu);
     free(e->line_buf);
-    e->line_buf = rc ? NULL : malloc((size_t)px * sizeof(double));
-    if (!rc && !e->line_buf)
-        rc = tt_error_nomem("the console's line, %ld pixels", px);
-    return rc;
+    e->line_buf = f->line_buf;
+    f->scan = NULL; /* the engine's now */
+    memset(f, 0, sizeof *f);
 }
 
 /* The averaged tier's twin of a scan on a slower tier, for the preview lines; NULL
@@ -184,56 +236,47 @@ static int apply_live(tt_scan *s, const tt_scan_params *p)
 static void note(tt_live_engine *e, const char *what)
 {
     pthread_mutex_lock(&e->mu);
-    snprintf(e->v.note, sizeof e->v.note, "%.*s", (int)sizeof e->v.note - 1, what);
+    tt_live_text(e->v.note, sizeof e->v.note, what);
     e->v.status_version = ++e->v.version;
     pthread_mutex_unlock(&e->mu);
     e->wake(e->user);
 }
 
-/* Take up a submitted scene: on the running scan where it can, else as a new scan and
- * frame; a scene the scan refuses leaves the running one (and the message says so).
- * Returns 1 when something changed (the next line is previewed). */
-static int take_change(tt_live_engine *e, tt_scene *scene, tt_scan_params *p, int restart)
+/* Take up a submitted scene: on the running scan where it can (its setters), else as
+ * f's new scan and frame. It cannot fail: whatever it needs was made when it was
+ * submitted. */
+static void take_change(tt_live_engine *e, tt_scene *scene, tt_scan_params *p, int restart, fresh *f)
 {
-    /* the console says which of its knobs need a new scan (controls.h) */
-    int fresh = restart || !e->scan;
-    if (!fresh && apply_live(e->scan, p))
-        fresh = 1;
-    if (fresh) {
-        tt_scan *s = NULL;
-        int rc = tt_scene_locate(scene, tt_scan_alloc(&s, p));
-        if (rc) {
-            char why[600];
-            snprintf(why, sizeof why, "refused: %s", tt_error_message());
-            note(e, why);
-            tt_scene_free(scene);
-            tt_config_scan_free(p);
-            return 0;
-        }
+    /* the console says which of its knobs need a new scan (controls.h); a setter that
+     * refuses leaves the running scan half set: replaced too */
+    int use_fresh = restart || !e->scan || apply_live(e->scan, p);
+    if (use_fresh) {
         tt_scan_free(e->scan);
-        e->scan = s;
+        e->scan = f->scan;
+        f->scan = NULL;
     }
     tt_scene_free(e->scene);
     if (e->scene)
         tt_config_scan_free(&e->params);
     e->scene = scene;
     e->params = *p;
-    if (fresh && frame_publish(e)) {
-        note(e, tt_error_message());
-        return 0;
+    pthread_mutex_lock(&e->mu);
+    e->rate = p->raster.line_rate;
+    pthread_mutex_unlock(&e->mu);
+    if (use_fresh) {
+        frame_publish(e, f);
+        return;
     }
-    if (!fresh) {
-        pthread_mutex_lock(&e->mu);
-        e->v.first_line_as_set = e->v.line;
-        e->v.reproducible = 0;
-        /* continuous lines carry the old settings' state into the new: only a pass that
-         * starts afresh at line 0 is what tiptap scan gives for the new scene */
-        e->clean_pass = e->v.line == 0 ? e->v.passes : e->v.passes + 1;
-        e->v.note[0] = '\0';
-        e->v.status_version = ++e->v.version;
-        pthread_mutex_unlock(&e->mu);
-    }
-    return 1;
+    fresh_free(f);
+    pthread_mutex_lock(&e->mu);
+    e->v.first_line_as_set = e->v.line;
+    e->v.reproducible = 0;
+    /* continuous lines carry the old settings' state into the new: only a pass that
+     * starts afresh at line 0 is what tiptap scan gives for the new scene */
+    e->clean_pass = e->v.line == 0 ? e->v.passes : e->v.passes + 1;
+    e->v.note[0] = '\0';
+    e->v.status_version = ++e->v.version;
+    pthread_mutex_unlock(&e->mu);
 }
 
 /* A scope record, decimated for a screen, into the view (under mu). */
@@ -385,7 +428,7 @@ static void do_export(tt_live_engine *e)
     snprintf(old, sizeof old, "%s", e->export_dir);
     snprintf(e->export_dir, sizeof e->export_dir, "%s", dir);
     e->export_status = rc;
-    snprintf(e->export_why, sizeof e->export_why, "%s", rc ? tt_error_message() : "");
+    tt_live_text(e->export_why, sizeof e->export_why, rc ? tt_error_message() : "");
     e->export_done = want;
     pthread_mutex_unlock(&e->mu);
     if (old[0])
@@ -415,32 +458,46 @@ static void *engine_main(void *arg)
 {
     tt_live_engine *e = arg;
     double changed_at = 0;
+    /* a change that abandons the line under way interrupts it as Ctrl-C would */
+    tt_cancel_watch(&e->abandon);
     for (;;) {
         pthread_mutex_lock(&e->mu);
         int stop = e->stop, have = e->have_next, restart = e->next_restart;
         tt_scene *scene = e->next_scene;
         tt_scan_params p = e->next_params;
+        fresh f = e->next_fresh;
         double at = e->next_at;
         e->have_next = 0;
         e->next_scene = NULL;
+        memset(&e->next_fresh, 0, sizeof e->next_fresh);
+        if (have)
+            __atomic_store_n(&e->abandon, 0, __ATOMIC_RELAXED);
         pthread_mutex_unlock(&e->mu);
         if (stop) {
             if (have) {
                 tt_scene_free(scene);
                 tt_config_scan_free(&p);
+                fresh_free(&f);
             }
             break;
         }
         /* an export asked for before the change shows the image and scene it was asked of */
         do_export(e);
-        if (have && take_change(e, scene, &p, restart))
+        if (have) {
+            take_change(e, scene, &p, restart, &f);
             changed_at = at;
+        }
         if (!e->scan || !e->line_buf) {
             pace(e, tt_clock(TT_CLOCK_WALL) + 1);
             continue;
         }
         double t0 = tt_clock(TT_CLOCK_WALL);
         int rc = run_line(e, e->v.line, changed_at);
+        if (rc == TT_EINTR && __atomic_load_n(&e->abandon, __ATOMIC_RELAXED)) {
+            /* abandoned for a change: that line again, engaged afresh, at once */
+            tt_scan_disengage(e->scan);
+            continue;
+        }
         if (rc == TT_EINTR)
             break;
         if (rc)
@@ -459,7 +516,9 @@ static void *engine_main(void *arg)
 static void preview_line(tt_live_engine *e, unsigned long change, double at)
 {
     pthread_mutex_lock(&e->mu);
-    long line = e->running ? (e->v.line + 1) % e->v.lines : e->v.line, frame = e->v.frame;
+    /* a line abandoned for the change runs again: it is the next */
+    int next = e->running && !__atomic_load_n(&e->abandon, __ATOMIC_RELAXED);
+    long line = next ? (e->v.line + 1) % e->v.lines : e->v.line, frame = e->v.frame;
     int fits = e->v.pixels == e->ppixels && e->v.lines == tt_scan_lines(e->pscan);
     pthread_mutex_unlock(&e->mu);
     if (!fits)
@@ -480,10 +539,13 @@ static void preview_line(tt_live_engine *e, unsigned long change, double at)
 static void *preview_main(void *arg)
 {
     tt_live_engine *e = arg;
+    /* a newer change abandons the preview line under way */
+    tt_cancel_watch(&e->pabandon);
     for (;;) {
         pthread_mutex_lock(&e->mu);
         while (!e->stop && e->pwant == e->pdone)
             pthread_cond_wait(&e->cv, &e->mu);
+        __atomic_store_n(&e->pabandon, 0, __ATOMIC_RELAXED);
         if (e->stop) {
             pthread_mutex_unlock(&e->mu);
             break;
@@ -537,9 +599,10 @@ int tt_live_engine_alloc(tt_live_engine **out, tt_scene *scene, tt_scan_params *
         e->prestart = 1;
         e->pwant = 1;
     }
-    if (!rc && !take_change(e, scene, p, 1))
-        rc = tt_error(TT_EINVAL, "%s", e->v.note);
-    else if (rc) {
+    fresh f;
+    if (!rc && !(rc = fresh_alloc(&f, scene, p))) {
+        take_change(e, scene, p, 1, &f);
+    } else {
         tt_scene_free(scene);
         tt_config_scan_free(p);
     }
@@ -586,6 +649,7 @@ void tt_live_engine_free(tt_live_engine *e)
     if (e->have_next) {
         tt_scene_free(e->next_scene);
         tt_config_scan_free(&e->next_params);
+        fresh_free(&e->next_fresh);
     }
     if (e->export_dir[0])
         remove_folder(e->export_dir);
@@ -605,19 +669,34 @@ void tt_live_engine_free(tt_live_engine *e)
     free(e);
 }
 
-void tt_live_engine_submit(tt_live_engine *e, tt_scene *scene, tt_scan_params *p, int restart)
+int tt_live_engine_submit(tt_live_engine *e, tt_scene *scene, tt_scan_params *p, int restart)
 {
+    fresh f, old = {0};
+    int rc = fresh_alloc(&f, scene, p);
+    if (rc) {
+        tt_scene_free(scene);
+        tt_config_scan_free(p);
+        return rc;
+    }
+    tt_scene *old_scene = NULL;
+    tt_scan_params old_params;
     pthread_mutex_lock(&e->mu);
     if (e->have_next) {
-        tt_scene_free(e->next_scene);
-        tt_config_scan_free(&e->next_params);
+        old_scene = e->next_scene;
+        old_params = e->next_params;
+        old = e->next_fresh;
         restart |= e->next_restart;
     }
     e->next_scene = scene;
     e->next_params = *p;
+    e->next_fresh = f;
     e->next_restart = restart;
     e->have_next = 1;
     e->next_at = tt_clock(TT_CLOCK_WALL);
+    /* a new frame or line rate makes the line under way meaningless: abandoned */
+    if (restart || p->raster.line_rate != e->rate)
+        __atomic_store_n(&e->abandon, 1, __ATOMIC_RELAXED);
+    __atomic_store_n(&e->pabandon, 1, __ATOMIC_RELAXED);
     /* the preview thread's own copy (the materials are plain values) */
     tt_material *m = malloc((p->nmaterials ? p->nmaterials : 1) * sizeof *m);
     if (m) {
@@ -636,6 +715,13 @@ void tt_live_engine_submit(tt_live_engine *e, tt_scene *scene, tt_scan_params *p
     e->pchange = e->v.version;
     pthread_cond_broadcast(&e->cv);
     pthread_mutex_unlock(&e->mu);
+    /* the change it replaced, freed outside the lock (its images may be large) */
+    if (old_scene) {
+        tt_scene_free(old_scene);
+        tt_config_scan_free(&old_params);
+        fresh_free(&old);
+    }
+    return TT_OK;
 }
 
 void tt_live_engine_set_writer(tt_live_engine *e,

@@ -36,6 +36,23 @@ void tt_live_buf_printf(tt_live_buf *b, const char *fmt, ...)
 void tt_live_buf_free(tt_live_buf *b);
 char *tt_live_buf_text(tt_live_buf *b);
 
+/* Text the server sends is UTF-8, always (a browser drops a WebSocket whose text frame is
+ * not): tt_live_utf8_char is the one decoder, the length of the well-formed character at
+ * s (at most n bytes), 0 where the bytes are not one (a stray, overlong or surrogate
+ * byte, or a character cut short). tt_live_utf8_valid: all n bytes are characters.
+ * tt_live_utf8_fit: the longest prefix of at most n bytes that does not end inside a
+ * character (a cut on a character's boundary). tt_live_text: src copied into dst (cap
+ * bytes, NUL-ended), cut on a boundary, each byte that is not part of a character as '?'. */
+size_t tt_live_utf8_char(const char *s, size_t n);
+int tt_live_utf8_valid(const char *s, size_t n);
+size_t tt_live_utf8_fit(const char *s, size_t n);
+void tt_live_text(char *dst, size_t cap, const char *src);
+
+/* A request's Host (is_origin 0) or Origin (1) names this server on `port`: the host
+ * 127.0.0.1, localhost or [::1], with the port, or without it where port is HTTP's
+ * default 80; an Origin is "http://" and that, nothing after. */
+int tt_live_authority_ok(const char *text, int is_origin, int port);
+
 /* The messages (each one JSON object). */
 void tt_live_msg_controls(tt_live_buf *b, const tt_live_controls *c);
 void tt_live_msg_frame(tt_live_buf *b, const tt_live_view *v);

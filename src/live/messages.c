@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 void tt_live_buf_reset(tt_live_buf *b)
 {
@@ -56,18 +57,118 @@ void tt_live_buf_free(tt_live_buf *b)
 
 char *tt_live_buf_text(tt_live_buf *b) { return b->mem ? (char *)b->mem + b->pre : NULL; }
 
-/* A JSON string: quotes, backslashes and control characters escaped. */
+size_t tt_live_utf8_char(const char *s, size_t n)
+{
+    const unsigned char *u = (const unsigned char *)s;
+    if (n == 0)
+        return 0;
+    if (u[0] < 0x80)
+        return 1;
+    /* RFC 3629: the lead byte gives the length and the second byte's range (no
+     * overlong forms, no surrogates, nothing past U+10FFFF) */
+    size_t len;
+    unsigned char lo = 0x80, hi = 0xBF;
+    if (u[0] >= 0xC2 && u[0] <= 0xDF)
+        len = 2;
+    else if (u[0] >= 0xE0 && u[0] <= 0xEF) {
+        len = 3;
+        lo = u[0] == 0xE0 ? 0xA0 : 0x80;
+        hi = u[0] == 0xED ? 0x9F : 0xBF;
+    } else if (u[0] >= 0xF0 && u[0] <= 0xF4) {
+        len = 4;
+        lo = u[0] == 0xF0 ? 0x90 : 0x80;
+        hi = u[0] == 0xF4 ? 0x8F : 0xBF;
+    } else
+        return 0;
+    if (n < len || u[1] < lo || u[1] > hi)
+        return 0;
+    for (size_t i = 2; i < len; i++)
+        if (u[i] < 0x80 || u[i] > 0xBF)
+            return 0;
+    return len;
+}
+
+int tt_live_utf8_valid(const char *s, size_t n)
+{
+    for (size_t i = 0, k; i < n; i += k)
+        if (!(k = tt_live_utf8_char(s + i, n - i)))
+            return 0;
+    return 1;
+}
+
+size_t tt_live_utf8_fit(const char *s, size_t n)
+{
+    const unsigned char *u = (const unsigned char *)s;
+    size_t j = n;
+    while (j > 0 && n - j < 3 && (u[j - 1] & 0xC0) == 0x80)
+        j--;
+    if (j == 0 || u[j - 1] < 0xC0)
+        return n;
+    size_t want = u[j - 1] >= 0xF0 ? 4 : u[j - 1] >= 0xE0 ? 3 : 2;
+    return n - (j - 1) < want ? j - 1 : n;
+}
+
+void tt_live_text(char *dst, size_t cap, const char *src)
+{
+    size_t used = 0, n = src ? tt_live_utf8_fit(src, strlen(src)) : 0;
+    for (size_t i = 0; i < n && cap > 0;) {
+        size_t k = tt_live_utf8_char(src + i, n - i);
+        if (used + (k ? k : 1) >= cap)
+            break;
+        if (k)
+            memcpy(dst + used, src + i, k);
+        else
+            dst[used] = '?';
+        used += k ? k : 1;
+        i += k ? k : 1;
+    }
+    if (cap > 0)
+        dst[used] = '\0';
+}
+
+int tt_live_authority_ok(const char *t, int is_origin, int port)
+{
+    static const char *const hosts[] = {"127.0.0.1", "localhost", "[::1]"};
+    if (is_origin) {
+        if (strncmp(t, "http://", 7) != 0)
+            return 0;
+        t += 7;
+    }
+    for (size_t i = 0; i < sizeof hosts / sizeof hosts[0]; i++) {
+        size_t n = strlen(hosts[i]);
+        if (strncasecmp(t, hosts[i], n) != 0)
+            continue;
+        const char *r = t + n;
+        if (*r == '\0')
+            return port == 80; /* no port: the scheme's own */
+        if (*r++ != ':')
+            continue;
+        long v = 0;
+        size_t d = 0;
+        for (; r[d] >= '0' && r[d] <= '9' && d < 6; d++)
+            v = 10 * v + (r[d] - '0');
+        return d > 0 && d < 6 && r[d] == '\0' && v == port;
+    }
+    return 0;
+}
+
+/* A JSON string: quotes, backslashes and control characters escaped, and any byte that is
+ * not part of a UTF-8 character sent as U+FFFD (the one gate every text sent passes). */
 static void str(tt_live_buf *b, const char *s)
 {
+    size_t n = s ? strlen(s) : 0;
     tt_live_buf_printf(b, "\"");
-    for (; s && *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
+    for (size_t i = 0, k; i < n; i += k ? k : 1) {
+        unsigned char c = (unsigned char)s[i];
+        k = tt_live_utf8_char(s + i, n - i);
+        if (!k)
+            tt_live_buf_printf(b, "\\ufffd");
+        else if (c == '"' || c == '\\')
             tt_live_buf_printf(b, "\\%c", c);
         else if (c < 0x20)
             tt_live_buf_printf(b, "\\u%04x", c);
         else
-            tt_live_buf_printf(b, "%c", c);
+            tt_live_buf_printf(b, "%.*s", (int)k, s + i);
     }
     tt_live_buf_printf(b, "\"");
 }

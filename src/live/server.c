@@ -23,8 +23,10 @@ enum {
     RX_MAX = 16384,         /* bytes of one message from a page */
     RATE = 20, BURST = 40,  /* messages a second from one page, and its burst */
     OUT_MAX = 64 << 20,     /* the largest message sent (a row of 16384 pixels is ~1 MB) */
-    EXPORT_MAX = 1 << 30,   /* the largest exported file served */
-    EXPORT_WAIT_S = 300     /* how long an export may wait for the line under way */
+    EXPORT_WAIT_S = 300,    /* how long an export may wait for the line under way */
+    CONN_MAX = 64,          /* connections at once, pages and requests (a browser opens 6
+                             * a host; more wait in the kernel's backlog) */
+    CHUNK = 16384           /* bytes of a file sent at a time: all a request holds */
 };
 
 typedef struct pss pss;
@@ -32,12 +34,11 @@ struct pss {
     struct lws *wsi;
     pss *next;
     int ws;
-    /* HTTP */
+    /* HTTP: a body from memory (the page) or streamed from a file (an export) */
     const unsigned char *body;
-    unsigned char *owned;
+    FILE *file;
     size_t len, pos;
-    const char *mime;
-    int headers, waiting;
+    int headers, waiting, head;
     unsigned long export_id;
     char export_name[128];
     /* WebSocket: what it has seen */
@@ -92,37 +93,28 @@ static void unlink_pss(server *s, pss *p)
             *q = p->next;
             break;
         }
-    free(p->owned);
+    if (p->file)
+        fclose(p->file);
     free(p->rx);
-    p->owned = NULL;
+    p->file = NULL;
     p->rx = NULL;
 }
 
-/* The Origin (when a browser sends one) and the Host must be this server's: another
- * web page open in the same browser may not drive the instrument. */
+/* The Host, and the Origin where a browser sends one, must be this server's: another web
+ * page open in the same browser may not drive the instrument nor read it, and a name that
+ * resolves to 127.0.0.1 (DNS rebinding) is not this server's. Every request passes here,
+ * a page's as a WebSocket's. */
 static int trusted(struct lws *wsi, int port)
 {
-    char h[256], want[3][64];
-    snprintf(want[0], sizeof want[0], "127.0.0.1:%d", port);
-    snprintf(want[1], sizeof want[1], "localhost:%d", port);
-    snprintf(want[2], sizeof want[2], "[::1]:%d", port);
-    int ok = 0;
-    if (lws_hdr_copy(wsi, h, sizeof h, WSI_TOKEN_HOST) > 0)
-        for (int i = 0; i < 3; i++)
-            ok |= strcmp(h, want[i]) == 0;
-    if (!ok)
+    char h[256];
+    int n = lws_hdr_total_length(wsi, WSI_TOKEN_HOST);
+    if (n <= 0 || n >= (int)sizeof h || lws_hdr_copy(wsi, h, sizeof h, WSI_TOKEN_HOST) <= 0 ||
+        !tt_live_authority_ok(h, 0, port))
         return 0;
-    if (lws_hdr_total_length(wsi, WSI_TOKEN_ORIGIN) <= 0)
-        return 1; /* not a browser */
-    if (lws_hdr_copy(wsi, h, sizeof h, WSI_TOKEN_ORIGIN) <= 0)
-        return 0;
-    for (int i = 0; i < 3; i++) {
-        char o[256];
-        snprintf(o, sizeof o, "http://%s", want[i]);
-        if (strcmp(h, o) == 0)
-            return 1;
-    }
-    return 0;
+    if ((n = lws_hdr_total_length(wsi, WSI_TOKEN_ORIGIN)) <= 0)
+        return 1; /* not a browser, or a browser's plain navigation */
+    return n < (int)sizeof h && lws_hdr_copy(wsi, h, sizeof h, WSI_TOKEN_ORIGIN) > 0 &&
+           tt_live_authority_ok(h, 1, port);
 }
 
 /* One message to a page: the buffer's text as a WebSocket text frame. */
@@ -187,12 +179,19 @@ static void reply(pss *p, int ok, const char *why)
 {
     p->have_reply = 1;
     p->reply_ok = ok;
-    snprintf(p->reply, sizeof p->reply, "%s", why);
+    tt_live_text(p->reply, sizeof p->reply, why);
     lws_callback_on_writable(p->wsi);
 }
 
-/* A whole message from a page: checked by the controls; an accepted change goes to the
- * engine with its scene. */
+/* A checked change to the engine, which makes its scan now or refuses it. */
+static int take(void *user, tt_scene *scene, tt_scan_params *p, int restart)
+{
+    server *s = user;
+    return tt_live_engine_submit(s->engine, scene, p, restart);
+}
+
+/* A whole message from a page: checked by the controls, taken by the engine, or
+ * refused with nothing changed. */
 static void ws_message(server *s, pss *p)
 {
     double t = tt_clock(TT_CLOCK_WALL);
@@ -216,17 +215,10 @@ static void ws_message(server *s, pss *p)
         return;
     }
     tt_live_change ch;
-    if (tt_live_controls_apply(s->controls, p->rx, p->rxlen, &ch)) {
+    if (tt_live_controls_apply(s->controls, p->rx, p->rxlen, &ch, take, s)) {
         reply(p, 0, ch.why);
         return;
     }
-    tt_scene *scene = NULL;
-    tt_scan_params prm;
-    if (tt_live_controls_scene(s->controls, &scene, &prm)) {
-        reply(p, 0, tt_error_message());
-        return;
-    }
-    tt_live_engine_submit(s->engine, scene, &prm, ch.restart);
     s->controls_version++;
     reply(p, 1, "");
     wake_all(s);
@@ -276,7 +268,7 @@ static int export_name_ok(const char *name)
 }
 
 static int http_headers(struct lws *wsi, unsigned code, const char *mime, size_t len,
-                        const char *disposition)
+                        const char *disposition, const char *allow)
 {
     unsigned char buf[LWS_PRE + 1024], *start = buf + LWS_PRE, *p = start, *end = buf + sizeof buf - 1;
     if (lws_add_http_common_headers(wsi, code, mime, (lws_filepos_t)len, &p, end))
@@ -289,11 +281,39 @@ static int http_headers(struct lws *wsi, unsigned code, const char *mime, size_t
                                     (const unsigned char *)disposition, (int)strlen(disposition),
                                     &p, end))
         return -1;
+    if (allow && lws_add_http_header_by_name(wsi, (const unsigned char *)"allow:",
+                                             (const unsigned char *)allow, (int)strlen(allow), &p, end))
+        return -1;
     return lws_finalize_write_http_header(wsi, start, &p, end) ? -1 : 0;
+}
+
+/* A reply whose body is in memory (static: the page's files, or a line of text), sent
+ * from the writeable callback; a HEAD request's without its body. */
+static int http_send(pss *p, unsigned code, const char *mime, const void *body, size_t len,
+                     const char *allow)
+{
+    p->body = body;
+    p->len = len;
+    p->pos = 0;
+    if (http_headers(p->wsi, code, mime, len, NULL, allow))
+        return -1;
+    p->headers = 1;
+    lws_callback_on_writable(p->wsi);
+    return 0;
 }
 
 static int http_request(server *s, pss *p, const char *uri)
 {
+    static const char forbidden[] = "not this server's Host or Origin\n",
+                      not_allowed[] = "only GET and HEAD\n";
+    char *u;
+    int ul, method = lws_http_get_uri_and_method(p->wsi, &u, &ul);
+    p->head = method == LWSHUMETH_HEAD;
+    if (!trusted(p->wsi, s->port))
+        return http_send(p, HTTP_STATUS_FORBIDDEN, "text/plain", forbidden, sizeof forbidden - 1, NULL);
+    if (method != LWSHUMETH_GET && method != LWSHUMETH_HEAD)
+        return http_send(p, HTTP_STATUS_METHOD_NOT_ALLOWED, "text/plain", not_allowed,
+                         sizeof not_allowed - 1, "GET, HEAD");
     if (strncmp(uri, "/export/", 8) == 0) {
         if (!export_name_ok(uri + 8))
             return lws_return_http_status(p->wsi, HTTP_STATUS_NOT_FOUND, "no such export") ? -1 : 0;
@@ -307,55 +327,46 @@ static int http_request(server *s, pss *p, const char *uri)
     const tt_live_asset *a = find_asset(uri);
     if (!a)
         return lws_return_http_status(p->wsi, HTTP_STATUS_NOT_FOUND, NULL) ? -1 : 0;
-    p->body = a->data;
-    p->len = a->len;
-    p->pos = 0;
-    if (http_headers(p->wsi, HTTP_STATUS_OK, a->mime, a->len, NULL))
-        return -1;
-    p->headers = 1;
-    lws_callback_on_writable(p->wsi);
-    return 0;
+    return http_send(p, HTTP_STATUS_OK, a->mime, a->data, a->len, NULL);
 }
 
-/* The export asked for, once written: read whole, then served. */
+/* The export asked for, once written: opened (the engine may remove the folder once it
+ * writes the next; the open file stays readable) and streamed a chunk at a time, so that
+ * a request holds a chunk's memory whatever the file's size. */
 static int http_export(server *s, pss *p)
 {
     const char *dir, *why;
     int status;
-    char path[4400], disp[200];
+    char path[4400], disp[200], msg[600];
     tt_live_engine_lock(s->engine);
     unsigned long done = tt_live_engine_exported(s->engine, &dir, &status, &why);
     if (done < p->export_id) {
         tt_live_engine_unlock(s->engine);
         return 0;
     }
-    snprintf(path, sizeof path, "%s/%s", dir ? dir : "", p->export_name);
     int bad = status != TT_OK || !dir;
-    char msg[600];
-    snprintf(msg, sizeof msg, "%s", bad ? why : "");
+    tt_live_text(msg, sizeof msg, bad ? why : "");
+    snprintf(path, sizeof path, "%s/%s", dir ? dir : "", p->export_name);
     FILE *f = bad ? NULL : fopen(path, "rb");
-    struct stat st;
-    if (f && fstat(fileno(f), &st) == 0 && st.st_size <= EXPORT_MAX &&
-        (p->owned = malloc((size_t)st.st_size + 1)) &&
-        fread(p->owned, 1, (size_t)st.st_size, f) == (size_t)st.st_size)
-        p->len = (size_t)st.st_size;
-    else if (!bad)
-        snprintf(msg, sizeof msg, "%s: not written by this scan", p->export_name);
-    if (f)
-        fclose(f);
     tt_live_engine_unlock(s->engine);
+    struct stat st;
+    if (f && fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode)) {
+        p->file = f;
+        p->len = (size_t)st.st_size;
+    } else {
+        if (f)
+            fclose(f);
+        if (!bad)
+            snprintf(msg, sizeof msg, "%s: not written by this scan", p->export_name);
+    }
     p->waiting = 0;
     lws_set_timeout(p->wsi, NO_PENDING_TIMEOUT, 0);
-    if (!p->owned || msg[0]) {
-        free(p->owned);
-        p->owned = NULL;
+    if (!p->file)
         return lws_return_http_status(p->wsi, HTTP_STATUS_NOT_FOUND, msg) ? -1 : 0;
-    }
-    p->body = p->owned;
     p->pos = 0;
     snprintf(disp, sizeof disp, "attachment; filename=\"%s\"", p->export_name);
     const char *mime = strstr(p->export_name, ".ini") ? "text/plain" : "application/octet-stream";
-    if (http_headers(p->wsi, HTTP_STATUS_OK, mime, p->len, disp))
+    if (http_headers(p->wsi, HTTP_STATUS_OK, mime, p->len, disp, NULL))
         return -1;
     p->headers = 1;
     lws_callback_on_writable(p->wsi);
@@ -368,16 +379,20 @@ static int http_writeable(server *s, pss *p)
         return http_export(s, p);
     if (!p->headers)
         return 0;
-    unsigned char buf[LWS_PRE + 16384];
-    size_t n = p->len - p->pos < 16384 ? p->len - p->pos : 16384;
-    memcpy(buf + LWS_PRE, p->body + p->pos, n);
+    unsigned char buf[LWS_PRE + CHUNK];
+    size_t n = p->head ? 0 : p->len - p->pos < CHUNK ? p->len - p->pos : CHUNK;
+    if (n && p->file && fread(buf + LWS_PRE, 1, n, p->file) != n)
+        return -1; /* the file shrank: the reply cannot be completed */
+    if (n && !p->file)
+        memcpy(buf + LWS_PRE, p->body + p->pos, n);
     p->pos += n;
-    int final = p->pos >= p->len;
-    if (lws_write(p->wsi, buf + LWS_PRE, n, final ? LWS_WRITE_HTTP_FINAL : LWS_WRITE_HTTP) < (int)n)
+    int final = p->head || p->pos >= p->len;
+    if (!p->head && lws_write(p->wsi, buf + LWS_PRE, n, final ? LWS_WRITE_HTTP_FINAL : LWS_WRITE_HTTP) < (int)n)
         return -1;
     if (final) {
-        free(p->owned);
-        p->owned = NULL;
+        if (p->file)
+            fclose(p->file);
+        p->file = NULL;
         p->headers = 0;
         return lws_http_transaction_completed(p->wsi) ? -1 : 0;
     }
@@ -411,6 +426,8 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
             p->wsi = NULL;
         return 0;
     case LWS_CALLBACK_FILTER_PROTOCOL_CONNECTION:
+        /* refused here, it never counts as a page (ESTABLISHED counts, CLOSED of a page
+         * uncounts) */
         if (s->clients >= s->max_clients || !trusted(wsi, s->port))
             return 1;
         return 0;
@@ -434,7 +451,9 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
         return 0;
     case LWS_CALLBACK_CLOSED:
         unlink_pss(s, p);
-        s->clients--;
+        if (p->ws)
+            s->clients--;
+        p->ws = 0;
         return 0;
     default:
         return 0;
@@ -501,6 +520,9 @@ int tt_live_serve(tt_live_controls *c, const tt_live_options *o)
     info.options = LWS_SERVER_OPTION_DISABLE_IPV6;
     info.timeout_secs = 30;
     info.timeout_secs_ah_idle = EXPORT_WAIT_S; /* an export's request waits for a line */
+    /* the connections at once: lws accepts no more while its descriptors are taken (a
+     * few are its own: the listening socket, the cancel pipe) */
+    info.fd_limit_per_thread = CONN_MAX + 8;
     int rc = port_free(o->port);
     if (rc)
         return rc;

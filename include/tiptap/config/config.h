@@ -132,6 +132,8 @@ typedef struct {
     int upper_bound;      /* 1: cycles and seconds are the most it can take (settling) */
     double bytes;         /* memory held for the run (scan: images and previews) */
     double thread_bytes;  /* and per thread */
+    double scope_bytes;   /* a scan: one line's scope record (instrument/scan_scope.h), which
+                           * tiptap scan keeps of its profile line and tiptap live of each */
 } tt_estimate;
 
 double tt_config_cycle_seconds(const tt_cantilever *c, const tt_solver *s);

@@ -48,10 +48,15 @@ const tt_live_control *tt_live_control_table(size_t *count);
 typedef struct tt_live_controls tt_live_controls;
 
 /* files: the scene files (at least one), sets: "section.key=value" as --set; surfaces:
- * the folder of the bundled samples. Checks the scene as a change would: TT_EINVAL with
- * the layer's message when it fails. */
+ * the folder of the bundled samples; memory: the bytes the process may still take (the
+ * program's: /proc/meminfo's MemAvailable and its limits), asked at each check; NULL:
+ * no memory check. Checks the scene as a change would: TT_EINVAL with the layer's
+ * message when it fails. A scene whose scans, images and scope records (one point a
+ * lock-in block) the console could not hold in that memory is refused, naming
+ * [scan] line_rate or pixels. */
 int tt_live_controls_alloc(tt_live_controls **out, char *const *files, int nfiles,
-                           char *const *sets, int nsets, const char *surfaces);
+                           char *const *sets, int nsets, const char *surfaces,
+                           double (*memory)(void));
 void tt_live_controls_free(tt_live_controls *c);
 
 /* The outcome of a message. */
@@ -61,10 +66,17 @@ typedef struct {
     char why[512]; /* a refusal: one line ("" when accepted) */
 } tt_live_change;
 
-/* Apply a message (text, len bytes, not necessarily NUL-ended): every line or none.
- * TT_OK, or TT_EINVAL with ch->why set and the controls as they were. */
+/* Takes a checked change: the scene and its parameters (both handed over, whatever it
+ * returns) and whether it starts a new frame. TT_OK when the change took effect; else
+ * the error (tt_error) is the refusal. */
+typedef int (*tt_live_take_fn)(void *user, tt_scene *scene, tt_scan_params *p, int restart);
+
+/* Apply a message (text, len bytes, not necessarily NUL-ended, UTF-8): every line or
+ * none, at once: once the message passed every check it goes to take (NULL: none), and
+ * the controls show it only when take took it. TT_OK, or TT_EINVAL with ch->why set (one
+ * line, UTF-8) and the controls as they were. */
 int tt_live_controls_apply(tt_live_controls *c, const char *text, size_t len,
-                           tt_live_change *ch);
+                           tt_live_change *ch, tt_live_take_fn take, void *user);
 
 /* The accepted scene, built anew (the caller frees it), and its scan parameters when p
  * is not NULL (free them with tt_config_scan_free). */

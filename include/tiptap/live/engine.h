@@ -8,7 +8,8 @@
  *
  * A change from the console (tt_live_engine_submit) takes effect at the next line: the
  * gains, setpoint, line rate, free amplitude and noise on the running scan (its setters
- * in instrument/scan.h), anything else as a new scan and a new frame. When the scan is
+ * in instrument/scan.h), anything else as a new scan and a new frame, made by the
+ * submitter. A new frame or line rate abandons the line under way. When the scan is
  * on the envelope or every-cycle tier, the next line after a change runs first on the
  * averaged tier (a preview, published at once, tier "averaged") and then on the scan's
  * own tier, which replaces it; the averaged tier's preview has its own scan object, so
@@ -95,10 +96,15 @@ int tt_live_engine_alloc(tt_live_engine **out, tt_scene *scene, tt_scan_params *
                          void (*wake)(void *user), void *user);
 void tt_live_engine_free(tt_live_engine *e);
 
-/* A new scene and its parameters for the next line (both taken; an earlier one not yet
- * taken up is dropped: the latest wins). restart: a new frame even where the running scan
- * could take the change. */
-void tt_live_engine_submit(tt_live_engine *e, tt_scene *scene, tt_scan_params *p, int restart);
+/* A new scene and its parameters for the next line (both taken, whatever it returns; an
+ * earlier one not yet taken up is dropped: the latest wins). restart: a new frame even
+ * where the running scan could take the change. Everything the change may need (its scan
+ * of a new frame and the page's images of it) is made here, on the caller's thread:
+ * TT_OK when the change will take effect, else the error and nothing changes. A change
+ * that starts a new frame or changes the line rate abandons the line under way (within
+ * a drive cycle's work, as cancellation does: util/cancel.h); any change abandons the
+ * preview line under way. */
+int tt_live_engine_submit(tt_live_engine *e, tt_scene *scene, tt_scan_params *p, int restart);
 
 /* Exports: write(user, scan, scene, dir) writes the current scan's files into dir (as
  * tiptap scan does), on the engine's thread between two lines. tt_live_engine_export asks

@@ -11,9 +11,13 @@
  * it has seen of the frame, rows, scope and status, and is sent the newest of each as
  * its socket allows, so a slow one skips scopes and is sent each row once, at its
  * latest), at most 16 KiB a message from a client and 20 messages a second (a burst of
- * 40; the rest dropped with one reply saying how many), at most max_clients WebSockets.
- * A WebSocket is refused unless its Origin and Host are this server's (no other web page
- * may drive the instrument).
+ * 40; the rest dropped with one reply saying how many), at most max_clients WebSockets
+ * (counted from the accepted handshake to the close), at most 64 connections at once,
+ * exports streamed from their file 16 KiB at a time. Every request, plain or WebSocket,
+ * is refused (403) unless its Host, and its Origin where it has one, are this server's:
+ * 127.0.0.1, localhost or [::1] with the port, or without it on port 80 (no other web
+ * page may drive or read the instrument, nor a rebound name); only GET and HEAD are
+ * served (others 405). Every text sent is UTF-8.
  *
  * Ownership: tt_live_serve borrows the controls; it makes and frees the engine, and runs
  * until cancellation is requested (util/cancel.h), then closes every connection.

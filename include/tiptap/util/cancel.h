@@ -21,6 +21,11 @@ int tt_cancel_requested(void);
 /* The signal that requested cancellation, 0 when none did. */
 int tt_cancel_signal(void);
 void tt_cancel_reset(void);
+/* A cancellation of the calling thread's own: while *flag is non-zero (stored with
+ * __atomic_store_n, by any thread), tt_cancel_requested() answers 1 on this thread, so
+ * that its run stops at the next poll with TT_EINTR as on Ctrl-C, and the others run on
+ * (the live console abandons a line so). NULL: none. Returns the flag it replaces. */
+const int *tt_cancel_watch(const int *flag);
 
 TT_END_DECLS
 #endif
