@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "tiptap/run/run.h"
 #include "tiptap/instrument/approach.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
@@ -313,7 +314,7 @@ int cmd_approach(int argc, char **argv)
                         e.amplitude_rel, e.phase_deg, e.used, n,
                         rk4 ? "steps_per_cycle" : "tolerance",
                         rk4 ? (double)e.tight.steps_per_cycle : e.tight.tolerance);
-                cli_warn_estimate("approach", sv, A0, NAN, "amplitude", e.amplitude_rel, e.phase_deg);
+                tt_run_warn_estimate(sv, A0, NAN, "amplitude", e.amplitude_rel, e.phase_deg);
             }
         }
         if (p.mode == TT_APPROACH_STEADY && p.steady == TT_STEADY_SHOOTING)
@@ -321,10 +322,7 @@ int cmd_approach(int argc, char **argv)
         for (size_t i = 0; p.mode == TT_APPROACH_STEADY && i < n; i++)
             if (!pts[i].settled)
                 unsettled_why(&pts[i], p.max_cycles);
-        if (unsettled)
-            fprintf(stderr, "warning: %ld points did not settle within max_cycles = %ld "
-                            "(period doubling or chaos, or raise [approach] max_cycles)\n",
-                    unsettled, p.max_cycles);
+        tt_run_warn_unsettled(unsettled, p.max_cycles);
     }
 done:
     if (of)
