@@ -142,13 +142,14 @@ def scan(scene, *, set=None, threads=0, progress=None, error_estimate=False, hdf
     scope = ffi.gc(sp[0], lib.tt_scan_scope_free)
     # the profile line's full-rate record, where the loop's oscillation shows
     lib.tt_scan_scope_attach(s, lib.tt_scan_profile_line(s), scope)
+    # the warnings before the run, as the program gives them before its folder's checks
+    with col.installed():
+        lib.tt_run_scan_warn_inputs(scene._p, cost)
+    col.emit(stacklevel=2)
     if path is not None:
         from .hdf5 import check_output
 
         check_output(path, scene)
-    with col.installed():
-        lib.tt_run_scan_warn_inputs(scene._p, cost)
-    col.emit(stacklevel=2)
     prog = Progress(progress, "scan", "lines")
     status, message, interrupted = run(lambda: lib.tt_scan_run(s, int(threads), prog.c, ffi.NULL),
                                        prog, col)
