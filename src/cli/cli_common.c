@@ -9,7 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/file.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -334,8 +333,6 @@ double cli_now(void) { return tt_clock(TT_CLOCK_WALL); }
 const char *cli_duration(double s, char *buf, size_t len) { return tt_run_duration(s, buf, len); }
 
 const char *cli_bytes(double b, char *buf, size_t len) { return tt_run_bytes(b, buf, len); }
-
-double cli_memory_available(void) { return tt_run_memory_available(); }
 
 void cli_report_estimate(const char *cmd, double cycles, double seconds, int upper_bound,
                          int threads, double f0, double fd, int quiet)

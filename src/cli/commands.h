@@ -147,11 +147,6 @@ double cli_now(void);
 const char *cli_duration(double seconds, char *buf, size_t len);
 const char *cli_bytes(double bytes, char *buf, size_t len);
 
-/* Bytes this process can still allocate: the smaller of the memory available
- * (/proc/meminfo MemAvailable, else the physical memory) and its address-space and
- * data limits (ulimit -v, -d). */
-double cli_memory_available(void);
-
 /* The estimate of a run (cycles, time on threads threads) on stderr unless quiet, and
  * the warning of a run longer than a minute (tt_run_warn_duration), quiet or not. */
 void cli_report_estimate(const char *cmd, double cycles, double seconds, int upper_bound,
