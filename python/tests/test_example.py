@@ -31,3 +31,23 @@ def test_the_python_study_is_the_programs(tmp_path):
     # at 80 % of 40 nm the disks read about 2 nm low (docs/sweeps.md's table)
     j = abs(t["feedback.setpoint"][:18] - 0.8).argmin()
     assert -2.5e-9 < d["height"][0, j] < -1.5e-9
+
+
+def test_the_readme_says_what_the_example_does():
+    """examples/python/README.md: the command it gives is the script's, the files it
+    names are there, and its 80 % figure is the study's."""
+    import os
+    import re
+
+    with open(src("examples", "python", "README.md")) as f:
+        readme = f.read()
+    command = ("PYTHONPATH=python TIPTAP_LIBRARY=build/libtiptap.so /usr/bin/python3 "
+               "examples/python/material_contrast.py")
+    assert command in readme and command in material_contrast.__doc__
+    for name in re.findall(r"`([\w.-]+\.(?:py|ipynb))`", readme):
+        assert os.path.exists(src("examples", "python", name)) or \
+            os.path.exists(src("python", "tests", name)), name
+    low = float(re.search(r"at 80 % of 40 nm the disks read\s+([\d.]+) nm low", readme).group(1))
+    t, d = material_contrast.study(amplitudes="40nm", progress=False)
+    j = abs(t["feedback.setpoint"][:18] - 0.8).argmin()
+    assert round(-d["height"][0, j] * 1e9, 2) == low

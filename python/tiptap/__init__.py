@@ -4,6 +4,7 @@ results as numpy arrays with their units and metadata, progress and Ctrl-C.
     import tiptap
     r = tiptap.scan(["scans/quick.ini", "surfaces/polymer-blend.ini"], scan__pixels=32)
     r["height"], r.units["height"], r.meta["cantilever.free_amplitude"]
+    r.warnings  # [(category, message)], also raised as tiptap.TiptapWarning subclasses
 
 docs/python.md has the whole API.
 """
@@ -15,12 +16,16 @@ from .scan import ScanResult, channel_table, scan
 from .scene import Key, Scene, keys
 from .sweep import sweep
 from .tables import Table, accuracy, approach, contact, trace
+from ._warnings import (EstimateWarning, InputWarning, OscillationWarning, RunWarning,
+                        SettleWarning, SetpointWarning, TiptapWarning, ValidityWarning)
 
 __version__ = _text(_clib.tt_version())
 version = __version__
 
 __all__ = [
-    "CaptureError", "Interrupted", "Key", "NumericalError", "ScanResult", "Scene",
-    "SceneError", "Table", "TiptapError", "TiptapIOError", "TiptapMemoryError", "accuracy",
-    "approach", "channel_table", "contact", "keys", "scan", "sweep", "trace", "version",
+    "CaptureError", "EstimateWarning", "InputWarning", "Interrupted", "Key", "NumericalError",
+    "OscillationWarning", "RunWarning", "ScanResult", "Scene", "SceneError", "SettleWarning",
+    "SetpointWarning", "Table", "TiptapError", "TiptapIOError", "TiptapMemoryError",
+    "TiptapWarning", "ValidityWarning", "accuracy", "approach", "channel_table", "contact",
+    "keys", "scan", "sweep", "trace", "version",
 ]

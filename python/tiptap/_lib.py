@@ -29,6 +29,15 @@ void tt_free(void *p);
 const char *tt_version(void);
 int tt_version_number(void);
 
+/* util/warning.h */
+typedef void (*tt_warning_fn)(const char *category, const char *message, void *data);
+typedef struct {
+    tt_warning_fn fn;
+    void *data;
+} tt_warning_sink;
+tt_warning_sink tt_warning_push(tt_warning_fn fn, void *data);
+void tt_warning_pop(tt_warning_sink previous);
+
 /* config/units.h */
 typedef enum {
     TT_DIM_NONE = 1, TT_DIM_LENGTH = 2, TT_DIM_FREQUENCY = 4, TT_DIM_STIFFNESS = 8,
@@ -118,6 +127,12 @@ typedef struct {
 } tt_scan_error;
 int tt_scan_estimate_error(tt_scan *s, tt_scan_error *e);
 
+/* instrument/scan_scope.h */
+typedef struct tt_scan_scope tt_scan_scope;
+int tt_scan_scope_alloc(tt_scan_scope **out);
+void tt_scan_scope_free(tt_scan_scope *sc);
+void tt_scan_scope_attach(tt_scan *s, long line, tt_scan_scope *sc);
+
 /* util/table.h */
 typedef struct tt_table tt_table;
 void tt_table_free(tt_table *t);
@@ -186,6 +201,27 @@ int tt_run_contact_table(const tt_contact *c, const tt_contact_params *params, d
                          size_t n, double Amax, tt_table **out);
 int tt_run_accuracy(const tt_scene *s, const tt_accuracy_params *p, tt_table **out,
                     tt_progress_fn progress, void *user);
+typedef struct {
+    long pixels, lines;
+    int threads;
+    int upper_bound;
+    int envelope;
+    int averaged;
+    double cycles;
+    double seconds;
+    double seconds_low;
+    double integrated_low, integrated_high;
+    double bytes;
+    double available;
+    double f0, fd;
+} tt_run_scan_cost;
+int tt_run_scan_alloc(const tt_scene *s, int threads, tt_scan **out, tt_run_scan_cost *cost);
+int tt_run_scan_warn_inputs(const tt_scene *s, const tt_run_scan_cost *cost);
+int tt_run_scan_warn_result(const tt_scan *scan);
+int tt_run_scan_warn_oscillation(const tt_scan *scan, const tt_scan_scope *scope,
+                                 const char *files);
+int tt_run_scan_warn_error(const tt_scan *scan, const tt_run_scan_cost *cost,
+                           const tt_scan_error *e);
 
 /* config/sweep.h, run/sweep.h */
 typedef struct tt_sweep tt_sweep;

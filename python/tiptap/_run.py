@@ -11,6 +11,7 @@ thread, the run simply runs there.
 Cancellation is the library's, for the whole process: Ctrl-C stops every run under way.
 """
 
+import contextlib
 import threading
 
 from ._errors import Interrupted, error
@@ -20,7 +21,8 @@ from ._lib import ffi, lib, text
 class Progress:
     """The progress argument of a run, as the library's callback.
 
-    progress=None: a tqdm bar when tqdm can be imported, else nothing; False: nothing;
+    progress=None: a tqdm bar when tqdm can be imported (tqdm.auto: a widget in a
+    notebook, text in a terminal), else nothing; False: nothing;
     a callable: called as progress(done, total) after each unit of work (a line, a
     point, a combination), from the thread that finished it. An exception raised by the
     callable stops the run (as Ctrl-C does) and is raised again by the run.
@@ -33,7 +35,7 @@ class Progress:
         self.desc, self.unit = desc, unit
         if progress is None:
             try:
-                import tqdm
+                from tqdm import auto as tqdm
             except ImportError:
                 tqdm = None
             if tqdm is not None:
@@ -74,8 +76,9 @@ class Progress:
             self.bar.close()
 
 
-def run(call, progress=None):
-    """Run call() -> status (a library call) so that Ctrl-C stops it.
+def run(call, progress=None, collector=None):
+    """Run call() -> status (a library call) so that Ctrl-C stops it; the library's
+    warnings on the thread that makes it go to collector (tiptap._warnings.Collector).
 
     Returns (status, message, interrupted): message is the library's line for a failed
     status, read on the thread that made the call; interrupted says that Ctrl-C or the
@@ -88,7 +91,8 @@ def run(call, progress=None):
 
     def work():
         try:
-            status = call()
+            with collector.installed() if collector is not None else contextlib.nullcontext():
+                status = call()
             box["status"] = status
             box["message"] = text(lib.tt_error_message()) if status else ""
         except BaseException as e:  # noqa: B902: handed to the waiting thread

@@ -5,7 +5,8 @@ import numpy as np
 from ._errors import check
 from ._lib import ffi, lib, text
 from ._run import Progress, finish, run
-from .scene import Scene
+from ._warnings import Collector
+from .scene import Scene, c_bytes
 
 
 def channel_table():
@@ -43,7 +44,8 @@ class ScanResult:
     lines finished and every key of the effective scene, "section.key": "value unit").
     r.run: figures of the run (instrument time, cycles, the energy balance, ...).
     r.error: the error estimate's figures when it was asked for. r.scene: the effective
-    scene's text.
+    scene's text. r.warnings: the library's warnings about the run, a list of (category,
+    message) (also raised with warnings.warn; tiptap.TiptapWarning).
     """
 
     def __init__(self, scan_p, scene):
@@ -88,6 +90,7 @@ class ScanResult:
                           for i in range(lib.tt_scan_materials(scan_p))],
         }
         self.error = None
+        self.warnings = []
         self.scene = scene.text()
 
     def __getitem__(self, key):
@@ -111,36 +114,59 @@ def scan(scene, *, set=None, threads=0, progress=None, error_estimate=False, hdf
     """Closed-loop tapping image of a scene, as `tiptap scan` makes it.
 
     scene: a Scene, a scene file or a list of them (read in order); set / keywords:
-    keys overridden for this run only (Scene.set). threads: lines in parallel (0: all
-    cores; the images do not depend on it). progress: None (a tqdm bar when tqdm is
-    installed), False, or progress(done, total) called after each line.
-    error_estimate: also run the companion line at a tighter tolerance (r.error), as
-    `tiptap scan` does. hdf5: a file name to write the scan into (docs/hdf5.md).
+    keys overridden for this run only (Scene.set). The run works on its own copy of the
+    scene, taken now. threads: lines in parallel (0: all cores; the images do not depend
+    on it). progress: None (a tqdm bar when tqdm is installed), False, or
+    progress(done, total) called after each line. error_estimate: also run the companion
+    line at a tighter tolerance (r.error), as `tiptap scan` does. hdf5: a file name to
+    write the scan into (docs/hdf5.md), also the finished lines of an interrupted scan.
 
-    Returns a ScanResult. Bad input raises SceneError before anything runs; Ctrl-C raises
-    Interrupted (a KeyboardInterrupt) whose .result holds the finished lines.
+    Returns a ScanResult. Bad input raises SceneError, and a scan needing more memory
+    than the process can allocate TiptapMemoryError (the program's estimate), before
+    anything runs; Ctrl-C raises Interrupted (a KeyboardInterrupt) whose .result holds
+    the finished lines. The program's warnings (the estimate of a long run, a material
+    not used, a contact past the force laws' validity, the loop oscillating, the z piezo
+    at its range's end, the error estimate above the tolerance) are raised with
+    warnings.warn as TiptapWarning subclasses and kept in r.warnings.
     """
-    scene = Scene.of(scene, set, **keys)
+    scene = Scene.of(scene, set, caller="scan", **keys)
+    path = c_bytes(hdf5, "hdf5") if hdf5 is not None else None
+    col = Collector()
     out = ffi.new("tt_scan **")
-    check(lib.tt_config_scan_alloc(out, scene._p))
+    cost = ffi.new("tt_run_scan_cost *")
+    with col.installed():
+        check(lib.tt_run_scan_alloc(scene._p, int(threads), out, cost))
     s = ffi.gc(out[0], lib.tt_scan_free)
-    check(lib.tt_config_check_rk4(scene._p, ffi.NULL, 0))
-    if hdf5 is not None:
+    sp = ffi.new("tt_scan_scope **")
+    check(lib.tt_scan_scope_alloc(sp))
+    scope = ffi.gc(sp[0], lib.tt_scan_scope_free)
+    # the profile line's full-rate record, where the loop's oscillation shows
+    lib.tt_scan_scope_attach(s, lib.tt_scan_profile_line(s), scope)
+    # the warnings before the run, as the program gives them before its folder's checks
+    with col.installed():
+        lib.tt_run_scan_warn_inputs(scene._p, cost)
+    col.emit(stacklevel=2)
+    if path is not None:
         from .hdf5 import check_output
 
-        check_output(hdf5, scene)
+        check_output(path, scene)
     prog = Progress(progress, "scan", "lines")
     status, message, interrupted = run(lambda: lib.tt_scan_run(s, int(threads), prog.c, ffi.NULL),
-                                       prog)
+                                       prog, col)
+    with col.installed():
+        lib.tt_run_scan_warn_result(s)
+        lib.tt_run_scan_warn_oscillation(s, scope, ffi.NULL)
+    lib.tt_scan_scope_attach(s, 0, ffi.NULL)
     result = ScanResult(s, scene) if lib.tt_scan_lines_done(s) > 0 else None
-    if result is not None and hdf5 is not None:
+    if result is not None and path is not None:
         from .hdf5 import write_scan
 
-        write_scan(s, scene, hdf5)
+        write_scan(s, scene, path)
+    col.emit(stacklevel=2, result=result)
     finish(status, message, interrupted, "scan", result, prog)
     if error_estimate:
         e = ffi.new("tt_scan_error *")
-        status, message, interrupted = run(lambda: lib.tt_scan_estimate_error(s, e))
+        status, message, interrupted = run(lambda: lib.tt_scan_estimate_error(s, e), None, col)
         finish(status, message, interrupted, "scan: the error estimate's companion line", result)
         result.error = {
             "height_max_m": e.height_max, "height_rms_m": e.height_rms,
@@ -148,4 +174,7 @@ def scan(scene, *, set=None, threads=0, progress=None, error_estimate=False, hdf
             "phase_max_deg": e.phase_max, "phase_rms_deg": e.phase_rms,
             "line": e.line, "tolerance": e.tolerance,
         }
+        with col.installed():
+            lib.tt_run_scan_warn_error(s, cost, e)
+        col.emit(stacklevel=2, result=result)
     return result

@@ -5,6 +5,7 @@ key with its unit and default."""
 import collections
 import math
 import os
+import threading
 
 from ._errors import SceneError, check
 from ._lib import ffi, lib, owned_text, text
@@ -71,6 +72,33 @@ def _key_name(name):
     return name.replace("__", ".")
 
 
+def check_keywords(func, keys):
+    """Keyword arguments that name no scene key (section__key, material__NAME__key)
+    refused as Python refuses an unknown keyword, naming func: a misspelt `treads=2`
+    is a TypeError, not a scene assignment."""
+    for k in keys:
+        dotted = _key_name(k)
+        if "." not in dotted:
+            raise TypeError(f"{func}() got an unexpected keyword argument {k!r}")
+        if _schema_key(dotted) is None:
+            raise TypeError(f"{func}() got an unexpected keyword argument {k!r} (no scene key "
+                            f"{dotted}; tiptap.keys() lists them)")
+
+
+def c_bytes(value, name):
+    """A text for the library as bytes (paths as the file system spells them); a NUL byte,
+    where C would end the text unseen, is refused naming the argument."""
+    if isinstance(value, (str, os.PathLike)):
+        b = os.fsencode(value)
+    elif isinstance(value, bytes):
+        b = value
+    else:
+        raise TypeError(f"{name}: a str, bytes or path, not {type(value).__name__}")
+    if b"\0" in b:
+        raise ValueError(f"{name}: {value!r} contains a NUL byte")
+    return b
+
+
 def _schema_key(assignment_key):
     parts = assignment_key.split(".")
     if len(parts) < 2:
@@ -126,12 +154,19 @@ class Scene:
         s["cantilever.free_amplitude"]                     # '20 nm' (the effective value)
 
     Keyword arguments name keys with double underscores (section__key,
-    material__NAME__key); a dict takes any key as `tiptap --set` spells it. Every value
-    is checked by the library as the command line's are: a bad key, value or unit raises
-    SceneError with the library's one line naming file, section and key.
+    material__NAME__key); one that names no key is a TypeError. A dict takes any key as
+    `tiptap --set` spells it. Every value is checked by the library as the command
+    line's are: a bad key, value or unit raises SceneError with the library's one line
+    naming file, section and key; a NUL byte in a name or value raises ValueError.
+
+    A Scene may be shared between threads: each call holds the scene's lock, and a run
+    works on its own copy, taken when it starts, so that a change made during the run
+    reaches neither the run nor its result.
     """
 
     def __init__(self, *files, text=None, set=None, **keys):
+        check_keywords("Scene", keys)
+        self._lock = threading.RLock()
         p = lib.tt_scene_alloc()
         if p == ffi.NULL:
             raise MemoryError("tiptap: out of memory for a scene")
@@ -143,41 +178,58 @@ class Scene:
         self.set(set, **keys)
 
     @classmethod
-    def of(cls, scene, set=None, **keys):
-        """scene as a Scene: a Scene (copied when keys are set, so that it stays as it
-        was), a file name or a list of file names."""
+    def of(cls, scene, set=None, *, caller="run", **keys):
+        """The scene a run works on, always its own: a copy of a Scene (so that later
+        changes to it reach neither the run nor its result), or a new one from a file
+        name or a list of them; keys set on it. An empty list is refused, as the program
+        refuses a command without a scene file; keywords naming no key are TypeErrors
+        naming caller."""
+        check_keywords(caller, keys)
         if isinstance(scene, Scene):
-            if not set and not keys:
-                return scene
             s = scene.copy()
             s.set(set, **keys)
             return s
         if isinstance(scene, (str, bytes, os.PathLike)):
             scene = [scene]
+        scene = list(scene)
+        if not scene:
+            raise SceneError(lib.TT_EINVAL, f"{caller}: needs a scene file (the list is empty); "
+                                            "tiptap.Scene() is the built-in defaults")
         return cls(*scene, set=set, **keys)
 
     def load(self, path):
         """Read a scene file over this scene."""
-        check(lib.tt_scene_load(self._p, os.fsencode(path)))
+        b = c_bytes(path, "path")
+        with self._lock:
+            check(lib.tt_scene_load(self._p, b))
         return self
 
     def load_string(self, text, origin="scene"):
         """Read scene text over this scene; origin names it in messages."""
-        check(lib.tt_scene_load_string(self._p, text.encode(), origin.encode()))
+        t, o = c_bytes(text, "text"), c_bytes(origin, "origin")
+        with self._lock:
+            check(lib.tt_scene_load_string(self._p, t, o))
         return self
 
     def set(self, assignments=None, **keys):
         """Set keys: a dict {"section.key": value} and/or section__key=value."""
+        check_keywords("set", keys)
         items = list((assignments or {}).items()) + [(_key_name(k), v) for k, v in keys.items()]
+        lines = []
         for k, v in items:
-            line = f"{k}={format_value(k, v)}"
-            check(lib.tt_scene_set(self._p, line.encode()))
+            key, value = c_bytes(k, "key"), c_bytes(format_value(k, v), k)
+            lines.append(key + b"=" + value)
+        with self._lock:
+            for line in lines:
+                check(lib.tt_scene_set(self._p, line))
         return self
 
     def copy(self):
         """A deep copy."""
         c = Scene.__new__(Scene)
-        p = lib.tt_scene_copy(self._p)
+        c._lock = threading.RLock()
+        with self._lock:
+            p = lib.tt_scene_copy(self._p)
         if p == ffi.NULL:
             raise MemoryError("tiptap: out of memory copying a scene")
         c._p = ffi.gc(p, lib.tt_scene_free)
@@ -186,12 +238,15 @@ class Scene:
     @property
     def origin(self):
         """The file name messages give (the first file read, or "scene")."""
-        return text(lib.tt_scene_origin(self._p))
+        with self._lock:
+            return text(lib.tt_scene_origin(self._p))
 
     def text(self, sections=None):
         """The effective scene as INI text: every key, defaults included, paths absolute
         (what `tiptap scan` writes as scene.ini). sections: e.g. "cantilever|tip"."""
-        t = lib.tt_scene_write_string(self._p, sections.encode() if sections else ffi.NULL)
+        sec = c_bytes(sections, "sections") if sections else ffi.NULL
+        with self._lock:
+            t = lib.tt_scene_write_string(self._p, sec)
         if t == ffi.NULL:
             check(lib.TT_ENOMEM)
         return owned_text(t)

@@ -9,18 +9,21 @@ import numpy as np
 from ._errors import SceneError, check
 from ._lib import ffi, lib, text
 from ._run import Progress, finish, run
-from .scene import Scene
+from ._warnings import Collector
+from .scene import Scene, c_bytes, check_keywords
 
 
 class Table(dict):
     """Columns by name (numpy arrays: float64, or str for text columns), in the library's
     order; t.units[name] is the column's SI unit ("" for counts, fractions and texts);
-    t.meta holds what the table is of (numbers as floats where they read as one)."""
+    t.meta holds what the table is of (numbers as floats where they read as one);
+    t.warnings the library's warnings about the run, a list of (category, message)."""
 
     def __init__(self, columns=(), units=None, meta=None):
         super().__init__(columns)
         self.units = dict(units or {})
         self.meta = dict(meta or {})
+        self.warnings = []
 
     @property
     def rows(self):
@@ -68,8 +71,10 @@ def _run_table(call, what, unit, progress):
     """call(out, progress_c) -> status: a run layer function into a tt_table."""
     out = ffi.new("tt_table **")
     prog = Progress(progress, what, unit)
-    status, message, interrupted = run(lambda: call(out, prog.c), prog)
+    col = Collector()
+    status, message, interrupted = run(lambda: call(out, prog.c), prog, col)
     result = table_of(out[0])
+    col.emit(stacklevel=3, result=result)
     finish(status, message, interrupted, what, result, prog)
     return result
 
@@ -78,8 +83,9 @@ def approach(scene, *, set=None, progress=None, **keys):
     """The approach curve of the scene's [approach] (`tiptap approach`): a row per point
     of both branches; z, amplitude, phase, mean_deflection, peak_force, max_indentation,
     contact_fraction, dissipated, branch, settled, cycles, drive_work, energy_residual,
-    deflection_min, deflection_max."""
-    s = Scene.of(scene, set, **keys)
+    deflection_min, deflection_max. Points that did not settle are warned of
+    (tiptap.SettleWarning)."""
+    s = Scene.of(scene, set, caller="approach", **keys)
     return _run_table(lambda out, c: lib.tt_run_approach(s._p, out, c, ffi.NULL), "approach",
                       "points", progress)
 
@@ -88,7 +94,7 @@ def trace(scene, *, set=None, progress=None, **keys):
     """The time trace of the scene's [trace] (`tiptap trace`): samples_per_cycle rows per
     recorded cycle; cycle, t, base, tip, sample, deflection, force, contact_radius,
     pressure, contact, and the ramped key's value when [trace] ramp is set."""
-    s = Scene.of(scene, set, **keys)
+    s = Scene.of(scene, set, caller="trace", **keys)
     return _run_table(lambda out, c: lib.tt_run_trace(s._p, out, c, ffi.NULL), "trace", "cycles",
                       progress)
 
@@ -107,16 +113,19 @@ def contact(scene=None, *, material=None, model=None, lam=None, xi0=0.3, points=
     if scene is not None:
         if lam is not None:
             raise TypeError("contact: lam draws the normalised curve, which takes no scene")
-        s = Scene.of(scene, set, **keys)
+        s = Scene.of(scene, set, caller="contact", **keys)
         params = ffi.new("tt_contact_params *")
         qi = ffi.new("double *")
-        check(lib.tt_run_contact_alloc(s._p, material.encode() if material else ffi.NULL,
-                                       model.encode() if model else ffi.NULL, c, params, qi))
+        check(lib.tt_run_contact_alloc(s._p, c_bytes(material, "material") if material else ffi.NULL,
+                                       c_bytes(model, "model") if model else ffi.NULL, c, params, qi))
         law = ffi.gc(c[0], lib.tt_contact_free)
         check(lib.tt_run_contact_table(law, params, qi[0], points, amax, out))
     else:
         m = ffi.new("tt_contact_model *")
-        if lib.tt_contact_model_parse((model or "maugis").encode(), m) != 0:
+        check_keywords("contact", keys)
+        if keys or set:
+            raise TypeError("contact: scene keys (set, keywords) need a scene")
+        if lib.tt_contact_model_parse(c_bytes(model or "maugis", "model"), m) != 0:
             raise _refused(f"model: '{model}' is not one of maugis, hertz, dmt, jkr")
         if lam is None and m[0] == lib.TT_CONTACT_MAUGIS:
             raise TypeError("contact: give a scene, or lam (the Maugis parameter, 1e-4 to 1e4)")
@@ -139,7 +148,7 @@ def accuracy(scene, *, point=None, cycles=0, pixels=8, methods=None, repeats=3, 
     reference. point: judge a steady point at this rest separation (m) even if the scene
     has [scan]; cycles: per run (0: the default); pixels: of a scan line; methods:
     "dopri5,rk4" (default all); repeats: timing passes; clock: "wall" or "cpu"."""
-    s = Scene.of(scene, set, **keys)
+    s = Scene.of(scene, set, caller="accuracy", **keys)
     p = ffi.new("tt_accuracy_params *")
     lib.tt_accuracy_params_default(p)
     if point is not None:
@@ -152,7 +161,7 @@ def accuracy(scene, *, point=None, cycles=0, pixels=8, methods=None, repeats=3, 
     ladders = ffi.new("tt_accuracy_ladder[16]")
     if methods:
         n = ffi.new("size_t *")
-        check(lib.tt_accuracy_pick(methods.encode(), ladders, 16, n))
+        check(lib.tt_accuracy_pick(c_bytes(methods, "methods"), ladders, 16, n))
         p.ladders, p.nladders = ladders, n[0]
     return _run_table(lambda out, c: lib.tt_run_accuracy(s._p, p, out, c, ffi.NULL), "accuracy",
                       "settings", progress)

@@ -9,7 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/file.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -21,6 +20,7 @@
 #include "tiptap/io/files.h"
 #include "tiptap/io/lock.h"
 #include "tiptap/io/outfile.h"
+#include "tiptap/run/run.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 #include "tiptap/util/clock.h"
@@ -331,55 +331,9 @@ void cli_catch_interrupt(void) { catch_signals(on_sigint); }
 
 double cli_now(void) { return tt_clock(TT_CLOCK_WALL); }
 
-const char *cli_duration(double s, char *buf, size_t len)
-{
-    if (s < 90)
-        snprintf(buf, len, "%.2g s", s);
-    else if (s < 5400)
-        snprintf(buf, len, "%.0f min", s / 60);
-    else if (s < 2 * 86400)
-        snprintf(buf, len, "%.1f h", s / 3600);
-    else
-        snprintf(buf, len, "%.3g days", s / 86400);
-    return buf;
-}
+const char *cli_duration(double s, char *buf, size_t len) { return tt_run_duration(s, buf, len); }
 
-const char *cli_bytes(double b, char *buf, size_t len)
-{
-    if (b < 1e6)
-        snprintf(buf, len, "%.0f kB", b / 1e3);
-    else if (b < 1e9)
-        snprintf(buf, len, "%.0f MB", b / 1e6);
-    else
-        snprintf(buf, len, "%.1f GB", b / 1e9);
-    return buf;
-}
-
-double cli_memory_available(void)
-{
-    double avail = -1;
-    FILE *f = fopen("/proc/meminfo", "r");
-    if (f) {
-        char line[256];
-        unsigned long long kb;
-        while (fgets(line, sizeof line, f))
-            if (sscanf(line, "MemAvailable: %llu kB", &kb) == 1)
-                avail = (double)kb * 1024;
-        fclose(f);
-    }
-    if (avail < 0) {
-        long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
-        avail = pages > 0 && size > 0 ? (double)pages * (double)size : INFINITY;
-    }
-    const int limits[] = {RLIMIT_AS, RLIMIT_DATA};
-    for (size_t i = 0; i < sizeof limits / sizeof limits[0]; i++) {
-        struct rlimit rl;
-        if (getrlimit(limits[i], &rl) == 0 && rl.rlim_cur != RLIM_INFINITY &&
-            (double)rl.rlim_cur < avail)
-            avail = (double)rl.rlim_cur;
-    }
-    return avail;
-}
+const char *cli_bytes(double b, char *buf, size_t len) { return tt_run_bytes(b, buf, len); }
 
 void cli_report_estimate(const char *cmd, double cycles, double seconds, int upper_bound,
                          int threads, double f0, double fd, int quiet)
@@ -390,17 +344,7 @@ void cli_report_estimate(const char *cmd, double cycles, double seconds, int upp
         fprintf(stderr, "%s: %s%.3g drive cycles, %s%s by estimate%s\n", cmd,
                 upper_bound ? "at most " : "", cycles, upper_bound ? "at most " : "about ",
                 cli_duration(wall, t, sizeof t), threads > 1 ? " on all threads" : "");
-    if (wall > 60) {
-        fprintf(stderr, "tiptap %s: warning: this run takes %s%s by estimate", cmd,
-                upper_bound ? "up to " : "about ", cli_duration(wall, t, sizeof t));
-        /* an adaptive step resolves the resonance: each drive cycle costs f0 / fd
-         * resonance periods */
-        if (f0 > 2 * fd)
-            fprintf(stderr, "; the drive at %.4g kHz is %.0f times below the %.4g kHz resonance, "
-                            "so each drive cycle costs %.0f cycles of it",
-                    fd * 1e-3, f0 / fd, f0 * 1e-3, f0 / fd);
-        fputc('\n', stderr);
-    }
+    tt_run_warn_duration(wall, upper_bound, f0, fd);
 }
 
 int cli_lock_folder(const char *cmd, const char *dir)

@@ -9,6 +9,7 @@
 #include "tiptap/io/outfile.h"
 #include "tiptap/io/plot.h"
 #include "tiptap/instrument/scan_oscillation.h"
+#include "tiptap/run/run.h"
 #include "tiptap/util/error.h"
 
 /* The plot keeps at most this many points a direction (each bucket's extremes, so that
@@ -183,16 +184,9 @@ void cli_scope_warn(const char *cmd, const tt_scan *scan, const tt_scan_scope *s
     tt_loop loop;
     tt_oscillation o;
     tt_scan_loop(scan, &loop);
-    if (tt_scan_scope_line(sc) < 0 || tt_scan_oscillation(sc, &loop, &o) || !o.rings)
+    if (!tt_run_scan_warn_oscillation(scan, sc, "scope.csv, scope.png") ||
+        tt_scan_oscillation(sc, &loop, &o))
         return;
-    fprintf(stderr, "tiptap %s: warning: the feedback loop oscillates: in line %ld's %s, z rings "
-                    "at %.0f Hz, %.3g nm peak to peak about the surface, for %.0f periods from "
-                    "t = %.4g s (error swings to %.3g nm, damping ratio %.2f); the pixels (%.3g ms "
-                    "each) average it away (scope.csv, scope.png)\n",
-            cmd, tt_scan_scope_line(sc), o.retrace ? "retrace" : "trace", o.frequency,
-            o.z_peak_to_peak * 1e9, o.periods, o.t_start, o.error_peak * 1e9, fmax(o.damping, 0),
-            1e3 / (2 * tt_scan_line_rate(scan) *
-                   (double)(tt_scan_fast_y(scan) ? tt_scan_yres(scan) : tt_scan_xres(scan))));
     if (isfinite(o.ki_suggested))
         fprintf(stderr, "tiptap %s: note: integral_gain %.0f Hz has a phase margin of %.0f deg "
                         "on the loop's model fitted to the ring (plant gain %.2f, amplitude time "

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "tiptap/run/run.h"
 #include "tiptap/instrument/approach.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
@@ -277,15 +278,16 @@ int cmd_approach(int argc, char **argv)
         if (!rc)
             rc = prc;
     }
+    long unsettled = 0; /* warned of under -q too: it is about the table */
+    for (size_t i = 0; i < n; i++)
+        unsettled += p.mode == TT_APPROACH_STEADY && !pts[i].settled;
     if (!quiet && n > 0) {
         double worst = 0;
-        long unsettled = 0, cycles = 0;
+        long cycles = 0;
         for (size_t i = 0; i < n; i++) {
             double r = pts[i].cycle.residual_rel;
             if (r > worst)
                 worst = r;
-            if (p.mode == TT_APPROACH_STEADY && !pts[i].settled)
-                unsettled++;
             cycles += pts[i].cycles;
         }
         fprintf(stderr, "points = %zu\ncycles = %ld\nrun_time_s = %.3f\n", n, cycles, cli_now() - t0);
@@ -313,7 +315,7 @@ int cmd_approach(int argc, char **argv)
                         e.amplitude_rel, e.phase_deg, e.used, n,
                         rk4 ? "steps_per_cycle" : "tolerance",
                         rk4 ? (double)e.tight.steps_per_cycle : e.tight.tolerance);
-                cli_warn_estimate("approach", sv, A0, NAN, "amplitude", e.amplitude_rel, e.phase_deg);
+                tt_run_warn_estimate(sv, A0, NAN, "amplitude", e.amplitude_rel, e.phase_deg);
             }
         }
         if (p.mode == TT_APPROACH_STEADY && p.steady == TT_STEADY_SHOOTING)
@@ -321,11 +323,8 @@ int cmd_approach(int argc, char **argv)
         for (size_t i = 0; p.mode == TT_APPROACH_STEADY && i < n; i++)
             if (!pts[i].settled)
                 unsettled_why(&pts[i], p.max_cycles);
-        if (unsettled)
-            fprintf(stderr, "warning: %ld points did not settle within max_cycles = %ld "
-                            "(period doubling or chaos, or raise [approach] max_cycles)\n",
-                    unsettled, p.max_cycles);
     }
+    tt_run_warn_unsettled(unsettled, p.max_cycles);
 done:
     if (of)
         tt_outfile_close(of, 0);

@@ -21,6 +21,7 @@
 #include "tiptap/instrument/scan.h"
 #include "tiptap/instrument/scan_hdf5.h"
 #include "tiptap/instrument/scan_scope.h"
+#include "tiptap/run/run.h"
 #include "tiptap/version.h"
 
 static void help(void)
@@ -274,113 +275,37 @@ int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const cha
     return rc;
 }
 
-/* The scan's cost before it starts: a scan that needs more memory than the machine has
- * is refused (a 16384 x 16384 scan of 12 images holds 25 GB) rather than left to the
- * OOM killer; *e, *n (threads) and *bytes for report_cost. Prints nothing else. */
-static int check_cost(const tt_scan_params *p, int threads, tt_estimate *est, int *nthreads,
-                      double *total)
+/* The first line on stderr once every check passed: the cycles, the time and the memory
+ * by estimate (tt_run_scan_alloc). */
+static void report_cost(const tt_run_scan_cost *e, int quiet)
 {
-    tt_estimate e;
-    char need[32], have[32], img[32];
-    tt_config_scan_estimate(p, &e);
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    int n = threads > 0 ? threads : cores > 0 ? (int)cores : 1;
-    if (n > p->raster.lines)
-        n = (int)p->raster.lines;
-    double bytes = e.bytes + e.thread_bytes * n, avail = cli_memory_available();
-    *est = e;
-    *nthreads = n;
-    *total = bytes;
-    if (bytes > avail) {
-        double image = (double)p->raster.pixels * (double)p->raster.lines * sizeof(double);
-        double nimg = e.bytes / image - 1;
-        fprintf(stderr, "tiptap scan: %ld x %ld pixels need about %s of memory (%.0f image%s of "
-                        "%s each), more than the %s available; scan fewer pixels, lines or "
-                        "channels\n",
-                p->raster.pixels, p->raster.lines, cli_bytes(bytes, need, sizeof need), nimg,
-                nimg > 1.5 ? "s" : "", cli_bytes(image, img, sizeof img),
-                cli_bytes(avail, have, sizeof have));
-        return TT_ENOMEM;
-    }
-    return TT_OK;
-}
-
-/* The first line on stderr once every check passed: the cycles and the time by
- * estimate, and the warning of a long run. */
-static void report_cost(const tt_scan_params *p, const tt_estimate *est, int n, double bytes,
-                        int quiet)
-{
-    tt_estimate e = *est;
     char need[32], t[32], lo[32], tier[160] = "";
+    int n = e->threads;
     /* the envelope tier's time depends on how many cycles the scene lets the model
      * follow: a range (src/config/estimate.c) */
-    if (e.envelope)
+    if (e->envelope)
         snprintf(tier, sizeof tier, "%s to %s (envelope tier: %.0f %% to %.0f %% of the cycles "
                                     "integrated, as on the bundled surfaces)",
-                 cli_duration(e.seconds_low / n, lo, sizeof lo), cli_duration(e.seconds / n, t, sizeof t),
-                 100 * e.integrated_low, 100 * e.integrated_high);
+                 cli_duration(e->seconds_low / n, lo, sizeof lo), cli_duration(e->seconds / n, t, sizeof t),
+                 100 * e->integrated_low, 100 * e->integrated_high);
     else
-        cli_duration(e.seconds / n, tier, sizeof tier);
+        cli_duration(e->seconds / n, tier, sizeof tier);
     if (!quiet)
         fprintf(stderr, "scan: %ld x %ld pixels, %.3g drive cycles, about %s by estimate on %d "
                         "thread%s, %s of memory\n",
-                p->raster.pixels, p->raster.lines, e.cycles, tier, n, n > 1 ? "s" : "",
-                cli_bytes(bytes, need, sizeof need));
-    cli_report_estimate("scan", e.cycles, e.seconds, e.upper_bound, n, p->cantilever.f0,
-                        p->cantilever.fd, 1);
+                e->pixels, e->lines, e->cycles, tier, n, n > 1 ? "s" : "",
+                cli_bytes(e->bytes, need, sizeof need));
 }
 
-/* A material that the surface map never puts under the tip is most likely a typo. */
-static void warn_unused(const tt_scan_params *p)
+/* The averaged tier's pixels where the tip's amplitude or penetration left its table. */
+static void note_averaged(const tt_scan *scan)
 {
-    size_t idx[8];
-    size_t n = tt_config_scan_unused(p, idx, 8);
-    for (size_t i = 0; i < n && i < 8; i++)
-        fprintf(stderr, "tiptap scan: warning: [material %s] is not used: %s\n",
-                p->materials[idx[i]].name,
-                p->surface.map == TT_MAP_UNIFORM ? "a uniform map scans the first material only"
-                : p->surface.map == TT_MAP_PNG   ? "it has no map_value, so no pixel of map_png names it"
-                                                 : "[surface] map_materials names two others");
-    if (n > 8)
-        fprintf(stderr, "tiptap scan: warning: and %zu more materials are not used\n", n - 8);
-}
-
-/* A contact the force laws do not describe: once per material, from the greatest
- * indentation of the whole run. */
-/* The averaged tier's pixels where its model is wrong: the oscillation collapsed onto
- * the sample (the tip stuck, or the amplitude under a quarter of the free amplitude),
- * or the tip's amplitude or penetration left the table. */
-static void warn_averaged(const tt_scan *scan)
-{
-    long line, px, n = tt_scan_averaged_collapsed(scan, &line, &px), out = tt_scan_averaged_outside(scan);
-    if (n > 0)
-        fprintf(stderr, "tiptap scan: warning: the oscillation collapsed in %ld pixel%s (first: "
-                        "line %ld, pixel %ld): an impact that stops the tapping, which the "
-                        "averaged tier cannot show; its images are wrong there: scan them with "
-                        "[solver] tier = envelope (docs/dynamics.md, Tiers)\n",
-                n, n > 1 ? "s" : "", line, px);
+    long out = tt_scan_averaged_outside(scan);
     if (out > 0)
         fprintf(stderr, "tiptap scan: note: in %ld pixel%s the tip's amplitude passed 1.5 "
                         "free amplitudes or its penetration one free amplitude, beyond the "
                         "averaged tier's table: its forces there came from quadrature (slower)\n",
                 out, out > 1 ? "s" : "");
-}
-
-static void warn_contact(const tt_scan *scan)
-{
-    for (size_t i = 0; i < tt_scan_materials(scan); i++) {
-        tt_contact_extent e;
-        if (!tt_scan_contact_extent(scan, i, &e))
-            continue;
-        const char *name = tt_scan_material_name(scan, i);
-        fprintf(stderr, "tiptap scan: warning: [material %s]: contact radius up to %.3g nm at "
-                        "%.3g nm indentation on a tip of radius %.3g nm, beyond the contact "
-                        "laws' small contact (radius <= %.1f R, indentation <= R): their "
-                        "forces are off there; a larger [tip] radius, a higher [feedback] "
-                        "setpoint or a smaller [cantilever] free_amplitude keeps within it\n",
-                name, e.radius * 1e9, e.indentation * 1e9, e.tip_radius * 1e9,
-                TT_CONTACT_MAX_RADIUS_RATIO);
-    }
 }
 
 int cmd_scan(int argc, char **argv)
@@ -424,37 +349,26 @@ int cmd_scan(int argc, char **argv)
     char path[4096];
     tt_outfile *of = NULL;
     int rc, reported = 0, lock = -1;
-    /* Every key, every material and the surface are checked, and the force laws built,
-     * before the folder is made: a refused scan leaves no folder and touches none. */
+    /* Every key, every material and the surface are checked, the force laws built and
+     * the memory estimated, before the folder is made: a refused scan leaves no folder
+     * and touches none. */
+    tt_run_scan_cost cost;
+    if ((rc = tt_run_scan_alloc(scene, threads, &scan, &cost))) {
+        if (rc == TT_ENOMEM) {
+            fprintf(stderr, "tiptap scan: %s\n", tt_error_message());
+            reported = 1;
+        }
+        goto done;
+    }
+    /* the plain values the summary reads (tt_run_scan_alloc read them already) */
     if ((rc = tt_config_scan(scene, &params)))
         goto done;
-    /* the scan's own solver setting (an accuracy study of the same scene tries coarser
-     * ones on purpose, so this is the command's check, not tt_config_scan's) */
-    if ((rc = tt_config_check_rk4(scene, NULL, 0))) {
-        tt_config_scan_free(&params);
-        goto done;
-    }
-    tt_estimate cost;
-    int nthreads;
-    double bytes;
-    if ((rc = check_cost(&params, threads, &cost, &nthreads, &bytes))) {
-        tt_config_scan_free(&params);
-        reported = 1;
-        goto done;
-    }
-    /* the scan's own checks (its surface, maps, tip) before the first line is printed */
-    if ((rc = tt_scene_locate(scene, tt_scan_alloc(&scan, &params)))) {
-        tt_config_scan_free(&params);
-        goto done;
-    }
-    if ((rc = tt_scan_scope_alloc(&scope))) {
-        tt_config_scan_free(&params);
-        goto done;
-    }
-    tt_scan_scope_attach(scan, tt_scan_profile_line(scan), scope);
-    report_cost(&params, &cost, nthreads, bytes, quiet);
-    warn_unused(&params);
     tt_config_scan_free(&params);
+    if ((rc = tt_scan_scope_alloc(&scope)))
+        goto done;
+    tt_scan_scope_attach(scan, tt_scan_profile_line(scan), scope);
+    report_cost(&cost, quiet);
+    tt_run_scan_warn_inputs(scene, &cost);
     /* Then the folder and the effective scene: a bad output folder fails at once, not
      * after an hour of scanning. The folder is locked for the run: two scans into one
      * folder would mix their images and scene.ini. From here on a signal keeps the lines
@@ -484,8 +398,8 @@ int cmd_scan(int argc, char **argv)
     cli_progress_begin(&prog, "scan", "lines", quiet);
     rc = tt_scan_run(scan, threads, quiet ? NULL : show_progress, &prog);
     cli_progress_end(&prog);
-    warn_contact(scan);
-    warn_averaged(scan);
+    tt_run_scan_warn_result(scan);
+    note_averaged(scan);
     int written = 1; /* scene.ini */
     if (tt_scan_lines_done(scan) > 0) {
         char saved[1024];
@@ -519,10 +433,6 @@ int cmd_scan(int argc, char **argv)
         fprintf(stderr, "cycles_integrated = %ld (%.1f %%; envelope tier%s)\n", done,
                 all > 0 ? 100.0 * (double)done / (double)all : 0.0, why);
     }
-    const tt_scan_noise *nz = &params.noise;
-    if (tt_scan_averaged_tier(&params) && (nz->temperature > 0 || nz->detector > 0 || nz->z_piezo > 0))
-        fprintf(stderr, "tiptap scan: warning: [noise] is not modelled on the averaged tier: its "
-                        "images are noiseless\n");
     if (params.solver.tier == TT_TIER_AVERAGED && !tt_scan_averaged_tier(&params))
         fprintf(stderr, "tiptap scan: note: the averaged tier needs a quality factor of 30 or "
                         "more and the drive within 5 %% of resonance (here Q %g, drive at %g of "
@@ -556,15 +466,11 @@ int cmd_scan(int argc, char **argv)
                     avg ? "on the envelope tier (the averaged model's error) at" : "at",
                     rk4 ? "steps_per_cycle" : "tolerance",
                     rk4 ? (double)tt_companion_solver(&params.solver).steps_per_cycle : est.tolerance);
-        /* no tolerance moves the averaged tier's error: its model's */
-        if (have_est && !avg)
-            cli_warn_estimate("scan", &params.solver, params.cantilever.A0, est.height_max,
-                              "amplitude", est.amplitude_max, est.phase_max);
+        if (have_est)
+            tt_run_scan_warn_error(scan, &cost, &est);
         fprintf(stderr, "output = %s: %d files (scan.gwy: every channel, trace and retrace; "
                         "CHANNEL_trace/retrace.gsf and .png; profile.csv; scope.csv and .png; scene.ini%s)\n",
                 dir, written, hdf5 ? "; scan.h5" : "");
-        if (tt_scan_clamped(scan))
-            fprintf(stderr, "warning: the z piezo reached the end of its range ([feedback] z_range)\n");
     }
 done:
     if (rc && !reported)

@@ -148,18 +148,14 @@ static int check_outputs(const sweep_job *job, const cli_args *a, long contrast,
     return rc;
 }
 
-/* Which setpoint rows say found=unreachable, so that no one takes them for points at
- * the setpoint (shown with -q too: it is about the table, not progress). */
-static void warn_unreached(const sweep_results *r)
+/* Which setpoint rows say found=unreachable (tt_run_warn_unreached), so that no one takes
+ * them for points at the setpoint (with -q too: it is about the table, not progress). */
+static void warn_unreached(const sweep_job *job, const sweep_results *r)
 {
-    size_t list[10], n = sweep_unreached(r, list, 10);
-    if (!n)
-        return;
-    fprintf(stderr, "tiptap sweep: warning: the setpoint was not reached in %zu of %zu combinations (found=%s; "
-                    "each row holds the closest point): ", n, r->n, TT_SWEEP_UNREACHABLE);
-    for (size_t k = 0; k < n && k < 10; k++)
-        fprintf(stderr, "%s%zu", k ? ", " : "", list[k] + 1);
-    fprintf(stderr, "%s\n", n > 10 ? ", ..." : "");
+    tt_table *t;
+    if (sweep_table(job, r, &t) == TT_OK)
+        tt_run_warn_unreached(t);
+    tt_table_free(t);
 }
 
 /* The sweep's table as FILE.h5 (docs/hdf5.md), read back from the texts of its
@@ -248,7 +244,7 @@ static int sweep_main(tt_scene *scene, char **vary, int nvary, tt_sweep_kind kin
     if (rank == 0 && !rc && a->plot)
         rc = sweep_plot(&job, &r, a->plot, find_key(job.grid, contrast));
     if (rank == 0 && !rc && kind == TT_SWEEP_SETPOINT)
-        warn_unreached(&r);
+        warn_unreached(&job, &r);
     double wall = cli_now() - t0;
     if (rank == 0 && !rc && !a->quiet)
         fprintf(stderr, "combinations = %zu (%zu resumed)\nranks = %d\nthreads = %d\nrun_time_s = %.3f\n"

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "tiptap/run/run.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 #include "tiptap/io/decimate.h"
@@ -306,8 +307,8 @@ int cmd_trace(int argc, char **argv)
                 est.deflection_rel, est.amplitude_rel, est.phase_deg, rk4 ? "steps_per_cycle" : "tolerance",
                 rk4 ? (double)est.tight.steps_per_cycle : est.tight.tolerance);
         int defl = est.deflection_rel >= est.amplitude_rel;
-        cli_warn_estimate("trace", sv, est.A0, NAN, defl ? "deflection" : "amplitude",
-                          defl ? est.deflection_rel : est.amplitude_rel, est.phase_deg);
+        tt_run_warn_estimate(sv, est.A0, NAN, defl ? "deflection" : "amplitude",
+                             defl ? est.deflection_rel : est.amplitude_rel, est.phase_deg);
     }
     if (!quiet && done_cycles > 0)
         fprintf(stderr, "output = %s (%ld cycles x %ld samples)%s%s\n", out, done_cycles,

@@ -36,8 +36,8 @@ int cmd_live(int argc, char **argv);
  * phase against time, and a zoom on the ring or the largest error); nothing when the
  * record holds no line. *written counts the files. */
 int cli_scope_write(const tt_scan *scan, const tt_scan_scope *sc, const char *dir, int *written);
-/* The warning on stderr, naming command cmd, when the record shows the loop oscillating,
- * with the gain the loop's model suggests (tt_scan_oscillation). */
+/* The warning, when the record shows the loop oscillating (tt_run_scan_warn_oscillation),
+ * and a note on stderr naming command cmd with the gain the loop's model suggests. */
 void cli_scope_warn(const char *cmd, const tt_scan *scan, const tt_scan_scope *sc);
 
 /* Exit codes: 0 success, 1 bad input or failure, 2 usage, 130 interrupted (Ctrl-C);
@@ -147,30 +147,14 @@ double cli_now(void);
 const char *cli_duration(double seconds, char *buf, size_t len);
 const char *cli_bytes(double bytes, char *buf, size_t len);
 
-/* Bytes this process can still allocate: the smaller of the memory available
- * (/proc/meminfo MemAvailable, else the physical memory) and its address-space and
- * data limits (ulimit -v, -d). */
-double cli_memory_available(void);
-
-/* The estimate of a run (cycles, time on threads threads) on stderr unless quiet, and a
- * warning naming the drive's distance below the resonance when it exceeds a minute,
- * quiet or not. */
+/* The estimate of a run (cycles, time on threads threads) on stderr unless quiet, and
+ * the warning of a run longer than a minute (tt_run_warn_duration), quiet or not. */
 void cli_report_estimate(const char *cmd, double cycles, double seconds, int upper_bound,
                          int threads, double f0, double fd, int quiet);
 
 /* The run's own error estimate (cli_estimate.c). The scene at the companion setting
  * (tt_companion_solver, returned in tight); NULL when out of memory. */
 tt_scene *cli_companion_scene(const tt_scene *scene, const tt_solver *s, tt_solver *tight);
-/* One warning line on stderr when the estimate says the run is wrong: height (m, NAN:
- * none) or what (amplitude, deflection) above CLI_WARN_AMPLITUDE_REL of the free
- * amplitude A0, or phase
- * above CLI_WARN_PHASE_DEG, naming the key that tightens the run. Returns whether it
- * warned. */
-#define CLI_WARN_AMPLITUDE_REL 1e-3
-#define CLI_WARN_PHASE_DEG 0.1
-int cli_warn_estimate(const char *cmd, const tt_solver *s, double A0, double height_m,
-                      const char *what, double amplitude_rel, double phase_deg);
-
 /* Hold DIR/.tiptap.lock (flock) for the rest of the process: a second run into DIR is
  * refused at once, naming the pid of the first. Returns the descriptor, or -1 after
  * printing why. */

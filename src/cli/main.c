@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "tiptap/io/files.h"
 #include "tiptap/util/cancel.h"
+#include "tiptap/util/warning.h"
 #include "tiptap/version.h"
 
 /* The subcommands, in the order --help lists them. */
@@ -59,6 +60,13 @@ static int check_stdout(int code)
     return code == CLI_OK ? CLI_FAIL : code;
 }
 
+/* The library's warnings (tiptap/util/warning.h) on stderr, naming the command (data). */
+static void print_warning(const char *category, const char *message, void *data)
+{
+    (void)category;
+    fprintf(stderr, "tiptap %s: warning: %s\n", (const char *)data, message);
+}
+
 int main(int argc, char **argv)
 {
     /* Past ulimit -f, SIGXFSZ would end the program without a word and leave a
@@ -73,6 +81,7 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < NCOMMANDS; i++)
         if (strcmp(argv[1], commands[i].name) == 0) {
             cli_interrupt_at_once("interrupted before any output file was begun");
+            tt_warning_push(print_warning, (void *)commands[i].name);
             int code = commands[i].run(argc - 1, argv + 1);
             code = check_stdout(code);
             /* stopped by a signal: 128 + its number, the shells' convention (143: SIGTERM),

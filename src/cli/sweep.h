@@ -50,10 +50,6 @@ typedef struct {
  * sweep --hdf5, whose journal holds the texts of a resumed sweep's combinations. */
 int sweep_table(const sweep_job *job, const sweep_results *r, tt_table **out);
 
-/* The finished setpoint combinations marked TT_SWEEP_UNREACHABLE: how many, the first max
- * of them (indices from 0) in list. */
-size_t sweep_unreached(const sweep_results *r, size_t *list, size_t max);
-
 struct cli_progress;
 /* Show r's progress (the combinations this run computes) on p; NULL: none. */
 void sweep_progress(struct cli_progress *p, const sweep_results *r);

@@ -206,19 +206,6 @@ done:
     return rc;
 }
 
-size_t sweep_unreached(const sweep_results *r, size_t *list, size_t max)
-{
-    static const char tail[] = "," TT_SWEEP_UNREACHABLE "\n";
-    size_t count = 0, tl = sizeof tail - 1;
-    for (size_t i = 0; i < r->n; i++) {
-        const char *t = r->text[i];
-        size_t len = t ? strlen(t) : 0;
-        if (len >= tl && strcmp(t + len - tl, tail) == 0 && count++ < max)
-            list[count - 1] = i;
-    }
-    return count;
-}
-
 int sweep_compute(const sweep_job *job, size_t i, char **out)
 {
     tt_table *t;

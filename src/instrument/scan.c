@@ -948,6 +948,7 @@ int tt_scan_has_retrace(const tt_scan *S) { return S->raster.retrace; }
 long tt_scan_lines_done(const tt_scan *S) { return S->lines_done; }
 long tt_scan_profile_line(const tt_scan *S) { return S->profile_line; }
 long tt_scan_cycles(const tt_scan *S) { return S->cycles; }
+const tt_solver *tt_scan_solver(const tt_scan *S) { return &S->solver; }
 long tt_scan_cycles_integrated(const tt_scan *S) { return S->integrated; }
 double tt_scan_averaged_build_seconds(const tt_scan *S) { return S->avg_seconds; }
 double tt_scan_averaged_table_error(const tt_scan *S) { return S->avg_error; }

@@ -53,15 +53,18 @@ int tt_run_approach(const tt_scene *s, tt_table **out, tt_progress_fn progress, 
         goto done;
     }
     *out = t;
-    long total = (long)tt_approach_rows(ap);
+    long total = (long)tt_approach_rows(ap), unsettled = 0;
     while (!tt_approach_done(ap) && rc == TT_OK) {
         tt_approach_point pt;
         if (tt_cancel_requested())
             rc = tt_error(TT_EINTR, "interrupted: %zu of %ld points finished", tt_table_rows(t), total);
-        else if ((rc = tt_approach_iterate(ap, &pt)) == TT_OK && (rc = put(t, &pt)) == TT_OK &&
-                 progress)
-            progress(user, (long)tt_table_rows(t), total);
+        else if ((rc = tt_approach_iterate(ap, &pt)) == TT_OK && (rc = put(t, &pt)) == TT_OK) {
+            unsettled += p.mode == TT_APPROACH_STEADY && !pt.settled;
+            if (progress)
+                progress(user, (long)tt_table_rows(t), total);
+        }
     }
+    tt_run_warn_unsettled(unsettled, p.max_cycles);
 done:
     tt_approach_free(ap);
     tt_setup_free(st);

@@ -467,6 +467,8 @@ int tt_run_sweep(const tt_sweep *grid, tt_sweep_kind kind, int threads, tt_table
         tt_table_free(all);
         return rc ? rc : mrc;
     }
+    if (kind == TT_SWEEP_SETPOINT)
+        tt_run_warn_unreached(all);
     *out = all;
     return rc;
 }

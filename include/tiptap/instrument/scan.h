@@ -243,6 +243,8 @@ int tt_scan_envelope_tier(const tt_scan_params *p);
  * terms (tt_scan_envelope_tier). */
 int tt_scan_averaged_tier(const tt_scan_params *p);
 double tt_scan_error_estimate(const tt_scan *s);
+/* The solver setting the scan runs at. */
+const tt_solver *tt_scan_solver(const tt_scan *s);
 
 /* The setting of the companion run every command's error estimate comes from: a
  * hundred times tighter tolerance (not below 1e-14), rk4 four times the steps. */
