@@ -7,6 +7,7 @@
 #include "tiptap/io/outfile.h"
 #include "tiptap/live/controls.h"
 #include "tiptap/live/server.h"
+#include "tiptap/run/run.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 
@@ -85,9 +86,9 @@ int cmd_live(int argc, char **argv)
         return CLI_USAGE;
     }
     tt_live_controls *controls = NULL;
-    /* the same memory as tiptap scan's check of its own scene (commands.h) */
+    /* the same memory as tiptap scan's check of its own scene (run.h) */
     int rc = tt_live_controls_alloc(&controls, argv + optind, argc - optind, args.sets, args.nsets,
-                                    surfaces, cli_memory_available);
+                                    surfaces, tt_run_memory_available);
     cli_args_free(&args);
     if (rc)
         return cli_fail(rc, NULL);
