@@ -134,9 +134,10 @@ static void outputs_replace_only_regular_files(void **st)
     assert_int_equal(mkdir(at("folder.csv"), 0755), 0);
     assert_int_equal(symlink("pipe.csv", at("to_pipe.csv")), 0);
     assert_int_equal(symlink("/dev/null", at("to_null.csv")), 0);
-    const char *names[] = {"pipe.csv", "folder.csv", "to_pipe.csv", "to_null.csv", "/dev/null"};
+    /* never /dev/null itself: code without the check would replace it, as root */
+    const char *names[] = {"pipe.csv", "folder.csv", "to_pipe.csv", "to_null.csv"};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
-        const char *path = names[i][0] == '/' ? names[i] : at(names[i]);
+        const char *path = at(names[i]);
         tt_outfile *o = NULL;
         assert_int_equal(tt_output_check(path), TT_EINVAL);
         assert_int_equal(tt_outfile_open(&o, path), TT_EINVAL);
