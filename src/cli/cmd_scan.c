@@ -105,16 +105,22 @@ static void channel_path(char *buf, size_t len, const char *dir, int ch, int r, 
 
 int cli_scan_check_outputs(const char *dir, const tt_scan *scan, int hdf5)
 {
-    /* written by every scan (scope.*: when the record holds a line), scan.h5 with hdf5;
-     * the lock file checks itself (tt_folder_lock) */
-    static const char *const fixed[] = {"scene.ini", "profile.csv", "scan.gwy", "scope.csv", "scope.png",
-                                        "scan.h5", ".tiptap.lock"};
+    /* written by every scan (scope.*: when the record holds a line) */
+    static const char *const written[] = {"scene.ini", "profile.csv", "scan.gwy", "scope.csv", "scope.png"};
     char path[4200];
     int rc = TT_OK;
-    for (size_t i = 0; i < sizeof fixed / sizeof fixed[0] && !rc; i++) {
-        snprintf(path, sizeof path, "%s/%s", dir, fixed[i]);
-        rc = i < 5 || (i == 5 && hdf5) ? tt_output_check(path) : tt_output_check_inputs(path);
+    for (size_t i = 0; i < sizeof written / sizeof written[0] && !rc; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, written[i]);
+        rc = tt_output_check(path);
     }
+    /* scan.h5 with hdf5 (without, an earlier run's is removed); the lock file checks
+     * its own kind (tt_folder_lock) */
+    snprintf(path, sizeof path, "%s/scan.h5", dir);
+    if (!rc)
+        rc = hdf5 ? tt_output_check(path) : tt_output_check_inputs(path);
+    snprintf(path, sizeof path, "%s/.tiptap.lock", dir);
+    if (!rc)
+        rc = tt_output_check_inputs(path);
     /* every channel's files, also those this run does not write: it may remove them */
     for (int k = 0; k < 4 * TT_CH_COUNT && !rc; k++) {
         channel_path(path, sizeof path, dir, k / 4, k / 2 % 2, k % 2);
