@@ -16,6 +16,7 @@
 
 #include "tt_test.h"
 #include "tiptap/config/config.h"
+#include "tiptap/config/sweep.h"
 #include "tiptap/io/files.h"
 #include "tiptap/io/hdf5.h"
 #include "tiptap/io/lock.h"
@@ -199,7 +200,7 @@ static void outputs_of_a_run_are_distinct(void **st)
 
 /* A program that tracks nothing (Python) notes the scene's files before it writes:
  * hdf5="s.ini" replaced the scene. The scene knows the files it was read from, and so
- * does its copy. */
+ * does its copy; a sweep notes the scene files it varies. */
 static void scene_files_noted_without_tracking(void **st)
 {
     (void)st;
@@ -222,9 +223,21 @@ static void scene_files_noted_without_tracking(void **st)
     tt_config_note_inputs(c);
     assert_int_equal(tt_output_check(at("n.ini")), TT_EINVAL);
     tt_inputs_track(0);
+    /* the scene files a sweep varies, noted as the axis is added, before it runs */
+    put(at("v.ini"), "[trace]\ncycles = 4\n");
+    tt_sweep *g = NULL;
+    char spec[600];
+    snprintf(spec, sizeof spec, "scene=%s", at("v.ini"));
+    assert_int_equal(tt_sweep_alloc(&g, s), TT_OK);
+    assert_int_equal(tt_output_check(at("v.ini")), TT_OK);
+    assert_int_equal(tt_sweep_vary(g, spec), TT_OK);
+    assert_int_equal(tt_output_check(at("v.ini")), TT_EINVAL);
+    tt_sweep_free(g);
+    tt_inputs_track(0);
     tt_scene_free(c);
     tt_scene_free(s);
     unlink(at("n.ini"));
+    unlink(at("v.ini"));
 }
 
 static void rename_replaces_a_link(void **st)
