@@ -40,6 +40,12 @@ expect_error "accuracy -o a link to a pipe" "$tmp/to_pipe.csv: not a regular fil
   timeout 20 "$tiptap" trace "$tmp/s.ini" -o "$tmp/dev.csv" -q --set trace.cycles=3
 [ -e "$tmp/sock.csv" ] && expect_error "trace -o a socket" "$tmp/sock.csv: not a regular file" \
   timeout 20 "$tiptap" trace "$tmp/s.ini" -o "$tmp/sock.csv" -q --set trace.cycles=3
+# a link into /proc (what /dev/stdout is): rename() would replace the link, /dev/stdout
+# itself when named so; standard output a regular file here, a link to which passes
+ln -s /proc/self/fd/1 "$tmp/stdout.csv"
+out=$("$tiptap" trace "$tmp/s.ini" -o "$tmp/stdout.csv" -q --set trace.cycles=3 2>&1 >"$tmp/redirected"); rc=$?
+[ $rc -eq 1 ] && [ "$out" = "tiptap: $tmp/stdout.csv: a link into /proc (/proc/self/fd/1), to a process's open file; the output would replace the link: name the file itself" ] &&
+  [ -L "$tmp/stdout.csv" ] && ok "a link into /proc refused, left a link" || bad "a link into /proc: rc $rc, '$out'"
 # --plot: refused before the table is written
 expect_error "trace --plot a pipe" "$tmp/pipe.png: not a regular file" \
   timeout 20 "$tiptap" trace "$tmp/s.ini" -o "$tmp/t.csv" --plot "$tmp/pipe.png" -q --set trace.cycles=3

@@ -231,13 +231,20 @@ static void note(const char *path, const char *what, int always)
 }
 
 /* What lies at an output's name: nothing, a regular file, or a link to one (rename()
- * replaces the link) may be replaced; a folder, a pipe, a device or a socket, or a link
- * to one, may not (the rename would put a file in place of /dev/null or a FIFO). */
+ * replaces the link) may be replaced; a folder, a pipe, a device or a socket, a link to
+ * one, or a link into /proc, may not (the rename would put a file in place of
+ * /dev/null, a FIFO or /dev/stdout). */
 static int check_kind(const char *out)
 {
     struct stat st;
+    char to[256] = "";
     if (lstat(out, &st) != 0 || S_ISREG(st.st_mode))
         return TT_OK;
+    /* /dev/stdout names the file behind a descriptor, through /proc: replacing the link
+     * would replace /dev/stdout itself */
+    if (S_ISLNK(st.st_mode) && readlink(out, to, sizeof to - 1) > 0 && !strncmp(to, "/proc/", 6))
+        return tt_error(TT_EINVAL, "%s: a link into /proc (%s), to a process's open file; the "
+                        "output would replace the link: name the file itself", out, to);
     if (S_ISLNK(st.st_mode) && (stat(out, &st) != 0 || S_ISREG(st.st_mode)))
         return TT_OK;
     if (S_ISDIR(st.st_mode))
