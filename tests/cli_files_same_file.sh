@@ -71,6 +71,15 @@ for cmd in trace approach contact; do
   [ $rc -eq 2 ] && [ "$out" = "tiptap $cmd: --plot $tmp/here/./both.png: the same file as -o $tmp/both.png; give each its own name" ] &&
     [ ! -e "$tmp/both.png" ] && ok "$cmd: -o and --plot into one file refused" || bad "$cmd -o = --plot: rc $rc '$out'"
 done
+# all of a run's outputs at once (issue 28: sweep -o t.csv --plot t.h5 --hdf5 wrote the
+# plot over the HDF5 table and exited 0): FILE.h5, the journal
+out=$("$tiptap" sweep "$tmp/s.ini" "${vary[@]}" -o "$tmp/t.csv" --plot "$tmp/here/t.h5" --hdf5 -q 2>&1); rc=$?
+[ $rc -eq 2 ] && [ "$out" = "tiptap sweep: --hdf5 $tmp/t.h5: the same file as --plot $tmp/here/t.h5; give each its own name" ] &&
+  [ -z "$(ls "$tmp" | grep '^t\.')" ] && ok "sweep --plot FILE.h5 --hdf5 refused before the run" ||
+  bad "sweep --plot FILE.h5: rc $rc, '$out'"
+expect_error "sweep --plot its journal" "the journal $tmp/t.csv.partial: the same file as --plot $tmp/./t.csv.partial" \
+  "$tiptap" sweep "$tmp/s.ini" "${vary[@]}" -o "$tmp/t.csv" --plot "$tmp/./t.csv.partial" -q
+[ -z "$(ls "$tmp" | grep '^t[.]*')" ] && ok "the refused sweeps wrote nothing" || bad "a refused sweep wrote"
 # contact with a scene: refused before its summary is printed
 cp "$tmp/s.ini" "$tmp/c.ini"
 sum=$("$tiptap" contact "$tmp/c.ini" -o "$tmp/c.ini" 2>"$tmp/c.err"); rc=$?

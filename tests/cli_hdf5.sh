@@ -27,8 +27,22 @@ sweep=("$src/examples/seed-fig4a/scene.ini" --set approach.points=1 --vary "cant
 is_hdf5 "$tmp/s.h5" && ok "sweep --hdf5 writes FILE.h5" || bad "no $tmp/s.h5"
 "$tiptap" sweep "${sweep[@]}" -o "$tmp/t" --hdf5 -q && is_hdf5 "$tmp/t.h5" && ok "FILE without extension: FILE.h5" ||
   bad "sweep -o t --hdf5"
-expect_error "the table named .h5" "with --hdf5 the table needs an extension other than .h5" \
-  "$tiptap" sweep "${sweep[@]}" -o "$tmp/u.h5" --hdf5 -q
+out=$("$tiptap" sweep "${sweep[@]}" -o "$tmp/u.h5" --hdf5 -q 2>&1); rc=$?
+[ $rc -eq 2 ] && [ "$out" = "tiptap sweep: --hdf5 $tmp/u.h5: the same file as -o $tmp/u.h5; give each its own name" ] &&
+  [ ! -e "$tmp/u.h5" ] && ok "the table named .h5: refused, exit 2" || bad "the table named .h5: rc $rc, '$out'"
+# a varied key's dimension scale carries the unit of the table's column ("1" for the
+# setpoint, a fraction of the free amplitude, and for plain numbers; it was ""), read
+# with h5py where /usr/bin/python3 has it
+"$tiptap" sweep "${sweep[@]}" --vary "feedback.setpoint=70%,80%" -o "$tmp/sp.csv" --hdf5 -q || bad "setpoint sweep"
+if /usr/bin/python3 -c "import h5py" 2>/dev/null; then
+  units=$(/usr/bin/python3 -c "
+import h5py
+c = h5py.File('$tmp/sp.h5')['Measurement_000/Channel_000']
+print(*(repr(c[k].attrs['units']) for k in ('cantilever.quality_factor', 'feedback.setpoint', 'z')))")
+  [ "$units" = "'1' '1' 'm'" ] && ok "key scales' units as the table's: $units" || bad "key scales' units: $units"
+else
+  echo "     no h5py for /usr/bin/python3: the units not read back"
+fi
 mkdir "$tmp/v.h5"
 expect_error "FILE.h5 a folder" "$tmp/v.h5: is a folder" "$tiptap" sweep "${sweep[@]}" -o "$tmp/v.csv" --hdf5 -q
 [ ! -e "$tmp/v.csv" ] && ok "no table written when FILE.h5 is refused" || bad "table written"

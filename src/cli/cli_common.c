@@ -156,23 +156,6 @@ static void build_table(const cli_spec *spec, cli_args *a)
     memset(&a->table[n], 0, sizeof a->table[n]);
 }
 
-/* Whether two output paths name one file: the same file if both exist, else the same
- * name in the same folder (the folder resolved, links included). */
-static int same_output(const char *a, const char *b)
-{
-    struct stat sa, sb;
-    if (stat(a, &sa) == 0 && stat(b, &sb) == 0)
-        return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
-    const char *na = strrchr(a, '/'), *nb = strrchr(b, '/');
-    const char *base_a = na ? na + 1 : a, *base_b = nb ? nb + 1 : b;
-    if (strcmp(base_a, base_b) != 0)
-        return 0;
-    char da[PATH_MAX], db[PATH_MAX], ra[PATH_MAX], rb[PATH_MAX];
-    snprintf(da, sizeof da, "%.*s", na ? (int)(na - a) + 1 : 1, na ? a : ".");
-    snprintf(db, sizeof db, "%.*s", nb ? (int)(nb - b) + 1 : 1, nb ? b : ".");
-    return realpath(da, ra) && realpath(db, rb) && strcmp(ra, rb) == 0;
-}
-
 int cli_getopt(const cli_spec *spec, cli_args *a, int argc, char **argv)
 {
     if (!a->table[0].name)
@@ -180,14 +163,7 @@ int cli_getopt(const cli_spec *spec, cli_args *a, int argc, char **argv)
     for (;;) {
         int c = getopt_long(argc, argv, a->shorts, a->table, NULL);
         switch (c) {
-        case -1:
-            if (!(a->output && a->plot && same_output(a->output, a->plot)))
-                return CLI_END;
-            /* -o and --plot into one file: the plot would replace the table */
-            fprintf(stderr, "tiptap %s: --plot %s: the same file as -o %s; give each its own name\n",
-                    spec->cmd, a->plot, a->output);
-            a->exit = CLI_USAGE;
-            break;
+        case -1: return CLI_END;
         case 'o': a->output = optarg; continue;
         case 'q': a->quiet = 1; continue;
         case CLI_CODE_PLOT: a->plot = optarg; continue;
@@ -220,20 +196,76 @@ void cli_args_free(cli_args *a)
     a->nsets = 0;
 }
 
+/* Every output of the run: -o, --plot, then what the command added (cli_args.more). */
+static size_t run_outputs(const cli_spec *spec, const cli_args *a, tt_output *outs, int *how)
+{
+    size_t n = 0;
+    if (a->output) {
+        how[n] = spec->common & CLI_OUTPUT_FOLDER ? CLI_OUT_FOLDER : CLI_OUT_FILE;
+        outs[n++] = (tt_output){a->output, "-o"};
+    }
+    if (a->plot) {
+        how[n] = CLI_OUT_FILE;
+        outs[n++] = (tt_output){a->plot, "--plot"};
+    }
+    for (int i = 0; i < a->nmore; i++) {
+        how[n] = a->more_how[i];
+        outs[n++] = a->more[i];
+    }
+    return n;
+}
+
+int cli_outputs_distinct(const cli_spec *spec, const cli_args *a)
+{
+    tt_output outs[2 + CLI_MORE_OUTPUTS];
+    int how[2 + CLI_MORE_OUTPUTS];
+    size_t n = run_outputs(spec, a, outs, how);
+    if (tt_outputs_distinct(outs, n) == TT_OK)
+        return CLI_OK;
+    fprintf(stderr, "tiptap %s: %s\n", spec->cmd, tt_error_message());
+    return CLI_USAGE;
+}
+
+int cli_outputs_check(const cli_spec *spec, const cli_args *a)
+{
+    tt_output outs[2 + CLI_MORE_OUTPUTS];
+    int how[2 + CLI_MORE_OUTPUTS];
+    size_t n = run_outputs(spec, a, outs, how);
+    for (size_t i = 0; i < n; i++) {
+        int rc = how[i] == CLI_OUT_FILE     ? tt_output_check(outs[i].path)
+                 : how[i] == CLI_OUT_FOLDER ? tt_output_check_inputs(outs[i].path)
+                                            : TT_OK;
+        if (rc)
+            return cli_fail(rc, NULL);
+    }
+    return CLI_OK;
+}
+
+void cli_args_more(cli_args *a, const char *path, const char *what, int how)
+{
+    if (path && a->nmore < CLI_MORE_OUTPUTS) {
+        a->more[a->nmore] = (tt_output){path, what};
+        a->more_how[a->nmore++] = how;
+    }
+}
+
 tt_scene *cli_args_scene(const cli_spec *spec, cli_args *a, int argc, char **argv, int *exit_code)
 {
 
+    /* two outputs naming one file: a usage error, before the scene is read */
+    if ((*exit_code = cli_outputs_distinct(spec, a)) != CLI_OK) {
+        cli_args_free(a);
+        return NULL;
+    }
     tt_scene *scene = cli_scene_args(spec->cmd, argc, argv, optind, a->sets, a->nsets, exit_code);
     a->sets = NULL;
     a->nsets = 0;
-    /* an output that is one of the files just read (-o s.ini) is refused before the run */
-    const char *outs[] = {a->output, a->plot};
-    for (size_t i = 0; scene && i < 2; i++)
-        if (outs[i] && tt_output_check(outs[i]) != TT_OK) {
-            *exit_code = cli_fail(TT_EINVAL, NULL);
-            tt_scene_free(scene);
-            scene = NULL;
-        }
+    /* an output that is one of the files just read (-o s.ini), or whose name holds a
+     * pipe, a device or a folder, is refused before the run */
+    if (scene && (*exit_code = cli_outputs_check(spec, a)) != CLI_OK) {
+        tt_scene_free(scene);
+        scene = NULL;
+    }
     return scene;
 }
 

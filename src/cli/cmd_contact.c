@@ -200,6 +200,11 @@ int cmd_contact(int argc, char **argv)
     }
     if (c == CLI_EXIT)
         return args.exit;
+    int code;
+    if ((code = cli_outputs_distinct(&spec, &args)) != CLI_OK) {
+        cli_args_free(&args);
+        return code;
+    }
     const char *out = args.output, *plotpath = args.plot;
     tt_contact_model m = TT_CONTACT_MAUGIS;
     if (model && tt_contact_model_parse(model, &m) != 0) {
@@ -223,15 +228,18 @@ int cmd_contact(int argc, char **argv)
     tt_scene *scene = NULL;
     tt_contact_params p;
     double Qi = NAN;
-    int rc;
+    int rc, reported = 0;
     if (have_scene) {
         scene = cli_load_scene(argv + optind, argc - optind, args.sets, args.nsets);
         cli_args_free(&args);
         if (!scene)
             return CLI_FAIL;
         /* an output that is the scene just read is refused before the summary */
-        if ((out && (rc = tt_output_check(out))) || (plotpath && (rc = tt_output_check(plotpath))))
+        if ((code = cli_outputs_check(&spec, &args)) != CLI_OK) {
+            rc = TT_EINVAL;
+            reported = 1;
             goto done;
+        }
         if ((rc = tt_run_contact_alloc(scene, material, model, &ct, &p, &Qi)))
             goto done;
         xi0n = tt_contact_summary_of(ct)->adhesive
@@ -239,6 +247,11 @@ int cmd_contact(int argc, char **argv)
                    : 0.3;
     } else {
         cli_args_free(&args);
+        if ((code = cli_outputs_check(&spec, &args)) != CLI_OK) {
+            rc = TT_EINVAL;
+            reported = 1;
+            goto done;
+        }
         if ((rc = tt_contact_alloc_normalised(&ct, m, isfinite(lambda) ? lambda : 1, xi0n)))
             goto done;
     }
@@ -255,7 +268,7 @@ int cmd_contact(int argc, char **argv)
                     "max(1, |P|))\n",
             cli_now() - t0, terr);
 done:
-    if (rc)
+    if (rc && !reported)
         cli_fail(rc, NULL);
     tt_contact_free(ct);
     tt_scene_free(scene);

@@ -158,6 +158,9 @@ int cmd_profiles(int argc, char **argv)
         fprintf(stderr, "tiptap profiles: name at least one scan output folder\n");
         return CLI_USAGE;
     }
+    int code = cli_outputs_check(&spec, &a); /* a pipe or a device at -o: refused before reading */
+    if (code != CLI_OK)
+        return code;
     tt_figure *f = tt_figure_alloc(n, title);
     int rc = f ? TT_OK : tt_error_nomem("the plot %s", a.output);
     for (int i = 0; i < n && rc == TT_OK; i++) {

@@ -104,29 +104,37 @@ static void channel_path(char *buf, size_t len, const char *dir, int ch, int r, 
              png ? "png" : "gsf");
 }
 
-int cli_scan_check_outputs(const char *dir)
+int cli_scan_check_outputs(const char *dir, const tt_scan *scan, int hdf5)
 {
-    static const char *const fixed[] = {"scene.ini", "profile.csv", "scan.gwy", "scan.h5", "scope.csv",
-                                        "scope.png", ".tiptap.lock"};
+    /* written by every scan (scope.*: when the record holds a line) */
+    static const char *const written[] = {"scene.ini", "profile.csv", "scan.gwy", "scope.csv", "scope.png"};
     char path[4200];
     int rc = TT_OK;
-    for (size_t i = 0; i < sizeof fixed / sizeof fixed[0] && !rc; i++) {
-        snprintf(path, sizeof path, "%s/%s", dir, fixed[i]);
+    for (size_t i = 0; i < sizeof written / sizeof written[0] && !rc; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, written[i]);
         rc = tt_output_check(path);
     }
+    /* scan.h5 with hdf5 (without, an earlier run's is removed); the lock file checks
+     * its own kind (tt_folder_lock) */
+    snprintf(path, sizeof path, "%s/scan.h5", dir);
+    if (!rc)
+        rc = hdf5 ? tt_output_check(path) : tt_output_check_inputs(path);
+    snprintf(path, sizeof path, "%s/.tiptap.lock", dir);
+    if (!rc)
+        rc = tt_output_check_inputs(path);
     /* every channel's files, also those this run does not write: it may remove them */
     for (int k = 0; k < 4 * TT_CH_COUNT && !rc; k++) {
         channel_path(path, sizeof path, dir, k / 4, k / 2 % 2, k % 2);
-        rc = tt_output_check(path);
+        rc = tt_scan_image(scan, k / 4, k / 2 % 2) ? tt_output_check(path) : tt_output_check_inputs(path);
     }
     return rc;
 }
 
-int cli_scan_folder_take(const char *cmd, const char *dir, int *lock)
+int cli_scan_folder_take(const char *cmd, const char *dir, const tt_scan *scan, int hdf5, int *lock)
 {
     int rc;
     *lock = -1;
-    if ((rc = cli_scan_check_outputs(dir)) || (rc = tt_mkdirs(dir)))
+    if ((rc = cli_scan_check_outputs(dir, scan, hdf5)) || (rc = tt_mkdirs(dir)))
         return rc;
     return tt_folder_lock(dir, cmd, lock);
 }
@@ -163,11 +171,8 @@ static void remove_stale(const tt_scan *scan, const char *dir, int hdf5)
 static int check_hdf5(const char *dir)
 {
     char path[4200];
-    struct stat st;
     tt_h5 *f;
     snprintf(path, sizeof path, "%s/scan.h5", dir);
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
-        return tt_error(TT_EIO, "%s: is a folder; the scan writes a file there", path);
     int rc = tt_h5_create(&f, path);
     return rc ? rc : tt_h5_close(f, 0);
 }
@@ -313,7 +318,8 @@ int cmd_scan(int argc, char **argv)
     static const struct option opts[] = {{"threads", required_argument, NULL, 'j'},
                                          {"hdf5", no_argument, NULL, 'H'},
                                          {NULL, 0, NULL, 0}};
-    static const cli_spec spec = {"scan", CLI_OPT_OUTPUT | CLI_OPT_SET | CLI_OPT_QUIET, opts, "j:", help};
+    static const cli_spec spec = {"scan", CLI_OPT_OUTPUT | CLI_OUTPUT_FOLDER | CLI_OPT_SET | CLI_OPT_QUIET,
+                                  opts, "j:", help};
     cli_args args = {0};
     int threads = 0, hdf5 = 0, c;
     while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) { /* 'j' and 'H' */
@@ -373,7 +379,7 @@ int cmd_scan(int argc, char **argv)
      * after an hour of scanning. The folder is locked for the run: two scans into one
      * folder would mix their images and scene.ini. From here on a signal keeps the lines
      * finished. */
-    if ((rc = cli_scan_check_outputs(dir)))
+    if ((rc = cli_scan_check_outputs(dir, scan, hdf5)))
         goto done;
     cli_catch_interrupt();
     if ((rc = tt_mkdirs(dir)))

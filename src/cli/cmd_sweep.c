@@ -5,7 +5,6 @@
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "commands.h"
 #include "sweep.h"
@@ -120,13 +119,10 @@ static int build_grid(tt_scene *scene, char **vary, int nvary, sweep_job *job, c
     return rc;
 }
 
-/* A file the sweep writes at its end, checked before the first combination runs: not
- * a folder, and a file can be made beside it (made and removed again). */
+/* A file the sweep writes at its end, checked before the first combination runs: a
+ * file can be made beside it (made and removed again). */
 static int check_output(const char *path)
 {
-    struct stat st;
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
-        return tt_error(TT_EIO, "%s: is a folder; the sweep writes a file there", path);
     tt_outfile *of;
     int rc = tt_outfile_open(&of, path);
     return rc ? rc : tt_outfile_close(of, 0);
@@ -139,9 +135,7 @@ static int check_outputs(const sweep_job *job, const cli_args *a, long contrast,
     int rc = check_output(a->output);
     if (!rc && a->plot && !(rc = sweep_plot_check(job, contrast)))
         rc = check_output(a->plot);
-    if (!rc && h5 && strcmp(h5, a->output) == 0)
-        rc = tt_error(TT_EINVAL, "%s: with --hdf5 the table needs an extension other than .h5", a->output);
-    else if (!rc && h5)
+    if (!rc && h5)
         rc = check_output(h5);
     if (!rc && job->kind == TT_SWEEP_SCAN)
         rc = tt_mkdirs(job->dir);
@@ -171,6 +165,24 @@ static int write_hdf5(const char *path, const sweep_job *job, const sweep_result
     return rc;
 }
 
+/* The names the sweep derives from its table's, out: the folder of a scan sweep's
+ * combinations (the name without its extension, else with .d) and FILE.h5 (the
+ * extension replaced by .h5). */
+static void sweep_names(const char *out, char dir[4096], char h5[4100])
+{
+    snprintf(dir, 4096, "%s", out);
+    char *dot = strrchr(dir, '.');
+    if (dot && !strchr(dot, '/') && dot != dir)
+        *dot = '\0';
+    else /* no extension: the folder cannot take the table's own name */
+        strncat(dir, ".d", 4096 - strlen(dir) - 1);
+    snprintf(h5, 4100, "%s", out);
+    dot = strrchr(h5, '.');
+    if (dot && !strchr(dot, '/') && dot != h5)
+        *dot = '\0';
+    strncat(h5, ".h5", 4100 - strlen(h5) - 1);
+}
+
 static int sweep_main(tt_scene *scene, char **vary, int nvary, tt_sweep_kind kind, const cli_args *a,
                       int threads, const char *contrast, int hdf5)
 {
@@ -184,20 +196,8 @@ static int sweep_main(tt_scene *scene, char **vary, int nvary, tt_sweep_kind kin
         return CLI_FAIL;
     }
 #endif
-    char dir[4096], header[8192];
-    snprintf(dir, sizeof dir, "%s", a->output);
-    char *dot = strrchr(dir, '.');
-    if (dot && !strchr(dot, '/') && dot != dir)
-        *dot = '\0';
-    else /* no extension: the folder cannot take the table's own name */
-        strncat(dir, ".d", sizeof dir - strlen(dir) - 1);
-    /* FILE.h5: the table's name with .h5 for its extension */
-    char h5[4100];
-    snprintf(h5, sizeof h5, "%s", a->output);
-    dot = strrchr(h5, '.');
-    if (dot && !strchr(dot, '/') && dot != h5)
-        *dot = '\0';
-    strncat(h5, ".h5", sizeof h5 - strlen(h5) - 1);
+    char dir[4096], header[8192], h5[4100];
+    sweep_names(a->output, dir, h5);
     if (!threads)
         threads = omp_get_max_threads();
     sweep_job job = {NULL, kind, dir, threads, hdf5};
@@ -307,6 +307,13 @@ int cmd_sweep(int argc, char **argv)
         free(vary);
         return args.exit;
     }
+    /* every file the sweep writes, checked together before anything runs */
+    char dir[4096], h5[4100], journal[4200];
+    sweep_names(args.output, dir, h5);
+    snprintf(journal, sizeof journal, "%s.partial", args.output);
+    cli_args_more(&args, hdf5 ? h5 : NULL, "--hdf5", CLI_OUT_FILE);
+    cli_args_more(&args, journal, "the journal", CLI_OUT_DISTINCT);
+    cli_args_more(&args, kind == TT_SWEEP_SCAN ? dir : NULL, "the combinations' folder", CLI_OUT_FOLDER);
     int code;
     tt_scene *scene = cli_args_scene(&spec, &args, argc, argv, &code);
     if (!scene) {

@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "tiptap/config/scene.h"
+#include "tiptap/io/files.h"
 #include "tiptap/instrument/scan.h"
 #include "tiptap/physics/cantilever.h"
 
@@ -23,12 +24,13 @@ int cmd_sweep(int argc, char **argv);
  * with the scene's keys as metadata; *written counts the files written. */
 int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int hdf5,
                            int *written);
-/* TT_EINVAL when a file a scan writes into dir (or removes there as an earlier run's
- * channel file) is an input of this run (tt_output_check). */
-int cli_scan_check_outputs(const char *dir);
+/* TT_EINVAL when a file scan writes into dir (its channels' files, scan.h5 with hdf5)
+ * holds a folder, a pipe or a device (tt_output_check), or when one of those or a
+ * channel file it may remove there as an earlier run's is an input of this run. */
+int cli_scan_check_outputs(const char *dir, const tt_scan *scan, int hdf5);
 /* A scan's folder made ready: its outputs checked (cli_scan_check_outputs), the folder
  * made, and locked for command cmd (tt_folder_lock; *lock for cli_unlock_folder). */
-int cli_scan_folder_take(const char *cmd, const char *dir, int *lock);
+int cli_scan_folder_take(const char *cmd, const char *dir, const tt_scan *scan, int hdf5, int *lock);
 int cmd_profiles(int argc, char **argv);
 int cmd_live(int argc, char **argv);
 /* A line's full-rate record of scan into dir (cli_scope.c): scope.csv (every quantity,
@@ -77,6 +79,8 @@ int cli_no_operands(const char *cmd, int argc, char **argv, int first, const cha
  * Ownership: the --set list belongs to the cli_args; cli_args_scene frees it, and so
  * does cli_args_free on a return before it. Texts point into argv. */
 enum { CLI_OPT_OUTPUT = 1, CLI_OPT_PLOT = 2, CLI_OPT_SET = 4, CLI_OPT_QUIET = 8 };
+/* With CLI_OPT_OUTPUT: -o names a folder (scan), checked only against the inputs. */
+enum { CLI_OUTPUT_FOLDER = 16 };
 
 /* getopt codes of the long-only common options, above every character */
 enum { CLI_CODE_PLOT = 0x100, CLI_CODE_SET = 0x101 };
@@ -93,8 +97,18 @@ typedef struct {
     void (*help)(void);        /* prints --help to stdout */
 } cli_spec;
 
+/* How an output is checked before the run: a file (tt_output_check: no folder, pipe or
+ * device there, not an input), a folder (not an input), or only against the run's other
+ * outputs (a file that checks itself when it is opened, the sweep's journal). */
+enum { CLI_OUT_FILE, CLI_OUT_FOLDER, CLI_OUT_DISTINCT };
+#define CLI_MORE_OUTPUTS 4
+
 typedef struct {
     const char *output, *plot; /* -o, --plot: as given, else as the command set them */
+    /* the run's other outputs (the sweep's FILE.h5), added before cli_args_scene */
+    tt_output more[CLI_MORE_OUTPUTS];
+    int more_how[CLI_MORE_OUTPUTS];
+    int nmore;
     int quiet;                 /* -q */
     char **sets;               /* --set assignments in order */
     int nsets;
@@ -102,6 +116,17 @@ typedef struct {
     struct option table[32];   /* the merged getopt table */
     char shorts[64];
 } cli_args;
+
+/* Add an output of the run (NULL: none) named what in messages, checked as how
+ * (CLI_OUT_*), to those of cli_args_scene's checks. */
+void cli_args_more(cli_args *a, const char *path, const char *what, int how);
+/* Before anything runs, over every output of the run (-o, --plot, cli_args_more's):
+ * cli_outputs_distinct refuses two naming one file ("tiptap CMD: --plot x.png: the same
+ * file as -o x.png; give each its own name", CLI_USAGE); cli_outputs_check each as its
+ * kind says ("tiptap: ...", CLI_FAIL), once the inputs are read. cli_args_scene calls
+ * both. */
+int cli_outputs_distinct(const cli_spec *spec, const cli_args *a);
+int cli_outputs_check(const cli_spec *spec, const cli_args *a);
 
 /* The next option: the command's own code (> 0), CLI_END, or CLI_EXIT. */
 int cli_getopt(const cli_spec *spec, cli_args *a, int argc, char **argv);

@@ -190,7 +190,7 @@ static int compute_scan(const sweep_job *job, size_t i, tt_table *t)
     int rc, lock = -1;
     /* the folder locked as tiptap scan locks it: a scan running there is not mixed into */
     if ((rc = tt_sweep_scene(job->grid, i, &scene)) || (rc = tt_config_cantilever(scene, &cant)) ||
-        (rc = tt_config_scan_alloc(&scan, scene)) || (rc = cli_scan_folder_take("sweep", folder, &lock)) ||
+        (rc = tt_config_scan_alloc(&scan, scene)) || (rc = cli_scan_folder_take("sweep", folder, scan, job->hdf5, &lock)) ||
         (rc = tt_outfile_open(&of, path)))
         goto done;
     rc = tt_scene_write(scene, tt_outfile_stream(of), NULL);

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "scene_private.h"
 #include "tiptap/io/files.h"
 #include "tiptap/util/error.h"
 
@@ -460,6 +461,8 @@ int tt_config_surface_alloc(tt_surface **out, const tt_scene *s, double size_x, 
 
 void tt_config_note_inputs(const tt_scene *s)
 {
+    for (size_t i = 0; i < s->nfiles; i++)
+        tt_input_note(s->files[i], "scene file");
     static const char *const keys[] = {"png", "map_png"};
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
         char path[4096];

@@ -112,6 +112,8 @@ int tt_scene_load(tt_scene *s, const char *path)
         rc = tt_error(TT_EIO, "%s: the file grew while it was read", path);
     if (!rc)
         rc = load_text(s, text, len, path);
+    if (!rc)
+        rc = scene_note_file(s, path);
     free(text);
     return rc;
 }

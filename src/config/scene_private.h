@@ -52,6 +52,8 @@ struct tt_scene {
     hash_index by_section; /* (section, name) -> uses */
     name_list *names;      /* per schema section */
     unsigned loads;        /* files read so far */
+    char **files;          /* the files read (tt_scene_load), as named: inputs of its runs */
+    size_t nfiles;
 };
 
 /* scene_store.c */
@@ -64,6 +66,8 @@ const section_use *scene_find_use(const tt_scene *s, const char *section, const 
 /* Record that a section appears (a no-op when it already did), keeping the origin of its
  * first appearance. */
 int scene_note_section(tt_scene *s, const char *section, const char *name, const char *origin);
+/* Remember a file the scene was read from. */
+int scene_note_file(tt_scene *s, const char *path);
 /* Store one checked key (a new one, or a new value for a key already there). */
 int scene_store(tt_scene *s, const char *origin, unsigned load, const char *section,
                 const char *name, const char *key, const char *value);

@@ -131,6 +131,18 @@ static int names_add(tt_scene *s, const char *section, size_t use)
 
 tt_scene *tt_scene_alloc(void) { return calloc(1, sizeof(tt_scene)); }
 
+int scene_note_file(tt_scene *s, const char *path)
+{
+    char **grown = realloc(s->files, (s->nfiles + 1) * sizeof *grown);
+    if (!grown)
+        return tt_error_nomem("the list of the scene's files (%s)", path);
+    s->files = grown;
+    if (!(s->files[s->nfiles] = tt_strdup(path)))
+        return tt_error_nomem("the list of the scene's files (%s)", path);
+    s->nfiles++;
+    return TT_OK;
+}
+
 void tt_scene_free(tt_scene *s)
 {
     if (!s)
@@ -159,6 +171,9 @@ void tt_scene_free(tt_scene *s)
     free(s->entries);
     free(s->uses);
     free(s->origin);
+    for (size_t i = 0; i < s->nfiles; i++)
+        free(s->files[i]);
+    free(s->files);
     free(s);
 }
 
@@ -266,6 +281,8 @@ tt_scene *tt_scene_copy(const tt_scene *s)
         const entry *e = &s->entries[i];
         rc = scene_store(c, e->origin, e->load, e->section, e->name, e->key, e->value);
     }
+    for (size_t i = 0; i < s->nfiles && !rc; i++)
+        rc = scene_note_file(c, s->files[i]);
     if (rc) {
         tt_scene_free(c);
         return NULL;

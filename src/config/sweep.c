@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 
 typedef struct {
@@ -350,6 +351,24 @@ int tt_sweep_check_size(const char *const *specs, size_t n)
                                "keys or fewer values", msg, count, TT_SWEEP_MAX_COMBINATIONS);
 }
 
+static int set_key(const tt_sweep *sw, size_t i, size_t k, tt_scene *s);
+
+/* The files axis k makes the sweep read, noted as inputs (tt_config_note_inputs) when
+ * it is added, before anything runs: each scene file varied, and the maps a varied
+ * path key names, so that no output of the run (Python's hdf5= included) replaces one.
+ * The axis is the last one, so its level l is combination l. */
+static void note_inputs(const tt_sweep *sw, size_t k, const tt_scene_key *key)
+{
+    if (!sw->axes[k].files && !(key->flags & TT_KEY_PATH))
+        return;
+    for (size_t l = 0; l < sw->axes[k].n; l++) {
+        tt_scene *c = tt_scene_copy(sw->base);
+        if (c && (sw->axes[k].files ? tt_scene_load(c, tt_sweep_text(sw, l, k)) : set_key(sw, l, k, c)) == TT_OK)
+            tt_config_note_inputs(c);
+        tt_scene_free(c);
+    }
+}
+
 int tt_sweep_vary(tt_sweep *sw, const char *spec)
 {
     char show[80];
@@ -403,6 +422,7 @@ int tt_sweep_vary(tt_sweep *sw, const char *spec)
     }
     sw->axes = axes;
     sw->axes[sw->naxes++] = a;
+    note_inputs(sw, sw->naxes - 1, k);
     return TT_OK;
 }
 

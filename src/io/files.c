@@ -16,6 +16,8 @@
 
 /* ---- inputs: regular files only ---- */
 
+static void note(const char *path, const char *what, int always);
+
 /* What fstat says of an input: TT_OK for a regular file within max_bytes. */
 static int check_regular(int fd, const char *path, const char *what, const char *noun,
                          long long max_bytes, long long *size)
@@ -58,7 +60,7 @@ int tt_input_open(const char *path, const char *what, const char *noun, long lon
         return rc;
     }
     make_blocking(d);
-    tt_input_note(path, what);
+    note(path, what, 0);
     *fd = d;
     return TT_OK;
 }
@@ -99,7 +101,7 @@ int tt_file_update(const char *path, const char *what, long long max_bytes, FILE
     int rc = check_regular(fd, path, what, what, max_bytes, NULL);
     if (!rc) {
         make_blocking(fd);
-        tt_input_note(path, what);
+        note(path, what, 0);
         if (!(*f = fdopen(fd, "r+b")))
             rc = tt_error(TT_ENOMEM, "%s: out of memory", path);
     }
@@ -189,13 +191,17 @@ void tt_inputs_track(int on)
     pthread_mutex_unlock(&inputs_mutex);
 }
 
-void tt_input_note(const char *path, const char *what)
+void tt_input_note(const char *path, const char *what) { note(path, what, 1); }
+
+/* An input remembered: always when the caller names it (tt_input_note), while tracking
+ * when it is only opened. */
+static void note(const char *path, const char *what, int always)
 {
     struct stat st;
     if (stat(path, &st) != 0)
         return;
     pthread_mutex_lock(&inputs_mutex);
-    int known = !tracking;
+    int known = !tracking && !always;
     for (size_t i = 0; i < ninputs && !known; i++)
         known = inputs[i].dev == st.st_dev && inputs[i].ino == st.st_ino;
     if (!known && ninputs == inputs_cap) {
@@ -224,7 +230,36 @@ void tt_input_note(const char *path, const char *what)
     pthread_mutex_unlock(&inputs_mutex);
 }
 
+/* What lies at an output's name: nothing, a regular file, or a link to one (rename()
+ * replaces the link) may be replaced; a folder, a pipe, a device or a socket, a link to
+ * one, or a link into /proc, may not (the rename would put a file in place of
+ * /dev/null, a FIFO or /dev/stdout). */
+static int check_kind(const char *out)
+{
+    struct stat st;
+    char to[256] = "";
+    if (lstat(out, &st) != 0 || S_ISREG(st.st_mode))
+        return TT_OK;
+    /* /dev/stdout names the file behind a descriptor, through /proc: replacing the link
+     * would replace /dev/stdout itself */
+    if (S_ISLNK(st.st_mode) && readlink(out, to, sizeof to - 1) > 0 && !strncmp(to, "/proc/", 6))
+        return tt_error(TT_EINVAL, "%s: a link into /proc (%s), to a process's open file; the "
+                        "output would replace the link: name the file itself", out, to);
+    if (S_ISLNK(st.st_mode) && (stat(out, &st) != 0 || S_ISREG(st.st_mode)))
+        return TT_OK;
+    if (S_ISDIR(st.st_mode))
+        return tt_error(TT_EINVAL, "%s: is a folder; the output is a file: name another", out);
+    return tt_error(TT_EINVAL, "%s: not a regular file (a device, pipe or socket); an output "
+                    "replaces only a regular file: name another", out);
+}
+
 int tt_output_check(const char *out)
+{
+    int rc = check_kind(out);
+    return rc ? rc : tt_output_check_inputs(out);
+}
+
+int tt_output_check_inputs(const char *out)
 {
     pthread_mutex_lock(&inputs_mutex);
     int none = ninputs == 0;
@@ -248,5 +283,32 @@ int tt_output_check(const char *out)
     if (found[0])
         return tt_error(TT_EINVAL, "%s: the same file as the %s that this run reads; write the "
                         "output elsewhere", out, found);
+    return TT_OK;
+}
+
+/* Whether two output names are one file: the same file if both exist, else the same
+ * resolved path (the folder's links, "." and ".." resolved; a link at the name itself
+ * is what the output replaces). */
+static int same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    if (stat(a, &sa) == 0 && stat(b, &sb) == 0)
+        return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    char *ra = absolute(a, 1), *rb = absolute(b, 1), *la = absolute(a, 0), *lb = absolute(b, 0);
+    int same = (ra && rb && !strcmp(ra, rb)) || (la && lb && !strcmp(la, lb));
+    free(ra);
+    free(rb);
+    free(la);
+    free(lb);
+    return same;
+}
+
+int tt_outputs_distinct(const tt_output *outs, size_t n)
+{
+    for (size_t j = 1; j < n; j++)
+        for (size_t i = 0; i < j; i++)
+            if (outs[i].path && outs[j].path && same_file(outs[i].path, outs[j].path))
+                return tt_error(TT_EINVAL, "%s %s: the same file as %s %s; give each its own name",
+                                outs[j].what, outs[j].path, outs[i].what, outs[i].path);
     return TT_OK;
 }

@@ -53,10 +53,23 @@ static void load(void)
         ops = o;
 }
 
+/* The message of a failure: a failed write's reason as for every output ("File too
+ * large", "No space left on device"), else what was being written and HDF5's words. */
+static int report(const char *path, int err, const char *why, const char *what, const char *object)
+{
+    if (err)
+        return tt_error(TT_EIO, "%s: cannot write: %s", path, strerror(err));
+    return tt_error(TT_EIO, "%s: cannot write HDF5: %s %s%s%s", path, what, object, why[0] ? ": " : "",
+                    why);
+}
+
 static int fail(tt_h5 *f, const char *what, const char *object)
 {
+    int err;
+    char why[256];
+    ops->reason(f->file, &err, why, sizeof why);
     f->failed = 1;
-    return tt_error(TT_EIO, "%s: cannot write HDF5: %s %s", f->path, what, object);
+    return report(f->path, err, why, what, object);
 }
 
 int tt_h5_create(tt_h5 **out, const char *path)
@@ -79,7 +92,11 @@ int tt_h5_create(tt_h5 **out, const char *path)
     pthread_mutex_lock(&one_file);
     /* the temporary file exists (made without following links); HDF5 writes it anew */
     if (!(f->file = ops->create(tt_outfile_tmpname(f->tmp)))) {
-        rc = fail(f, "creating", "the file");
+        int err;
+        char why[256];
+        ops->create_reason(&err, why, sizeof why);
+        f->failed = 1;
+        rc = report(path, err, why, "creating", "the file");
         tt_h5_close(f, 0);
         return rc;
     }
@@ -91,10 +108,18 @@ int tt_h5_close(tt_h5 *f, int keep)
 {
     if (!f)
         return TT_OK;
-    int rc = f->failed ? TT_EIO : TT_OK;
-    if (f->file && ops->close(f->file) < 0 && rc == TT_OK && keep)
-        rc = fail(f, "closing", "the file");
-    pthread_mutex_unlock(&one_file);
+    int rc = f->failed ? TT_EIO : TT_OK, err = 0;
+    char why[256] = "";
+    void *image = NULL;
+    size_t size = 0;
+    if (f->file && ops->close(f->file, &image, &size, &err, why, sizeof why) < 0 && rc == TT_OK && keep)
+        rc = report(f->path, err, why, "closing", "the file");
+    pthread_mutex_unlock(&one_file); /* libhdf5 is done with the file; the image is ours */
+    /* a failed write (past ulimit -f, a full disk) is kept by the stream and told by
+     * tt_outfile_close, with the reason */
+    if (rc == TT_OK && keep)
+        fwrite(image, 1, size, tt_outfile_stream(f->tmp));
+    free(image);
     int crc = tt_outfile_close(f->tmp, keep && rc == TT_OK);
     if (rc == TT_OK)
         rc = crc;
@@ -103,29 +128,42 @@ int tt_h5_close(tt_h5 *f, int keep)
     return rc;
 }
 
+/* After a failure nothing more is written: the file is discarded at close, and the
+ * first failure's message stands. */
+#define SKIP_AFTER_FAILURE(f) \
+    do {                     \
+        if ((f)->failed)     \
+            return TT_EIO;   \
+    } while (0)
+
 int tt_h5_group(tt_h5 *f, const char *path)
 {
+    SKIP_AFTER_FAILURE(f);
     return ops->group(f->file, path) < 0 ? fail(f, "the group", path) : TT_OK;
 }
 
 int tt_h5_doubles(tt_h5 *f, const char *path, int rank, const size_t *dims, const double *data)
 {
+    SKIP_AFTER_FAILURE(f);
     return ops->doubles(f->file, path, rank, dims, data) < 0 ? fail(f, "the dataset", path) : TT_OK;
 }
 
 int tt_h5_text(tt_h5 *f, const char *path, const char *text)
 {
+    SKIP_AFTER_FAILURE(f);
     return ops->texts(f->file, path, 0, NULL, &text) < 0 ? fail(f, "the dataset", path) : TT_OK;
 }
 
 int tt_h5_texts(tt_h5 *f, const char *path, int rank, const size_t *dims, const char *const *texts)
 {
+    SKIP_AFTER_FAILURE(f);
     return ops->texts(f->file, path, rank, dims, texts) < 0 ? fail(f, "the dataset", path) : TT_OK;
 }
 
 /* Attribute name of object, of type type, from value. */
 static int attribute(tt_h5 *f, const char *object, const char *name, int type, const void *value)
 {
+    SKIP_AFTER_FAILURE(f);
     if (ops->attr(f->file, object, name, type, value) == 0)
         return TT_OK;
     char what[1200];
@@ -150,11 +188,13 @@ int tt_h5_attr_long(tt_h5 *f, const char *object, const char *name, long value)
 
 int tt_h5_scale(tt_h5 *f, const char *scale, const char *name)
 {
+    SKIP_AFTER_FAILURE(f);
     return ops->scale(f->file, scale, name) < 0 ? fail(f, "the dimension scale", scale) : TT_OK;
 }
 
 int tt_h5_attach(tt_h5 *f, const char *data, const char *scale, unsigned dim, const char *label)
 {
+    SKIP_AFTER_FAILURE(f);
     return ops->attach(f->file, data, scale, dim, label) < 0 ? fail(f, "attaching a dimension scale to", data)
                                                            : TT_OK;
 }

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tiptap/config/config.h"
 #include "tiptap/config/meta.h"
 #include "tiptap/version.h"
 #include "tiptap/io/hdf5.h"
@@ -54,7 +55,7 @@ static int key_scale(tt_h5 *f, const tt_sweep *g, size_t k)
         rc = unit[0] ? tt_h5_doubles(f, path, 1, &n, v) : tt_h5_texts(f, path, 1, &n, s);
     if (!rc && !(rc = tt_h5_scale(f, path, tt_sweep_key(g, k))) &&
         !(rc = tt_h5_attr_text(f, path, "name", tt_sweep_key(g, k))) &&
-        !(rc = tt_h5_attr_text(f, path, "units", strcmp(unit, "1") ? unit : "")) &&
+        !(rc = tt_h5_attr_text(f, path, "units", unit)) && /* "1": a fraction, as the table's */
         !(rc = tt_h5_attr_text(f, path, "quantity", tt_sweep_key(g, k))))
         rc = tt_h5_attr_text(f, path, "dimension_type", "UNKNOWN");
     free(v);
@@ -164,6 +165,7 @@ int tt_run_sweep_hdf5(const char *path, const tt_sweep *grid, tt_sweep_kind kind
     int rank = (int)nk + (rows > 1);
     dims[nk] = rows;
     tt_h5 *f;
+    tt_config_note_inputs(base); /* no table written over the scene it ran */
     if ((rc = tt_h5_create(&f, path)))
         return rc;
     if (!(rc = tt_h5_attr_text(f, "/", "file_kind", "tiptap sweep")) &&

@@ -97,9 +97,9 @@ void tt_config_accuracy_free(tt_accuracy_subject *subject);
  * the module name the scene file too (tt_scene_locate). */
 int tt_config_scan_alloc(tt_scan **out, const tt_scene *s);
 int tt_config_surface_alloc(tt_surface **out, const tt_scene *s, double size_x, double size_y);
-/* Note the files the scene names ([surface] png, map_png; those that exist) as inputs
- * of the run before they are read (tt_input_note), so that an output of the same name
- * is refused before anything runs. */
+/* Note the files the scene was read from and those it names ([surface] png, map_png;
+ * those that exist) as inputs of the run (tt_input_note: remembered whether tracking is
+ * on or not), so that an output of the same name is refused before anything runs. */
 void tt_config_note_inputs(const tt_scene *s);
 int tt_config_accuracy_alloc(tt_accuracy **out, const tt_scene *s, const tt_accuracy_params *p);
 

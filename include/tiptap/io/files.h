@@ -6,10 +6,14 @@
  * name, without blocking on a pipe), and at most a bounded number of bytes.
  *
  * With tracking on (tt_inputs_track; the tiptap program turns it on), every input
- * opened or noted is remembered, and tt_output_check refuses an output that is the same
- * file (device and inode) or the same path as one of them: a sweep's -o s.ini would
- * otherwise replace the scene it ran. tt_outfile_open checks every output it opens.
- * The list is shared by the process's threads (guarded by a mutex).
+ * opened is remembered, and so is every input a caller notes, tracking or not (a scene's
+ * files and maps, tt_config_note_inputs); tt_output_check refuses an output that is the
+ * same file (device and inode) or the same path as one of them (a sweep's -o s.ini, or
+ * Python's hdf5="s.ini", would otherwise replace the scene it ran), and one whose name
+ * holds a folder, a pipe, a device or a socket. tt_outfile_open checks every output it
+ * opens. The list is shared by the process's threads (guarded by a mutex).
+ *
+ * tt_outputs_distinct checks all of a run's outputs at once: no two may name one file.
  */
 #ifndef TIPTAP_FILES_H
 #define TIPTAP_FILES_H
@@ -48,14 +52,35 @@ int tt_file_update(const char *path, const char *what, long long max_bytes, FILE
 /* Create a new file for writing ("wb"): never through a link, never over a file there. */
 int tt_file_create(const char *path, const char *what, FILE **f);
 
-/* Remember inputs from now on (1) or forget them and stop (0). Off by default, so that
- * a program using the library may write where it read. */
+/* Remember every input opened from now on (1), or forget all inputs and stop (0). Off
+ * by default, so that a program using the library may write a file it opened; the
+ * inputs a caller names (tt_input_note, tt_config_note_inputs: a scene's files and
+ * maps) are remembered either way, until tt_inputs_track(0). */
 void tt_inputs_track(int on);
 /* Remember path as an input named what, if it exists (a file the run will read). */
 void tt_input_note(const char *path, const char *what);
-/* TT_EINVAL, "out: the same file as the WHAT in that this run reads; ...", when out
- * names an input (the same device and inode, or the same absolute path). */
+/* A file output at out, checked before anything is written there (tt_outfile_open checks
+ * every file it opens so): TT_EINVAL when
+ *   - something other than a regular file is there (rename() would replace it): "out:
+ *     is a folder; ...", "out: not a regular file (a device, pipe or socket); ...", also
+ *     through a link (a link to a regular file is replaced by the output, as is any link);
+ *   - out names an input (tt_output_check_inputs). */
 int tt_output_check(const char *out);
+/* TT_EINVAL, "out: the same file as the WHAT in that this run reads; ...", when out
+ * names a remembered input (the same device and inode, or the same absolute path). For
+ * an output folder, and names a run may remove. */
+int tt_output_check_inputs(const char *out);
+
+/* One output of a run: its name, and what the run calls it in messages ("-o",
+ * "--plot"). */
+typedef struct {
+    const char *path, *what;
+} tt_output;
+/* Every output of a run at once, before any is written: TT_EINVAL, "WHAT2 PATH2: the
+ * same file as WHAT1 PATH1; give each its own name", when two name one file (the same
+ * file if both exist; else the same path once the folders' links, "." and ".." are
+ * resolved). NULL paths are skipped. */
+int tt_outputs_distinct(const tt_output *outs, size_t n);
 
 TT_END_DECLS
 #endif

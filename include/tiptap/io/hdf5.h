@@ -6,7 +6,10 @@
  * the file ("/Measurement_000/Channel_000/height_trace"); groups are made with their
  * parents. The file is written under a temporary name beside the target
  * (tiptap/io/outfile.h) and renamed into place by tt_h5_close with keep = 1, so a run
- * that fails or is stopped leaves no truncated file. Objects carry no modification
+ * that fails or is stopped leaves no truncated file. libhdf5 makes the file in memory
+ * and tt_h5_close writes it (libhdf5 1.10 crashed at exit after a failed write of its
+ * own): a failed write is "path: cannot write: reason" ("File too large", "No space
+ * left on device"), as for every output; the file is held in memory twice at the end. Objects carry no modification
  * times, so that the same data give the same bytes, and list their attributes in the
  * order written. Texts are variable-length UTF-8 strings (h5py reads attributes as str,
  * datasets as bytes: dataset.asstr()).
@@ -15,7 +18,8 @@
  * written at a time in the process (tt_h5_create waits for the previous tt_h5_close).
  *
  * Ownership: the tt_h5 belongs to the library until tt_h5_close, which frees it
- * whatever it returns. Every failure is TT_EIO with "path: cannot write HDF5: what".
+ * whatever it returns. Every failure is TT_EIO: "path: cannot write: reason" for a
+ * failed write, else "path: cannot write HDF5: WHAT OBJECT: HDF5's words".
  */
 #ifndef TIPTAP_HDF5_H
 #define TIPTAP_HDF5_H
@@ -28,9 +32,11 @@ TT_BEGIN_DECLS
 
 typedef struct tt_h5 tt_h5;
 
-/* Fails as tt_outfile_open does (an unwritable folder, an input of the run). */
+/* Fails as tt_outfile_open does (an unwritable folder, a folder, pipe or device at
+ * path, an input of the run). */
 int tt_h5_create(tt_h5 **out, const char *path);
-/* keep = 1: close and rename into place; 0: remove the temporary file. */
+/* keep = 1: write the file, close and rename it into place; 0: remove the temporary
+ * file. After a failed call nothing more is written and keep = 1 returns TT_EIO. */
 int tt_h5_close(tt_h5 *f, int keep);
 
 int tt_h5_group(tt_h5 *f, const char *path);

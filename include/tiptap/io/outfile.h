@@ -22,8 +22,9 @@ TT_BEGIN_DECLS
 typedef struct tt_outfile tt_outfile;
 
 /* Fails with TT_EIO and "path: cannot write: reason" (for example a missing or
- * unwritable folder), and with TT_EINVAL when path is an input of the run
- * (tt_output_check in include/tiptap/io/files.h). The temporary file is made with
+ * unwritable folder), and with TT_EINVAL when path holds a folder, a pipe, a device or
+ * a socket (or a link to one), or is an input of the run (tt_output_check in
+ * include/tiptap/io/files.h). The temporary file is made with
  * O_CREAT | O_EXCL, so a link planted in its place is never followed; rename() at close
  * replaces a link at path itself, never the file it points to. */
 int tt_outfile_open(tt_outfile **out, const char *path);
