@@ -86,14 +86,15 @@ def test_setpoint_not_reached_in_a_sweep():
     assert t.warnings == [("setpoint", w[0][1])]
 
 
-def test_points_not_settled():
+def test_points_not_settled(tmp_path):
     scene = os.path.join(EXTREME, "vacuum-q1e4.ini")
     keys = {"approach.points": 2, "approach.steady": "settle", "approach.max_cycles": 100}
     t, w = caught(lambda: tiptap.approach(scene, set=keys, progress=False))
     assert list(t["settled"]) == [0, 0]
     assert w == [(tiptap.SettleWarning, "2 points did not settle within max_cycles = 100 (period "
                   "doubling or chaos, or raise [approach] max_cycles)")]
-    p = cli("approach", scene, *sets(keys), "-o", os.devnull)
+    # a file of its own: an output never replaces a device node such as /dev/null
+    p = cli("approach", scene, *sets(keys), "-o", str(tmp_path / "approach.csv"))
     assert program_warnings(p.stderr, "approach") == [w[0][1]]
 
 
