@@ -55,7 +55,7 @@ grep -qE '^scan: 16 x 2 pixels, [0-9.e+]+ drive cycles, about [0-9.]+ [a-z]+ by 
   ok "every-cycle tier: one figure" || bad "every-cycle estimate: '$out'"
 # under ulimit -v 1 GB; a sanitizer build cannot start under it (its shadow memory), so
 # there every channel both ways: 42 images of 2.1 GB, more than a test machine has
-huge=(--set scan.pixels=16384 --set scan.lines=16384 --set "scan.line_rate=0.001 Hz")
+huge=(--set scan.pixels=16384 --set scan.lines=16384 --set "scan.line_rate=1 Hz")
 if (ulimit -v 1000000; "$tiptap" keys >/dev/null 2>&1); then
   out=$( (ulimit -v 1000000; "$tiptap" scan "$tmp/s.ini" -o "$tmp/huge" "${huge[@]}" 2>&1 >/dev/null); echo "rc=$?")
   want="tiptap scan: 16384 x 16384 pixels need about 6.5 GB of memory (2 images of 2.1 GB each), more than the 1.0 GB available"
@@ -66,6 +66,15 @@ else
 fi
 grep -qF "$want" <<<"$out" && grep -qF "rc=1" <<<"$out" && ok "huge scan refused" || bad "huge scan: '$out'"
 [ -e "$tmp/huge" ] && bad "the refused huge scan made its folder" || ok "no folder for the huge scan"
+# a slow line's scope record (every lock-in block of the profile line: 2.7 GB at
+# 0.002 Hz on the standard cantilever) counts too; it ran, then held 27 GB at 0.0002 Hz
+if (ulimit -v 1000000; "$tiptap" keys >/dev/null 2>&1); then
+  out=$( (ulimit -v 1000000; "$tiptap" scan "$tmp/s.ini" -o "$tmp/slow" --set "scan.line_rate=0.002 Hz" 2>&1 >/dev/null); echo "rc=$?")
+  grep -qF "tiptap scan: [scan] line_rate: 0.002 Hz makes the profile line's scope record (every lock-in block of the line) need about 2.7 GB of memory, more than the 1.0 GB available" <<<"$out" &&
+    grep -qF "rc=1" <<<"$out" && [ ! -e "$tmp/slow" ] && ok "a slow line's scope refused" || bad "slow line's scope: '$out'"
+else
+  echo "skip a slow line's scope under ulimit -v (a sanitizer build cannot start under it)"
+fi
 echo file >"$tmp/afile"
 cat >"$tmp/slowdrive.ini" <<'INI'
 [cantilever]

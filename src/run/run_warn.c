@@ -77,11 +77,20 @@ static int scan_cost(const tt_scan_params *p, int threads, tt_run_scan_cost *c)
         n = (int)p->raster.lines;
     *c = (tt_run_scan_cost){p->raster.pixels, p->raster.lines, n, e.upper_bound, e.envelope,
                             tt_scan_averaged_tier(p), e.cycles, e.seconds, e.seconds_low,
-                            e.integrated_low, e.integrated_high, e.bytes + e.thread_bytes * n,
+                            e.integrated_low, e.integrated_high,
+                            e.bytes + e.thread_bytes * n + e.scope_bytes,
                             tt_run_memory_available(), p->cantilever.f0, p->cantilever.fd};
     if (c->bytes <= c->available)
         return TT_OK;
     char need[32], have[32], img[32];
+    /* the profile line's scope record holds every lock-in block of the line: at a very
+     * slow line rate it, not the images, is what cannot be held (0.0002 Hz: 27 GB) */
+    if (e.scope_bytes > 0.5 * c->bytes)
+        return tt_error(TT_ENOMEM, "[scan] line_rate: %g Hz makes the profile line's scope record "
+                                   "(every lock-in block of the line) need about %s of memory, "
+                                   "more than the %s available; scan faster lines",
+                        p->raster.line_rate, tt_run_bytes(e.scope_bytes, need, sizeof need),
+                        tt_run_bytes(c->available, have, sizeof have));
     double image = (double)p->raster.pixels * (double)p->raster.lines * sizeof(double);
     double nimg = e.bytes / image - 1;
     return tt_error(TT_ENOMEM, "%ld x %ld pixels need about %s of memory (%.0f image%s of %s each), "
