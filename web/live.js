@@ -164,8 +164,6 @@ function status(m) {
         " at the current settings" : "") + ": an export holds the image as it stands; scene.ini is the current settings, " +
       "which tiptap scan reproduces once a whole frame has run at them.";
   }
-  // the ring's damping from the newest line's record, which the warning judged
-  loop.measured = m.oscillating && state.scope ? measureRing(state.scope) : null;
   drawLoop();
   // auto-tune counts the lines on the scan's own tier (the oscillation check's), not previews
   if (loop.lastScopes !== state.scopes && state.scope && state.scope.tier === m.tier) {
@@ -970,8 +968,7 @@ function drawLoop() {
   const r = loopNow();
   if (!r) return;
   const st = state.status || {};
-  const sig = [r.kp, r.ki, JSON.stringify(loop.p), $("bode").clientWidth, st.oscillating, st.ring_hz,
-    JSON.stringify(loop.measured)].join();
+  const sig = [r.kp, r.ki, JSON.stringify(loop.p), $("bode").clientWidth, st.oscillating, st.ring_hz].join();
   if (sig === loop.sig) return;
   loop.sig = sig;
   loop.now = r;
@@ -990,9 +987,8 @@ function drawLoop() {
     r.ring ? "the model rings at " + fmt(r.ring.hz, "Hz") + ", damping ratio " + r.ring.damping.toFixed(2) :
       "the model does not ring (fewer than three swings)";
   const ring = st.oscillating && st.ring_hz > 0 ?
-    "Measured: the loop rings at " + fmt(st.ring_hz, "Hz") + (loop.measured && isFinite(loop.measured.damping) ?
-      ", damping ratio about " + loop.measured.damping.toFixed(2) + " (rough: the scope's error swings after its largest)" : "") +
-    "; " + model + " (in contact the amplitude answers faster than tau_A: docs/imaging.md)." :
+    "Measured: the loop rings at " + fmt(st.ring_hz, "Hz") + ", " + fmt(st.ring_m * 1e9, "nm") +
+    " peak to peak in z (the server's warning; it sends no damping ratio); " + model + " (in contact the amplitude answers faster than tau_A: docs/imaging.md)." :
     "No ring measured on the last line; " + model + ".";
   $("loopring").textContent = ring;
   $("loopsuggest").textContent = "For a 60 deg margin: I " + fmt(r.ki60, "Hz") + " with P as set (" + r.kp +
@@ -1006,40 +1002,6 @@ function drawLoop() {
     window.tiptapSet("feedback.proportional_gain", r.kp60pi.toFixed(2));
     window.tiptapSet("feedback.integral_gain", Math.round(r.ki60pi).toString());
   };
-}
-// The measured ring's damping from the scope's error: from its largest swing on, the
-// extremes of alternate sign beyond a fifth of it (smaller wiggles, the noise, belong to
-// the swing they sit in), their median spacing and ratio as ringOf reads the model's.
-function measureRing(m) {
-  let best = null;
-  for (const dir of ["trace", "retrace"]) {
-    const d = m[dir];
-    if (!d || !d.error || d.error.length < 8) continue;
-    const n = d.error.length, e = d.error.map((v) => (v == null ? 0 : v));
-    const time = (i) => d.t0 + (n > 1 ? (d.t1 - d.t0) * i / (n - 1) : 0);
-    let k = 0;
-    for (let i = 0; i < n; i++) if (Math.abs(e[i]) > Math.abs(e[k])) k = i;
-    const thr = 0.2 * Math.abs(e[k]);
-    const peaks = [];
-    let cur = { i: k, s: Math.sign(e[k]) };
-    for (let i = k + 1; i < n; i++) {
-      if (Math.sign(e[i]) === cur.s) { if (Math.abs(e[i]) > Math.abs(e[cur.i])) cur.i = i; }
-      else if (Math.abs(e[i]) > thr) { peaks.push(cur.i); cur = { i, s: Math.sign(e[i]) }; }
-    }
-    peaks.push(cur.i);
-    if (peaks.length < 3) continue;
-    const gaps = [], ratios = [];
-    // the largest swing is the wall's own (the error saturated): the ring's decay after it
-    for (let j = peaks.length > 3 ? 2 : 1; j < peaks.length; j++) {
-      gaps.push(time(peaks[j]) - time(peaks[j - 1]));
-      ratios.push(Math.abs(e[peaks[j]]) / Math.abs(e[peaks[j - 1]]));
-    }
-    const med = (v) => v.slice().sort((a, b) => a - b)[Math.floor(v.length / 2)];
-    const r = Math.min(med(ratios), 0.999999), lr = Math.log(r);
-    const ring = { hz: 1 / (2 * med(gaps)), damping: -lr / Math.sqrt(Math.PI * Math.PI + lr * lr), swings: peaks.length };
-    if (!best || ring.swings > best.swings) best = ring;
-  }
-  return best;
 }
 function loopLog(text) {
   loop.log.push(text);
