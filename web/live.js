@@ -126,6 +126,8 @@ function reply(m) {
   state.replies++;
   state.lastReply = m;
   $("reply").textContent = m.ok ? "" : m.error;
+  // a step the server refuses ends auto-tune (its gain would never come into force)
+  if (!m.ok && loop.tune) { loop.tune = null; $("autotune").textContent = "auto-tune I"; loopLog("auto-tune stopped: " + m.error); }
   // replies may coalesce (the server keeps the newest), so one answers all that are pending
   for (const el of document.querySelectorAll("#controls [data-name]")) {
     if (m.ok) el.dataset.pending = "";
