@@ -53,6 +53,11 @@ int tt_image_write_png(const char *path, const tt_image *im)
         lo = 0;
         hi = 1;
     }
+    /* a diverging map's middle colour (white) means zero: its range is symmetric */
+    if (im->cmap == TT_CMAP_DIVERGING) {
+        hi = fmax(fabs(lo), fabs(hi));
+        lo = -hi;
+    }
     if (hi - lo < 1e-12 * fmax(1, fabs(hi))) {
         lo -= 0.5;
         hi += 0.5;

@@ -9,6 +9,7 @@
 
 TT_BEGIN_DECLS
 
+/* TT_CMAP_DIVERGING: white at zero, its range symmetric about it (error images) */
 typedef enum { TT_CMAP_GOLD = 0, TT_CMAP_VIRIDIS, TT_CMAP_DIVERGING } tt_colormap;
 
 typedef struct {
