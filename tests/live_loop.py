@@ -139,6 +139,9 @@ def ring(b):
         nm = b.eval("fmt(%r, 'nm')" % (st["ring_m"] * 1e9))
         assert text.startswith("Measured: the loop rings at %s, %s peak to peak" % (hz, nm)) and \
             "the model rings at" in text, text
+        # the measured ring's damping ratio, as tt_scan_oscillation reads it from the record
+        assert 0 < st["ring_damping"] < 1, st
+        assert ", damping ratio %.2f (the server's warning)" % st["ring_damping"] in text, text
         print("ok at 4 kHz the server's ring (%.0f Hz) beside the model's: %s" % (st["ring_hz"], text))
     else:
         assert text.startswith("No ring measured") and "the model rings at" in text, text

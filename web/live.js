@@ -990,7 +990,8 @@ function drawLoop() {
       "the model does not ring (fewer than three swings)";
   const ring = st.oscillating && st.ring_hz > 0 ?
     "Measured: the loop rings at " + fmt(st.ring_hz, "Hz") + ", " + fmt(st.ring_m * 1e9, "nm") +
-    " peak to peak in z (the server's warning; it sends no damping ratio); " + model + " (in contact the amplitude answers faster than tau_A: docs/imaging.md)." :
+    " peak to peak in z" + (st.ring_damping > 0 ? ", damping ratio " + st.ring_damping.toFixed(2) : "") +
+    " (the server's warning); " + model + " (in contact the amplitude answers faster than tau_A: docs/imaging.md)." :
     "No ring measured on the last line; " + model + ".";
   $("loopring").textContent = ring;
   $("loopsuggest").textContent = "For a 60 deg margin: I " + fmt(r.ki60, "Hz") + " with P as set (" + r.kp +

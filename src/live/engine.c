@@ -349,6 +349,7 @@ static void judge_loop(tt_live_engine *e)
     e->v.oscillating = o.rings;
     e->v.ring_hz = o.rings ? o.frequency : 0;
     e->v.ring_nm = o.rings ? o.z_peak_to_peak : 0;
+    e->v.ring_damping = o.rings && isfinite(o.damping) ? o.damping : 0;
     e->v.suggest_ki = o.rings && isfinite(o.ki_suggested) && o.ki_suggested > 0 ? o.ki_suggested : 0;
 }
 

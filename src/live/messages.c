@@ -270,6 +270,8 @@ void tt_live_msg_status(tt_live_buf *b, const tt_live_view *v, int clients)
     num(b, v->ring_hz);
     tt_live_buf_printf(b, ",\"ring_m\":");
     num(b, v->ring_nm);
+    tt_live_buf_printf(b, ",\"ring_damping\":");
+    num(b, v->ring_damping);
     tt_live_buf_printf(b, ",\"suggest_ki\":");
     num(b, v->suggest_ki);
     tt_live_buf_printf(b, ",\"note\":");

@@ -84,6 +84,7 @@ typedef struct {
     int oscillating;       /* the loop rings (from the z and error records) */
     double ring_hz;        /* its frequency (0: none) */
     double ring_nm;        /* its peak-to-peak height, m */
+    double ring_damping;   /* its damping ratio, from the swings' decay (0: none) */
     double suggest_ki;     /* a suggested integral gain, 1/s (0: none) */
     char note[512];        /* the engine's last message ("" none): a change it refused */
 } tt_live_view;
