@@ -41,6 +41,7 @@ typedef struct {
 typedef enum { CURVE_MAUGIS, CURVE_DMT, CURVE_JKR } curve_kind;
 
 struct tt_contact {
+    const tt_contact_law *law; /* the row it evaluates through */
     tt_contact_params p;
     tt_contact_summary sum;
     int hertz;             /* physical Hertz (w = 0 or model hertz): no table */
@@ -465,11 +466,174 @@ static void build_table(struct tt_contact *c, double pf)
     c->Dend = c->dmin + S_MAX * S_MAX;
 }
 
+/* ------------------------------------------------------------- the laws ---- */
+
+/* Hertz, eq. 4 in physical units: P = K a^3 / R, delta = a^2 / R; one law for both
+ * contact states. */
+static inline double hertz_load(const struct tt_contact *c, double delta, int in_contact,
+                                double *dPdd, double *a)
+{
+    (void)in_contact;
+    if (delta <= 0) {
+        if (dPdd)
+            *dPdd = 0;
+        if (a)
+            *a = 0;
+        return 0;
+    }
+    double ra = sqrt(c->p.R * delta);
+    if (dPdd)
+        *dPdd = 1.5 * c->p.K * sqrt(c->p.R * delta);
+    if (a)
+        *a = ra;
+    return c->p.K * ra * delta;
+}
+
+static double hertz_energy(const struct tt_contact *c, double delta, int in_contact, const double *q)
+{
+    (void)in_contact;
+    (void)q;
+    return delta <= 0 ? 0 : 0.4 * c->p.K * sqrt(c->p.R) * delta * delta * sqrt(delta);
+}
+
+/* The tabulated laws (Maugis-Dugdale, DMT, JKR): the stable branch in contact, van der
+ * Waals out of it, in normalised units scaled back. */
+static inline double table_load(const struct tt_contact *c, double delta, int in_contact,
+                                double *dPdd, double *a)
+{
+    double D = delta * c->inv_d, P, dP, A = 0;
+    if (in_contact) {
+        branch(c, D, &P, dPdd ? &dP : NULL, a ? &A : NULL, NULL);
+        if (a)
+            *a = A * c->a;
+    } else {
+        vdw(c, D, &P, dPdd ? &dP : NULL, NULL);
+        if (a)
+            *a = 0;
+    }
+    if (dPdd)
+        *dPdd = dP * c->F_per_d;
+    return P * c->F;
+}
+
+static double table_energy(const struct tt_contact *c, double delta, int in_contact, const double *q)
+{
+    (void)q;
+    double D = delta * c->inv_d, P, U;
+    if (in_contact) {
+        branch(c, D, &P, NULL, NULL, &U);
+        U += c->Uc_shift;
+    } else {
+        vdw(c, D, &P, NULL, &U);
+    }
+    return U * c->F * c->d;
+}
+
+/* The caller's law (tt_contact_alloc_custom): no contact radius. */
+static inline double custom_load(const struct tt_contact *c, double delta, int in_contact,
+                                 double *dPdd, double *a)
+{
+    if (a)
+        *a = 0;
+    return c->cload(delta, in_contact, dPdd, c->cuser);
+}
+
+static double custom_energy(const struct tt_contact *c, double delta, int in_contact, const double *q)
+{
+    (void)q;
+    return c->cenergy(delta, in_contact, c->cuser);
+}
+
+/* An elastic law's forces: its load, and the interaction damping in contact only. Inline
+ * with the law's own load, so that each row's force is a kernel of its own with no
+ * derivative or radius computed (the time loop's). */
+typedef double load_fn(const struct tt_contact *c, double delta, int in_contact, double *dPdd,
+                       double *a);
+
+static inline tt_contact_forces elastic_force(load_fn *load, const struct tt_contact *c, double ci,
+                                              double delta, double rate, int in_contact)
+{
+    tt_contact_forces f;
+    f.conservative = load(c, delta, in_contact, NULL, NULL);
+    f.dissipative = in_contact ? ci * rate : 0.0;
+    return f;
+}
+
+static inline void elastic_detail(load_fn *load, const struct tt_contact *c, double ci,
+                                  double delta, double rate, int in_contact,
+                                  tt_contact_detail *out)
+{
+    out->stiffness = 0; /* a custom law may leave it */
+    out->f.conservative = load(c, delta, in_contact, &out->stiffness, &out->radius);
+    out->f.dissipative = in_contact ? ci * rate : 0.0;
+    out->damping = in_contact ? ci : 0.0;
+}
+
+#define ELASTIC_ROW_FUNCTIONS(law)                                                              \
+    static tt_contact_forces law##_force(const tt_contact *c, double ci, double delta,          \
+                                         double rate, int in_contact, const double *q)          \
+    {                                                                                           \
+        (void)q;                                                                                \
+        return elastic_force(law##_load, c, ci, delta, rate, in_contact);                       \
+    }                                                                                           \
+    static void law##_detail(const tt_contact *c, double ci, double delta, double rate,         \
+                             int in_contact, const double *q, tt_contact_detail *out)           \
+    {                                                                                           \
+        (void)q;                                                                                \
+        elastic_detail(law##_load, c, ci, delta, rate, in_contact, out);                        \
+    }
+ELASTIC_ROW_FUNCTIONS(hertz)
+ELASTIC_ROW_FUNCTIONS(table)
+ELASTIC_ROW_FUNCTIONS(custom)
+
+/* The law table: a row per tt_contact_model, then the custom law. A new law is a row
+ * here (its force, detail and energy, its state_size), its name in tt_contact_model and
+ * its parameters in tt_contact_alloc (docs/architecture.md). */
+enum { LAW_CUSTOM = TT_CONTACT_JKR + 1, NLAWS };
+static const tt_contact_law laws[NLAWS] = {
+    [TT_CONTACT_MAUGIS] = {"maugis", 0, table_force, table_detail, table_energy},
+    [TT_CONTACT_HERTZ] = {"hertz", 0, hertz_force, hertz_detail, hertz_energy},
+    [TT_CONTACT_DMT] = {"dmt", 0, table_force, table_detail, table_energy},
+    [TT_CONTACT_JKR] = {"jkr", 0, table_force, table_detail, table_energy},
+    [LAW_CUSTOM] = {"custom", 0, custom_force, custom_detail, custom_energy},
+};
+
+const tt_contact_law *tt_contact_law_of(const tt_contact *c) { return c->law; }
+
+tt_contact_forces tt_contact_force(const tt_contact *c, double ci, double delta, double rate,
+                                   int in_contact, const double *state)
+{
+    return c->law->force(c, ci, delta, rate, in_contact, state);
+}
+
+void tt_contact_evaluate(const tt_contact *c, double ci, double delta, double rate, int in_contact,
+                         const double *state, tt_contact_detail *out)
+{
+    c->law->detail(c, ci, delta, rate, in_contact, state, out);
+}
+
+double tt_contact_load(const tt_contact *c, double delta, int in_contact, double *dPdd, double *a)
+{
+    if (!dPdd && !a)
+        return c->law->force(c, 0.0, delta, 0.0, in_contact, NULL).conservative;
+    tt_contact_detail o;
+    c->law->detail(c, 0.0, delta, 0.0, in_contact, NULL, &o);
+    if (dPdd)
+        *dPdd = o.stiffness;
+    if (a)
+        *a = o.radius;
+    return o.f.conservative;
+}
+
+double tt_contact_energy(const tt_contact *c, double delta, int in_contact)
+{
+    return c->law->energy(c, delta, in_contact, NULL);
+}
+
 int tt_contact_model_parse(const char *name, tt_contact_model *out)
 {
-    static const char *names[] = {"maugis", "hertz", "dmt", "jkr"};
-    for (int i = 0; i < 4; i++)
-        if (strcmp(name, names[i]) == 0) {
+    for (int i = 0; i <= TT_CONTACT_JKR; i++)
+        if (strcmp(name, laws[i].name) == 0) {
             *out = (tt_contact_model)i;
             return 0;
         }
@@ -478,8 +642,7 @@ int tt_contact_model_parse(const char *name, tt_contact_model *out)
 
 const char *tt_contact_model_name(tt_contact_model m)
 {
-    static const char *names[] = {"maugis", "hertz", "dmt", "jkr"};
-    return (unsigned)m < 4 ? names[m] : "?";
+    return (unsigned)m <= TT_CONTACT_JKR ? laws[m].name : "?";
 }
 
 /* Build the normalised curve, table, summary; scales already set. */
@@ -552,6 +715,7 @@ int tt_contact_alloc(tt_contact **out, const tt_contact_params *p)
     if (p->w == 0 || p->model == TT_CONTACT_HERTZ) {
         /* No adhesion: Hertz in physical units exactly (docs/physics.md: w = 0 is singular) */
         c->hertz = 1;
+        c->law = &laws[TT_CONTACT_HERTZ];
         c->sum.adhesive = 0;
         c->sum.lambda = 0;
         c->sum.P0 = c->sum.Delta0 = c->sum.pulloff_load = NAN;
@@ -596,6 +760,7 @@ int tt_contact_alloc(tt_contact **out, const tt_contact_params *p)
     }
     c->lambda = lam;
     c->xi = xi0 / c->d;
+    c->law = &laws[p->model];
     int rc = build_curve(c);
     if (rc) {
         free(c);
@@ -625,6 +790,7 @@ int tt_contact_alloc_normalised(tt_contact **out, tt_contact_model model, double
     c->F = c->d = c->a = 1;
     if (model == TT_CONTACT_HERTZ) {
         c->hertz = 1;
+        c->law = &laws[TT_CONTACT_HERTZ];
         c->sum.P0 = c->sum.Delta0 = c->sum.pulloff_load = NAN;
         *out = c;
         return TT_OK;
@@ -632,6 +798,7 @@ int tt_contact_alloc_normalised(tt_contact **out, tt_contact_model model, double
     c->kind = model == TT_CONTACT_MAUGIS ? CURVE_MAUGIS : model == TT_CONTACT_DMT ? CURVE_DMT : CURVE_JKR;
     c->lambda = lambda;
     c->xi = xi0n;
+    c->law = &laws[model];
     build_curve(c);
     *out = c;
     return TT_OK;
@@ -649,6 +816,7 @@ int tt_contact_alloc_custom(tt_contact **out,
     if (!c)
         return tt_error_nomem("a contact force law");
     c->custom = 1;
+    c->law = &laws[LAW_CUSTOM];
     c->cload = load;
     c->cenergy = energy;
     c->cuser = user;
@@ -675,60 +843,6 @@ double tt_contact_jumpout(const tt_contact *c)
     if (c->custom)
         return c->cjout;
     return c->hertz ? 0.0 : c->dmin * c->d;
-}
-
-double tt_contact_load(const tt_contact *c, double delta, int in_contact, double *dPdd, double *a)
-{
-    if (c->custom) {
-        if (a)
-            *a = 0;
-        return c->cload(delta, in_contact, dPdd, c->cuser);
-    }
-    if (c->hertz) {
-        /* eq. 4 in physical units: P = K a^3 / R, delta = a^2 / R */
-        if (delta <= 0) {
-            if (dPdd)
-                *dPdd = 0;
-            if (a)
-                *a = 0;
-            return 0;
-        }
-        double ra = sqrt(c->p.R * delta);
-        if (dPdd)
-            *dPdd = 1.5 * c->p.K * sqrt(c->p.R * delta);
-        if (a)
-            *a = ra;
-        return c->p.K * ra * delta;
-    }
-    double D = delta * c->inv_d, P, dP, A = 0;
-    if (in_contact) {
-        branch(c, D, &P, dPdd ? &dP : NULL, a ? &A : NULL, NULL);
-        if (a)
-            *a = A * c->a;
-    } else {
-        vdw(c, D, &P, dPdd ? &dP : NULL, NULL);
-        if (a)
-            *a = 0;
-    }
-    if (dPdd)
-        *dPdd = dP * c->F_per_d;
-    return P * c->F;
-}
-
-double tt_contact_energy(const tt_contact *c, double delta, int in_contact)
-{
-    if (c->custom)
-        return c->cenergy(delta, in_contact, c->cuser);
-    if (c->hertz)
-        return delta <= 0 ? 0 : 0.4 * c->p.K * sqrt(c->p.R) * delta * delta * sqrt(delta);
-    double D = delta * c->inv_d, P, U;
-    if (in_contact) {
-        branch(c, D, &P, NULL, NULL, &U);
-        U += c->Uc_shift;
-    } else {
-        vdw(c, D, &P, NULL, &U);
-    }
-    return U * c->F * c->d;
 }
 
 double tt_contact_table_error(const tt_contact *c, size_t n)

@@ -26,7 +26,9 @@ enum {
 struct tt_averaged {
     tt_cantilever c;
     const tt_contact *contact;
-    double ci;          /* interaction damping coefficient, kg/s */
+    tt_contact_forces (*force)(const tt_contact *c, double ci, double delta, double rate,
+                               int in_contact, const double *state); /* the law's kernel */
+    double ci;          /* the law's interaction damping coefficient, kg/s */
     int H, ncol;
     double jin, jout;   /* jump-in and pull-off penetrations, m */
     double db, span;    /* amplitude step; penetration half-span (x - jin = span xi |xi|) */
@@ -71,8 +73,8 @@ static void piece(const tt_averaged *a, double u, double B, double t0, double t1
         double th = mid + half * a->gx[q], wt = half * a->gw[q];
         double cs = cos(th), sn = sin(th);
         double delta = u + B * cs, deltad = -B * w * sn;
-        double P = tt_contact_load(a->contact, delta, in, NULL, NULL);
-        double load = P + (in ? a->ci * deltad : 0);
+        tt_contact_forces f = a->force(a->contact, a->ci, delta, deltad, in, NULL);
+        double load = f.conservative + f.dissipative;
         if (load > *peak)
             *peak = load;
         double F = -load;
@@ -172,6 +174,7 @@ int tt_averaged_alloc(tt_averaged **out, const tt_cantilever *c, const tt_contac
     a->c = *c;
     a->contact = contact;
     a->ci = Qi > 0 ? c->m * c->w0 / Qi : 0;
+    a->force = tt_contact_law_of(contact)->force;
     a->H = harmonics;
     a->ncol = C_HARM + 2 * (harmonics - 1);
     a->jin = tt_contact_jumpin(contact);

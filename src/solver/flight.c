@@ -110,7 +110,7 @@ static void fl_fill(const tt_sim *S, fl_cache *F, double h)
 /* The flight's force term -P(d - s) / m on the out-of-contact branch. */
 static inline double fl_force(const tt_sim *S, double delta)
 {
-    return S->contact ? -tt_contact_load(S->contact, delta, 0, NULL, NULL) * S->inv_m : 0.0;
+    return S->contact ? -S->force(S->contact, S->ci, delta, 0.0, 0, NULL).conservative * S->inv_m : 0.0;
 }
 
 /* The polynomial particular solution of x_thth + 2 sig h x_th + w0^2 h^2 x = h^2 p(theta)

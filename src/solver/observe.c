@@ -11,8 +11,8 @@ static double ts_force(const tt_sim *S, double tau, double d, double v, int cont
     *delta = dl;
     if (!S->contact)
         return 0;
-    double P = tt_contact_load(S->contact, dl, contact, NULL, NULL);
-    return P + (contact ? S->ci * (v - S->sdot) : 0.0);
+    tt_contact_forces f = S->force(S->contact, S->ci, dl, v - S->sdot, contact, NULL);
+    return f.conservative + f.dissipative;
 }
 
 /* The state at time ts of the step's part [0, th] into smp. */

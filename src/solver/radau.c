@@ -91,9 +91,11 @@ static double accel(const tt_sim *S, double tau, const drive_val *dv, double d, 
 {
     const tt_cantilever *c = &S->c;
     double s = S->s0 + S->sdot * tau;
-    double P = S->contact ? tt_contact_load(S->contact, d - s, contact, NULL, NULL) : 0.0;
-    double Fi = contact ? S->ci * (v - S->sdot) : 0.0;
-    return (-c->c * (v - dv->zd) - c->k * (d - dv->z) - P - Fi + dv->F) * S->inv_m;
+    tt_contact_forces f = {0.0, 0.0};
+    if (S->contact)
+        f = S->force(S->contact, S->ci, d - s, v - S->sdot, contact, NULL);
+    return (-c->c * (v - dv->zd) - c->k * (d - dv->z) - f.conservative - f.dissipative + dv->F) *
+           S->inv_m;
 }
 
 /* The step's fixed data. Jacobian of (d' = v, v' = f) at the step start: df/dd = -(k +
@@ -112,11 +114,12 @@ static void radau_setup(const tt_sim *S, double h, radau_ctx *R)
     R->scd = R->tol * S->c.A0;
     R->scv = R->scd * S->c.wd;
     const double t = R->t;
-    double dPdd = 0;
+    tt_contact_detail law = {{0.0, 0.0}, 0.0, 0.0, 0.0};
     if (S->contact)
-        (void)tt_contact_load(S->contact, R->d0 - (S->s0 + S->sdot * t), R->cs, &dPdd, NULL);
-    R->Jd = -(S->c.k + dPdd) * S->inv_m;
-    R->Jv = -(S->c.c + (R->cs ? S->ci : 0.0)) * S->inv_m;
+        tt_contact_evaluate(S->contact, S->ci, R->d0 - (S->s0 + S->sdot * t), R->v0 - S->sdot,
+                            R->cs, NULL, &law);
+    R->Jd = -(S->c.k + law.stiffness) * S->inv_m;
+    R->Jv = -(S->c.c + law.damping) * S->inv_m;
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {
             double a2 = RA[i][0] * RA[0][j] + RA[i][1] * RA[1][j] + RA[i][2] * RA[2][j];

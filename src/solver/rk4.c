@@ -51,11 +51,11 @@ static int rk4_check_stiffness(tt_sim *S, double h, double delta)
 {
     if (!S->contact)
         return TT_OK;
-    double dPdd = 0;
-    (void)tt_contact_load(S->contact, delta, S->contact_state, &dPdd, NULL);
+    tt_contact_detail law;
+    tt_contact_evaluate(S->contact, S->ci, delta, 0.0, S->contact_state, NULL, &law);
+    double dPdd = law.stiffness;
     double keff = S->c.k + (dPdd > 0 ? dPdd : 0);
-    double ci = S->contact_state ? S->ci : 0.0; /* interaction damping acts in contact only */
-    double wc = sqrt(keff / S->c.m), wi = ci / S->c.m; /* the damping's rate, 1/s */
+    double wc = sqrt(keff / S->c.m), wi = law.damping / S->c.m; /* the damping's rate, 1/s */
     if (h * wc > 2.5 || h * wi > 2.5)
         return tt_error(TT_ENUM,
                         "rk4 step too large for the contact: contact stiffness %.3g N/m (%.0f times "

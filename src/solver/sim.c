@@ -90,6 +90,7 @@ void tt_sim_set_contact(tt_sim *S, const tt_contact *contact, double Qi)
 {
     S->contact = contact;
     S->ci = (isfinite(Qi) && Qi > 0) ? S->c.m * S->c.w0 / Qi : 0.0;
+    S->force = contact ? tt_contact_law_of(contact)->force : NULL;
     if (contact) {
         S->jumpin = tt_contact_jumpin(contact);
         S->jumpout = tt_contact_jumpout(contact);
@@ -196,7 +197,10 @@ double tt_sim_force(const tt_sim *S, const tt_sample *smp, double *a)
             *a = 0;
         return 0;
     }
-    double delta = smp->d - smp->s;
-    double P = tt_contact_load(S->contact, delta, smp->contact, NULL, a);
-    return P + (smp->contact ? S->ci * (smp->v - S->sdot) : 0.0);
+    tt_contact_detail law;
+    tt_contact_evaluate(S->contact, S->ci, smp->d - smp->s, smp->v - S->sdot, smp->contact, NULL,
+                        &law);
+    if (a)
+        *a = law.radius;
+    return law.f.conservative + law.f.dissipative;
 }

@@ -45,7 +45,11 @@ struct tt_sim {
     tt_solver solver;
     const tt_step_type *type; /* the method's steps (stepper.h) */
     const tt_contact *contact;
-    double ci;           /* interaction damping coefficient, kg/s */
+    /* the law's time-loop kernel, chosen when the contact is set (tt_sim_set_contact):
+     * one indirect call, no dispatch among the laws per evaluation */
+    tt_contact_forces (*force)(const tt_contact *c, double ci, double delta, double rate,
+                               int in_contact, const double *state);
+    double ci;           /* the law's interaction damping coefficient c_i = m* w0 / Q_i, kg/s */
     double inv_m;        /* 1 / m*: the right-hand side multiplies rather than divides */
     double jumpin, jumpout, margin;
     /* sample: s(tau) = s0 + sdot tau within the current cycle */
@@ -204,8 +208,10 @@ static inline void rhs_with(const tt_sim *S, double tau, const drive_val *dv, co
     double d = Y[Y_D], v = Y[Y_V];
     double s = S->s0 + S->sdot * tau;
     double delta = d - s, deltad = v - S->sdot;
-    double P = S->contact ? tt_contact_load(S->contact, delta, contact, NULL, NULL) : 0.0;
-    double Fi = contact ? S->ci * deltad : 0.0;
+    tt_contact_forces f = {0.0, 0.0};
+    if (S->contact)
+        f = S->force(S->contact, S->ci, delta, deltad, contact, NULL);
+    double P = f.conservative, Fi = f.dissipative;
     double spring = c->k * (d - z), damp = c->c * (v - zd);
     double y = d - z;
     Fo[Y_D] = v;

@@ -96,6 +96,52 @@ const tt_contact_summary *tt_contact_summary_of(const tt_contact *c);
 double tt_contact_load(const tt_contact *c, double delta, int in_contact, double *dPdd,
                        double *a);
 
+/* Contact laws as a type table (after GSL's gsl_odeiv2_step_type and the solver's
+ * step types): each law is one row of functions, and a tt_contact evaluates through the
+ * row it was built with (tt_contact_law_of): Maugis-Dugdale, DMT and JKR through their
+ * tables, Hertz in closed form, and the custom law of tt_contact_alloc_custom. A law
+ * takes the penetration delta (m), its rate (m/s) and its own internal state
+ * (state_size doubles; every law so far is elastic, state_size 0, state NULL) and gives
+ * the conservative force (the load P = dU/ddelta, positive when repulsive) and the
+ * dissipative force apart, since the energy balance books them apart. The dissipative
+ * force of the elastic laws is the interaction damping ci * rate in contact and 0 out of
+ * contact, where ci = m* w0 / Q_i (kg/s) is the oscillator's, given at each call. */
+typedef struct {
+    double conservative; /* N: the load P */
+    double dissipative;  /* N: the law's damping force, along the rate */
+} tt_contact_forces;
+
+/* The forces with their derivatives, for Jacobians and stiffness checks. */
+typedef struct {
+    tt_contact_forces f;
+    double stiffness;    /* dP/ddelta, N/m */
+    double damping;      /* d(dissipative)/d(rate), kg/s */
+    double radius;       /* contact radius, m (0 out of contact, and for a custom law) */
+} tt_contact_detail;
+
+typedef struct tt_contact_law {
+    const char *name;
+    size_t state_size;   /* doubles of internal state the law carries (0: elastic) */
+    /* the forces at (delta, rate) on the branch in_contact selects: the time loop's
+     * evaluation, nothing more computed */
+    tt_contact_forces (*force)(const tt_contact *c, double ci, double delta, double rate,
+                               int in_contact, const double *state);
+    /* the forces and their derivatives, and the contact radius */
+    void (*detail)(const tt_contact *c, double ci, double delta, double rate, int in_contact,
+                   const double *state, tt_contact_detail *out);
+    /* the potential U (J) of the conservative force (tt_contact_energy) */
+    double (*energy)(const tt_contact *c, double delta, int in_contact, const double *state);
+} tt_contact_law;
+
+/* The row c evaluates through (Hertz when w = 0, whatever the model). */
+const tt_contact_law *tt_contact_law_of(const tt_contact *c);
+
+/* The row's force and detail, through tt_contact_law_of(c). */
+tt_contact_forces tt_contact_force(const tt_contact *c, double ci, double delta, double rate,
+                                   int in_contact, const double *state);
+void tt_contact_evaluate(const tt_contact *c, double ci, double delta, double rate, int in_contact,
+                         const double *state, tt_contact_detail *out);
+
 /* Potential energy (J) with dU/ddelta = P on the branch in_contact selects: U = 0 far
  * from the sample on the out-of-contact branch, and the contact branch continuous with
  * it at jump-in, so that U_contact(jumpout) - U_out(jumpout) is the loop energy. */
