@@ -370,16 +370,10 @@ static void warn_contact(const tt_scan *scan)
 {
     for (size_t i = 0; i < tt_scan_materials(scan); i++) {
         tt_contact_extent e;
-        if (!tt_scan_contact_extent(scan, i, &e))
-            continue;
-        const char *name = tt_scan_material_name(scan, i);
-        fprintf(stderr, "tiptap scan: warning: [material %s]: contact radius up to %.3g nm at "
-                        "%.3g nm indentation on a tip of radius %.3g nm, beyond the contact "
-                        "laws' small contact (radius <= %.1f R, indentation <= R): their "
-                        "forces are off there; a larger [tip] radius, a higher [feedback] "
-                        "setpoint or a smaller [cantilever] free_amplitude keeps within it\n",
-                name, e.radius * 1e9, e.indentation * 1e9, e.tip_radius * 1e9,
-                TT_CONTACT_MAX_RADIUS_RATIO);
+        if (tt_scan_contact_extent(scan, i, &e))
+            tt_contact_warn_validity(tt_scan_material_name(scan, i), e.radius, e.indentation,
+                                     e.tip_radius, "a larger [tip] radius, a higher [feedback] "
+                                     "setpoint or a smaller [cantilever] free_amplitude");
     }
 }
 

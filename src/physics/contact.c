@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "tiptap/util/error.h"
+#include "tiptap/util/warning.h"
 
 #define S_LO 1e-6  /* one cubic on [0, S_LO] */
 #define N0 601      /* nodes uniform in ln s on [ln S_LO, ln S_A] */
@@ -806,4 +807,17 @@ int tt_contact_curve(const tt_contact *c, size_t n, double A_max, double *A, dou
 int tt_contact_beyond_validity(double a, double delta, double R)
 {
     return a > TT_CONTACT_MAX_RADIUS_RATIO * R || delta > R;
+}
+
+int tt_contact_warn_validity(const char *material, double a, double delta, double R,
+                             const char *remedy)
+{
+    if (!tt_contact_beyond_validity(a, delta, R))
+        return 0;
+    tt_warn(TT_WARN_VALIDITY,
+            "[material %s]: contact radius up to %.3g nm at %.3g nm indentation on a tip of "
+            "radius %.3g nm, beyond the contact laws' small contact (radius <= %.1f R, "
+            "indentation <= R): their forces are off there; %s keeps within it",
+            material, a * 1e9, delta * 1e9, R * 1e9, TT_CONTACT_MAX_RADIUS_RATIO, remedy);
+    return 1;
 }

@@ -115,6 +115,14 @@ double tt_contact_energy(const tt_contact *c, double delta, int in_contact);
 #define TT_CONTACT_MAX_RADIUS_RATIO 0.5
 int tt_contact_beyond_validity(double a, double delta, double R);
 
+/* When a contact of radius a (m) at indentation delta (m) on a tip of radius R (m) is
+ * beyond these (tt_contact_beyond_validity), raise the TT_WARN_VALIDITY warning
+ * (tiptap/util/warning.h) that names the material, the figures and what keeps within
+ * them (remedy: "a larger [tip] radius, ..."); returns whether it warned. Scans,
+ * traces and approaches warn through it alike. */
+int tt_contact_warn_validity(const char *material, double a, double delta, double R,
+                             const char *remedy);
+
 /* The event thresholds, m: an out-of-contact tip contacts when delta rises to
  * jumpin; an in-contact tip leaves when delta falls to jumpout (<= jumpin). */
 double tt_contact_jumpin(const tt_contact *c);

@@ -32,7 +32,10 @@ typedef void (*tt_progress_fn)(void *user, long done, long total);
 /* tiptap approach: a row per point of [approach] (both branches): z (m), amplitude (m),
  * phase (deg), mean_deflection (m), peak_force (N), max_indentation (m),
  * contact_fraction, dissipated (J), branch (approach, retract), settled (1, 0), cycles,
- * drive_work (J), energy_residual, deflection_min, deflection_max (m). */
+ * drive_work (J), energy_residual, deflection_min, deflection_max (m), period (cycles:
+ * steady mode, 1 a steady oscillation, n a period-n orbit whose row is the mean over its
+ * n cycles, 0 none found, the mean over the last TT_SETTLE_WINDOW cycles; ramp mode 0).
+ * The warnings of tt_approach_warn are raised on the calling thread. */
 int tt_run_approach(const tt_scene *s, tt_table **out, tt_progress_fn progress, void *user);
 
 /* tiptap trace: samples_per_cycle rows per recorded cycle: cycle, t (s), base, tip,
