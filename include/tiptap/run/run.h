@@ -40,7 +40,8 @@ int tt_run_approach(const tt_scene *s, tt_table **out, tt_progress_fn progress, 
 
 /* tiptap trace: samples_per_cycle rows per recorded cycle: cycle, t (s), base, tip,
  * sample, deflection (m), force (N), contact_radius (m), pressure (Pa), contact (1, 0),
- * and the ramped key's value (its SI unit) when [trace] ramp is set. */
+ * and the ramped key's value (its SI unit) when [trace] ramp is set; the warning of
+ * tt_trace_warn_contact raised on the calling thread. */
 int tt_run_trace(const tt_scene *s, tt_table **out, tt_progress_fn progress, void *user);
 
 /* tiptap contact with a scene: the force law of the [material NAME] (NULL: the first),
