@@ -526,10 +526,14 @@ static int build_curve(struct tt_contact *c)
     branch(c, c->D0, &S->jumpin_load, &dP, &A, NULL);
     S->hysteresis = c->D0 - c->dmin > 1e-12;
     S->hamaker = 6 * fabs(c->P0) * c->F * pow(fabs(c->D0) + c->xi, 2) * c->d * c->d / c->p.R;
-    double Uc, Uv;
+    /* the loop: the contact branch's energy from jump-in down to jump-out, and the van
+     * der Waals branch's back up, -P0 (dmin - D0) (D0 - xi) / (dmin - xi), written so
+     * that no potential of size P0 xi enters (a difference of two of them loses the
+     * loop to rounding when xi is large: 1e-5 of it at xi = 1e6, all of it at 1e160) */
+    double Uc;
     branch(c, c->dmin, &P, &dP, &A, &Uc);
-    vdw(c, c->dmin, &P, &dP, &Uv);
-    S->loop_energy = S->hysteresis ? (Uc + c->Uc_shift - Uv) * c->F * c->d : 0.0;
+    double dUv = -c->P0 * (c->dmin - c->D0) * ((c->D0 - c->xi) / (c->dmin - c->xi));
+    S->loop_energy = S->hysteresis ? (Uc - Uin + dUv) * c->F * c->d : 0.0;
     return TT_OK;
 }
 
@@ -597,6 +601,14 @@ int tt_contact_alloc(tt_contact **out, const tt_contact_params *p)
     }
     c->lambda = lam;
     c->xi = xi0 / c->d;
+    if (!(c->xi <= TT_CONTACT_XI0N_MAX)) {
+        double xin = c->xi, d = c->d;
+        free(c);
+        return tt_error(TT_EINVAL,
+                        "contact: the interatomic distance xi0 = %.3g m is %.3g depth scales d* "
+                        "(%.3g m), beyond the %.0e a force law takes (its van der Waals branch "
+                        "squares it)", xi0, xin, d, TT_CONTACT_XI0N_MAX);
+    }
     int rc = build_curve(c);
     if (rc) {
         free(c);
@@ -611,8 +623,9 @@ int tt_contact_alloc_normalised(tt_contact **out, tt_contact_model model, double
     *out = NULL;
     if (model == TT_CONTACT_MAUGIS && !(lambda >= 1e-4 && lambda <= 1e4))
         return tt_error(TT_EINVAL, "contact: lambda must lie between 1e-4 and 1e4, got %g", lambda);
-    if (!(xi0n > 0))
-        return tt_error(TT_EINVAL, "contact: the normalised xi0 must be positive");
+    if (!(xi0n > 0 && xi0n <= TT_CONTACT_XI0N_MAX))
+        return tt_error(TT_EINVAL, "contact: the normalised xi0 must be positive and at most %.0e, got %g",
+                        TT_CONTACT_XI0N_MAX, xi0n);
     struct tt_contact *c = calloc(1, sizeof *c);
     if (!c)
         return tt_error_nomem("a contact force law");
