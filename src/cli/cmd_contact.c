@@ -190,7 +190,7 @@ int cmd_contact(int argc, char **argv)
             break;
         case 'x':
             if (cli_real("contact", "--xi0", optarg, DBL_MIN, TT_CONTACT_XI0N_MAX,
-                         "a positive number up to 1e6 (the van der Waals branch squares it)", &xi0n)) {
+                         "a positive number up to 1e6", &xi0n)) {
                 cli_args_free(&args);
                 return CLI_USAGE;
             }
