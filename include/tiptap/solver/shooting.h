@@ -22,7 +22,7 @@
  * is running into it: the orbit's quadratic Lyapunov function (from its monodromy
  * matrix) falls along the last cycles and is still falling, and the motion is within
  * a tenth of the free amplitude of it (or the map is linear there). Otherwise more
- * cycles and another try; at last the point is settled (tt_sim_settle).
+ * cycles and another try; at last the point is settled (tt_sim_settle_orbit).
  *
  * Usage: tt_shoot_default(&p); tt_shoot_steady(sim, &p, max_cycles, tol, &cycle, &res);
  * Ownership: the functions drive the sim given to them and leave it at the end of the
