@@ -273,7 +273,9 @@ static int curve(const tt_sweep *g, size_t i, combo *c, tt_table *t)
             rc = run;
             break;
         }
-        if ((rc = keys_row(t, g, i, &col)) || (rc = put_point(t, col, &pt, A0, run == TT_OK, NULL)))
+        /* a ramp's row is one cycle of the moving sample, found by no search */
+        const char *found = c->p.mode == TT_APPROACH_RAMP ? TT_SWEEP_RAMP : NULL;
+        if ((rc = keys_row(t, g, i, &col)) || (rc = put_point(t, col, &pt, A0, run == TT_OK, found)))
             break;
         if (run)
             break; /* the branch cannot go on from a failed point */

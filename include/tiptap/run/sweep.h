@@ -41,6 +41,9 @@ const char *tt_sweep_kind_name(tt_sweep_kind kind);
  * (the means over its last TT_SETTLE_WINDOW cycles; period 0). */
 #define TT_SWEEP_PERIODIC "periodic"
 #define TT_SWEEP_UNSETTLED "unsettled"
+/* The found column of an approach sweep's rows in ramp mode: one cycle each of the
+ * moving sample (period 0). */
+#define TT_SWEEP_RAMP "ramp"
 
 /* An empty table with the columns of kind's rows: combination; each varied key (unit
  * tt_sweep_unit; a text column for keys whose values are text); setpoint (m) for
@@ -48,7 +51,7 @@ const char *tt_sweep_kind_name(tt_sweep_kind kind);
  * peak_force (N), max_indentation (m), contact_fraction, dissipated (J), drive_work (J),
  * energy_residual, regime (free, attractive, repulsive, failed), direction, settled,
  * cycles, period (cycles; 1 steady, n > 1 a period-n orbit, 0 none found), found
- * (newton, settled, periodic, unsettled, unreachable, failed); or for scans folder (the
+ * (newton, settled, periodic, unsettled, unreachable, ramp, failed); or for scans folder (the
  * combination's folder name, "0001"), lines_done, error_estimate, material, pixels,
  * height_mean, height_std (m), phase_mean, phase_std (deg), height_contrast (m),
  * phase_contrast (deg): against the first material. */
