@@ -26,6 +26,9 @@ static void help(void)
            "      --plot FILE    PNG of amplitude, phase and dissipation against z\n"
            CLI_HELP_SET
            "  -q, --quiet        no summary on stderr\n\n"
+           "period: steady mode, 1 for a steady oscillation, n for an orbit repeating every\n"
+           "n cycles (up to 64; its row is the means over them), 0 when none was found within\n"
+           "max_cycles (the means over the last 64 cycles); stderr warns of both.\n"
            "z is the rest separation: the gap between the undeflected, non-interacting tip\n"
            "and the sample (negative: the rest position is below the surface).\n"
            "stderr ends with the run time, the energy balance (the largest residual of a cycle,\n"
