@@ -35,14 +35,17 @@ paste -d, "$tmp/shoot.csv" "$tmp/settle.csv" | awk -F, 'NR > 1 {
 expect_error "misspelt steady mode" "[approach] steady" "$tiptap" approach "$scene" \
   --set approach.steady=newton -o "$tmp/x.csv"
 
-# a steady point that does not settle says why (Burnham et al.'s figure-4a cantilever at
-# 200 nm free amplitude, approached in 0.25 nm steps: a period-4 orbit at 7.25 nm)
+# a steady point on a periodic orbit says so (Burnham et al.'s figure-4a cantilever at
+# 200 nm free amplitude, approached in 0.25 nm steps: a period-4 orbit at 7.25 nm): its
+# row has period 4 and is settled, and the warning names it
 fig4a=$src/examples/seed-fig4a/scene.ini
 "$tiptap" approach "$fig4a" --set approach.mode=steady --set "approach.from=20 nm" \
   --set "approach.to=7.25 nm" --set approach.points=52 --set approach.retract=no \
   --set "cantilever.free_amplitude=200 nm" --set approach.max_cycles=1000 -o "$tmp/p4.csv" 2>"$tmp/p4.err"
-grep -q "^unsettled: z = 7.25 nm after .*: a period-4 orbit" "$tmp/p4.err" && ok "unsettled point says why" ||
-  bad "unsettled point: $(cat "$tmp/p4.err")"
+grep -q "^tiptap approach: warning: 1 of 52 points are periodic orbits .*(z = 7.25 (period 4) nm)" "$tmp/p4.err" &&
+  ok "periodic point named in a warning" || bad "periodic point: $(cat "$tmp/p4.err")"
+[ "$(tail -n 1 "$tmp/p4.csv" | awk -F, '{print $1, $10, $16}')" = "7.25 1 4" ] &&
+  ok "its row: settled, period 4" || bad "its row: $(tail -n 1 "$tmp/p4.csv")"
 # a ramp with more rows than cycles is refused before it runs, naming the limit
 expect_error "ramp rows beyond its cycles" "[approach] points" "$tiptap" approach "$fig4a" \
   --set "approach.from=130 nm" --set "approach.to=0 nm" --set "approach.speed=40 um/s" --set approach.points=400 \

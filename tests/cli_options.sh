@@ -44,7 +44,7 @@ usage "contact --lambda inf" "tiptap contact: --lambda: 'inf' is not a number fr
   "$tiptap" contact --lambda inf
 usage "contact --lambda 1e5" "tiptap contact: --lambda: '1e5' is not a number from 1e-4 to 1e4" \
   "$tiptap" contact --lambda 1e5
-usage "contact --xi0 0.3x" "tiptap contact: --xi0: '0.3x' is not a finite positive number" \
+usage "contact --xi0 0.3x" "tiptap contact: --xi0: '0.3x' is not a positive number up to 1e6" \
   "$tiptap" contact --xi0 0.3x
 usage "accuracy --target 1" "tiptap accuracy: --target: '1' is not a number between 0 and 1" \
   "$tiptap" accuracy "$tmp/s.ini" --target 1

@@ -91,8 +91,9 @@ def test_points_not_settled(tmp_path):
     keys = {"approach.points": 2, "approach.steady": "settle", "approach.max_cycles": 100}
     t, w = caught(lambda: tiptap.approach(scene, set=keys, progress=False))
     assert list(t["settled"]) == [0, 0]
-    assert w == [(tiptap.SettleWarning, "2 points did not settle within max_cycles = 100 (period "
-                  "doubling or chaos, or raise [approach] max_cycles)")]
+    assert w == [(tiptap.SettleWarning, "2 of 2 points found no period up to 64 cycles within "
+                  "max_cycles = 100 (z = 22, 2 nm): their rows are the means over their last 64 "
+                  "cycles (period 0); chaos, or raise [approach] max_cycles")]
     # a file of its own: an output never replaces a device node such as /dev/null
     p = cli("approach", scene, *sets(keys), "-o", str(tmp_path / "approach.csv"))
     assert program_warnings(p.stderr, "approach") == [w[0][1]]

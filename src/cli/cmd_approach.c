@@ -23,10 +23,13 @@ static void help(void)
            "                     mean_deflection_nm, peak_force_nN, max_indentation_nm,\n"
            "                     contact_fraction, dissipated_aJ, branch, settled, cycles,\n"
            "                     drive_work_aJ, energy_residual, deflection_min_nm,\n"
-           "                     deflection_max_nm (default approach.csv)\n"
+           "                     deflection_max_nm, period (default approach.csv)\n"
            "      --plot FILE    PNG of amplitude, phase and dissipation against z\n"
            CLI_HELP_SET
            "  -q, --quiet        no summary on stderr\n\n"
+           "period: steady mode, 1 for a steady oscillation, n for an orbit repeating every\n"
+           "n cycles (up to 64; its row is the means over them), 0 when none was found within\n"
+           "max_cycles (the means over the last 64 cycles); stderr warns of both.\n"
            "z is the rest separation: the gap between the undeflected, non-interacting tip\n"
            "and the sample (negative: the rest position is below the surface).\n"
            "stderr ends with the run time, the energy balance (the largest residual of a cycle,\n"
@@ -46,11 +49,12 @@ static void write_row(FILE *f, const tt_approach_point *p)
 {
     const tt_cycle *c = &p->cycle;
     double rel = c->residual_rel;
-    fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%s,%d,%ld,%.9g,%.3g,%.9g,%.9g\n", p->z * 1e9,
+    fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%s,%d,%ld,%.9g,%.3g,%.9g,%.9g,%d\n", p->z * 1e9,
             c->amplitude * 1e9, c->phase * 180 / M_PI, c->mean * 1e9, c->peak_force * 1e9,
             c->max_indentation * 1e9, c->contact_fraction, c->e_ts * 1e18,
             p->retract ? "retract" : "approach", p->settled, p->cycles, c->e_drive * 1e18, rel,
-            isfinite(c->y_min) ? c->y_min * 1e9 : NAN, isfinite(c->y_max) ? c->y_max * 1e9 : NAN);
+            isfinite(c->y_min) ? c->y_min * 1e9 : NAN, isfinite(c->y_max) ? c->y_max * 1e9 : NAN,
+            p->period);
 }
 
 static int plot(const char *path, const tt_approach_point *pts, size_t n, int ramp)
@@ -102,21 +106,15 @@ static int plot(const char *path, const tt_approach_point *pts, size_t n, int ra
     return rc;
 }
 
-/* Why a steady point did not settle, from the cycles run after it (approach.h). */
+/* Why a steady point did not settle: no period up to TT_SETTLE_MAX_PERIOD cycles, and
+ * how its amplitude moved over the cycles its row is the mean of (approach.h). */
 static void unsettled_why(const tt_approach_point *pt, long max_cycles)
 {
-    fprintf(stderr, "unsettled: z = %.6g nm after %ld cycles (max_cycles %ld): ", pt->z * 1e9,
-            pt->cycles, max_cycles);
-    if (pt->period >= 2)
-        fprintf(stderr, "a period-%d orbit, amplitude %.4g to %.4g nm from cycle to cycle\n",
-                pt->period, pt->amp_min * 1e9, pt->amp_max * 1e9);
-    else if (pt->period == 1)
-        fprintf(stderr, "a slow transient, steady (to 1e-4 A0) in the last cycles at %.4g nm\n",
-                pt->amp_max * 1e9);
-    else
-        fprintf(stderr, "no period up to 8 cycles: amplitude %.4g to %.4g nm over the last 24 "
-                        "cycles, changing by %.3g nm per cycle on average\n",
-                pt->amp_min * 1e9, pt->amp_max * 1e9, pt->amp_change * 1e9);
+    fprintf(stderr, "unsettled: z = %.6g nm after %ld cycles (max_cycles %ld): no period up to "
+                    "%d cycles: amplitude %.4g to %.4g nm over the last %d cycles, changing by "
+                    "%.3g nm per cycle on average\n", pt->z * 1e9, pt->cycles, max_cycles,
+            TT_SETTLE_MAX_PERIOD, pt->amp_min * 1e9, pt->amp_max * 1e9, pt->window,
+            pt->amp_change * 1e9);
 }
 
 /* How shooting fared: points by Newton, points settled instead and why, the orbits'
@@ -250,7 +248,7 @@ int cmd_approach(int argc, char **argv)
     FILE *f = tt_outfile_stream(of);
     fprintf(f, "z_nm,amplitude_nm,phase_deg,mean_deflection_nm,peak_force_nN,max_indentation_nm,"
                "contact_fraction,dissipated_aJ,branch,settled,cycles,drive_work_aJ,energy_residual,"
-               "deflection_min_nm,deflection_max_nm\n");
+               "deflection_min_nm,deflection_max_nm,period\n");
     cli_progress prog;
     cli_progress_begin(&prog, "approach", "points", quiet);
     while (!tt_approach_done(ap)) {
@@ -278,9 +276,6 @@ int cmd_approach(int argc, char **argv)
         if (!rc)
             rc = prc;
     }
-    long unsettled = 0; /* warned of under -q too: it is about the table */
-    for (size_t i = 0; i < n; i++)
-        unsettled += p.mode == TT_APPROACH_STEADY && !pts[i].settled;
     if (!quiet && n > 0) {
         double worst = 0;
         long cycles = 0;
@@ -324,7 +319,8 @@ int cmd_approach(int argc, char **argv)
             if (!pts[i].settled)
                 unsettled_why(&pts[i], p.max_cycles);
     }
-    tt_run_warn_unsettled(unsettled, p.max_cycles);
+    if (n > 0)
+        tt_approach_warn(ap); /* under -q too: they are about the table */
 done:
     if (of)
         tt_outfile_close(of, 0);

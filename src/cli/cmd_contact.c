@@ -26,7 +26,7 @@ static void help(void)
            "  -l, --lambda L     Maugis parameter (1e-4 to 1e4)\n"
            "  -m, --model M      maugis (default), hertz, dmt or jkr\n"
            "      --xi0 X        normalised interatomic distance for the van der Waals\n"
-           "                     branch (default 0.3)\n"
+           "                     branch (default 0.3, at most 1e6)\n"
            "      --material NAME  the scene's material (default: the first)\n"
            "  -o, --output FILE  CSV with columns A,Delta,P,stable (stable = 1 on the\n"
            "                     displacement-controlled stable branch)\n"
@@ -189,7 +189,8 @@ int cmd_contact(int argc, char **argv)
             }
             break;
         case 'x':
-            if (cli_real("contact", "--xi0", optarg, DBL_MIN, DBL_MAX, "a finite positive number", &xi0n)) {
+            if (cli_real("contact", "--xi0", optarg, DBL_MIN, TT_CONTACT_XI0N_MAX,
+                         "a positive number up to 1e6", &xi0n)) {
                 cli_args_free(&args);
                 return CLI_USAGE;
             }

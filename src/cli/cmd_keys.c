@@ -36,7 +36,7 @@ int cmd_keys(int argc, char **argv)
                                    : key->kind == TT_KEY_INT    ? "integer"
                                    : key->kind == TT_KEY_BOOL   ? "yes/no"
                                    : key->kind == TT_KEY_STRING ? "text"
-                                                                : tt_units_describe(key->dims);
+                                                                : tt_scene_key_describe(key);
                 printf("| `%s` | ", key->key);
                 for (const char *p = kind; *p; p++)
                     fputs(*p == '|' ? "\\|" : (char[]){*p, 0}, stdout);
@@ -54,7 +54,7 @@ int cmd_keys(int argc, char **argv)
                                : key->kind == TT_KEY_INT    ? "integer"
                                : key->kind == TT_KEY_BOOL   ? "yes|no"
                                : key->kind == TT_KEY_STRING ? "text"
-                                                            : tt_units_describe(key->dims);
+                                                            : tt_scene_key_describe(key);
             printf("  %-28s default %-12s %s; %s\n", key->key, key->def ? key->def : "(none)", kind,
                    key->doc);
         }

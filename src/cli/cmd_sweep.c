@@ -245,6 +245,12 @@ static int sweep_main(tt_scene *scene, char **vary, int nvary, tt_sweep_kind kin
         rc = sweep_plot(&job, &r, a->plot, find_key(job.grid, contrast));
     if (rank == 0 && !rc && kind == TT_SWEEP_SETPOINT)
         warn_unreached(&job, &r);
+    if (rank == 0 && !rc && kind != TT_SWEEP_SCAN) {
+        tt_table *t = NULL; /* the library's warnings of periodic and unsettled points */
+        if (sweep_table(&job, &r, &t) == TT_OK)
+            tt_run_sweep_warn(t);
+        tt_table_free(t);
+    }
     double wall = cli_now() - t0;
     if (rank == 0 && !rc && !a->quiet)
         fprintf(stderr, "combinations = %zu (%zu resumed)\nranks = %d\nthreads = %d\nrun_time_s = %.3f\n"

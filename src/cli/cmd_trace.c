@@ -258,6 +258,8 @@ int cmd_trace(int argc, char **argv)
             cli_progress_show(&prog, done_cycles, (long)tt_trace_rows(tr));
     }
     cli_progress_end(&prog);
+    if (done_cycles > 0)
+        tt_trace_warn_contact(tr); /* under -q too: it is about the numbers */
     /* Keep the cycles finished when interrupted; a run that failed (the solver, a ramp
      * value) keeps no file: a partial CSV would read as complete. */
     {

@@ -57,7 +57,7 @@ static void put_field(FILE *f, const char *s)
 static const char point_columns[] =
     "z_nm,amplitude_nm,phase_deg,mean_deflection_nm,peak_force_nN,max_indentation_nm,"
     "contact_fraction,dissipated_aJ,drive_work_aJ,energy_residual,regime,direction,settled,"
-    "cycles,found";
+    "cycles,period,found";
 static const char scan_columns[] =
     "folder,lines_done,error_estimate,material,pixels,height_mean_nm,height_std_nm,phase_mean_deg,"
     "phase_std_deg,height_contrast_nm,phase_contrast_deg";
@@ -72,7 +72,7 @@ typedef struct {
 static const csv_format setpoint_format = {1e9, 'g'};
 static const csv_format point_format[] = {
     {1e9, 'g'}, {1e9, 'g'}, {1, 'g'}, {1e9, 'g'}, {1e9, 'g'}, {1e9, 'g'}, {1, 'g'}, {1e18, 'g'},
-    {1e18, 'g'}, {1, '3'}, {1, 's'}, {1, 's'}, {1, 'd'}, {1, 'd'}, {1, 's'},
+    {1e18, 'g'}, {1, '3'}, {1, 's'}, {1, 's'}, {1, 'd'}, {1, 'd'}, {1, 's'}, {1, 'd'},
 };
 static const csv_format scan_format[] = {
     {1, 's'}, {1, 'd'}, {1, '3'}, {1, 's'}, {1, 'd'}, {1e9, 'g'}, {1e9, 'g'}, {1, 'g'}, {1, 'g'},

@@ -37,6 +37,8 @@ int tt_config_approach_setup(tt_setup *st, const tt_scene *s, tt_approach_params
         (rc = tt_config_material_index(s, "approach", tt_setup_material(st, 0),
                                        tt_setup_materials(st), &mat)))
         return rc;
+    p->material = tt_setup_material(st, mat)->name; /* for tt_approach_warn */
+    p->tip_radius = tt_setup_material(st, mat)->contact.R;
     return tt_setup_use_material(st, mat);
 }
 

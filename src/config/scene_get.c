@@ -104,7 +104,7 @@ static int lookup(const tt_scene *s, const char *section, const char *name, cons
     *text = e ? e->value : k->def;
     if (!*text)
         return tt_scene_fail(s, section, name, key, "missing; expected %s",
-                             k->kind == TT_KEY_QUANTITY ? tt_units_describe(k->dims) : "a value");
+                             k->kind == TT_KEY_QUANTITY ? tt_scene_key_describe(k) : "a value");
     return TT_OK;
 }
 

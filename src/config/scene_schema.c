@@ -2,8 +2,10 @@
  * one-line description. docs/scene-format.md is written from the same facts; keep both
  * in step (tests/test_scene_doc checks that every key here is documented there). */
 #include <math.h>
+#include <string.h>
 
 #include "tiptap/config/scene.h"
+#include "tiptap/config/units.h"
 
 #define TT_COUNT(a) (sizeof(a) / sizeof((a)[0]))
 #define TT_UNBOUNDED INFINITY
@@ -80,7 +82,8 @@ static const tt_scene_key approach_keys[] = {
     {"max_cycles", TT_KEY_INT, 0, "20000", 10, 1e9, 0, NULL,
      "steady mode: most drive cycles spent settling one point"},
     {"settle_tolerance", Q(TT_DIM_NONE), "1e-7", 0, 1, POS, NULL,
-     "steady mode: a point is settled when amplitude (relative) and phase (rad) change less than this per cycle"},
+     "steady mode: a point is settled when amplitude (relative) and phase (rad) change less than this per cycle, "
+     "or per period of an orbit of up to 64 cycles"},
     {"steady", TT_KEY_ENUM, 0, "shooting", 0, 0, 0, "shooting|settle",
      "steady mode: shooting: Newton on the one-period map finds the periodic orbit (falls back to "
      "settling); settle: run cycles until the point settles"},
@@ -258,4 +261,45 @@ const tt_scene_section *tt_scene_schema(size_t *count)
 {
     *count = TT_COUNT(sections);
     return sections;
+}
+
+/* Keys without a unit: what their values look like, each with an example of its own (a
+ * default of 0 or in percent shows no number, and lambda has none). Keys of one name
+ * (poisson_ratio of the tip and of a material) share one. */
+static const struct {
+    const char *key, *text;
+} unitless[] = {
+    {"quality_factor", "a number, no unit, such as '400'"},
+    {"poisson_ratio", "a number, no unit, such as '0.3'"},
+    {"lambda", "a number, no unit, such as '1'"},
+    {"interaction_quality_factor", "a number, no unit, such as '10'"},
+    {"settle_tolerance", "a number, no unit, such as '1e-7'"},
+    {"tolerance", "a number, no unit, such as '1e-8'"},
+    {"duty", "a fraction such as '0.5' or a percentage such as '50 %'"},
+    {"map_duty", "a fraction such as '0.5' or a percentage such as '50 %'"},
+    {"proportional_gain", "a number, no unit (m/m), such as '0.1'"},
+    {"tilt_x", "a slope, no unit, such as '0.01', or a percentage such as '1 %'"},
+    {"tilt_y", "a slope, no unit, such as '0.01', or a percentage such as '1 %'"},
+    {"piezo_damping", "a number, no unit, such as '0.7'"},
+    {"creep", "a fraction such as '0.02' or a percentage such as '2 %'"},
+};
+
+const char *tt_scene_key_describe(const tt_scene_key *k)
+{
+    switch (k->kind) {
+    case TT_KEY_ENUM:
+        return k->choices;
+    case TT_KEY_INT:
+        return "integer";
+    case TT_KEY_BOOL:
+        return "yes|no";
+    case TT_KEY_STRING:
+        return "text";
+    default:
+        break;
+    }
+    for (size_t i = 0; (k->dims & TT_DIM_NONE) && i < TT_COUNT(unitless); i++)
+        if (strcmp(unitless[i].key, k->key) == 0)
+            return unitless[i].text;
+    return tt_units_describe(k->dims);
 }

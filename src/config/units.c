@@ -54,7 +54,7 @@ static const struct {
     const char *symbol;
     const char *example;
 } dim_names[] = {
-    {TT_DIM_NONE, "", "a plain number such as '400'"},
+    {TT_DIM_NONE, "", "a number, no unit"},
     {TT_DIM_LENGTH, "m", "a length such as '0.265 nm'"},
     {TT_DIM_FREQUENCY, "Hz", "a frequency such as '52 kHz'"},
     {TT_DIM_STIFFNESS, "N/m", "a stiffness such as '0.58 N/m'"},
@@ -86,6 +86,8 @@ const char *tt_units_describe(unsigned dims)
      * few we use get a fixed phrase. */
     if (dims == (TT_DIM_LENGTH | TT_DIM_FRACTION))
         return "a length such as '16 nm' or a percentage of the free amplitude such as '80 %'";
+    if (dims == (TT_DIM_NONE | TT_DIM_FRACTION))
+        return "a number, no unit, or a percentage such as '50 %'";
     for (size_t i = 0; i < COUNT(dim_names); i++)
         if (dims & dim_names[i].dim)
             return dim_names[i].example;

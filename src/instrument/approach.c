@@ -2,10 +2,15 @@
 #include "tiptap/instrument/approach.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "tiptap/util/error.h"
+#include "tiptap/util/warning.h"
+
+/* The points a warning names, at most. */
+#define WARN_LIST 8
 
 struct tt_approach {
     tt_sim *sim;
@@ -15,6 +20,13 @@ struct tt_approach {
     long cycles_total, cycles_done;
     double dz_cycle;       /* sample travel per cycle, m (signed) */
     double z_last;         /* steady mode: the previous point's separation, m */
+    /* for tt_approach_warn: the steady points that are period-n orbits and those with
+     * no period found (how many, the first WARN_LIST of each: z, period) */
+    size_t periodic, unsettled;
+    double periodic_z[WARN_LIST], unsettled_z[WARN_LIST];
+    int periodic_n[WARN_LIST];
+    /* the deepest contact of any row (indentation, m; NAN: none) and its radius, m */
+    double indent, radius;
 };
 
 /* Steady mode moves the sample from one point to the next at this much per cycle at
@@ -35,6 +47,7 @@ int tt_approach_alloc(tt_approach **out, tt_sim *sim, const tt_approach_params *
         return tt_error_nomem("the approach");
     a->sim = sim;
     a->p = *p;
+    a->indent = a->radius = NAN;
     a->rows = (size_t)p->points * (p->retract ? 2 : 1);
     if (p->mode == TT_APPROACH_RAMP) {
         double T = tt_sim_cantilever(sim)->T;
@@ -106,52 +119,14 @@ static int move_sample(tt_approach *a, double from, double to, long *cycles)
     return TT_OK;
 }
 
-/* Cycles run after an unsettled point to say why it did not settle. */
-#define TT_APPROACH_DIAG_CYCLES 48
-#define TT_APPROACH_MAX_PERIOD 8
-
-/* Why a point did not settle: a period-n orbit (amplitude and phase repeat every n
- * cycles but not every cycle), or the change the last cycles still show. */
-static int diagnose(tt_approach *a, tt_approach_point *pt)
+/* Keep the deepest contact, a greatest penetration d (m) of a cycle, and its radius. */
+static void deepest(tt_approach *a, double d)
 {
-    double amp[TT_APPROACH_DIAG_CYCLES], ph[TT_APPROACH_DIAG_CYCLES];
-    for (int k = 0; k < TT_APPROACH_DIAG_CYCLES; k++) {
-        int rc = tt_sim_cycle(a->sim, &pt->cycle);
-        if (rc)
-            return rc;
-        amp[k] = pt->cycle.amplitude;
-        ph[k] = pt->cycle.phase;
+    if (d > 0 && !(d <= a->indent)) {
+        tt_sample s = {.d = d, .contact = 1};
+        a->indent = d;
+        tt_sim_force(a->sim, &s, &a->radius);
     }
-    pt->cycles += TT_APPROACH_DIAG_CYCLES;
-    double A0 = tt_sim_cantilever(a->sim)->A0;
-    /* repeat within 1e-4 of the free amplitude and 1e-4 rad: tighter than any figure
-     * shows, looser than the orbit's own wander after thousands of cycles */
-    double ta = 1e-4 * A0, tp = 1e-4;
-    int h = TT_APPROACH_DIAG_CYCLES / 2; /* compare over the second half */
-    for (int n = 1; n <= TT_APPROACH_MAX_PERIOD; n++) {
-        double da = 0, dp = 0;
-        for (int k = h; k < TT_APPROACH_DIAG_CYCLES; k++) {
-            da = fmax(da, fabs(amp[k] - amp[k - n]));
-            dp = fmax(dp, fabs(ph[k] - ph[k - n]));
-        }
-        if (da < ta && dp < tp) {
-            pt->period = n;
-            break;
-        }
-    }
-    double lo = INFINITY, hi = -INFINITY;
-    for (int k = h; k < TT_APPROACH_DIAG_CYCLES; k++) {
-        lo = fmin(lo, amp[k]);
-        hi = fmax(hi, amp[k]);
-    }
-    pt->amp_min = lo;
-    pt->amp_max = hi;
-    /* over whole periods of an orbit, so that its phases do not pass for a drift */
-    int span = TT_APPROACH_DIAG_CYCLES - 1 - h;
-    if (pt->period > 1)
-        span -= span % pt->period;
-    pt->amp_change = (amp[h + span] - amp[h]) / (double)span;
-    return TT_OK;
 }
 
 static int iterate_steady(tt_approach *a, tt_approach_point *pt)
@@ -171,19 +146,29 @@ static int iterate_steady(tt_approach *a, tt_approach_point *pt)
     tt_sim_set_sample(a->sim, z, 0);
     pt->z = z;
     pt->retract = retract;
+    tt_settle_result sr;
     if (a->p.steady == TT_STEADY_SHOOTING) {
         tt_shoot_params sp;
         tt_shoot_default(&sp);
         rc = tt_shoot_steady(a->sim, &sp, a->p.max_cycles, a->p.settle_tolerance, &pt->cycle,
                              &pt->settled, &pt->shot);
         pt->cycles = pt->shot.cycles;
+        sr = pt->shot.settle;
+        if (pt->shot.how == TT_SHOOT_NEWTON)
+            sr.period = sr.window = 1;
     } else {
-        rc = tt_sim_settle(a->sim, a->p.max_cycles, a->p.settle_tolerance, &pt->cycle,
-                           &pt->settled, &pt->cycles);
+        rc = tt_sim_settle_orbit(a->sim, a->p.max_cycles, a->p.settle_tolerance, &pt->cycle, &sr);
+        pt->settled = sr.settled;
+        pt->cycles = sr.cycles;
     }
     pt->cycles += moved;
-    if (rc == TT_OK && !pt->settled)
-        rc = diagnose(a, pt);
+    pt->period = sr.period;
+    pt->window = sr.window;
+    pt->amp_min = sr.window > 1 ? sr.amp_min : pt->cycle.amplitude;
+    pt->amp_max = sr.window > 1 ? sr.amp_max : pt->cycle.amplitude;
+    pt->amp_change = sr.window > 1 ? sr.amp_change : 0;
+    if (rc == TT_OK)
+        deepest(a, sr.window > 1 ? sr.max_indentation : pt->cycle.max_indentation);
     a->row++;
     return rc;
 }
@@ -218,6 +203,7 @@ static int iterate_ramp(tt_approach *a, tt_approach_point *pt)
         tt_sim_set_sample(a->sim, z, (k < a->cycles_total) ? sdot : 0.0);
         if ((rc = tt_sim_cycle(a->sim, &pt->cycle)))
             return rc;
+        deepest(a, pt->cycle.max_indentation);
         a->cycles_done++;
         ran++;
     } while (a->cycles_done - base <= target);
@@ -225,13 +211,72 @@ static int iterate_ramp(tt_approach *a, tt_approach_point *pt)
     pt->retract = retract;
     pt->settled = 0;
     pt->cycles = ran;
+    pt->window = 1;
+    pt->amp_min = pt->amp_max = pt->cycle.amplitude;
     a->row++;
     return TT_OK;
+}
+
+/* Keep what tt_approach_warn says of a steady row: its orbit. */
+static void note(tt_approach *a, const tt_approach_point *pt)
+{
+    if (a->p.mode == TT_APPROACH_STEADY && pt->period != 1) {
+        size_t *k = pt->period ? &a->periodic : &a->unsettled;
+        if (*k < WARN_LIST) {
+            (pt->period ? a->periodic_z : a->unsettled_z)[*k] = pt->z;
+            if (pt->period)
+                a->periodic_n[*k] = pt->period;
+        }
+        (*k)++;
+    }
 }
 
 int tt_approach_iterate(tt_approach *a, tt_approach_point *pt)
 {
     if (tt_approach_done(a))
         return tt_error(TT_EINVAL, "approach already finished");
-    return a->p.mode == TT_APPROACH_RAMP ? iterate_ramp(a, pt) : iterate_steady(a, pt);
+    int rc = a->p.mode == TT_APPROACH_RAMP ? iterate_ramp(a, pt) : iterate_steady(a, pt);
+    if (rc == TT_OK)
+        note(a, pt);
+    return rc;
+}
+
+/* "z1, z2 nm" of the first min(n, WARN_LIST) of z (with " (period p)" when per), and
+ * ", ..." when there were more. */
+static void z_list(char *buf, size_t len, const double *z, const int *per, size_t n)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; i < n && i < WARN_LIST && used < len; i++) {
+        used += (size_t)snprintf(buf + used, len - used, "%s%.6g", i ? ", " : "", z[i] * 1e9);
+        if (per && used < len)
+            used += (size_t)snprintf(buf + used, len - used, " (period %d)", per[i]);
+    }
+    if (used < len)
+        snprintf(buf + used, len - used, " nm%s", n > WARN_LIST ? ", ..." : "");
+}
+
+void tt_approach_warn(const tt_approach *a)
+{
+    char list[512];
+    size_t n = a->row;
+    if (a->periodic) {
+        z_list(list, sizeof list, a->periodic_z, a->periodic_n, a->periodic);
+        tt_warn(TT_WARN_SETTLE,
+                "%zu of %zu points are periodic orbits of more than one cycle, not "
+                "steady oscillations (z = %s): their rows are the means over the period, which "
+                "the period column gives in cycles", a->periodic, n, list);
+    }
+    if (a->unsettled) {
+        z_list(list, sizeof list, a->unsettled_z, NULL, a->unsettled);
+        tt_warn(TT_WARN_SETTLE,
+                "%zu of %zu points found no period up to %d cycles within max_cycles = "
+                "%ld (z = %s): their rows are the means over their last %d cycles (period 0); "
+                "chaos, or raise [approach] max_cycles", a->unsettled, n, TT_SETTLE_MAX_PERIOD,
+                a->p.max_cycles, list, TT_SETTLE_WINDOW);
+    }
+    if (a->p.material && a->indent > 0)
+        tt_contact_warn_validity(a->p.material, a->radius, a->indent, a->p.tip_radius,
+                                 "a larger [tip] radius, a larger [approach] to or a smaller "
+                                 "[cantilever] free_amplitude");
 }

@@ -39,13 +39,28 @@ struct tt_surface {
 
 /* ---- PNG input ---- */
 
+/* The material map's memory refusal for its materials' levels. */
+static int levels_nomem(const char *path, size_t nm)
+{
+    return tt_error(TT_ENOMEM, "[surface] map_png: %s: out of memory for the levels of %zu materials", path, nm);
+}
+
 /* A map larger than this is refused before it is decoded: 8192 x 8192 pixels. */
 #define TT_PNG_MAX_PIXELS ((size_t)1 << 26)
 
 /* libpng reports errors by longjmp; the handler keeps the message for ours. */
 typedef struct {
     char msg[200];
+    double nomem; /* the bytes the decoded image would take, when they were not there */
 } png_fault;
+
+/* A map's memory refusal: the key, the file, what would not fit and its size. */
+static int png_nomem(const char *key, const char *path, const char *what, size_t w, size_t h,
+                     double bytes)
+{
+    return tt_error(TT_ENOMEM, "[surface] %s: %s: out of memory for %s of %zu x %zu pixels (%.3g MB)",
+                    key, path, what, w, h, bytes / 1e6);
+}
 
 static void on_png_error(png_structp png, png_const_charp msg)
 {
@@ -107,8 +122,10 @@ static int decode_png(FILE *f, png_fault *e, unsigned char **data, png_uint_32 *
     size_t rowbytes = png_get_rowbytes(png, info);
     buf = malloc(rowbytes * *h);
     rows = malloc(*h * sizeof *rows);
-    if (!buf || !rows)
+    if (!buf || !rows) {
+        e->nomem = (double)rowbytes * *h;
         png_error(png, "out of memory");
+    }
     for (png_uint_32 y = 0; y < *h; y++)
         rows[y] = buf + y * rowbytes;
     png_read_image(png, rows);
@@ -133,12 +150,14 @@ static int read_png(const char *key, const char *path, int want_rgb,
         snprintf(why, sizeof why, "%s", tt_error_message());
         return tt_error(TT_EINVAL, "[surface] %s: %s", key, why);
     }
-    png_fault e = {""};
+    png_fault e = {"", 0};
     unsigned char *data = NULL;
     png_uint_32 W = 0, H = 0;
     int nch = 0, depth = 0;
     int bad = decode_png(f, &e, &data, &W, &H, &nch, &depth);
     fclose(f);
+    if (bad && e.nomem > 0)
+        return png_nomem(key, path, "the decoded image", W, H, e.nomem);
     if (bad)
         return tt_error(TT_EINVAL, "[surface] %s: %s: cannot read as PNG: %s", key, path, e.msg);
     size_t n = (size_t)W * H, ch = want_rgb ? 3 : 1;
@@ -147,7 +166,7 @@ static int read_png(const char *key, const char *path, int want_rgb,
     *pix = malloc((n ? n : 1) * ch * sizeof **pix);
     if (!*pix) {
         free(data);
-        return tt_error(TT_ENOMEM, "out of memory reading %s", path);
+        return png_nomem(key, path, "its levels", W, H, (double)n * ch * sizeof **pix);
     }
     for (size_t k = 0; k < n && rc == TT_OK; k++) {
         unsigned s[4] = {0, 0, 0, 0};
@@ -382,7 +401,8 @@ static int build_png_height(tt_surface *S, const tt_surface_params *p)
     S->grid = fftw_alloc_real((size_t)S->gw * S->gh);
     if (!S->grid) {
         free(pix);
-        return tt_error_nomem("the height map's grid");
+        return png_nomem("png", p->png, "its height grid", (size_t)S->gw, (size_t)S->gh,
+                         (double)S->gw * S->gh * sizeof *S->grid);
     }
     for (size_t k = 0; k < (size_t)S->gw * S->gh; k++)
         S->grid[k] = range * ((double)pix[k] / maxv); /* the brightest pixel is range exactly */
@@ -557,7 +577,7 @@ static int check_map_values(const unsigned long long *key, const tt_material *ma
     keyed *k = malloc((nm ? nm : 1) * sizeof *k);
     size_t n = 0;
     if (!k)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return levels_nomem(path, nm);
     for (size_t i = 0; i < nm; i++)
         if (key[i] != ~0ULL)
             k[n++] = (keyed){key[i], i};
@@ -603,7 +623,7 @@ int tt_surface_check_map_values(const tt_surface_params *p, const tt_material *m
     fclose(f);
     unsigned long long *key = malloc((nm ? nm : 1) * sizeof *key);
     if (!key)
-        return tt_error(TT_ENOMEM, "out of memory");
+        return levels_nomem(p->map_png, nm);
     for (size_t i = 0; i < nm; i++)
         if ((mat[i].map_grey < 0 && mat[i].map_rgb < 0) || map_key(&mat[i], (unsigned)maxv, &key[i]))
             key[i] = ~0ULL; /* a level beyond the depth: tt_surface_alloc says so */
@@ -621,7 +641,11 @@ static int build_png_map(tt_surface *S, const tt_surface_params *p, const tt_mat
     if ((rc = read_png("map_png", path, 1, &pix, &S->mw, &S->mh, &maxv)))
         return rc;
     unsigned long long *key = malloc((nm ? nm : 1) * sizeof *key), none = ~0ULL;
-    for (size_t i = 0; key && i < nm && !rc; i++) {
+    if (!key) {
+        free(pix);
+        return levels_nomem(path, nm);
+    }
+    for (size_t i = 0; i < nm && !rc; i++) {
         key[i] = none;
         if (mat[i].map_grey >= 0 || mat[i].map_rgb >= 0) {
             if (map_key(&mat[i], (unsigned)maxv, &key[i]) != 0)
@@ -630,17 +654,14 @@ static int build_png_map(tt_surface *S, const tt_surface_params *p, const tt_mat
                               maxv == 255 ? 8 : 16, path);
         }
     }
-    if (!rc && key)
+    if (!rc)
         rc = check_map_values(key, mat, nm, maxv, path);
-    S->mgrid = rc || !key ? NULL : malloc((size_t)S->mw * S->mh * sizeof *S->mgrid);
+    S->mgrid = rc ? NULL : malloc((size_t)S->mw * S->mh * sizeof *S->mgrid);
     if (!S->mgrid) {
         free(key);
         free(pix);
-        return rc ? rc : tt_error_nomem("the material map's grid");
-    }
-    if (!S->mgrid) {
-        free(pix);
-        return rc ? rc : tt_error_nomem("the material map's grid");
+        return rc ? rc : png_nomem("map_png", path, "its material grid", (size_t)S->mw, (size_t)S->mh,
+                                   (double)S->mw * S->mh * sizeof *S->mgrid);
     }
     for (size_t k = 0; k < (size_t)S->mw * S->mh && rc == TT_OK; k++) {
         unsigned long long c = (unsigned long long)pix[3 * k] << 32 |

@@ -25,6 +25,9 @@ struct tt_trace {
     double za;               /* its value at cycle zk's start */
     long zk;
     uint64_t kd, kz;         /* the detector's and the z piezo's keys */
+    /* the recorded cycles' contact furthest past the small-contact bound (the largest
+     * of a / (0.5 R) and delta / R): indentation, radius, tip radius, m (indent NAN: none) */
+    double indent, radius, tip_radius, worst;
 };
 
 /* Set the ramped key to one end's value; a refusal names that end ("[trace] ramp_to:
@@ -184,7 +187,7 @@ static void fill_samples(tt_trace *t)
 /* The Hertzian pressure at the cycle's greatest indentation, located by the
  * integrator, where the contact circle is widest: the peak that samples at fixed times
  * miss when the contact is short against the cycle. */
-static double peak_pressure(const tt_trace *t, const tt_cycle *c)
+static double peak_pressure(tt_trace *t, const tt_cycle *c)
 {
     if (!(c->contact_fraction > 0) || !(c->max_indentation > -INFINITY))
         return 0;
@@ -192,7 +195,24 @@ static double peak_pressure(const tt_trace *t, const tt_cycle *c)
     tt_sample s = {.d = c->max_indentation, .contact = 1};
     double a = 0;
     tt_sim_force(tt_setup_sim(t->st), &s, &a);
+    /* kept for tt_trace_warn_contact, with the law of this cycle (a ramp changes it) */
+    double q = fmax(a / (TT_CONTACT_MAX_RADIUS_RATIO * cp->R), c->max_indentation / cp->R);
+    if (c->max_indentation > 0 && !(q <= t->worst)) {
+        t->worst = q;
+        t->indent = c->max_indentation;
+        t->radius = a;
+        t->tip_radius = cp->R;
+    }
     return hertz_pressure(cp, a);
+}
+
+int tt_trace_warn_contact(const tt_trace *t)
+{
+    if (!(t->indent > 0))
+        return 0;
+    return tt_contact_warn_validity(tt_setup_material(t->st, t->mat)->name, t->radius, t->indent,
+                                    t->tip_radius, "a larger [tip] radius, a larger [trace] "
+                                    "separation or a smaller [cantilever] free_amplitude");
 }
 
 int tt_trace_iterate(tt_trace *t, tt_trace_row *row)

@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "tiptap/util/error.h"
+#include "tiptap/util/warning.h"
 
 #define S_LO 1e-6  /* one cubic on [0, S_LO] */
 #define N0 601      /* nodes uniform in ln s on [ln S_LO, ln S_A] */
@@ -688,10 +689,14 @@ static int build_curve(struct tt_contact *c)
     branch(c, c->D0, &S->jumpin_load, &dP, &A, NULL);
     S->hysteresis = c->D0 - c->dmin > 1e-12;
     S->hamaker = 6 * fabs(c->P0) * c->F * pow(fabs(c->D0) + c->xi, 2) * c->d * c->d / c->p.R;
-    double Uc, Uv;
+    /* the loop: the contact branch's energy from jump-in down to jump-out, and the van
+     * der Waals branch's back up, -P0 (dmin - D0) (D0 - xi) / (dmin - xi), written so
+     * that no potential of size P0 xi enters (a difference of two of them loses the
+     * loop to rounding when xi is large: 1e-5 of it at xi = 1e6, all of it at 1e160) */
+    double Uc;
     branch(c, c->dmin, &P, &dP, &A, &Uc);
-    vdw(c, c->dmin, &P, &dP, &Uv);
-    S->loop_energy = S->hysteresis ? (Uc + c->Uc_shift - Uv) * c->F * c->d : 0.0;
+    double dUv = -c->P0 * (c->dmin - c->D0) * ((c->D0 - c->xi) / (c->dmin - c->xi));
+    S->loop_energy = S->hysteresis ? (Uc - Uin + dUv) * c->F * c->d : 0.0;
     return TT_OK;
 }
 
@@ -760,6 +765,14 @@ int tt_contact_alloc(tt_contact **out, const tt_contact_params *p)
     }
     c->lambda = lam;
     c->xi = xi0 / c->d;
+    if (!(c->xi <= TT_CONTACT_XI0N_MAX)) {
+        double xin = c->xi, d = c->d;
+        free(c);
+        return tt_error(TT_EINVAL,
+                        "contact: the interatomic distance xi0 = %.3g m is %.3g depth scales d* "
+                        "(%.3g m), beyond the %.0e a force law takes (its van der Waals branch "
+                        "squares it)", xi0, xin, d, TT_CONTACT_XI0N_MAX);
+    }
     c->law = &laws[p->model];
     int rc = build_curve(c);
     if (rc) {
@@ -775,8 +788,9 @@ int tt_contact_alloc_normalised(tt_contact **out, tt_contact_model model, double
     *out = NULL;
     if (model == TT_CONTACT_MAUGIS && !(lambda >= 1e-4 && lambda <= 1e4))
         return tt_error(TT_EINVAL, "contact: lambda must lie between 1e-4 and 1e4, got %g", lambda);
-    if (!(xi0n > 0))
-        return tt_error(TT_EINVAL, "contact: the normalised xi0 must be positive");
+    if (!(xi0n > 0 && xi0n <= TT_CONTACT_XI0N_MAX))
+        return tt_error(TT_EINVAL, "contact: the normalised xi0 must be positive and at most %.0e, got %g",
+                        TT_CONTACT_XI0N_MAX, xi0n);
     struct tt_contact *c = calloc(1, sizeof *c);
     if (!c)
         return tt_error_nomem("a contact force law");
@@ -920,4 +934,17 @@ int tt_contact_curve(const tt_contact *c, size_t n, double A_max, double *A, dou
 int tt_contact_beyond_validity(double a, double delta, double R)
 {
     return a > TT_CONTACT_MAX_RADIUS_RATIO * R || delta > R;
+}
+
+int tt_contact_warn_validity(const char *material, double a, double delta, double R,
+                             const char *remedy)
+{
+    if (!tt_contact_beyond_validity(a, delta, R))
+        return 0;
+    tt_warn(TT_WARN_VALIDITY,
+            "[material %s]: contact radius up to %.3g nm at %.3g nm indentation on a tip of "
+            "radius %.3g nm, beyond the contact laws' small contact (radius <= %.1f R, "
+            "indentation <= R): their forces are off there; %s keeps within it",
+            material, a * 1e9, delta * 1e9, R * 1e9, TT_CONTACT_MAX_RADIUS_RATIO, remedy);
+    return 1;
 }

@@ -11,14 +11,14 @@
 #include "tiptap/util/error.h"
 
 enum { Z, AMP, PHASE, MEAN, PEAK, INDENT, FRACTION, DISS, BRANCH, SETTLED, CYCLES, DRIVE,
-       RESIDUAL, YMIN, YMAX, NCOL };
+       RESIDUAL, YMIN, YMAX, PERIOD, NCOL };
 
 static const run_column columns[NCOL] = {
     {"z", "m", 0}, {"amplitude", "m", 0}, {"phase", "deg", 0}, {"mean_deflection", "m", 0},
     {"peak_force", "N", 0}, {"max_indentation", "m", 0}, {"contact_fraction", "", 0},
     {"dissipated", "J", 0}, {"branch", "", 1}, {"settled", "", 0}, {"cycles", "", 0},
     {"drive_work", "J", 0}, {"energy_residual", "", 0}, {"deflection_min", "m", 0},
-    {"deflection_max", "m", 0},
+    {"deflection_max", "m", 0}, {"period", "", 0},
 };
 
 /* One point as the CSV's row, in SI (tiptap approach's write_row). */
@@ -31,7 +31,8 @@ static int put(tt_table *t, const tt_approach_point *p)
     const double v[NCOL] = {p->z, c->amplitude, c->phase * 180 / M_PI, c->mean, c->peak_force,
                             c->max_indentation, c->contact_fraction, c->e_ts, NAN, p->settled,
                             (double)p->cycles, c->e_drive, c->residual_rel,
-                            isfinite(c->y_min) ? c->y_min : NAN, isfinite(c->y_max) ? c->y_max : NAN};
+                            isfinite(c->y_min) ? c->y_min : NAN, isfinite(c->y_max) ? c->y_max : NAN,
+                            (double)p->period};
     for (int k = 0; k < NCOL; k++)
         tt_table_set(t, (size_t)k, v[k]);
     return tt_table_set_text(t, BRANCH, p->retract ? "retract" : "approach");
@@ -53,18 +54,17 @@ int tt_run_approach(const tt_scene *s, tt_table **out, tt_progress_fn progress, 
         goto done;
     }
     *out = t;
-    long total = (long)tt_approach_rows(ap), unsettled = 0;
+    long total = (long)tt_approach_rows(ap);
     while (!tt_approach_done(ap) && rc == TT_OK) {
         tt_approach_point pt;
         if (tt_cancel_requested())
             rc = tt_error(TT_EINTR, "interrupted: %zu of %ld points finished", tt_table_rows(t), total);
-        else if ((rc = tt_approach_iterate(ap, &pt)) == TT_OK && (rc = put(t, &pt)) == TT_OK) {
-            unsettled += p.mode == TT_APPROACH_STEADY && !pt.settled;
-            if (progress)
-                progress(user, (long)tt_table_rows(t), total);
-        }
+        else if ((rc = tt_approach_iterate(ap, &pt)) == TT_OK && (rc = put(t, &pt)) == TT_OK &&
+                 progress)
+            progress(user, (long)tt_table_rows(t), total);
     }
-    tt_run_warn_unsettled(unsettled, p.max_cycles);
+    if (tt_table_rows(t) > 0)
+        tt_approach_warn(ap);
 done:
     tt_approach_free(ap);
     tt_setup_free(st);

@@ -13,6 +13,7 @@
 #include "tiptap/run/sweep.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
+#include "tiptap/util/warning.h"
 
 static const char *const kinds[] = {"steady", "setpoint", "approach", "scan"};
 
@@ -29,13 +30,14 @@ int tt_sweep_kind_parse(const char *name, tt_sweep_kind *kind)
 const char *tt_sweep_kind_name(tt_sweep_kind kind) { return kinds[kind <= TT_SWEEP_SCAN ? kind : 0]; }
 
 enum { Z, AMP, PHASE, MEAN, PEAK, INDENT, FRACTION, DISS, DRIVE, RESIDUAL, REGIME, DIRECTION,
-       SETTLED, CYCLES, FOUND, NPOINT };
+       SETTLED, CYCLES, PERIOD, FOUND, NPOINT };
 
 static const run_column point_columns[NPOINT] = {
     {"z", "m", 0}, {"amplitude", "m", 0}, {"phase", "deg", 0}, {"mean_deflection", "m", 0},
     {"peak_force", "N", 0}, {"max_indentation", "m", 0}, {"contact_fraction", "", 0},
     {"dissipated", "J", 0}, {"drive_work", "J", 0}, {"energy_residual", "", 0},
-    {"regime", "", 1}, {"direction", "", 1}, {"settled", "", 0}, {"cycles", "", 0}, {"found", "", 1},
+    {"regime", "", 1}, {"direction", "", 1}, {"settled", "", 0}, {"cycles", "", 0}, {"period", "", 0},
+    {"found", "", 1},
 };
 
 enum { FOLDER, LINES, ESTIMATE, MATERIAL, PIXELS, HMEAN, HSTD, PMEAN, PSTD, HCONTRAST, PCONTRAST, NSCAN };
@@ -108,21 +110,27 @@ static int put_point(tt_table *t, size_t c, const tt_approach_point *p, double A
     if (!ok) {
         tt_table_set(t, c + SETTLED, 0);
         tt_table_set(t, c + CYCLES, 0);
+        tt_table_set(t, c + PERIOD, 0);
         if ((rc = tt_table_set_text(t, c + REGIME, "failed")) || (rc = tt_table_set_text(t, c + DIRECTION, "approach")))
             return rc;
         return tt_table_set_text(t, c + FOUND, "failed");
     }
     const double v[NPOINT] = {p->z, y->amplitude, y->phase * 180 / M_PI, y->mean, y->peak_force,
                               y->max_indentation, y->contact_fraction, y->e_ts, y->e_drive,
-                              y->residual_rel, NAN, NAN, p->settled, (double)p->cycles, NAN};
+                              y->residual_rel, NAN, NAN, p->settled, (double)p->cycles,
+                              (double)p->period, NAN};
     for (size_t k = 0; k < NPOINT; k++)
         if (!isnan(v[k]))
             tt_table_set(t, c + k, v[k]);
     if ((rc = tt_table_set_text(t, c + REGIME, regime(y, A0))) ||
         (rc = tt_table_set_text(t, c + DIRECTION, p->retract ? "retract" : "approach")))
         return rc;
-    return tt_table_set_text(t, c + FOUND,
-                             found ? found : p->shot.how == TT_SHOOT_NEWTON && p->cycles >= 0 ? "newton" : "settled");
+    if (!found)
+        found = p->period == 0                  ? TT_SWEEP_UNSETTLED
+                : p->period > 1                 ? TT_SWEEP_PERIODIC
+                : p->shot.how == TT_SHOOT_NEWTON ? "newton"
+                                                : "settled";
+    return tt_table_set_text(t, c + FOUND, found);
 }
 
 /* rc with the combination named in front of the message. */
@@ -265,7 +273,9 @@ static int curve(const tt_sweep *g, size_t i, combo *c, tt_table *t)
             rc = run;
             break;
         }
-        if ((rc = keys_row(t, g, i, &col)) || (rc = put_point(t, col, &pt, A0, run == TT_OK, NULL)))
+        /* a ramp's row is one cycle of the moving sample, found by no search */
+        const char *found = c->p.mode == TT_APPROACH_RAMP ? TT_SWEEP_RAMP : NULL;
+        if ((rc = keys_row(t, g, i, &col)) || (rc = put_point(t, col, &pt, A0, run == TT_OK, found)))
             break;
         if (run)
             break; /* the branch cannot go on from a failed point */
@@ -437,6 +447,50 @@ static int compute_all(const tt_sweep *g, tt_sweep_kind kind, int threads, tt_ta
     return err ? tt_error(err, "%s", saved) : TT_OK;
 }
 
+/* The combinations (numbers from 1) whose rows say found=what: how many rows, and the
+ * first WARN_LIST combinations as "1, 5, 7" (", ..." after them when more). */
+#define WARN_LIST 10
+static size_t found_rows(const tt_table *t, long found, const char *what, char *list, size_t len)
+{
+    size_t rows = 0, listed = 0, used = 0;
+    double last = NAN;
+    list[0] = '\0';
+    for (size_t r = 0; r < tt_table_rows(t); r++) {
+        if (strcmp(tt_table_text(t, (size_t)found, r), what) != 0)
+            continue;
+        rows++;
+        double comb = tt_table_numbers(t, 0)[r];
+        if (comb == last)
+            continue;
+        last = comb;
+        if (listed++ < WARN_LIST && used < len)
+            used += (size_t)snprintf(list + used, len - used, "%s%.0f", listed > 1 ? ", " : "", comb);
+        else if (listed == WARN_LIST + 1 && used < len)
+            used += (size_t)snprintf(list + used, len - used, ", ...");
+    }
+    return rows;
+}
+
+void tt_run_sweep_warn(const tt_table *t)
+{
+    long found = tt_table_find(t, "found");
+    if (found < 0 || !tt_table_is_text(t, (size_t)found))
+        return; /* a scan sweep's table */
+    char list[256];
+    size_t n = tt_table_rows(t), k;
+    if ((k = found_rows(t, found, TT_SWEEP_PERIODIC, list, sizeof list)))
+        tt_warn(TT_WARN_SETTLE,
+                "%zu of %zu points are periodic orbits of more than one cycle, not steady "
+                "oscillations (found=%s; combinations %s): their rows are the means over the period, "
+                "which the period column gives in cycles", k, n, TT_SWEEP_PERIODIC, list);
+    if ((k = found_rows(t, found, TT_SWEEP_UNSETTLED, list, sizeof list)))
+        tt_warn(TT_WARN_SETTLE,
+                "%zu of %zu points found no period up to %d cycles within [approach] "
+                "max_cycles (found=%s; combinations %s): their rows are the means over their last "
+                "%d cycles; chaos, or raise [approach] max_cycles", k, n, TT_SETTLE_MAX_PERIOD,
+                TT_SWEEP_UNSETTLED, list, TT_SETTLE_WINDOW);
+}
+
 int tt_run_sweep(const tt_sweep *grid, tt_sweep_kind kind, int threads, tt_table **out,
                  tt_progress_fn progress, void *user)
 {
@@ -469,6 +523,8 @@ int tt_run_sweep(const tt_sweep *grid, tt_sweep_kind kind, int threads, tt_table
     }
     if (kind == TT_SWEEP_SETPOINT)
         tt_run_warn_unreached(all);
+    if (kind != TT_SWEEP_SCAN)
+        tt_run_sweep_warn(all);
     *out = all;
     return rc;
 }

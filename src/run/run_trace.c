@@ -64,6 +64,8 @@ int tt_run_trace(const tt_scene *s, tt_table **out, tt_progress_fn progress, voi
                 progress(user, done, total);
         }
     }
+    if (done > 0)
+        tt_trace_warn_contact(tr);
 done:
     tt_trace_free(tr);
     tt_setup_free(st);

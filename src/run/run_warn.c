@@ -161,16 +161,10 @@ int tt_run_scan_warn_result(const tt_scan *scan)
      * indentation of the whole run */
     for (size_t i = 0; i < tt_scan_materials(scan); i++) {
         tt_contact_extent e;
-        if (!tt_scan_contact_extent(scan, i, &e))
-            continue;
-        n++;
-        tt_warn(TT_WARN_VALIDITY, "[material %s]: contact radius up to %.3g nm at %.3g nm indentation "
-                                  "on a tip of radius %.3g nm, beyond the contact laws' small contact "
-                                  "(radius <= %.1f R, indentation <= R): their forces are off there; a "
-                                  "larger [tip] radius, a higher [feedback] setpoint or a smaller "
-                                  "[cantilever] free_amplitude keeps within it",
-                tt_scan_material_name(scan, i), e.radius * 1e9, e.indentation * 1e9,
-                e.tip_radius * 1e9, TT_CONTACT_MAX_RADIUS_RATIO);
+        if (tt_scan_contact_extent(scan, i, &e))
+            n += tt_contact_warn_validity(tt_scan_material_name(scan, i), e.radius, e.indentation,
+                                          e.tip_radius, "a larger [tip] radius, a higher [feedback] "
+                                          "setpoint or a smaller [cantilever] free_amplitude");
     }
     /* the averaged tier's model is wrong where an impact collapsed the oscillation */
     long line, px, collapsed = tt_scan_averaged_collapsed(scan, &line, &px);
@@ -242,15 +236,6 @@ int tt_run_scan_warn_error(const tt_scan *scan, const tt_run_scan_cost *cost,
         return 0;
     return tt_run_warn_estimate(tt_scan_solver(scan), tt_scan_free_amplitude(scan), e->height_max,
                                 "amplitude", e->amplitude_max, e->phase_max);
-}
-
-int tt_run_warn_unsettled(long unsettled, long max_cycles)
-{
-    if (unsettled <= 0)
-        return 0;
-    tt_warn(TT_WARN_SETTLE, "%ld points did not settle within max_cycles = %ld (period doubling or "
-                            "chaos, or raise [approach] max_cycles)", unsettled, max_cycles);
-    return 1;
 }
 
 /* The column named name, or -1. */

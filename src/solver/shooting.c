@@ -453,9 +453,9 @@ int tt_shoot_steady(tt_sim *sim, const tt_shoot_params *p, long max_cycles, doub
         tt_sim_set_state(sim, d, v, c);
     }
     res->how = TT_SHOOT_SETTLED;
-    long n = 0;
-    rc = tt_sim_settle(sim, max_cycles > run ? max_cycles - run : 1, tol, out, settled, &n);
-    res->cycles += run + n;
+    rc = tt_sim_settle_orbit(sim, max_cycles > run ? max_cycles - run : 1, tol, out, &res->settle);
+    *settled = res->settle.settled;
+    res->cycles += run + res->settle.cycles;
     tt_sim_get_state(sim, &res->d, &res->v, &res->contact);
     return rc;
 }

@@ -59,6 +59,11 @@ typedef struct {
 /* The schema: all sections tiptap knows, in documentation order. */
 const tt_scene_section *tt_scene_schema(size_t *count);
 
+/* What a key's value looks like, for listings and messages (static text): the choices,
+ * "integer", "yes|no", "text", or the quantity with an example, for a key without a unit
+ * an example of its own ("a number, no unit, such as '0.3'" for poisson_ratio). */
+const char *tt_scene_key_describe(const tt_scene_key *k);
+
 typedef struct tt_scene tt_scene;
 
 tt_scene *tt_scene_alloc(void);

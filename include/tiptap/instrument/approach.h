@@ -39,6 +39,10 @@ typedef struct {
     long max_cycles;       /* steady mode: per point */
     double settle_tolerance;
     tt_approach_steady steady; /* steady mode */
+    /* the material under the tip, for tt_approach_warn's messages: its name (NULL:
+     * none given, no contact warning) and the radius of its force law, m */
+    const char *material;
+    double tip_radius;
 } tt_approach_params;
 
 typedef struct {
@@ -46,13 +50,16 @@ typedef struct {
     int retract;     /* 0 approach branch, 1 retract branch */
     int settled;     /* steady mode: whether the point settled within max_cycles */
     long cycles;     /* cycles run for this row */
-    tt_cycle cycle;  /* the last cycle's observables */
+    tt_cycle cycle;  /* the point's observables: ramp mode, the cycle's; steady mode,
+                      * the mean over its orbit's period, or over the last window cycles
+                      * when none was found (tt_sim_settle_orbit, tt_cycle_mean) */
     tt_shoot_result shot; /* steady mode by shooting: how the point was found (else zero) */
-    /* steady mode, a point that did not settle: after 48 more cycles, its period in
-     * cycles (2 to 8: a period-n orbit; 1: it settled just then; 0: no period up to 8),
-     * the amplitude's range over the last 24 cycles, m, and its mean change per cycle,
-     * m, taken over whole periods of an orbit */
-    int period;
+    /* steady mode: the orbit's period in cycles (1 a steady oscillation, 2 to
+     * TT_SETTLE_MAX_PERIOD a period-n orbit, settled too; 0 none found within
+     * max_cycles, unsettled), the cycles cycle is the mean of (the period, or the last
+     * TT_SETTLE_WINDOW), the amplitude's range over them, m, and its mean change per
+     * cycle, m, over a whole period of an orbit; ramp mode: 0, 1 (one cycle per row) */
+    int period, window;
     double amp_min, amp_max, amp_change;
 } tt_approach_point;
 
@@ -64,6 +71,15 @@ size_t tt_approach_rows(const tt_approach *a);
 int tt_approach_done(const tt_approach *a);
 /* Compute the next row. TT_ENUM etc. on solver failure. */
 int tt_approach_iterate(tt_approach *a, tt_approach_point *pt);
+
+/* Raise the warnings (tiptap/util/warning.h) of the rows computed so far: TT_WARN_SETTLE
+ * for the steady points that are period-n orbits (their rows are the means over the
+ * period) and for those where no period up to TT_SETTLE_MAX_PERIOD was found (means
+ * over the last TT_SETTLE_WINDOW cycles), each naming how many and which; and
+ * TT_WARN_VALIDITY when the deepest contact of any row is beyond the force laws'
+ * small-contact assumption (tt_contact_warn_validity; needs params' material). Once per
+ * run, on the calling thread: a run's companion (its error estimate) does not call it. */
+void tt_approach_warn(const tt_approach *a);
 
 TT_END_DECLS
 #endif

@@ -80,5 +80,13 @@ int tt_trace_done(const tt_trace *t);
  * etc. on solver failure, TT_EINVAL on a ramp value the scene refuses. */
 int tt_trace_iterate(tt_trace *t, tt_trace_row *row);
 
+/* Raise the TT_WARN_VALIDITY warning (tt_contact_warn_validity, as a scan does) when the
+ * recorded cycles' contact went furthest beyond the force laws' small-contact
+ * assumption: the contact radius at a cycle's greatest indentation past 0.5 R, or the
+ * indentation past R, with the force law of that cycle (a ramp changes it). Returns
+ * whether it warned. Once per run, on the calling thread: the program's companion run
+ * (its error estimate) does not call it. */
+int tt_trace_warn_contact(const tt_trace *t);
+
 TT_END_DECLS
 #endif

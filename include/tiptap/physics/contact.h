@@ -68,6 +68,13 @@ typedef struct {
 
 typedef struct tt_contact tt_contact;
 
+/* The largest interatomic distance xi0, in depth scales d*, that a force law takes
+ * (tt_contact_alloc and tt_contact_alloc_normalised refuse more with TT_EINVAL): its van
+ * der Waals branch P0 (Delta0 - xi)^2 / (Delta - xi)^2 squares it, which overflows past
+ * 1e154. Lennard-Jones surfaces within the Maugis range (lambda 1e-4 to 1e4, eq. 3)
+ * have xi0 = 0.656 d* / lambda, 6.6e-5 to 6.6e3 d*. */
+#define TT_CONTACT_XI0N_MAX 1e6
+
 /* Build the force law (and its table). Fails with TT_EINVAL and a message naming the
  * parameter on bad input (K <= 0, NaN, ...). */
 int tt_contact_alloc(tt_contact **out, const tt_contact_params *p);
@@ -160,6 +167,14 @@ double tt_contact_energy(const tt_contact *c, double delta, int in_contact);
  * beyond these. */
 #define TT_CONTACT_MAX_RADIUS_RATIO 0.5
 int tt_contact_beyond_validity(double a, double delta, double R);
+
+/* When a contact of radius a (m) at indentation delta (m) on a tip of radius R (m) is
+ * beyond these (tt_contact_beyond_validity), raise the TT_WARN_VALIDITY warning
+ * (tiptap/util/warning.h) that names the material, the figures and what keeps within
+ * them (remedy: "a larger [tip] radius, ..."); returns whether it warned. Scans,
+ * traces and approaches warn through it alike. */
+int tt_contact_warn_validity(const char *material, double a, double delta, double R,
+                             const char *remedy);
 
 /* The event thresholds, m: an out-of-contact tip contacts when delta rises to
  * jumpin; an in-contact tip leaves when delta falls to jumpout (<= jumpin). */

@@ -33,12 +33,16 @@ typedef void (*tt_progress_fn)(void *user, long done, long total);
 /* tiptap approach: a row per point of [approach] (both branches): z (m), amplitude (m),
  * phase (deg), mean_deflection (m), peak_force (N), max_indentation (m),
  * contact_fraction, dissipated (J), branch (approach, retract), settled (1, 0), cycles,
- * drive_work (J), energy_residual, deflection_min, deflection_max (m). */
+ * drive_work (J), energy_residual, deflection_min, deflection_max (m), period (cycles:
+ * steady mode, 1 a steady oscillation, n a period-n orbit whose row is the mean over its
+ * n cycles, 0 none found, the mean over the last TT_SETTLE_WINDOW cycles; ramp mode 0).
+ * The warnings of tt_approach_warn are raised on the calling thread. */
 int tt_run_approach(const tt_scene *s, tt_table **out, tt_progress_fn progress, void *user);
 
 /* tiptap trace: samples_per_cycle rows per recorded cycle: cycle, t (s), base, tip,
  * sample, deflection (m), force (N), contact_radius (m), pressure (Pa), contact (1, 0),
- * and the ramped key's value (its SI unit) when [trace] ramp is set. */
+ * and the ramped key's value (its SI unit) when [trace] ramp is set; the warning of
+ * tt_trace_warn_contact raised on the calling thread. */
 int tt_run_trace(const tt_scene *s, tt_table **out, tt_progress_fn progress, void *user);
 
 /* tiptap contact with a scene: the force law of the [material NAME] (NULL: the first),
@@ -122,10 +126,6 @@ int tt_run_warn_estimate(const tt_solver *s, double A0, double height_m, const c
 /* A run longer than a minute (wall, s) by estimate, naming the drive's distance below the
  * resonance f0 when the drive fd is less than half of it (TT_WARN_RUN). */
 int tt_run_warn_duration(double wall, int upper_bound, double f0, double fd);
-
-/* unsettled points of a steady approach that did not settle within max_cycles
- * (TT_WARN_SETTLE). */
-int tt_run_warn_unsettled(long unsettled, long max_cycles);
 
 /* The rows of a setpoint sweep's table (tt_run_sweep) whose found column says
  * TT_SWEEP_UNREACHABLE, naming up to 10 combinations (TT_WARN_SETPOINT). */

@@ -35,13 +35,23 @@ const char *tt_sweep_kind_name(tt_sweep_kind kind);
 /* The found column of a setpoint row whose setpoint was not reached (the row holds the
  * closest point the search found). */
 #define TT_SWEEP_UNREACHABLE "unreachable"
+/* The found column of a point that settled into a periodic orbit of n > 1 cycles (its
+ * row: the means over the orbit's period, which the period column gives), and of one
+ * where no period up to TT_SETTLE_MAX_PERIOD was found within [approach] max_cycles
+ * (the means over its last TT_SETTLE_WINDOW cycles; period 0). */
+#define TT_SWEEP_PERIODIC "periodic"
+#define TT_SWEEP_UNSETTLED "unsettled"
+/* The found column of an approach sweep's rows in ramp mode: one cycle each of the
+ * moving sample (period 0). */
+#define TT_SWEEP_RAMP "ramp"
 
 /* An empty table with the columns of kind's rows: combination; each varied key (unit
  * tt_sweep_unit; a text column for keys whose values are text); setpoint (m) for
  * setpoint sweeps; then z (m), amplitude (m), phase (deg), mean_deflection (m),
  * peak_force (N), max_indentation (m), contact_fraction, dissipated (J), drive_work (J),
  * energy_residual, regime (free, attractive, repulsive, failed), direction, settled,
- * cycles, found (newton, settled, unreachable, failed); or for scans folder (the
+ * cycles, period (cycles; 1 steady, n > 1 a period-n orbit, 0 none found), found
+ * (newton, settled, periodic, unsettled, unreachable, ramp, failed); or for scans folder (the
  * combination's folder name, "0001"), lines_done, error_estimate, material, pixels,
  * height_mean, height_std (m), phase_mean, phase_std (deg), height_contrast (m),
  * phase_contrast (deg): against the first material. */
@@ -59,6 +69,11 @@ int tt_run_sweep_points(const tt_sweep *grid, tt_sweep_kind kind, size_t i, tt_t
 /* Append the summary rows of combination i's finished scan (its scene) to t. */
 int tt_run_sweep_scan_rows(const tt_sweep *grid, size_t i, const tt_scene *scene,
                            const tt_scan *scan, tt_table *t);
+
+/* Raise the TT_WARN_SETTLE warnings (tiptap/util/warning.h) of a steady, setpoint or
+ * approach sweep's table: how many rows are found=periodic and found=unsettled, and in
+ * which combinations. tt_run_sweep raises them itself. */
+void tt_run_sweep_warn(const tt_table *t);
 
 /* The whole sweep: every combination checked, then computed (points on threads
  * threads, 0: all cores; scans one at a time, their lines on threads threads), the rows

@@ -139,6 +139,48 @@ int tt_sim_cycle(tt_sim *sim, tt_cycle *out);
 int tt_sim_settle(tt_sim *sim, long max_cycles, double tol, tt_cycle *out, int *settled,
                   long *cycles);
 
+/* The longest orbit tt_sim_settle_orbit looks for, in cycles, and the window of last
+ * cycles its means are taken over when it finds none. Over a soft, sticky sample the
+ * jump-ins lock into long patterns (periods 4, 10, 11, 15, 20, 27 and 41 on the polymer
+ * blend's matrix between 2 and 10 nm: docs/dynamics.md, Settling). */
+#define TT_SETTLE_MAX_PERIOD 64
+#define TT_SETTLE_WINDOW 64
+
+/* How tt_sim_settle_orbit ended. */
+typedef struct {
+    int settled;       /* amplitude and phase settled: steady (period 1) or repeating */
+    int period;        /* the orbit's period in cycles: 1 a steady oscillation, 2 to
+                        * TT_SETTLE_MAX_PERIOD a period-n orbit (jump-ins in some cycles
+                        * and not in others, period doubling); 0 none found within
+                        * max_cycles (chaos, or a transient slower than max_cycles) */
+    int window;        /* cycles the observables are the mean of: the period, or the last
+                        * TT_SETTLE_WINDOW cycles (fewer if fewer ran) when none */
+    long cycles;       /* cycles run */
+    double amp_min, amp_max; /* the amplitude's range over those cycles, m */
+    double amp_change; /* its mean change per cycle, m: over one period of an orbit (so its
+                        * phases do not pass for a drift), else over the window */
+    double max_indentation; /* the greatest of their max_indentation, m */
+} tt_settle_result;
+
+/* As tt_sim_settle, and an orbit that repeats every n cycles (2 <= n <=
+ * TT_SETTLE_MAX_PERIOD: amplitude and phase drift over n cycles by less than tol,
+ * extrapolated, and spread over them by more than tol and ten times that drift, through
+ * n + 2 cycles in a row) is settled too. out: the last cycle of a steady oscillation
+ * (exactly what tt_sim_settle returns, which stops at the same cycle); the mean of the
+ * orbit's n cycles (tt_cycle_mean); or, when neither was found within max_cycles, the
+ * mean of the last TT_SETTLE_WINDOW cycles. TT_EINTR when cancelled, as tt_sim_cycle. */
+int tt_sim_settle_orbit(tt_sim *sim, long max_cycles, double tol, tt_cycle *out,
+                        tt_settle_result *res);
+
+/* The observables of cycles c[0..n) taken together, as over one period of an orbit:
+ * amplitude and phase of their mean fundamental (what a lock-in reads over the n
+ * cycles), the means of the mean deflection, peak force, indentation, contact fraction,
+ * energies and residual (the energy balance holds for the means), the deflection's
+ * extremes over all n, the largest residual_rel, the first cycle's contact time and
+ * the last release (NAN: none) among them, and the steps per cycle rounded. n = 1 gives
+ * c[0] unchanged. */
+void tt_cycle_mean(const tt_cycle *c, int n, tt_cycle *out);
+
 /* Absolute time at the current cycle start, s; cycles completed. */
 double tt_sim_time(const tt_sim *sim);
 long tt_sim_cycles(const tt_sim *sim);

@@ -22,7 +22,7 @@
  * is running into it: the orbit's quadratic Lyapunov function (from its monodromy
  * matrix) falls along the last cycles and is still falling, and the motion is within
  * a tenth of the free amplitude of it (or the map is linear there). Otherwise more
- * cycles and another try; at last the point is settled (tt_sim_settle).
+ * cycles and another try; at last the point is settled (tt_sim_settle_orbit).
  *
  * Usage: tt_shoot_default(&p); tt_shoot_steady(sim, &p, max_cycles, tol, &cycle, &res);
  * Ownership: the functions drive the sim given to them and leave it at the end of the
@@ -63,6 +63,7 @@ typedef struct {
     double mu_re[2], mu_im[2]; /* Floquet multipliers at the fixed point (NAN: none) */
     double mu_abs;          /* the largest |mu|: below 1 for a stable orbit */
     const char *why;        /* why Newton's orbit was refused ("" if it was not) */
+    tt_settle_result settle; /* how the point settled instead (TT_SHOOT_SETTLED; else zero) */
 } tt_shoot_result;
 
 /* Floquet multipliers of the map at the sim's current cycle-start state, from central
@@ -81,9 +82,10 @@ int tt_shoot_newton(tt_sim *sim, const tt_shoot_params *p, int *converged, int *
 /* A steady point from the sim's current state: run p->presettle cycles, Newton, check
  * the orbit (see above), retry after twice the cycles, up to p->attempts times and at
  * most half the cycles settling is expected to take (Q / pi ln(1 / tol) / 2), and fall
- * back to tt_sim_settle (max_cycles, tol). out is the orbit's last cycle, run from the
- * fixed point; *settled whether the point is steady (Newton's, or settled within
- * max_cycles). TT_EINTR when cancelled (util/cancel.h), the point unfinished. */
+ * back to tt_sim_settle_orbit (max_cycles, tol). out is the orbit's last cycle, run from
+ * the fixed point, or what settling gave (a period-n orbit's mean; res->settle);
+ * *settled whether the point is steady (Newton's, or settled within max_cycles, also
+ * to a period-n orbit). TT_EINTR when cancelled (util/cancel.h), the point unfinished. */
 int tt_shoot_steady(tt_sim *sim, const tt_shoot_params *p, long max_cycles, double tol,
                     tt_cycle *out, int *settled, tt_shoot_result *res);
 
