@@ -51,7 +51,7 @@ for map in h:png:height.png m:map_png:materials.png; do
     grep -q "out of memory" <<<"$out" || continue
     nomem=$((nomem + 1))
     if [ $rc -ne 0 ] && [ "$(wc -l <<<"$out")" -eq 1 ] &&
-      grep -q "^tiptap: .*$scene.ini: \[surface\] $key: .*$file: out of memory for .* of 8192 x 8192 pixels ([0-9.]* MB)$" <<<"$out"; then
+      grep -q "^tiptap scan: .*$scene.ini: \[surface\] $key: .*$file: out of memory for .* of 8192 x 8192 pixels ([0-9.]* MB)$" <<<"$out"; then
       ok "$file under ulimit -v $lim: '$out'"
     else
       bad "$file under ulimit -v $lim: rc $rc, '$out'"
