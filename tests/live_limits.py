@@ -20,7 +20,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from live_ws import WS, Refused  # noqa: E402
+from live_ws import WS, Refused, ask, control  # noqa: E402
 
 mode, port = sys.argv[1], int(sys.argv[2])
 pid = int(sys.argv[3]) if len(sys.argv) > 3 else 0
@@ -31,18 +31,6 @@ def ok(cond, what):
     global fails
     print(("ok " if cond else "FAIL ") + what)
     fails += not cond
-
-
-def control(msg, name):
-    for c in msg["controls"]:
-        if c["name"] == name:
-            return c["value"]
-    return None
-
-
-def ask(ws, text):
-    ws.send(text)
-    return ws.recv_type("reply")
 
 
 def get(path, host=None, origin=None):

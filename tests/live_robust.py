@@ -19,7 +19,7 @@ import time
 import urllib.request
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from live_ws import WS, Refused  # noqa: E402
+from live_ws import WS, Refused, ask, control  # noqa: E402
 
 port, pid, tiptap, work = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3], sys.argv[4]
 fails = 0
@@ -37,19 +37,6 @@ def rss_kb():
             if line.startswith("VmRSS:"):
                 return int(line.split()[1])
     return 0
-
-
-def control(ws_msgs, name):
-    for c in ws_msgs["controls"]:
-        if c["name"] == name:
-            return c["value"]
-    return None
-
-
-def ask(ws, text):
-    """Send a message; its reply (the other messages in between are skipped)."""
-    ws.send(text)
-    return ws.recv_type("reply")
 
 
 # ---- one page: the first messages, then bad messages

@@ -90,3 +90,17 @@ class WS:
         except OSError:
             pass
         self.s.close()
+
+
+def control(msg, name):
+    """The value of control name in a controls message (None: no such control)."""
+    for c in msg["controls"]:
+        if c["name"] == name:
+            return c["value"]
+    return None
+
+
+def ask(ws, text):
+    """Send a message; its reply (the other messages in between are skipped)."""
+    ws.send(text)
+    return ws.recv_type("reply")
