@@ -419,9 +419,11 @@ int cmd_scan(int argc, char **argv)
         else if (rc)
             tt_error(rc, "%s", saved);
     }
-    double wall = cli_now() - t0;
+    double scan_wall = cli_now() - t0;
     tt_scan_error est;
     int erc = rc == TT_OK && !quiet ? tt_scan_estimate_error(scan, &est) : TT_EINVAL;
+    /* run_time_s is the whole run's, the estimate's companion line included */
+    double wall = cli_now() - t0;
     int have_est = erc == TT_OK;
     if (erc == TT_EINTR) /* stopped in the companion: the images are written, the exit says so */
         rc = tt_error(erc, "interrupted in the error estimate's companion line; the images "
@@ -452,26 +454,38 @@ int cmd_scan(int argc, char **argv)
                 tt_scan_averaged_build_seconds(scan), tt_scan_materials(scan),
                 tt_scan_materials(scan) > 1 ? "s" : "", tt_scan_averaged_table_error(scan));
     if (!quiet) {
-        fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f\ninstrument_time_s = %.3f\n"
+        fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f (the whole run; the scan %.3f, "
+                        "the error estimate %.3f)\ninstrument_time_s = %.3f\n"
                         "real_time_factor = %.3f\nenergy_balance = %.3g (largest energy-balance "
                         "residual of a cycle / free drive work per cycle: a check, not the error)\n",
-                tt_scan_lines_done(scan), tt_scan_lines(scan), tt_scan_cycles(scan), wall,
-                tt_scan_instrument_time(scan),
+                tt_scan_lines_done(scan), tt_scan_lines(scan), tt_scan_cycles(scan), wall, scan_wall,
+                wall - scan_wall, tt_scan_instrument_time(scan),
                 tt_scan_instrument_time(scan) * (double)tt_scan_lines_done(scan) /
                     (double)tt_scan_lines(scan) / wall,
                 tt_scan_error_estimate(scan));
         int rk4 = params.solver.method == TT_METHOD_RK4, avg = tt_scan_averaged_tier(&params);
-        if (have_est)
+        if (have_est) {
             fprintf(stderr, "error_estimate_height_m = %.2g (rms; max %.2g)\n"
                             "error_estimate_phase_deg = %.2g (rms; max %.2g)\n"
                             "error_estimate_amplitude_rel = %.2g (rms; max %.2g)\n"
-                            "# from a companion run of line %ld %s %s %.3g; run_time_s "
-                            "excludes it\n",
+                            "# from a companion run of line %ld %s %s %.3g against the image: ",
                     est.height_rms, est.height_max, est.phase_rms, est.phase_max, est.amplitude_rms,
                     est.amplitude_max, est.line,
                     avg ? "on the envelope tier (the averaged model's error) at" : "at",
                     rk4 ? "steps_per_cycle" : "tolerance",
                     rk4 ? (double)tt_companion_solver(&params.solver).steps_per_cycle : est.tolerance);
+            if (est.step > 0)
+                fprintf(stderr, "the image's hardest line (height steps up to %.2g m between pixels)",
+                        est.step);
+            else
+                fprintf(stderr, "the profile line (no height step in the image)");
+            long integ = tt_scan_cycles_integrated(scan);
+            fprintf(stderr, ", %ld of its %ld pixels\n"
+                            "estimate_cycles = %ld (%.1f %% of the scan's %ld cycles integrated)\n"
+                            "estimate_cpu_s = %.3f\n",
+                    est.pixels, est.pixels_line, est.cycles,
+                    integ > 0 ? 100.0 * (double)est.cycles / (double)integ : 0.0, integ, est.seconds);
+        }
         if (have_est)
             tt_run_scan_warn_error(scan, &cost, &est);
         fprintf(stderr, "output = %s: %d files (scan.gwy: every channel, trace and retrace; "

@@ -41,6 +41,8 @@ int tt_scan_cycle_begin(const line_ctx *L, line_state *st, cycle_in *in)
     const int j = (int)(k % L->P);
     if ((k & 255) == 0 && tt_cancel_requested())
         return TT_EINTR;
+    if (L->W->budget > 0 && st->cycles >= L->W->budget)
+        return TT_SCAN_BUDGET;
     in->k = k;
     in->j = j;
     surf_pt a = surface_cached(L, st, k), b = surface_cached(L, st, k + 1), c = b;

@@ -49,7 +49,14 @@ typedef struct {
     double s_ref;
     /* the scope the line under way records into (NULL: none) */
     tt_scan_scope *scope;
+    /* the error estimate's companion line stops after this many cycles (0: never), so
+     * that it costs a bounded share of the scan; budget_hit says it stopped there */
+    long budget;
+    int budget_hit;
 } worker;
+
+/* A line stopped at its worker's cycle budget: its pixels so far are kept. */
+enum { TT_SCAN_BUDGET = 100 };
 
 struct tt_scan {
     tt_cantilever cantilever;
