@@ -125,6 +125,7 @@ typedef struct {
     long line;
     double tolerance;
     long pixels, pixels_line;
+    long first;
     double step;
     long cycles;
     double seconds;

@@ -480,11 +480,15 @@ int cmd_scan(int argc, char **argv)
             else
                 fprintf(stderr, "the profile line (no height step in the image)");
             long integ = tt_scan_cycles_integrated(scan);
-            fprintf(stderr, ", %ld of its %ld pixels\n"
+            if (est.pixels < est.pixels_line)
+                fprintf(stderr, ", %ld of its %ld pixels (the trace's from pixel %ld)", est.pixels,
+                        est.pixels_line, est.first);
+            else
+                fprintf(stderr, ", all its %ld pixels", est.pixels_line);
+            fprintf(stderr, "\n"
                             "estimate_cycles = %ld (%.1f %% of the scan's %ld cycles integrated)\n"
                             "estimate_cpu_s = %.3f\n",
-                    est.pixels, est.pixels_line, est.cycles,
-                    integ > 0 ? 100.0 * (double)est.cycles / (double)integ : 0.0, integ, est.seconds);
+                    est.cycles, integ > 0 ? 100.0 * (double)est.cycles / (double)integ : 0.0, integ, est.seconds);
         }
         if (have_est)
             tt_run_scan_warn_error(scan, &cost, &est);

@@ -498,11 +498,11 @@ static void engage(tt_scan *S, worker *W, long line, long nc, uint64_t kz, line_
 {
     const tt_raster *R = &S->raster;
     double x, y, h0, topo;
-    tt_raster_position(R, line, 0, nc, 0, &x, &y);
+    tt_raster_position(R, line, 0, nc, W->k0, &x, &y);
     if (S->plain)
         h0 = tt_surface_height(S->surface, x, y);
     else
-        h0 = tt_scan_sample_at(S, &x, &y, tt_scan_clock_at(S, line, 0, nc, 0), &topo);
+        h0 = tt_scan_sample_at(S, &x, &y, tt_scan_clock_at(S, line, 0, nc, W->k0), &topo);
     st->current = S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
     tt_sim_set_contact(W->sim, S->contacts[st->current], S->Qi[st->current]);
     st->fb = W->fb;
@@ -560,7 +560,7 @@ static void line_done(const tt_scan *S, worker *W, long line, const line_state *
  * then settles the rest. */
 static line_ctx line_context(tt_scan *S, worker *W, long line)
 {
-    line_ctx L = {.S = S, .W = W, .line = line};
+    line_ctx L = {.S = S, .W = W, .line = line, .k0 = W->k0};
     L.P = S->lockin.periods_per_block;
     L.N = S->lockin.samples_per_period;
     L.nc = tt_raster_cycles_per_direction(&S->raster, S->cantilever.T);
@@ -631,7 +631,7 @@ int tt_scan_line_run(tt_scan *S, worker *W, long line, const line_out *out, scan
         L.phase = phase;
         L.dir = phase == 2 ? 1 : 0;
         L.ncyc = phase == 0 ? settle_blocks * L.P : L.nc;
-        st.k = 0;
+        st.k = phase == 1 ? L.k0 : 0;
         st.ahead[0].k = st.ahead[1].k = -1;
         rc = run(&L, &st, tier);
     }
@@ -844,8 +844,8 @@ int tt_scan_line_values(const tt_scan *S, int ch, int retrace, long line, double
 /* One companion line on a solver setting: height, amplitude and phase of trace and
  * retrace into buf (6 blocks of pixels: [channel][direction]), stopped after budget
  * cycles (0: none); *hit says it stopped there, *ran counts its cycles. */
-static int companion_line(tt_scan *S, const tt_solver *solver, long line, long budget, double *buf,
-                          int *hit, long *ran)
+static int companion_line(tt_scan *S, const tt_solver *solver, long line, long budget, long k0,
+                          double *buf, int *hit, long *ran)
 {
     worker W;
     line_out out = {{{0}}, 1};
@@ -866,6 +866,7 @@ static int companion_line(tt_scan *S, const tt_solver *solver, long line, long b
      * fifth of the README job's) */
     W.model_tol = fmax(W.model_tol, S->solver.tolerance);
     W.budget = budget;
+    W.k0 = k0;
     if (!rc)
         rc = run_line(S, &W, line, &out, &cycles, &integrated, &worst, &clamped);
     *hit = W.budget_hit;
@@ -905,35 +906,39 @@ static long companion_budget(const tt_scan *S, const tt_solver *tight)
     return S->integrated > 0 ? (long)(TT_ESTIMATE_SHARE * (double)S->integrated / per) : 0;
 }
 
-/* The line whose stretch within reach (the trace's first `reach` pixels, or all of trace
- * and retrace when the budget covers the line) has the largest height step between
- * neighbouring pixels of the image: where the run is hardest. The profile line where no
- * line has a step (a flat image), or where it is the hardest. */
-static long hardest_line(const tt_scan *S, long reach, double *step)
+/* Where the image is hardest: the largest height step between neighbouring pixels of
+ * the trace (of trace and retrace when the companion covers whole lines, reach >= the
+ * pixels), its line, and the first pixel of the stretch of reach pixels the companion
+ * runs, the step a quarter into it. The profile line from its start where no line has
+ * a step (a flat image, or no height channel). */
+static long hardest_line(const tt_scan *S, long reach, double *step, long *first)
 {
     const tt_raster *R = &S->raster;
-    const int dirs = R->retrace ? 2 : 1;
-    long best = S->profile_line;
-    double top = -1;
+    const int dirs = reach >= R->pixels && R->retrace ? 2 : 1;
+    long best = S->profile_line, at = 0;
+    double top = 0;
     for (long l = 0; l < R->lines; l++) {
         if (!S->line_done[l])
             continue;
-        double m = 0;
-        for (int r = 0; r < (reach >= R->pixels ? dirs : 1); r++) {
+        for (int r = 0; r < dirs && S->img[r][0]; r++) {
             const double *h = S->img[r][0];
-            long n = reach < R->pixels ? reach : R->pixels;
-            for (long i = 1; i < n; i++) {
+            for (long i = 1; i < R->pixels; i++) {
                 double d = fabs(h[tt_raster_index(R, l, i)] - h[tt_raster_index(R, l, i - 1)]);
-                if (d > m)
-                    m = d;
+                if (d > top) {
+                    top = d;
+                    best = l;
+                    at = i;
+                }
             }
         }
-        if (m > top || (m == top && l == S->profile_line)) {
-            top = m;
-            best = l;
-        }
     }
-    *step = top > 0 ? top : 0;
+    *step = top;
+    *first = 0;
+    if (reach < R->pixels) {
+        *first = at - reach / 4 > 0 ? at - reach / 4 : 0;
+        if (*first + reach > R->pixels)
+            *first = R->pixels - reach;
+    }
     return best;
 }
 
@@ -965,14 +970,23 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
      * what the run's setting gives, and only the tight line runs. Continuous lines start
      * where the last one ended, so the run's setting runs again beside it, from the
      * same engage, on half the budget each. */
-    const int rerun = S->continuous || avg;
-    long budget = companion_budget(S, &tight);
-    if (rerun)
-        budget /= 2;
+    int rerun = S->continuous || avg;
+    for (int c = 0; c < 3; c++) /* and where the image lacks a channel it compares */
+        for (int r = 0; r < dirs; r++)
+            rerun |= !S->img[r][c];
     const long nc = tt_raster_cycles_per_direction(R, S->cantilever.T);
     const long settle = (S->settle_cycles + S->lockin.periods_per_block - 1) /
                         S->lockin.periods_per_block * S->lockin.periods_per_block;
-    /* the trace's pixels the budget reaches, less the one it stops in */
+    long budget = companion_budget(S, &tight);
+    /* A stretch inside the line engages there, not where the image's line reached it
+     * from the line's start (its noise counted from another cycle, its feedback fresh):
+     * the run's setting runs the same stretch beside it, each on half the budget. The
+     * trace's pixels the budget reaches, less the one it stops in: */
+    long full = (long)((double)(budget - settle) / (double)nc * (double)px) - 1;
+    if (budget > 0 && full < px)
+        rerun = 1;
+    if (rerun)
+        budget /= 2;
     long reach = budget > 0 ? (long)((double)(budget - settle) / (double)nc * (double)px) - 1 : 2 * px;
     if (budget > 0 && reach < 2) {
         /* a scan of a line or two: the fifth does not reach past the companion's
@@ -981,7 +995,10 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
         reach = 2 * px;
     }
     double step = 0;
-    long line = S->lines_done > 0 ? hardest_line(S, reach, &step) : S->profile_line;
+    long first = 0;
+    long line = S->lines_done > 0 ? hardest_line(S, reach, &step, &first) : S->profile_line;
+    /* the stretch's first cycle: the first whole cycle of its first pixel */
+    const long k0 = (first * nc + px - 1) / px;
     int rc[2] = {TT_OK, TT_OK}, hit[2] = {0, 0};
     long ran[2] = {0, 0};
     char why[2][512]; /* a worker thread's message is its own: carried back here */
@@ -995,8 +1012,8 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
                             S->img[r][c][tt_raster_index(R, line, i)];
             continue;
         }
-        rc[k] = companion_line(S, k ? &tight : &S->solver, line, budget, buf + (size_t)(6 * k * px),
-                               &hit[k], &ran[k]);
+        rc[k] = companion_line(S, k ? &tight : &S->solver, line, budget, k0,
+                               buf + (size_t)(6 * k * px), &hit[k], &ran[k]);
         snprintf(why[k], sizeof why[k], "%s", rc[k] ? tt_error_message() : "");
     }
     for (int k = 0; k < 2; k++)
@@ -1010,7 +1027,7 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
     const double scale[3] = {1, 1 / S->A0, 1};
     long n = 0;
     for (int r = 0; r < (partial ? 1 : dirs); r++)
-        for (long i = 0; i < px; i++) {
+        for (long i = r ? 0 : first; i < px; i++) {
             /* a line stopped by its budget: the trace's pixels before the one it stopped in */
             if (partial && (i + 1 >= px || isnan(buf[(size_t)(6 * px + 1 + i)]) ||
                             (rerun && isnan(buf[(size_t)(1 + i)]))))
@@ -1040,6 +1057,7 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
     e->pixels = n;
     e->pixels_line = dirs * px;
     e->step = step;
+    e->first = first;
     e->cycles = ran[0] + ran[1];
     e->seconds = tt_clock(TT_CLOCK_PROCESS) - c0;
     return TT_OK;

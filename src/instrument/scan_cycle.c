@@ -11,7 +11,7 @@
 surf_pt tt_scan_surface_at(const line_ctx *L, long k)
 {
     const tt_scan *S = L->S;
-    const long kk = L->phase ? k : 0;
+    const long kk = L->phase ? k : L->k0;
     surf_pt p = {.k = k};
     double x, y;
     tt_raster_position(&S->raster, L->line, L->dir, L->nc, kk, &x, &y);

@@ -250,15 +250,15 @@ const tt_solver *tt_scan_solver(const tt_scan *s);
  * hundred times tighter tolerance (not below 1e-14), rk4 four times the steps. */
 tt_solver tt_companion_solver(const tt_solver *s);
 
-/* The estimated error of the images, from a companion run: the image's hardest line
- * (the largest height step between neighbouring pixels within the companion's reach;
- * the profile line on a flat image) scanned again at tt_companion_solver's setting and
- * compared with the image (continuous lines and the averaged tier: with the line run
- * again at the run's setting beside it, on two threads); each figure is twice the
- * largest or rms difference over the pixels compared. The companion runs at most
- * TT_ESTIMATE_SHARE of the scan's cost (its cycles bounded by the scan's integrated
- * cycles, over the tighter setting's cost per cycle): on a short scan it stops inside
- * the trace, and only the trace's pixels before it compare. */
+/* The estimated error of the images, from a companion run where the image is hardest:
+ * the line with the largest height step between neighbouring pixels (the profile line
+ * on a flat image), scanned again at tt_companion_solver's setting and compared with
+ * the image; each figure is twice the largest or rms difference over the pixels
+ * compared. The companion runs at most TT_ESTIMATE_SHARE of the scan's cost (its cycles
+ * bounded by the scan's integrated cycles, over the tighter setting's cost per cycle):
+ * where that does not cover the line, it runs a stretch of the trace with the step a
+ * quarter into it, engaged at its start, and the run's setting runs the same stretch
+ * beside it (as for continuous lines and the averaged tier), on two threads. */
 #define TT_ESTIMATE_SHARE 0.2
 typedef struct {
     double height_max, height_rms;       /* m */
@@ -267,6 +267,7 @@ typedef struct {
     long line;                           /* the line it ran */
     double tolerance;                    /* the companion's tolerance */
     long pixels, pixels_line;            /* pixels compared, of the line's (trace and retrace) */
+    long first;                          /* the trace's first pixel it ran from */
     double step;                         /* the line's largest height step in reach, m */
     long cycles;                         /* the companion's cycles (all its lines) */
     double seconds;                      /* its CPU time, s (all threads) */
