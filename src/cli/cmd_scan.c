@@ -471,7 +471,7 @@ int cmd_scan(int argc, char **argv)
             fprintf(stderr, "error_estimate_height_m = %.2g (rms; max %.2g)\n"
                             "error_estimate_phase_deg = %.2g (rms; max %.2g)\n"
                             "error_estimate_amplitude_rel = %.2g (rms; max %.2g)\n"
-                            "# from a companion run of line %ld %s %s %.3g against the image: ",
+                            "# from a companion run of line %ld %s %s %.3g, ",
                     est.height_rms, est.height_max, est.phase_rms, est.phase_max, est.amplitude_rms,
                     est.amplitude_max, est.line,
                     avg ? "on the envelope tier (the averaged model's error) at" : "at",
@@ -488,10 +488,13 @@ int cmd_scan(int argc, char **argv)
                         est.pixels_line, est.first);
             else
                 fprintf(stderr, ", all its %ld pixels", est.pixels_line);
-            fprintf(stderr, "\n"
-                            "estimate_cycles = %ld (%.1f %% of the scan's %ld cycles integrated)\n"
-                            "estimate_cpu_s = %.3f\n",
-                    est.cycles, integ > 0 ? 100.0 * (double)est.cycles / (double)integ : 0.0, integ, est.seconds);
+            fprintf(stderr, "\nestimate_cycles = %ld", est.cycles);
+            if (integ > 0)
+                fprintf(stderr, " (%.1f %% of the scan's %ld cycles integrated)",
+                        100.0 * (double)est.cycles / (double)integ, integ);
+            else /* the averaged tier integrates none: its companion has no bound */
+                fprintf(stderr, " (the scan integrated none)");
+            fprintf(stderr, "\nestimate_cpu_s = %.3f\n", est.seconds);
         }
         if (have_est)
             tt_run_scan_warn_error(scan, &cost, &est);
