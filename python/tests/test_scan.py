@@ -93,6 +93,10 @@ def test_progress_callback_sees_every_line():
 
 def test_error_estimate_as_the_program_reports_it(quick_cli):
     r = tiptap.scan(QUICK, set=QUICK_SET, progress=False, error_estimate=True)
-    assert r.error["line"] == r.run["profile_line"]
+    # the image's hardest line (the profile line on a flat image), checked on at most a
+    # fifth of the cycles the scan integrated
+    assert 0 <= r.error["line"] < 4
+    assert 0 < r.error["pixels"] <= r.error["pixels_line"]
+    assert r.error["cycles"] > 0 and r.error["cpu_s"] >= 0
     assert 0 <= r.error["height_rms_m"] <= r.error["height_max_m"] < 1e-9
     assert r.error["tolerance"] > 0

@@ -124,6 +124,11 @@ typedef struct {
     double phase_max, phase_rms;
     long line;
     double tolerance;
+    long pixels, pixels_line;
+    long first;
+    double step;
+    long cycles;
+    double seconds;
 } tt_scan_error;
 int tt_scan_estimate_error(tt_scan *s, tt_scan_error *e);
 

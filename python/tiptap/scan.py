@@ -173,6 +173,9 @@ def scan(scene, *, set=None, threads=0, progress=None, error_estimate=False, hdf
             "amplitude_max_rel": e.amplitude_max, "amplitude_rms_rel": e.amplitude_rms,
             "phase_max_deg": e.phase_max, "phase_rms_deg": e.phase_rms,
             "line": e.line, "tolerance": e.tolerance,
+            # where it checked (the image's hardest stretch) and what it cost
+            "pixels": e.pixels, "pixels_line": e.pixels_line, "first_pixel": e.first,
+            "step_m": e.step, "cycles": e.cycles, "cpu_s": e.seconds,
         }
         with col.installed():
             lib.tt_run_scan_warn_error(s, cost, e)

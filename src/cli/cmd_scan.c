@@ -60,9 +60,12 @@ static void help(void)
            "stderr ends with the run time, the real-time factor (instrument time / run time),\n"
            "the energy balance (the largest energy-balance residual of a cycle relative to the\n"
            "free oscillation's drive work per cycle: a check) and the error estimate of height,\n"
-           "phase and amplitude: twice their difference from a companion run of the profile\n"
-           "line at a 100 times tighter tolerance (rk4: 4 times the steps); a warning when it\n"
-           "exceeds 1e-3 of the free amplitude or 0.1 deg.\n"
+           "phase and amplitude: twice their difference from a companion run at a 100 times\n"
+           "tighter tolerance (rk4: 4 times the steps) of the image's hardest line (the largest\n"
+           "height step between pixels; the profile line on a flat image), or of a stretch of\n"
+           "it: the companion runs at most a fifth of the cycles the scan integrated\n"
+           "(estimate_cycles, estimate_cpu_s); run_time_s includes it. A warning when the\n"
+           "estimate exceeds 1e-3 of the free amplitude or 0.1 deg.\n"
            "[solver] tier: envelope (default; most cycles from the cycle map's model under\n"
            "error control), every (every cycle integrated) or averaged (a preview: the\n"
            "averaged slow flow of amplitude and phase, no cycle integrated, about 50 times\n"
@@ -419,9 +422,11 @@ int cmd_scan(int argc, char **argv)
         else if (rc)
             tt_error(rc, "%s", saved);
     }
-    double wall = cli_now() - t0;
+    double scan_wall = cli_now() - t0;
     tt_scan_error est;
     int erc = rc == TT_OK && !quiet ? tt_scan_estimate_error(scan, &est) : TT_EINVAL;
+    /* run_time_s is the whole run's, the estimate's companion line included */
+    double wall = cli_now() - t0;
     int have_est = erc == TT_OK;
     if (erc == TT_EINTR) /* stopped in the companion: the images are written, the exit says so */
         rc = tt_error(erc, "interrupted in the error estimate's companion line; the images "
@@ -452,26 +457,45 @@ int cmd_scan(int argc, char **argv)
                 tt_scan_averaged_build_seconds(scan), tt_scan_materials(scan),
                 tt_scan_materials(scan) > 1 ? "s" : "", tt_scan_averaged_table_error(scan));
     if (!quiet) {
-        fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f\ninstrument_time_s = %.3f\n"
+        fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f (the whole run; the scan %.3f, "
+                        "the error estimate %.3f)\ninstrument_time_s = %.3f\n"
                         "real_time_factor = %.3f\nenergy_balance = %.3g (largest energy-balance "
                         "residual of a cycle / free drive work per cycle: a check, not the error)\n",
-                tt_scan_lines_done(scan), tt_scan_lines(scan), tt_scan_cycles(scan), wall,
-                tt_scan_instrument_time(scan),
+                tt_scan_lines_done(scan), tt_scan_lines(scan), tt_scan_cycles(scan), wall, scan_wall,
+                wall - scan_wall, tt_scan_instrument_time(scan),
                 tt_scan_instrument_time(scan) * (double)tt_scan_lines_done(scan) /
                     (double)tt_scan_lines(scan) / wall,
                 tt_scan_error_estimate(scan));
         int rk4 = params.solver.method == TT_METHOD_RK4, avg = tt_scan_averaged_tier(&params);
-        if (have_est)
+        if (have_est) {
             fprintf(stderr, "error_estimate_height_m = %.2g (rms; max %.2g)\n"
                             "error_estimate_phase_deg = %.2g (rms; max %.2g)\n"
                             "error_estimate_amplitude_rel = %.2g (rms; max %.2g)\n"
-                            "# from a companion run of line %ld %s %s %.3g; run_time_s "
-                            "excludes it\n",
+                            "# from a companion run of line %ld %s %s %.3g, ",
                     est.height_rms, est.height_max, est.phase_rms, est.phase_max, est.amplitude_rms,
                     est.amplitude_max, est.line,
                     avg ? "on the envelope tier (the averaged model's error) at" : "at",
                     rk4 ? "steps_per_cycle" : "tolerance",
                     rk4 ? (double)tt_companion_solver(&params.solver).steps_per_cycle : est.tolerance);
+            if (est.step > 0)
+                fprintf(stderr, "the image's hardest line (height steps up to %.2g m between pixels)",
+                        est.step);
+            else
+                fprintf(stderr, "the profile line (no height step in the image)");
+            long integ = tt_scan_cycles_integrated(scan);
+            if (est.pixels < est.pixels_line)
+                fprintf(stderr, ", %ld of its %ld pixels (the trace's from pixel %ld)", est.pixels,
+                        est.pixels_line, est.first);
+            else
+                fprintf(stderr, ", all its %ld pixels", est.pixels_line);
+            fprintf(stderr, "\nestimate_cycles = %ld", est.cycles);
+            if (integ > 0)
+                fprintf(stderr, " (%.1f %% of the scan's %ld cycles integrated)",
+                        100.0 * (double)est.cycles / (double)integ, integ);
+            else /* the averaged tier integrates none: its companion has no bound */
+                fprintf(stderr, " (the scan integrated none)");
+            fprintf(stderr, "\nestimate_cpu_s = %.3f\n", est.seconds);
+        }
         if (have_est)
             tt_run_scan_warn_error(scan, &cost, &est);
         fprintf(stderr, "output = %s: %d files (scan.gwy: every channel, trace and retrace; "

@@ -59,7 +59,8 @@ static const char point_columns[] =
     "contact_fraction,dissipated_aJ,drive_work_aJ,energy_residual,regime,direction,settled,"
     "cycles,period,found";
 static const char scan_columns[] =
-    "folder,lines_done,error_estimate,material,pixels,height_mean_nm,height_std_nm,phase_mean_deg,"
+    "folder,lines_done,energy_balance,error_estimate_height_nm,error_estimate_phase_deg,material,"
+    "pixels,height_mean_nm,height_std_nm,phase_mean_deg,"
     "phase_std_deg,height_contrast_nm,phase_contrast_deg";
 
 /* How the CSV writes each column of the library's rows after the varied keys: the
@@ -75,8 +76,8 @@ static const csv_format point_format[] = {
     {1e18, 'g'}, {1, '3'}, {1, 's'}, {1, 's'}, {1, 'd'}, {1, 'd'}, {1, 's'}, {1, 'd'},
 };
 static const csv_format scan_format[] = {
-    {1, 's'}, {1, 'd'}, {1, '3'}, {1, 's'}, {1, 'd'}, {1e9, 'g'}, {1e9, 'g'}, {1, 'g'}, {1, 'g'},
-    {1e9, 'g'}, {1, 'g'},
+    {1, 's'}, {1, 'd'}, {1, '3'}, {1e9, '3'}, {1, '3'}, {1, 's'}, {1, 'd'}, {1e9, 'g'}, {1e9, 'g'},
+    {1, 'g'}, {1, 'g'}, {1e9, 'g'}, {1, 'g'},
 };
 
 static const csv_format *sweep_format(tt_sweep_kind kind, size_t j)
@@ -117,7 +118,7 @@ static void put_rows(FILE *f, const sweep_job *job, const tt_table *t)
             else if (!fm || fm->conv == 'g')
                 fprintf(f, "%.9g", fm ? v * fm->scale : v);
             else if (fm->conv == '3')
-                fprintf(f, "%.3g", v);
+                fprintf(f, "%.3g", v * fm->scale);
             else
                 fprintf(f, "%ld", (long)v);
         }
@@ -198,7 +199,14 @@ static int compute_scan(const sweep_job *job, size_t i, tt_table *t)
     if (rc || (rc = crc) || (rc = tt_scan_run(scan, job->scan_threads, NULL, NULL)) ||
         (rc = cli_scan_write_outputs(scan, scene, folder, job->hdf5, &(int){0})))
         goto done;
-    rc = tt_run_sweep_scan_rows(job->grid, i, scene, scan, t);
+    /* the scan's own error estimate, as tiptap scan reports it (a fifth of its cost at most) */
+    tt_scan_error est;
+    int erc = tt_scan_estimate_error(scan, &est);
+    if (erc == TT_EINTR) {
+        rc = erc;
+        goto done;
+    }
+    rc = tt_run_sweep_scan_rows(job->grid, i, scene, scan, erc ? NULL : &est, t);
 done:
     cli_unlock_folder(folder, lock);
     tt_scan_free(scan);

@@ -498,11 +498,11 @@ static void engage(tt_scan *S, worker *W, long line, long nc, uint64_t kz, line_
 {
     const tt_raster *R = &S->raster;
     double x, y, h0, topo;
-    tt_raster_position(R, line, 0, nc, 0, &x, &y);
+    tt_raster_position(R, line, 0, nc, W->k0, &x, &y);
     if (S->plain)
         h0 = tt_surface_height(S->surface, x, y);
     else
-        h0 = tt_scan_sample_at(S, &x, &y, tt_scan_clock_at(S, line, 0, nc, 0), &topo);
+        h0 = tt_scan_sample_at(S, &x, &y, tt_scan_clock_at(S, line, 0, nc, W->k0), &topo);
     st->current = S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
     tt_sim_set_contact(W->sim, S->contacts[st->current], S->Qi[st->current]);
     st->fb = W->fb;
@@ -560,7 +560,7 @@ static void line_done(const tt_scan *S, worker *W, long line, const line_state *
  * then settles the rest. */
 static line_ctx line_context(tt_scan *S, worker *W, long line)
 {
-    line_ctx L = {.S = S, .W = W, .line = line};
+    line_ctx L = {.S = S, .W = W, .line = line, .k0 = W->k0};
     L.P = S->lockin.periods_per_block;
     L.N = S->lockin.samples_per_period;
     L.nc = tt_raster_cycles_per_direction(&S->raster, S->cantilever.T);
@@ -631,9 +631,13 @@ int tt_scan_line_run(tt_scan *S, worker *W, long line, const line_out *out, scan
         L.phase = phase;
         L.dir = phase == 2 ? 1 : 0;
         L.ncyc = phase == 0 ? settle_blocks * L.P : L.nc;
-        st.k = 0;
+        st.k = phase == 1 ? L.k0 : 0;
         st.ahead[0].k = st.ahead[1].k = -1;
         rc = run(&L, &st, tier);
+    }
+    if (rc == TT_SCAN_BUDGET) { /* the companion's share spent: its pixels so far count */
+        W->budget_hit = 1;
+        rc = TT_OK;
     }
     *cycles += st.cycles;
     if (st.worst > *worst)
@@ -838,14 +842,18 @@ int tt_scan_line_values(const tt_scan *S, int ch, int retrace, long line, double
 }
 
 /* One companion line on a solver setting: height, amplitude and phase of trace and
- * retrace into buf (6 blocks of pixels: [channel][direction]). */
-static int companion_line(tt_scan *S, const tt_solver *solver, double *buf)
+ * retrace into buf (6 blocks of pixels: [channel][direction]), stopped after budget
+ * cycles (0: none); *hit says it stopped there, *ran counts its cycles. */
+static int companion_line(tt_scan *S, const tt_solver *solver, long line, long budget, long k0,
+                          double *buf, int *hit, long *ran)
 {
     worker W;
     line_out out = {{{0}}, 1};
     long px = S->raster.pixels, cycles = 0, integrated = 0;
     double worst = 0;
     int clamped = 0;
+    for (long i = 0; i < 6 * px; i++)
+        buf[i] = NAN; /* pixels the budget left out stay NaN */
     for (int c = 0; c < 3; c++)
         for (int r = 0; r < (S->raster.retrace ? 2 : 1); r++)
             out.img[r][c] = buf + (size_t)(2 * c + r) * (size_t)px;
@@ -857,8 +865,12 @@ static int companion_line(tt_scan *S, const tt_solver *solver, double *buf)
      * tight line would integrate every grazing cycle at 1e-10 (16 G instructions, a
      * fifth of the README job's) */
     W.model_tol = fmax(W.model_tol, S->solver.tolerance);
+    W.budget = budget;
+    W.k0 = k0;
     if (!rc)
-        rc = run_line(S, &W, S->profile_line, &out, &cycles, &integrated, &worst, &clamped);
+        rc = run_line(S, &W, line, &out, &cycles, &integrated, &worst, &clamped);
+    *hit = W.budget_hit;
+    *ran = cycles;
     tt_scan_worker_free(&W);
     return rc;
 }
@@ -877,14 +889,69 @@ tt_solver tt_companion_solver(const tt_solver *s)
     return t;
 }
 
+/* The companion's cycles: a fifth of the scan's cost, counted as the cycles the scan
+ * integrated. On the every-cycle tier each of the companion's costs what its tighter
+ * setting asks (dopri5's steps grow as the tolerance to the -1/5, 2.5 times at a
+ * hundredth; rk4 runs four times the steps); on the envelope tier a cycle the scan
+ * integrated cost 17 to 21 us with its model's work (the README's main job, the
+ * teaching scene), a companion cycle 4 to 17 us, so one counts as one. 0 (no bound)
+ * where the scan integrated none (the averaged tier). */
+static long companion_budget(const tt_scan *S, const tt_solver *tight)
+{
+    double per = S->solver.method == TT_METHOD_RK4
+                     ? (double)tight->steps_per_cycle / (double)S->solver.steps_per_cycle
+                     : pow(S->solver.tolerance / tight->tolerance, 0.2);
+    if (!(per >= 1) || envelope_usable(S, &S->solver))
+        per = 1;
+    return S->integrated > 0 ? (long)(TT_ESTIMATE_SHARE * (double)S->integrated / per) : 0;
+}
+
+/* Where the image is hardest: the largest height step between neighbouring pixels of
+ * the trace (of trace and retrace when the companion covers whole lines, reach >= the
+ * pixels), its line, and the first pixel of the stretch of reach pixels the companion
+ * runs, the step a quarter into it. The profile line from its start where no line has
+ * a step (a flat image, or no height channel). */
+static long hardest_line(const tt_scan *S, long reach, double *step, long *first)
+{
+    const tt_raster *R = &S->raster;
+    const int dirs = reach >= R->pixels && R->retrace ? 2 : 1;
+    long best = S->profile_line, at = 0;
+    double top = 0;
+    for (long l = 0; l < R->lines; l++) {
+        if (!S->line_done[l])
+            continue;
+        for (int r = 0; r < dirs && S->img[r][0]; r++) {
+            const double *h = S->img[r][0];
+            for (long i = 1; i < R->pixels; i++) {
+                double d = fabs(h[tt_raster_index(R, l, i)] - h[tt_raster_index(R, l, i - 1)]);
+                if (d > top) {
+                    top = d;
+                    best = l;
+                    at = i;
+                }
+            }
+        }
+    }
+    *step = top;
+    *first = 0;
+    if (reach < R->pixels) {
+        *first = at - reach / 4 > 0 ? at - reach / 4 : 0;
+        if (*first + reach > R->pixels)
+            *first = R->pixels - reach;
+    }
+    return best;
+}
+
 int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
 {
     memset(e, 0, sizeof *e);
-    const long px = S->raster.pixels;
-    const int dirs = S->raster.retrace ? 2 : 1;
+    const tt_raster *R = &S->raster;
+    const long px = R->pixels;
+    const int dirs = R->retrace ? 2 : 1;
     double *buf = calloc((size_t)(12 * px), sizeof *buf);
     if (!buf)
         return tt_error_nomem("the companion line's profile");
+    double c0 = tt_clock(TT_CLOCK_PROCESS);
     tt_solver tight = tt_companion_solver(&S->solver);
     /* the averaged tier's error is its model's, which no tolerance moves: its companion
      * is the envelope tier at the run's tolerance (as accurate as every cycle) */
@@ -898,11 +965,55 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
         free(buf);
         return trc;
     }
-    int rc[2] = {TT_OK, TT_OK};
+    /* Lines that do not carry on from one another are each a function of the line alone
+     * (the noise keyed by line, the envelope model forgotten): the image's own line is
+     * what the run's setting gives, and only the tight line runs. Continuous lines start
+     * where the last one ended, so the run's setting runs again beside it, from the
+     * same engage, on half the budget each. */
+    int rerun = S->continuous || avg;
+    for (int c = 0; c < 3; c++) /* and where the image lacks a channel it compares */
+        for (int r = 0; r < dirs; r++)
+            rerun |= !S->img[r][c];
+    const long nc = tt_raster_cycles_per_direction(R, S->cantilever.T);
+    const long settle = (S->settle_cycles + S->lockin.periods_per_block - 1) /
+                        S->lockin.periods_per_block * S->lockin.periods_per_block;
+    long budget = companion_budget(S, &tight);
+    /* A stretch inside the line engages there, not where the image's line reached it
+     * from the line's start (its noise counted from another cycle, its feedback fresh):
+     * the run's setting runs the same stretch beside it, each on half the budget. The
+     * trace's pixels the budget reaches, less the one it stops in: */
+    long full = (long)((double)(budget - settle) / (double)nc * (double)px) - 1;
+    if (budget > 0 && full < px)
+        rerun = 1;
+    if (rerun)
+        budget /= 2;
+    long reach = budget > 0 ? (long)((double)(budget - settle) / (double)nc * (double)px) - 1 : 2 * px;
+    if (budget > 0 && reach < 2) {
+        /* a scan of a line or two: the fifth does not reach past the companion's
+         * settling, and the whole line runs (e->cycles says what it cost) */
+        budget = 0;
+        reach = 2 * px;
+    }
+    double step = 0;
+    long first = 0;
+    long line = S->lines_done > 0 ? hardest_line(S, reach, &step, &first) : S->profile_line;
+    /* the stretch's first cycle: the first whole cycle of its first pixel */
+    const long k0 = (first * nc + px - 1) / px;
+    int rc[2] = {TT_OK, TT_OK}, hit[2] = {0, 0};
+    long ran[2] = {0, 0};
     char why[2][512]; /* a worker thread's message is its own: carried back here */
-#pragma omp parallel for num_threads(2) schedule(static, 1)
+#pragma omp parallel for num_threads(2) schedule(static, 1) if (rerun)
     for (int k = 0; k < 2; k++) {
-        rc[k] = companion_line(S, k ? &tight : &S->solver, buf + (size_t)(6 * k * px));
+        if (k == 0 && !rerun) { /* the image's own line */
+            for (int c = 0; c < 3; c++)
+                for (int r = 0; r < dirs; r++)
+                    for (long i = 0; i < px; i++)
+                        buf[(size_t)(2 * c + r) * (size_t)px + (size_t)i] =
+                            S->img[r][c][tt_raster_index(R, line, i)];
+            continue;
+        }
+        rc[k] = companion_line(S, k ? &tight : &S->solver, line, budget, k0,
+                               buf + (size_t)(6 * k * px), &hit[k], &ran[k]);
         snprintf(why[k], sizeof why[k], "%s", rc[k] ? tt_error_message() : "");
     }
     for (int k = 0; k < 2; k++)
@@ -911,11 +1022,16 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
             return tt_error(rc[k], "the companion line at tolerance %g: %s",
                             k ? tight.tolerance : S->solver.tolerance, why[k]);
         }
+    const int partial = hit[0] || hit[1];
     double max[3] = {0}, sum[3] = {0};
     const double scale[3] = {1, 1 / S->A0, 1};
     long n = 0;
-    for (int r = 0; r < dirs; r++)
-        for (long i = 0; i < px; i++, n++)
+    for (int r = 0; r < (partial ? 1 : dirs); r++)
+        for (long i = r ? 0 : first; i < px; i++) {
+            /* a line stopped by its budget: the trace's pixels before the one it stopped in */
+            if (partial && (i + 1 >= px || isnan(buf[(size_t)(6 * px + 1 + i)]) ||
+                            (rerun && isnan(buf[(size_t)(1 + i)]))))
+                break;
             for (int c = 0; c < 3; c++) {
                 double a = buf[(size_t)((2 * c + r) * px + i)], b = buf[(size_t)((6 + 2 * c + r) * px + i)];
                 double d = fabs(a - b) * scale[c];
@@ -923,7 +1039,11 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
                     max[c] = d; /* a NaN (a pixel without data) stays visible */
                 sum[c] += d * d;
             }
+            n++;
+        }
     free(buf);
+    if (n == 0)
+        return tt_error(TT_EINVAL, "the companion line compared no pixel");
     /* the difference stands for the run's error to within a tenth; twice it covers that
      * and the other lines, which the companion did not run */
     e->height_max = 2 * max[0];
@@ -932,8 +1052,14 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
     e->amplitude_rms = 2 * sqrt(sum[1] / (double)n);
     e->phase_max = 2 * max[2];
     e->phase_rms = 2 * sqrt(sum[2] / (double)n);
-    e->line = S->profile_line;
+    e->line = line;
     e->tolerance = tight.tolerance;
+    e->pixels = n;
+    e->pixels_line = dirs * px;
+    e->step = step;
+    e->first = first;
+    e->cycles = ran[0] + ran[1];
+    e->seconds = tt_clock(TT_CLOCK_PROCESS) - c0;
     return TT_OK;
 }
 

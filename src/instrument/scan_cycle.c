@@ -11,7 +11,7 @@
 surf_pt tt_scan_surface_at(const line_ctx *L, long k)
 {
     const tt_scan *S = L->S;
-    const long kk = L->phase ? k : 0;
+    const long kk = L->phase ? k : L->k0;
     surf_pt p = {.k = k};
     double x, y;
     tt_raster_position(&S->raster, L->line, L->dir, L->nc, kk, &x, &y);
@@ -41,6 +41,8 @@ int tt_scan_cycle_begin(const line_ctx *L, line_state *st, cycle_in *in)
     const int j = (int)(k % L->P);
     if ((k & 255) == 0 && tt_cancel_requested())
         return TT_EINTR;
+    if (L->W->budget > 0 && st->cycles >= L->W->budget)
+        return TT_SCAN_BUDGET;
     in->k = k;
     in->j = j;
     surf_pt a = surface_cached(L, st, k), b = surface_cached(L, st, k + 1), c = b;

@@ -49,7 +49,17 @@ typedef struct {
     double s_ref;
     /* the scope the line under way records into (NULL: none) */
     tt_scan_scope *scope;
+    /* the error estimate's companion line stops after this many cycles (0: never), so
+     * that it costs a bounded share of the scan; budget_hit says it stopped there */
+    long budget;
+    int budget_hit;
+    /* and engages and starts its trace at this cycle of the direction (0: the line's
+     * start), so that its stretch lies where the image is hardest */
+    long k0;
 } worker;
+
+/* A line stopped at its worker's cycle budget: its pixels so far are kept. */
+enum { TT_SCAN_BUDGET = 100 };
 
 struct tt_scan {
     tt_cantilever cantilever;
@@ -161,6 +171,7 @@ typedef struct {
     tt_scan *S;
     worker *W;
     long line, nc, ncyc; /* cycles per direction; of this phase */
+    long k0;             /* the trace's first cycle (worker k0) */
     int phase, dir, P, N, piezo;
     double s_ref;
     double tol, edge; /* the envelope tier's error per cycle and edge height */

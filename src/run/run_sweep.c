@@ -40,10 +40,12 @@ static const run_column point_columns[NPOINT] = {
     {"found", "", 1},
 };
 
-enum { FOLDER, LINES, ESTIMATE, MATERIAL, PIXELS, HMEAN, HSTD, PMEAN, PSTD, HCONTRAST, PCONTRAST, NSCAN };
+enum { FOLDER, LINES, BALANCE, EST_H, EST_P, MATERIAL, PIXELS, HMEAN, HSTD, PMEAN, PSTD, HCONTRAST,
+       PCONTRAST, NSCAN };
 
 static const run_column scan_columns[NSCAN] = {
-    {"folder", "", 1}, {"lines_done", "", 0}, {"error_estimate", "", 0}, {"material", "", 1},
+    {"folder", "", 1}, {"lines_done", "", 0}, {"energy_balance", "", 0},
+    {"error_estimate_height", "m", 0}, {"error_estimate_phase", "deg", 0}, {"material", "", 1},
     {"pixels", "", 0}, {"height_mean", "m", 0}, {"height_std", "m", 0}, {"phase_mean", "deg", 0},
     {"phase_std", "deg", 0}, {"height_contrast", "m", 0}, {"phase_contrast", "deg", 0},
 };
@@ -315,7 +317,7 @@ static void image_stats(const double *img, const int *mat, size_t n, int m, doub
 /* The scan's summary rows: every material (the one at each pixel's centre), and its
  * height and phase contrast against the first material. */
 int tt_run_sweep_scan_rows(const tt_sweep *grid, size_t i, const tt_scene *scene,
-                           const tt_scan *scan, tt_table *t)
+                           const tt_scan *scan, const tt_scan_error *est, tt_table *t)
 {
     long xr = tt_scan_xres(scan), yr = tt_scan_yres(scan);
     size_t n = (size_t)(xr * yr);
@@ -347,7 +349,8 @@ int tt_run_sweep_scan_rows(const tt_sweep *grid, size_t i, const tt_scene *scene
         if ((rc = keys_row(t, grid, i, &c)) || (rc = tt_table_set_text(t, c + FOLDER, folder)) ||
             (rc = tt_table_set_text(t, c + MATERIAL, m < 0 ? "all" : mats[m].name)))
             break;
-        const double v[NSCAN] = {NAN, (double)tt_scan_lines_done(scan), tt_scan_error_estimate(scan), NAN,
+        const double v[NSCAN] = {NAN, (double)tt_scan_lines_done(scan), tt_scan_error_estimate(scan),
+                                 est ? est->height_max : NAN, est ? est->phase_max : NAN, NAN,
                                  (double)cnt, hm, hs, pm, ps, m < 0 ? NAN : hm - h0, m < 0 ? NAN : pm - p0};
         for (size_t k = 0; k < NSCAN; k++)
             if (k != FOLDER && k != MATERIAL)
@@ -402,8 +405,11 @@ static int scan_combination(const tt_sweep *g, size_t i, int threads, tt_table *
     tt_scan *scan = NULL;
     int rc;
     if (!(rc = tt_sweep_scene(g, i, &scene)) && !(rc = tt_config_scan_alloc(&scan, scene)) &&
-        !(rc = tt_scan_run(scan, threads, NULL, NULL)))
-        rc = tt_run_sweep_scan_rows(g, i, scene, scan, t);
+        !(rc = tt_scan_run(scan, threads, NULL, NULL))) {
+        tt_scan_error est; /* the scan's own error estimate, as tiptap scan reports it */
+        int erc = tt_scan_estimate_error(scan, &est);
+        rc = erc == TT_EINTR ? erc : tt_run_sweep_scan_rows(g, i, scene, scan, erc ? NULL : &est, t);
+    }
     tt_scan_free(scan);
     tt_scene_free(scene);
     return rc;

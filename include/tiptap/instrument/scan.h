@@ -250,20 +250,32 @@ const tt_solver *tt_scan_solver(const tt_scan *s);
  * hundred times tighter tolerance (not below 1e-14), rk4 four times the steps. */
 tt_solver tt_companion_solver(const tt_solver *s);
 
-/* The estimated error of the images, from a companion run: the profile line scanned
- * again at the run's own setting and at tt_companion_solver's, on two threads; each
- * figure is twice the largest or rms difference of the two over trace and retrace. */
+/* The estimated error of the images, from a companion run where the image is hardest:
+ * the line with the largest height step between neighbouring pixels (the profile line
+ * on a flat image), scanned again at tt_companion_solver's setting and compared with
+ * the image; each figure is twice the largest or rms difference over the pixels
+ * compared. The companion runs at most TT_ESTIMATE_SHARE of the scan's cost (its cycles
+ * bounded by the scan's integrated cycles, over the tighter setting's cost per cycle):
+ * where that does not cover the line, it runs a stretch of the trace with the step a
+ * quarter into it, engaged at its start, and the run's setting runs the same stretch
+ * beside it (as for continuous lines and the averaged tier), on two threads. */
+#define TT_ESTIMATE_SHARE 0.2
 typedef struct {
     double height_max, height_rms;       /* m */
     double amplitude_max, amplitude_rms; /* lock-in amplitude, relative to the free amplitude */
     double phase_max, phase_rms;         /* deg */
     long line;                           /* the line it ran */
     double tolerance;                    /* the companion's tolerance */
+    long pixels, pixels_line;            /* pixels compared, of the line's (trace and retrace) */
+    long first;                          /* the trace's first pixel it ran from */
+    double step;                         /* the line's largest height step in reach, m */
+    long cycles;                         /* the companion's cycles (all its lines) */
+    double seconds;                      /* its CPU time, s (all threads) */
 } tt_scan_error;
 
-/* Costs two lines' work, one of them at the companion's tighter setting (on the
- * extreme scenes 0.4 to 2.5 times the run's line on the envelope tier), on two
- * threads; the images are untouched. */
+/* The images are untouched. Where a fifth of the scan's cost does not reach the
+ * companion's settling and two pixels (a scan of a few lines), the whole line runs,
+ * over the fifth. */
 int tt_scan_estimate_error(tt_scan *s, tt_scan_error *e);
 /* Whether the z piezo hit its range limits during the scan. */
 int tt_scan_clamped(const tt_scan *s);

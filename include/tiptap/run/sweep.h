@@ -66,9 +66,11 @@ int tt_run_sweep_check(const tt_sweep *grid, tt_sweep_kind kind, size_t i);
  * cancelled part way (its rows are then incomplete: drop them). */
 int tt_run_sweep_points(const tt_sweep *grid, tt_sweep_kind kind, size_t i, tt_table *t);
 
-/* Append the summary rows of combination i's finished scan (its scene) to t. */
+/* Append the summary rows of combination i's finished scan (its scene) to t: the
+ * energy balance (tt_scan_error_estimate: a check), the error estimate's height and
+ * phase (est's largest, tt_scan_estimate_error; NaN where est is NULL). */
 int tt_run_sweep_scan_rows(const tt_sweep *grid, size_t i, const tt_scene *scene,
-                           const tt_scan *scan, tt_table *t);
+                           const tt_scan *scan, const tt_scan_error *est, tt_table *t);
 
 /* Raise the TT_WARN_SETTLE warnings (tiptap/util/warning.h) of a steady, setpoint or
  * approach sweep's table: how many rows are found=periodic and found=unsettled, and in
