@@ -274,6 +274,18 @@ void tt_live_msg_status(tt_live_buf *b, const tt_live_view *v, int clients)
     num(b, v->ring_damping);
     tt_live_buf_printf(b, ",\"suggest_ki\":");
     num(b, v->suggest_ki);
+    tt_live_buf_printf(b, ",\"paused\":%s,\"idle\":%s,\"judged\":%ld,\"judged_line\":",
+                       v->paused ? "true" : "false", v->idle ? "true" : "false", v->judged);
+    if (v->judged_line >= 0)
+        tt_live_buf_printf(b, "%ld", v->judged_line);
+    else
+        tt_live_buf_printf(b, "null");
+    tt_live_buf_printf(b, ",\"error_rms\":");
+    num(b, v->error_rms);
+    tt_live_buf_printf(b, ",\"setpoint\":");
+    num(b, v->setpoint);
+    tt_live_buf_printf(b, ",\"height_range\":");
+    num(b, v->height_range);
     tt_live_buf_printf(b, ",\"note\":");
     str(b, v->note);
     tt_live_buf_printf(b, "}");
@@ -281,8 +293,10 @@ void tt_live_msg_status(tt_live_buf *b, const tt_live_view *v, int clients)
 
 void tt_live_msg_row(tt_live_buf *b, const tt_live_view *v, long line)
 {
-    tt_live_buf_printf(b, "{\"type\":\"row\",\"frame\":%ld,\"line\":%ld,\"tier\":\"%s\",\"data\":[",
-                       v->frame, line, tier_name(v->row_tier[line]));
+    tt_live_buf_printf(b, "{\"type\":\"row\",\"frame\":%ld,\"line\":%ld,\"tier\":\"%s\",\"preview\":%s,"
+                          "\"data\":[",
+                       v->frame, line, tier_name(v->row_tier[line] & ~TT_LIVE_PREVIEW),
+                       v->row_tier[line] & TT_LIVE_PREVIEW ? "true" : "false");
     for (int c = 0, k = 0; c < TT_LIVE_NCH; c++)
         for (int r = 0; r < 2; r++) {
             if (!v->rows[c][r])
