@@ -278,7 +278,7 @@ static int export_name_ok(const char *name)
         if (!((name[i] >= 'a' && name[i] <= 'z') || (name[i] >= '0' && name[i] <= '9') ||
               name[i] == '_' || name[i] == '.'))
             return 0;
-    return strcmp(name, "scene.ini") == 0 || strcmp(name, "scan.gwy") == 0 ||
+    return strcmp(name, "scene.ini") == 0 || strcmp(name, "scan.gwy") == 0 || strcmp(name, "lesson.ini") == 0 ||
            (n > 4 && strcmp(name + n - 4, ".gsf") == 0);
 }
 

@@ -95,6 +95,9 @@ typedef struct {
     double error_rms;      /* that line's error, rms over its record, m */
     double setpoint;       /* the setpoint in force then, m */
     double height_range;   /* that line's height pixels (trace), max - min, m */
+    double track_rms;      /* rms of z - the true surface over its record, mean taken off, m */
+    double surface_range;  /* the true surface's peak to peak over the record, m */
+    int lagging;           /* track_rms > 0.35 surface_range, where that is 1 nm or more */
     int paused;            /* the page paused the scan (lines run only on a step) */
     int idle;              /* no page looks: the scan waits */
     char note[512];        /* the engine's last message ("" none): a change it refused */
