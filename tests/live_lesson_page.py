@@ -55,7 +55,7 @@ def main(b):
     time.sleep(3)
     assert b.eval("tiptapLive.status.line") == line and b.eval("tiptapLive.rows") == rows, "lines ran while paused"
     print("ok paused: line %d and %d rows unchanged over 3 s" % (line, rows))
-    b.eval("document.getElementById('step').click()")
+    b.eval("document.getElementById('stepline').click()")
     lines = b.eval("tiptapLive.frame.lines")
     wait_for(b, "tiptapLive.status.line == %d" % ((line + 1) % lines), "the step's line")
     time.sleep(3)

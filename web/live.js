@@ -737,7 +737,7 @@ function scopeUi() {
   $("zoomin").onclick = () => zoomBy(2);
   // the scan's own buttons: pause or resume, one line, the frame again
   $("pause").onclick = () => send(state.status && state.status.paused ? "resume" : "pause");
-  $("step").onclick = () => send("step");
+  $("stepline").onclick = () => send("step");
   $("restart").onclick = () => send("restart");
   $("zoomout").onclick = () => zoomBy(0.5);
   $("zoomreset").onclick = () => { state.zoom = null; drawScope(); };

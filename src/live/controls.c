@@ -197,7 +197,7 @@ static const char *gb(double bytes, char *buf, size_t len)
 }
 
 /* The memory the console holds for a scene, from tiptap scan's estimate (config.h): up
- * to three scans with the page's copy of their images (three channels, both ways): the
+ * to three scans with the page's copy of their images (five channels, both ways): the
  * running one, a change's waiting for the line's end and the next change's being built;
  * the preview's twin of the scan; and two scope records, the scan's and the preview's.
  * More than the machine has is refused before anything is made. */

@@ -3,8 +3,9 @@
  * One thread runs the scan a line at a time (tt_scan_step), paced to the instrument's
  * clock: a line takes 1 / line_rate of wall time, or longer where the machine cannot
  * keep up (the view's realtime says by how much). After each line it publishes the
- * line's pixels (height, error, phase, trace and retrace), its scope record decimated
- * for a screen, and the loop's state; the server reads them under the engine's lock.
+ * line's pixels (height, error, phase, amplitude, peak force, trace and retrace), its
+ * scope record decimated for a screen, and the loop's state; the server reads them under
+ * the engine's lock. Paused, or with no page looking, it waits between lines (no CPU).
  *
  * A change from the console (tt_live_engine_submit) takes effect at the next line: the
  * gains, setpoint, line rate, free amplitude and noise on the running scan (its setters
