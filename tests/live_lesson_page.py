@@ -4,7 +4,7 @@ title and instructions shown; the hidden controls not drawn, the locked ones not
 editable; the loop box saying "not judged yet" at the first status (judged 0) and
 "steady" or "lags" only once a line was judged, naming it; amplitude and peak-force
 images beside the others; pause stops the lines (the button then reads "resume"), step
-runs one line, resume runs on. With a shots folder, docs/live-lesson.png.
+runs one line, resume runs on; at P = 5 the warning suggests a P with the I. With a shots folder, docs/live-lesson.png.
 
 usage: live_lesson_page.py CHROMIUM URL SHOTS_DIR"""
 import sys
@@ -66,6 +66,13 @@ def main(b):
     wait_for(b, "!tiptapLive.status.paused && tiptapLive.status.line != %d" % ((line + 1) % lines),
              "lines again after resume")
     print("ok resumed")
+    # P as the cause: at P = 5 the loop rings and the warning offers a P with the I
+    b.eval("tiptapSet('feedback.proportional_gain', '5')")
+    wait_for(b, "tiptapLive.status.oscillating && !document.getElementById('usepgain').hidden",
+             "the warning's P suggestion at P = 5")
+    w = " ".join(b.eval("document.getElementById('warning').textContent").split())
+    assert "P is too high for the model: use P" in w and "line " in w, w
+    print("ok at P = 5: %s" % w)
 
 
 try:

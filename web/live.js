@@ -180,14 +180,15 @@ function status(m) {
   pb.setAttribute("aria-pressed", m.paused ? "true" : "false");
   if (m.oscillating) {
     // the pixel means hide the ring only where the judged line's height pixels spread
-    // less than half its z peak to peak (docs/live.md)
-    const hidden = !(m.height_range >= 0.5 * m.ring_m);
+    // beyond the true surface's relief by less than half its z peak to peak (docs/live.md)
+    const excess = m.height_range - (isFinite(m.surface_range) ? m.surface_range : 0);
+    const hidden = !(excess >= 0.5 * m.ring_m);
     $("ringtext").textContent = " on line " + m.judged_line + ": at " + fmt(m.ring_hz, "Hz") + ", " +
       fmt(m.ring_m * 1e9, "nm") + " peak to peak in z" +
       (hidden ? ": the pixel means hide it." : ", in plain view in the image (its pixels span " +
-        fmt(m.height_range * 1e9, "nm") + ").");
+        fmt(m.height_range * 1e9, "nm") + " over a relief of " + fmt(m.surface_range * 1e9, "nm") + ").");
     const b = $("usegain");
-    b.hidden = !(m.suggest_ki > 0);
+    b.hidden = !(m.suggest_ki >= 1); // under 1 Hz: no I helps, the P suggestion below does
     b.textContent = "use the suggested I gain, " + fmt(m.suggest_ki, "Hz");
     b.onclick = () => window.tiptapSet("feedback.integral_gain", Math.round(m.suggest_ki).toString());
     // P as the cause: the model with I as suggested and P as set still short of 45 deg,
