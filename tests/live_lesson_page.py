@@ -47,9 +47,9 @@ def main(b):
     print("ok once judged: %s" % " ".join(g.split()))
     # pause: the line stays; step: one more; resume
     b.eval("document.getElementById('pause').click()")
-    wait_for(b, "tiptapLive.status.paused && document.getElementById('pause').textContent == 'resume'",
-             "paused, the button reading resume")
-    time.sleep(3)  # the line under way ends
+    wait_for(b, "tiptapLive.status.paused && !tiptapLive.status.running && "
+                "document.getElementById('pause').textContent == 'resume'",
+             "paused, no line under way, the button reading resume")
     line = b.eval("tiptapLive.status.line")
     rows = b.eval("tiptapLive.rows")
     time.sleep(3)
@@ -57,7 +57,8 @@ def main(b):
     print("ok paused: line %d and %d rows unchanged over 3 s" % (line, rows))
     b.eval("document.getElementById('stepline').click()")
     lines = b.eval("tiptapLive.frame.lines")
-    wait_for(b, "tiptapLive.status.line == %d" % ((line + 1) % lines), "the step's line")
+    wait_for(b, "tiptapLive.status.line == %d && !tiptapLive.status.running" % ((line + 1) % lines),
+             "the step's line")
     time.sleep(3)
     assert b.eval("tiptapLive.status.line") == (line + 1) % lines, "more than one line for a step"
     print("ok step: one line, %d to %d" % (line, (line + 1) % lines))

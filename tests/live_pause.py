@@ -58,6 +58,17 @@ def latest_status(ws, seconds):
     return st
 
 
+def wait_status(ws, cond, what, seconds=300):
+    """The first status for which cond holds, within a generous bound (sanitizer builds
+    run a line in seconds)."""
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        m = ws.recv()
+        if m["type"] == "status" and cond(m):
+            return m
+    raise AssertionError("no status with %s within %d s" % (what, seconds))
+
+
 # no page yet: idle from the start
 share = cpu_share(3)
 ok(share < 0.10, "no page: the server takes %.1f %% of a core (under 10 %%)" % (100 * share))
@@ -80,48 +91,50 @@ row = ws.recv_type("row", limit=100000)
 ok(len(row["data"]) == 2 * len(names), "a row carries %d lines (5 channels, both ways)" % len(row["data"]))
 ok(row["preview"] is False and row["tier"] == "envelope",
    "a row of the scan's own tier: tier %s, preview %s" % (row["tier"], row["preview"]))
-st = latest_status(ws, 1.5)
-ok(st and st["judged"] >= 1 and st["judged_line"] is not None,
-   "after a line: judged %s on line %s" % (st and st["judged"], st and st["judged_line"]))
-ok(st and st["error_rms"] > 0 and st["setpoint"] > 0 and st["height_range"] > 0,
+st = wait_status(ws, lambda m: m["judged"] >= 1 and not m["running"], "a judged line")
+ok(st["judged_line"] is not None, "after a line: judged %s on line %s" % (st["judged"], st["judged_line"]))
+ok(st["error_rms"] > 0 and st["setpoint"] > 0 and st["height_range"] > 0,
    "the judged line's error rms %s, setpoint %s, height range %s" %
-   (st and st["error_rms"], st and st["setpoint"], st and st["height_range"]))
+   (st["error_rms"], st["setpoint"], st["height_range"]))
 
-# pause: nothing runs, the thread waits
+# pause: once the line under way ends nothing runs, the thread waits
 ws.send("pause")
 ok(ws.recv_type("reply")["ok"], "pause accepted")
-time.sleep(1.0)  # the line under way ends (8 Hz: 0.125 s a line, slower under load)
-st = latest_status(ws, 1.0)
-line0 = st["line"] if st else None
-ok(st and st["paused"] is True, "the status says paused")
+st = wait_status(ws, lambda m: m["paused"] and not m["running"], "paused, no line under way")
+line0 = st["line"]
 share = cpu_share(3)
 st2 = latest_status(ws, 0.5) or st
-ok(st2["line"] == line0 and st2["passes"] == st["passes"],
+ok(st2["line"] == line0 and st2["passes"] == st["passes"] and not st2["running"],
    "paused: the line stays at %s over 3 s (now %s)" % (line0, st2["line"]))
 ok(share < 0.10, "paused: the server takes %.1f %% of a core (under 10 %%)" % (100 * share))
 
 # step: exactly one line
+lines = fr["lines"]
 ws.send("step")
 ok(ws.recv_type("reply")["ok"], "step accepted")
-st3 = latest_status(ws, 3.0)
-lines = fr["lines"]
-ok(st3 and st3["line"] == (line0 + 1) % lines and st3["paused"] is True,
-   "step: line %s to %s, still paused" % (line0, st3 and st3["line"]))
+st3 = wait_status(ws, lambda m: m["line"] != line0 and not m["running"], "the step's line")
+st3 = latest_status(ws, 3.0) or st3
+ok(st3["line"] == (line0 + 1) % lines and st3["paused"] is True and not st3["running"],
+   "step: line %s to %s, still paused, none after it in 3 s" % (line0, st3["line"]))
 ws.send("step")
 ws.recv_type("reply")
-st4 = latest_status(ws, 3.0)
-ok(st4 and st4["line"] == (line0 + 2) % lines, "a second step: line %s" % (st4 and st4["line"]))
+st4 = wait_status(ws, lambda m: m["line"] != st3["line"] and not m["running"], "the second step's line")
+st4 = latest_status(ws, 3.0) or st4
+ok(st4["line"] == (line0 + 2) % lines, "a second step: line %s" % st4["line"])
 
 # resume: lines again
 ws.send("resume")
 ws.recv_type("reply")
-st5 = latest_status(ws, 3.0)
-ok(st5 and st5["paused"] is False and st5["line"] != st4["line"],
-   "resumed: line %s after %s" % (st5 and st5["line"], st4["line"]))
+st5 = wait_status(ws, lambda m: not m["paused"] and m["line"] not in (st4["line"],), "a line after resume")
+ok(True, "resumed: line %s after %s" % (st5["line"], st4["line"]))
 
 # the page closes: idle again
 ws.close()
-time.sleep(1.0)
+# the line under way ends (generous: sanitizer builds run a line in seconds)
+for _ in range(300):
+    share = cpu_share(1)
+    if share < 0.10:
+        break
 share = cpu_share(3)
 ok(share < 0.10, "the page gone: the server takes %.1f %% of a core (under 10 %%)" % (100 * share))
 sys.exit(1 if fails else 0)

@@ -408,13 +408,16 @@ static void judge_loop(tt_live_engine *e)
 static int run_line(tt_live_engine *e, long line, double changed_at)
 {
     pthread_mutex_lock(&e->mu);
-    e->running = 1;
+    e->running = e->v.running = 1;
+    e->v.status_version = ++e->v.version;
     pthread_mutex_unlock(&e->mu);
+    e->wake(e->user);
     double t0 = tt_clock(TT_CLOCK_WALL), c0 = tt_clock(TT_CLOCK_THREAD);
     int rc = tt_scan_step(e->scan, line, e->scope);
     double t1 = tt_clock(TT_CLOCK_WALL), c1 = tt_clock(TT_CLOCK_THREAD);
     pthread_mutex_lock(&e->mu);
-    e->running = 0;
+    e->running = e->v.running = 0;
+    e->v.status_version = ++e->v.version;
     if (rc) {
         pthread_mutex_unlock(&e->mu);
         return rc;

@@ -290,8 +290,9 @@ void tt_live_msg_status(tt_live_buf *b, const tt_live_view *v, int clients)
     num(b, v->ring_damping);
     tt_live_buf_printf(b, ",\"suggest_ki\":");
     num(b, v->suggest_ki);
-    tt_live_buf_printf(b, ",\"lagging\":%s,\"paused\":%s,\"idle\":%s,\"judged\":%ld,\"judged_line\":",
-                       v->lagging ? "true" : "false", v->paused ? "true" : "false",
+    tt_live_buf_printf(b, ",\"lagging\":%s,\"running\":%s,\"paused\":%s,\"idle\":%s,\"judged\":%ld,"
+                          "\"judged_line\":",
+                       v->lagging ? "true" : "false", v->running ? "true" : "false", v->paused ? "true" : "false",
                        v->idle ? "true" : "false", v->judged);
     if (v->judged_line >= 0)
         tt_live_buf_printf(b, "%ld", v->judged_line);

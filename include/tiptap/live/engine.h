@@ -100,6 +100,7 @@ typedef struct {
     double surface_range;  /* the true surface's peak to peak over the record, m */
     int lagging;           /* track_rms > 0.35 surface_range, where that is 1 nm or more */
     int paused;            /* the page paused the scan (lines run only on a step) */
+    int running;           /* a line on the scan's own tier is under way */
     int idle;              /* no page looks: the scan waits */
     char note[512];        /* the engine's last message ("" none): a change it refused */
 } tt_live_view;
