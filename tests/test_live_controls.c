@@ -1,10 +1,13 @@
 /* The live console's controls: a message is checked as a scene file is, applied whole or
  * not at all, and the scene it leaves is the files' scene with the console's values. */
+#include <stdio.h>
 #include <stdlib.h>
+#include <unistd.h>
 
 #include "tt_test.h"
 #include "tiptap/config/config.h"
 #include "tiptap/live/controls.h"
+#include "tiptap/live/lesson.h"
 #include "tiptap/util/error.h"
 #include "live/live_private.h"
 
@@ -270,6 +273,41 @@ static void hosts_and_origins(void **st)
     assert_false(tt_live_authority_ok("127.0.0.1:8421", 1, 8421));
 }
 
+/* A lesson's own sections, its locks held by the controls (not only the page), and its
+ * bad keys named with the file and line. */
+static void a_lesson_locks_and_hides(void **st)
+{
+    (void)st;
+    char path[] = "/tmp/tt-lesson-XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    fprintf(f, "[lesson]\ntitle = T\ninstructions = one\n    two\nhide = noise, tier\nlock = scan_size, integral_gain\n"
+               "[feedback]\nintegral_gain = 321 Hz\n");
+    fclose(f);
+    tt_live_lesson *l = NULL;
+    assert_int_equal(tt_live_lesson_load(&l, path), TT_OK);
+    assert_string_equal(l->instructions, "one\ntwo");
+    tt_live_controls *c = NULL;
+    if (tt_live_controls_alloc_lesson(&c, l, files, 2, NULL, 0, SRC "/surfaces", NULL) != TT_OK)
+        fail_msg("%s", tt_error_message());
+    assert_close(ki_of(c), 321, 0); /* the lesson's section, after the files */
+    tt_live_change ch;
+    assert_int_equal(apply(c, "set feedback.integral_gain = 6 kHz", &ch), TT_EINVAL);
+    assert_non_null(strstr(ch.why, "feedback.integral_gain is locked by the lesson"));
+    assert_int_equal(apply(c, "set solver.tier = averaged", &ch), TT_EINVAL);
+    assert_non_null(strstr(ch.why, "solver.tier is hidden by the lesson"));
+    assert_close(ki_of(c), 321, 0);
+    assert_int_equal(apply(c, "set feedback.setpoint = 15 nm", &ch), TT_OK);
+    tt_live_controls_free(c);
+    f = fopen(path, "w");
+    fprintf(f, "[lesson]\ntitle = T\nlock = scan_size, gains\n");
+    fclose(f);
+    assert_int_equal(tt_live_lesson_load(&l, path), TT_EINVAL);
+    assert_non_null(strstr(tt_error_message(), ":3: [lesson] lock: 'gains' is not a control"));
+    unlink(path);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -280,6 +318,7 @@ int main(void)
         cmocka_unit_test(a_change_is_taken_whole_or_not_at_all),
         cmocka_unit_test(replies_are_utf8),
         cmocka_unit_test(hosts_and_origins),
+        cmocka_unit_test(a_lesson_locks_and_hides),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

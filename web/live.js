@@ -102,9 +102,22 @@ function controls(m) {
       lab.append(span, el, u);
       form.appendChild(lab);
     }
+    // the lesson's hidden controls are not drawn; its locked ones shown, not editable
+    // (the server refuses a change to them too)
+    el.parentElement.hidden = !!c.hidden;
+    el.disabled = !!c.locked;
+    el.parentElement.classList.toggle("locked", !!c.locked);
     const editing = el.dataset.dirty && document.activeElement === el;
     if (!editing && !el.dataset.pending) { el.value = c.value; el.dataset.dirty = ""; }
   }
+  const ls = m.lesson;
+  $("lesson").hidden = !ls;
+  if (ls) {
+    $("lessontitle").textContent = ls.title;
+    $("lessontext").textContent = ls.instructions;
+    document.title = ls.title + ": tiptap live";
+  }
+  state.lesson = ls || null;
   state.controlsSeen = (state.controlsSeen || 0) + 1;
   drawLoop();
 }
@@ -150,14 +163,50 @@ function status(m) {
     (m.clients > 1 ? ", " + m.clients + " pages" : "") + (m.note ? " | " + m.note : "");
   const w = $("warning");
   w.hidden = !m.oscillating;
-  $("goodloop").hidden = m.oscillating;
+  const g = $("goodloop");
+  g.hidden = m.oscillating;
+  // steady only once a line was judged and z follows the surface (the server's rule:
+  // z strays from it by at most 0.35 of its relief; docs/live.md)
+  const jl = m.judged_line != null ? " (line " + m.judged_line + ")" : "";
+  g.className = "good" + (!(m.judged > 0) ? " unjudged" : m.lagging ? " lagging" : "");
+  g.textContent = !(m.judged > 0) ? "The loop is not judged yet: no line has run." :
+    m.lagging ? "The loop lags" + jl + ": z strays from the surface by " + fmt(m.track_rms * 1e9, "nm") +
+      " rms over a relief of " + fmt(m.surface_range * 1e9, "nm") + "; raise the I gain." :
+      "The loop is steady" + jl + ".";
+  if (state.firstLoopText == null) state.firstLoopText = g.textContent; // for the browser test
+  $("runstate").textContent = m.idle ? "waiting for a page" : m.paused ? "paused at line " + m.line : "";
+  const pb = $("pause");
+  pb.textContent = m.paused ? "resume" : "pause";
+  pb.setAttribute("aria-pressed", m.paused ? "true" : "false");
   if (m.oscillating) {
-    $("ringtext").textContent = " at " + fmt(m.ring_hz, "Hz") + ", " + fmt(m.ring_m * 1e9, "nm") +
-      " peak to peak in z: the pixel means hide it.";
+    // the pixel means hide the ring only where the judged line's height pixels spread
+    // beyond the true surface's relief by less than half its z peak to peak (docs/live.md)
+    const excess = m.height_range - (isFinite(m.surface_range) ? m.surface_range : 0);
+    const hidden = !(excess >= 0.5 * m.ring_m);
+    $("ringtext").textContent = " on line " + m.judged_line + ": at " + fmt(m.ring_hz, "Hz") + ", " +
+      fmt(m.ring_m * 1e9, "nm") + " peak to peak in z" +
+      (hidden ? ": the pixel means hide it." : ", in plain view in the image (its pixels span " +
+        fmt(m.height_range * 1e9, "nm") + " over a relief of " + fmt(m.surface_range * 1e9, "nm") + ").");
     const b = $("usegain");
-    b.hidden = !(m.suggest_ki > 0);
+    b.hidden = !(m.suggest_ki >= 1); // under 1 Hz: no I helps, the P suggestion below does
     b.textContent = "use the suggested I gain, " + fmt(m.suggest_ki, "Hz");
     b.onclick = () => window.tiptapSet("feedback.integral_gain", Math.round(m.suggest_ki).toString());
+    // P as the cause: the model with I as suggested and P as set still short of 45 deg,
+    // or P alone (I near 0) short of it: P and I together for 60 deg (the loop panel's)
+    const kp = parseFloat(inForce("feedback.proportional_gain")) || 0;
+    const pmI = m.suggest_ki > 0 ? phaseMargin(loopParams(kp, m.suggest_ki)) : NaN;
+    const pmP = phaseMargin(loopParams(kp, 1e-3));
+    const r = loop.now;
+    const pCause = kp > 0 && (!(pmI >= 45) || !(pmP >= 45)) && r && r.kp60pi >= 0 && r.kp60pi < kp;
+    const pb2 = $("usepgain");
+    pb2.hidden = !pCause;
+    if (pCause) {
+      pb2.textContent = "P is too high for the model: use P " + r.kp60pi.toFixed(2) + ", I " + fmt(r.ki60pi, "Hz");
+      pb2.onclick = () => {
+        window.tiptapSet("feedback.proportional_gain", r.kp60pi.toFixed(2));
+        window.tiptapSet("feedback.integral_gain", Math.round(r.ki60pi).toString());
+      };
+    }
   }
   if (state.frame) {
     $("reproduce").textContent = m.reproducible ?
@@ -214,6 +263,8 @@ const cmaps = {
   height: [[0, 0, 0], [120, 60, 10], [230, 170, 60], [255, 250, 220]],
   error: [[30, 60, 160], [245, 245, 245], [180, 30, 30]],
   phase: [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]],
+  amplitude: [[0, 0, 4], [81, 18, 124], [183, 55, 121], [252, 137, 97], [252, 253, 191]],
+  peak_force: [[13, 8, 135], [126, 3, 168], [204, 71, 120], [248, 149, 64], [240, 249, 33]],
 };
 function colour(map, t) {
   t = Math.min(1, Math.max(0, t)) * (map.length - 1);
@@ -223,8 +274,10 @@ function colour(map, t) {
 const ranges = [["lines", "typical lines"], ["pct", "1 to 99 %"], ["frame", "frame min to max"],
   ["line", "last line"], ["manual", "manual"]];
 const flattens = [["none", "none"], ["offset", "offset per line"], ["slope", "slope per line"]];
-// a channel's display unit: heights in nm, angles in deg
-function unitOf(c) { return c.unit === "m" ? { unit: "nm", sc: 1e9 } : { unit: c.unit, sc: 1 }; }
+// a channel's display unit: heights in nm, forces in nN, angles in deg
+function unitOf(c) {
+  return c.unit === "m" ? { unit: "nm", sc: 1e9 } : c.unit === "N" ? { unit: "nN", sc: 1e9 } : { unit: c.unit, sc: 1 };
+}
 function dirs(f) { return f.retrace ? ["trace", "retrace"] : ["trace"]; }
 function select(options, value, onchange) {
   const s = document.createElement("select");
@@ -307,7 +360,7 @@ function frame(m) {
     (m.fast_y ? " along y (fast)" : " along x (fast)");
   const ex = $("exports");
   ex.textContent = "";
-  const names = ["scan.gwy", "scene.ini"];
+  const names = ["scan.gwy", "scene.ini", "lesson.ini"];
   for (const c of m.channels) for (const d of dirs(m))
     names.push(c.file + "_" + d + ".gsf");
   for (const n of names) {
@@ -329,7 +382,8 @@ function row(m) {
     if (!img || !d) continue;
     for (let i = 0; i < f.pixels; i++) img[m.line * f.pixels + i] = d[i] == null ? NaN : d[i];
   }
-  state.tiers[m.line] = m.tier;
+  // only the preview's rows are captioned as such (a scan on the averaged tier is not one)
+  state.tiers[m.line] = m.preview ? "preview" : m.tier;
   state.lastLine = m.line;
   drawImages(m.line);
 }
@@ -682,6 +736,10 @@ function scopeUi() {
   });
   cv.addEventListener("dblclick", () => { state.zoom = null; drawScope(); });
   $("zoomin").onclick = () => zoomBy(2);
+  // the scan's own buttons: pause or resume, one line, the frame again
+  $("pause").onclick = () => send(state.status && state.status.paused ? "resume" : "pause");
+  $("stepline").onclick = () => send("step");
+  $("restart").onclick = () => send("restart");
   $("zoomout").onclick = () => zoomBy(0.5);
   $("zoomreset").onclick = () => { state.zoom = null; drawScope(); };
   $("xmode").onchange = () => { state.xmode = $("xmode").value; state.zoom = null; state.cursor = null; drawScope(); };

@@ -11,6 +11,7 @@
 
 #include "live_private.h"
 #include "tiptap/config/config.h"
+#include "tiptap/live/lesson.h"
 #include "tiptap/util/error.h"
 #include "tiptap/util/str.h"
 
@@ -56,6 +57,7 @@ struct tt_live_controls {
     tt_scan_params params; /* of the accepted scene */
     int have_params;
     double (*memory)(void); /* the bytes this process may still take (NULL: no check) */
+    tt_live_lesson *lesson; /* NULL: none */
 };
 
 const tt_live_control *tt_live_control_table(size_t *count)
@@ -168,6 +170,9 @@ static int build(const tt_live_controls *c, char *const *given, int sample, int 
         snprintf(path, sizeof path, "%s/%s.ini", c->surfaces, c->samples[sample]);
         rc = tt_scene_load(s, path);
     }
+    /* the lesson's own sections after its files and the files given, before --set */
+    if (!rc && c->lesson && c->lesson->has_scene_text)
+        rc = tt_scene_load_string(s, c->lesson->scene_text, c->lesson->path);
     for (int i = 0; i < c->nsets && !rc; i++)
         rc = tt_scene_set(s, c->sets[i]);
     if (!rc && console_text(c, given, noise_off, text, sizeof text))
@@ -192,7 +197,7 @@ static const char *gb(double bytes, char *buf, size_t len)
 }
 
 /* The memory the console holds for a scene, from tiptap scan's estimate (config.h): up
- * to three scans with the page's copy of their images (three channels, both ways): the
+ * to three scans with the page's copy of their images (five channels, both ways): the
  * running one, a change's waiting for the line's end and the next change's being built;
  * the preview's twin of the scan; and two scope records, the scan's and the preview's.
  * More than the machine has is refused before anything is made. */
@@ -237,16 +242,31 @@ int tt_live_controls_alloc(tt_live_controls **out, char *const *files, int nfile
                            char *const *sets, int nsets, const char *surfaces,
                            double (*memory)(void))
 {
+    return tt_live_controls_alloc_lesson(out, NULL, files, nfiles, sets, nsets, surfaces, memory);
+}
+
+int tt_live_controls_alloc_lesson(tt_live_controls **out, tt_live_lesson *lesson, char *const *files,
+                                  int nfiles, char *const *sets, int nsets, const char *surfaces,
+                                  double (*memory)(void))
+{
     tt_live_controls *c = calloc(1, sizeof *c);
-    if (!c)
+    if (!c) {
+        tt_live_lesson_free(lesson);
         return tt_error_nomem("the console's controls");
+    }
     int rc = TT_OK;
     c->memory = memory;
-    c->files = calloc((size_t)nfiles + 1, sizeof *c->files);
+    c->lesson = lesson;
+    /* the lesson's scene files first, as if given before the others */
+    int nl = lesson ? lesson->nfiles : 0;
+    c->files = calloc((size_t)(nfiles + nl) + 1, sizeof *c->files);
     c->sets = calloc((size_t)nsets + 1, sizeof *c->sets);
     c->surfaces = tt_strdup(surfaces);
     if (!c->files || !c->sets || !c->surfaces)
         rc = tt_error_nomem("the console's scene files");
+    for (int i = 0; i < nl && !rc; i++)
+        if (!(c->files[c->nfiles++] = tt_strdup(lesson->files[i])))
+            rc = tt_error_nomem("the console's scene files");
     for (int i = 0; i < nfiles && !rc; i++)
         if (!(c->files[c->nfiles++] = tt_strdup(files[i])))
             rc = tt_error_nomem("the console's scene files");
@@ -289,6 +309,7 @@ void tt_live_controls_free(tt_live_controls *c)
         return;
     for (int i = 0; i < c->nfiles; i++)
         free(c->files[i]);
+    tt_live_lesson_free(c->lesson);
     for (int i = 0; i < c->nsets; i++)
         free(c->sets[i]);
     for (size_t i = 0; i < c->nsamples; i++)
@@ -422,6 +443,12 @@ int tt_live_controls_apply(tt_live_controls *c, const char *text, size_t len, tt
             size_t vn;
             if (parse_set(p, n, &k, &v, &vn, ch->why, sizeof ch->why))
                 bad = 1;
+            else if (c->lesson && ((c->lesson->lock | c->lesson->hide) >> k & 1)) {
+                /* the server holds the lesson's locks, not only the page */
+                snprintf(ch->why, sizeof ch->why, "console: %s is %s by the lesson %s; it keeps its value",
+                         table[k].name, c->lesson->lock >> k & 1 ? "locked" : "hidden", c->lesson->path);
+                bad = 1;
+            }
             else if (k == K_SAMPLE || k == K_NOISE)
                 bad = own_knob(c, k, v, vn, &sample, &noise_off, ch->why, sizeof ch->why) != 0;
             else {
@@ -495,6 +522,8 @@ int tt_live_controls_apply(tt_live_controls *c, const char *text, size_t len, tt
     c->have_params = 1;
     return TT_OK;
 }
+
+const tt_live_lesson *tt_live_controls_lesson(const tt_live_controls *c) { return c->lesson; }
 
 int tt_live_controls_scene(const tt_live_controls *c, tt_scene **scene, tt_scan_params *p)
 {

@@ -210,7 +210,10 @@ void tt_live_msg_controls(tt_live_buf *b, const tt_live_controls *c)
         str(b, t[i].label);
         tt_live_buf_printf(b, ",\"unit\":");
         str(b, t[i].unit);
-        tt_live_buf_printf(b, ",\"restarts\":%s,\"value\":", t[i].restarts ? "true" : "false");
+        const tt_live_lesson *l = tt_live_controls_lesson(c);
+        tt_live_buf_printf(b, ",\"restarts\":%s,\"hidden\":%s,\"locked\":%s,\"value\":",
+                           t[i].restarts ? "true" : "false", l && l->hide >> i & 1 ? "true" : "false",
+                           l && l->lock >> i & 1 ? "true" : "false");
         str(b, tt_live_controls_value(c, i, v, sizeof v));
         tt_live_buf_printf(b, "}");
     }
@@ -222,6 +225,19 @@ void tt_live_msg_controls(tt_live_buf *b, const tt_live_controls *c)
     int si = tt_live_controls_sample_index(c);
     tt_live_buf_printf(b, "],\"sample\":");
     str(b, si >= 0 ? tt_live_controls_sample(c, (size_t)si) : "");
+    const tt_live_lesson *l = tt_live_controls_lesson(c);
+    tt_live_buf_printf(b, ",\"lesson\":");
+    if (l) {
+        tt_live_buf_printf(b, "{\"title\":");
+        str(b, l->title);
+        tt_live_buf_printf(b, ",\"instructions\":");
+        str(b, l->instructions);
+        tt_live_buf_printf(b, ",\"file\":");
+        str(b, l->path);
+        tt_live_buf_printf(b, "}");
+    } else {
+        tt_live_buf_printf(b, "null");
+    }
     tt_live_buf_printf(b, "}");
 }
 
@@ -274,6 +290,24 @@ void tt_live_msg_status(tt_live_buf *b, const tt_live_view *v, int clients)
     num(b, v->ring_damping);
     tt_live_buf_printf(b, ",\"suggest_ki\":");
     num(b, v->suggest_ki);
+    tt_live_buf_printf(b, ",\"lagging\":%s,\"running\":%s,\"paused\":%s,\"idle\":%s,\"judged\":%ld,"
+                          "\"judged_line\":",
+                       v->lagging ? "true" : "false", v->running ? "true" : "false", v->paused ? "true" : "false",
+                       v->idle ? "true" : "false", v->judged);
+    if (v->judged_line >= 0)
+        tt_live_buf_printf(b, "%ld", v->judged_line);
+    else
+        tt_live_buf_printf(b, "null");
+    tt_live_buf_printf(b, ",\"error_rms\":");
+    num(b, v->error_rms);
+    tt_live_buf_printf(b, ",\"setpoint\":");
+    num(b, v->setpoint);
+    tt_live_buf_printf(b, ",\"height_range\":");
+    num(b, v->height_range);
+    tt_live_buf_printf(b, ",\"track_rms\":");
+    num(b, v->track_rms);
+    tt_live_buf_printf(b, ",\"surface_range\":");
+    num(b, v->surface_range);
     tt_live_buf_printf(b, ",\"note\":");
     str(b, v->note);
     tt_live_buf_printf(b, "}");
@@ -281,8 +315,10 @@ void tt_live_msg_status(tt_live_buf *b, const tt_live_view *v, int clients)
 
 void tt_live_msg_row(tt_live_buf *b, const tt_live_view *v, long line)
 {
-    tt_live_buf_printf(b, "{\"type\":\"row\",\"frame\":%ld,\"line\":%ld,\"tier\":\"%s\",\"data\":[",
-                       v->frame, line, tier_name(v->row_tier[line]));
+    tt_live_buf_printf(b, "{\"type\":\"row\",\"frame\":%ld,\"line\":%ld,\"tier\":\"%s\",\"preview\":%s,"
+                          "\"data\":[",
+                       v->frame, line, tier_name(v->row_tier[line] & ~TT_LIVE_PREVIEW),
+                       v->row_tier[line] & TT_LIVE_PREVIEW ? "true" : "false");
     for (int c = 0, k = 0; c < TT_LIVE_NCH; c++)
         for (int r = 0; r < 2; r++) {
             if (!v->rows[c][r])

@@ -214,6 +214,21 @@ static void ws_message(server *s, pss *p)
         reply(p, 0, why);
         return;
     }
+    /* the scan's own buttons: one word a message, nothing else in it */
+    size_t n = p->rxlen;
+    while (n > 0 && (p->rx[n - 1] == '\n' || p->rx[n - 1] == '\r' || p->rx[n - 1] == ' '))
+        n--;
+    int pause = n == 5 && memcmp(p->rx, "pause", 5) == 0, resume = n == 6 && memcmp(p->rx, "resume", 6) == 0,
+        step = n == 4 && memcmp(p->rx, "step", 4) == 0;
+    if (pause || resume || step) {
+        if (step)
+            tt_live_engine_step(s->engine);
+        else
+            tt_live_engine_pause(s->engine, pause);
+        reply(p, 1, "");
+        wake_all(s);
+        return;
+    }
     tt_live_change ch;
     if (tt_live_controls_apply(s->controls, p->rx, p->rxlen, &ch, take, s)) {
         reply(p, 0, ch.why);
@@ -263,7 +278,7 @@ static int export_name_ok(const char *name)
         if (!((name[i] >= 'a' && name[i] <= 'z') || (name[i] >= '0' && name[i] <= '9') ||
               name[i] == '_' || name[i] == '.'))
             return 0;
-    return strcmp(name, "scene.ini") == 0 || strcmp(name, "scan.gwy") == 0 ||
+    return strcmp(name, "scene.ini") == 0 || strcmp(name, "scan.gwy") == 0 || strcmp(name, "lesson.ini") == 0 ||
            (n > 4 && strcmp(name + n - 4, ".gsf") == 0);
 }
 
@@ -442,6 +457,7 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
         p->next = s->all;
         s->all = p;
         s->clients++;
+        tt_live_engine_watched(s->engine, s->clients);
         lws_callback_on_writable(wsi);
         return 0;
     case LWS_CALLBACK_SERVER_WRITEABLE:
@@ -451,8 +467,11 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
         return 0;
     case LWS_CALLBACK_CLOSED:
         unlink_pss(s, p);
-        if (p->ws)
+        if (p->ws) {
             s->clients--;
+            /* no page looks: the engine waits (no CPU) until one comes */
+            tt_live_engine_watched(s->engine, s->clients);
+        }
         p->ws = 0;
         return 0;
     default:

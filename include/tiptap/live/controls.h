@@ -28,6 +28,7 @@
 
 #include "tiptap/config/scene.h"
 #include "tiptap/instrument/scan.h"
+#include "tiptap/live/lesson.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -58,6 +59,15 @@ int tt_live_controls_alloc(tt_live_controls **out, char *const *files, int nfile
                            char *const *sets, int nsets, const char *surfaces,
                            double (*memory)(void));
 void tt_live_controls_free(tt_live_controls *c);
+
+/* The same with a lesson (live/lesson.h; taken, freed with the controls, NULL: none): its
+ * scene files come before files, its own sections after them and before sets; a change
+ * to a control it locks or hides is refused. */
+int tt_live_controls_alloc_lesson(tt_live_controls **out, tt_live_lesson *lesson, char *const *files,
+                                  int nfiles, char *const *sets, int nsets, const char *surfaces,
+                                  double (*memory)(void));
+/* The lesson (NULL: none). */
+const tt_live_lesson *tt_live_controls_lesson(const tt_live_controls *c);
 
 /* The outcome of a message. */
 typedef struct {

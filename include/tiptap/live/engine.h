@@ -3,8 +3,9 @@
  * One thread runs the scan a line at a time (tt_scan_step), paced to the instrument's
  * clock: a line takes 1 / line_rate of wall time, or longer where the machine cannot
  * keep up (the view's realtime says by how much). After each line it publishes the
- * line's pixels (height, error, phase, trace and retrace), its scope record decimated
- * for a screen, and the loop's state; the server reads them under the engine's lock.
+ * line's pixels (height, error, phase, amplitude, peak force, trace and retrace), its
+ * scope record decimated for a screen, and the loop's state; the server reads them under
+ * the engine's lock. Paused, or with no page looking, it waits between lines (no CPU).
  *
  * A change from the console (tt_live_engine_submit) takes effect at the next line: the
  * gains, setpoint, line rate, free amplitude and noise on the running scan (its setters
@@ -33,7 +34,10 @@ extern "C" {
 #endif
 
 /* The channels the console images, in this order, where the scene records them. */
-enum { TT_LIVE_HEIGHT, TT_LIVE_ERROR, TT_LIVE_PHASE, TT_LIVE_NCH };
+enum { TT_LIVE_HEIGHT, TT_LIVE_ERROR, TT_LIVE_PHASE, TT_LIVE_AMPLITUDE, TT_LIVE_PEAK_FORCE,
+       TT_LIVE_NCH };
+/* row_tier's flag: the line came from the averaged preview (the low bits: its tt_tier). */
+enum { TT_LIVE_PREVIEW = 0x10 };
 /* The scope's series on the page (a subset of the scan's record). */
 enum { TT_LIVE_S_POS, TT_LIVE_S_Z, TT_LIVE_S_ERROR, TT_LIVE_S_AMPLITUDE, TT_LIVE_S_PHASE,
        TT_LIVE_S_SURFACE, TT_LIVE_NS };
@@ -55,7 +59,8 @@ typedef struct {
      * fast axis, at rows[c][r] + l * pixels; NaN before it ran */
     const double *rows[TT_LIVE_NCH][2];
     const unsigned long *row_version; /* per line: when it was last published (0: never) */
-    const unsigned char *row_tier;    /* per line: the tt_tier of that publication */
+    const unsigned char *row_tier;    /* per line: the tt_tier of that publication, with
+                                       * TT_LIVE_PREVIEW where the preview made it */
     long lines_done;                  /* lines finished on the scan's own tier, this frame */
     long line;                        /* the line running or next */
     long first_line_as_set;           /* the first line of this frame run at the current
@@ -86,6 +91,17 @@ typedef struct {
     double ring_nm;        /* its peak-to-peak height, m */
     double ring_damping;   /* its damping ratio, from the swings' decay (0: none) */
     double suggest_ki;     /* a suggested integral gain, 1/s (0: none) */
+    long judged;           /* lines judged by the oscillation check since the start */
+    long judged_line;      /* the line the warning's figures come from (-1: none yet) */
+    double error_rms;      /* that line's error, rms over its record, m */
+    double setpoint;       /* the setpoint in force then, m */
+    double height_range;   /* that line's height pixels (trace), max - min, m */
+    double track_rms;      /* rms of z - the true surface over its record, mean taken off, m */
+    double surface_range;  /* the true surface's peak to peak over the record, m */
+    int lagging;           /* track_rms > 0.35 surface_range, where that is 1 nm or more */
+    int paused;            /* the page paused the scan (lines run only on a step) */
+    int running;           /* a line on the scan's own tier is under way */
+    int idle;              /* no page looks: the scan waits */
     char note[512];        /* the engine's last message ("" none): a change it refused */
 } tt_live_view;
 
@@ -118,6 +134,14 @@ void tt_live_engine_set_writer(tt_live_engine *e,
 unsigned long tt_live_engine_export(tt_live_engine *e);
 unsigned long tt_live_engine_exported(tt_live_engine *e, const char **dir, int *status,
                                       const char **why);
+
+/* Pause (1) or resume (0) the scan between lines; step: one line more while paused.
+ * A paused or idle engine's thread waits on a condition (no CPU); a line under way
+ * finishes first. */
+void tt_live_engine_pause(tt_live_engine *e, int paused);
+void tt_live_engine_step(tt_live_engine *e);
+/* How many pages look: at 0 the engine is idle until one comes (it starts idle). */
+void tt_live_engine_watched(tt_live_engine *e, int pages);
 
 void tt_live_engine_lock(tt_live_engine *e);
 void tt_live_engine_unlock(tt_live_engine *e);
