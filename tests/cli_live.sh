@@ -14,6 +14,10 @@ py=/usr/bin/python3
 # flood of 80,000 messages fills: the bounded-memory check would read the sanitizer's
 # quarantine, not the server's memory (a build without ASan ignores the variable).
 export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}quarantine_size_mb=4"
+# The server's export folders go under a TMPDIR of this test's own, so that another
+# console test running beside it (ctest -j) cannot pass for a folder this one left.
+mkdir -p "$tmp/tmpdir"
+export TMPDIR="$tmp/tmpdir"
 
 expect_error "no scene" "needs a scene file" "$tiptap" live
 expect_error "a bad port" "--port: 'abc'" "$tiptap" live --port abc "$src/scans/quick.ini"
