@@ -12,30 +12,14 @@ tiptap=$1
 src=$2
 source "$(dirname "$0")/tt_cli.sh"
 
-cat >"$tmp/p.ini" <<'INI'
-[cantilever]
-spring_constant = 40 N/m
-resonance_frequency = 300 kHz
-quality_factor = 400
-free_amplitude = 20 nm
-[material si]
-reduced_modulus = 100 GPa
-adhesion_energy = 20 mJ/m^2
-[surface]
-type = particles
-particle_radius = 15 nm
-particle_count = 3
-seed = 4
+cat "$src/tests/estimate-particles.ini" - >"$tmp/p.ini" <<'INI'
 [scan]
 size = 400 nm
 pixels = 16
 lines = 16
 line_rate = 20 Hz
-settle_cycles = 1500
 profile_line = 5
 channels = height, error, phase, topography
-[feedback]
-setpoint = 80 %
 INI
 
 err=$("$tiptap" scan "$tmp/p.ini" -o "$tmp/run" 2>&1 >/dev/null) || { bad "scan failed: $err"; exit 1; }

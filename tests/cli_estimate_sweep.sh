@@ -10,29 +10,13 @@ tiptap=$1
 src=$2
 source "$(dirname "$0")/tt_cli.sh"
 
-cat >"$tmp/s.ini" <<'INI'
-[cantilever]
-spring_constant = 40 N/m
-resonance_frequency = 300 kHz
-quality_factor = 400
-free_amplitude = 20 nm
-[material si]
-reduced_modulus = 100 GPa
-adhesion_energy = 20 mJ/m^2
-[surface]
-type = particles
-particle_radius = 15 nm
-particle_count = 3
-seed = 4
+cat "$src/tests/estimate-particles.ini" - >"$tmp/s.ini" <<'INI'
 [scan]
 size = 200 nm
 pixels = 8
 lines = 8
 line_rate = 50 Hz
-settle_cycles = 1500
 channels = height, error, phase
-[feedback]
-setpoint = 80 %
 INI
 
 "$tiptap" sweep "$tmp/s.ini" --vary "solver.tolerance=1e-6,1e-8" --run scan -o "$tmp/w.csv" -q ||
