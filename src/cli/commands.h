@@ -14,6 +14,8 @@ int cmd_contact(int argc, char **argv);
 int cmd_keys(int argc, char **argv);
 int cmd_approach(int argc, char **argv);
 int cmd_trace(int argc, char **argv);
+int cmd_force(int argc, char **argv);
+int cmd_tune(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_scan(int argc, char **argv);
 int cmd_accuracy(int argc, char **argv);

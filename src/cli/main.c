@@ -20,6 +20,8 @@ static const struct {
     {"contact", cmd_contact, "contact mechanics: a Maugis-Dugdale curve and its summary"},
     {"approach", cmd_approach, "approach curve: amplitude, phase, force against separation"},
     {"trace", cmd_trace, "time series of the tapping cantilever, with optional ramps"},
+    {"force", cmd_force, "force-distance curve: jump-in, contact slope, pull-off, adhesion"},
+    {"tune", cmd_tune, "thermal tune: the free lever's noise spectrum, fitted for f, Q and k"},
     {"scan", cmd_scan, "closed-loop tapping image: height, phase, force, dissipation"},
     {"sweep", cmd_sweep, "parameter grid: steady points, approach curves or scans, on every core"},
     {"profiles", cmd_profiles, "overlay the profile lines of scans: trace, retrace, true surface"},

@@ -106,6 +106,29 @@ static const tt_scene_key trace_keys[] = {
     {"ramp_to", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL, "ramped key's last value, with unit"},
 };
 
+/* [force]: tiptap force, a force-distance curve of the undriven lever. */
+static const tt_scene_key force_keys[] = {
+    {"from", Q(TT_DIM_LENGTH), "20 nm", -INF, INF, 0, NULL,
+     "rest separation where the ramp starts and ends (gap of the undeflected tip)"},
+    {"to", Q(TT_DIM_LENGTH), "-2 nm", -INF, INF, 0, NULL,
+     "rest separation where the ramp turns (negative: the base pushes past the surface)"},
+    {"range", Q(TT_DIM_LENGTH), NULL, 0, INF, POS, NULL, "instead of from: from = to + range"},
+    {"speed", Q(TT_DIM_VELOCITY), "1 um/s", 0, INF, POS, NULL, "ramp speed, both ways"},
+    {"dwell", Q(TT_DIM_TIME), "0 s", 0, INF, 0, NULL, "pause at the turn"},
+    {"samples", TT_KEY_INT, 0, "1000", 10, 1e7, 0, NULL, "output rows per leg (approach, retract)"},
+    {"material", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
+     "material under the tip (default: the first [material])"},
+};
+
+/* [tune]: tiptap tune, the free lever's thermal spectrum. */
+static const tt_scene_key tune_keys[] = {
+    {"duration", Q(TT_DIM_TIME), "0.2 s", 0, 1e4, POS, NULL, "length of the deflection record"},
+    {"samples_per_cycle", TT_KEY_INT, 0, "8", 4, 1024, 0, NULL,
+     "deflection samples per drive period (sample rate = this times the drive frequency)"},
+    {"bin_width", Q(TT_DIM_FREQUENCY), "0 Hz", 0, INF, 0, NULL,
+     "Welch segments' frequency resolution (0: a sixteenth of the resonance's width f/Q)"},
+};
+
 static const tt_scene_key solver_keys[] = {
     {"method", TT_KEY_ENUM, 0, "dopri5", 0, 0, 0, "dopri5|rk4|radau",
      "dopri5: adaptive explicit 5(4) with dense output; rk4: classic, fixed steps; "
@@ -246,6 +269,8 @@ static const tt_scene_section sections[] = {
      "a sample material and its contact with the tip (Burnham et al. eqs. 3-10)"},
     {"approach", 0, approach_keys, TT_COUNT(approach_keys), "tiptap approach"},
     {"trace", 0, trace_keys, TT_COUNT(trace_keys), "tiptap trace"},
+    {"force", 0, force_keys, TT_COUNT(force_keys), "tiptap force"},
+    {"tune", 0, tune_keys, TT_COUNT(tune_keys), "tiptap tune"},
     {"solver", 0, solver_keys, TT_COUNT(solver_keys), "time integration"},
     {"surface", 0, surface_keys, TT_COUNT(surface_keys), "sample topography and material map (tiptap scan)"},
     {"scan", 0, scan_keys, TT_COUNT(scan_keys), "raster scan (tiptap scan)"},

@@ -1,0 +1,62 @@
+/* tiptap: the thermal tune (tiptap tune): the free, undriven cantilever's deflection
+ * under its thermal force at the scene's [noise] temperature, recorded through the
+ * detector (its [noise] detector floor added), its Welch-averaged power spectral density
+ * and a damped-oscillator fit giving the resonance f, the quality factor Q and the
+ * spring constant k by equipartition, each with its statistical uncertainty for the
+ * record's length (docs/force-and-tune.md).
+ *
+ * One mode: the lever is a point mass, whose deflection is the tip's displacement, so
+ * the optical-lever correction chi is 1 (k = chi^2 kB T / <x^2>). A rectangular beam's
+ * first mode seen through an optical lever calibrated in contact needs chi = 1.09 and
+ * the mode's 0.971 (k = 0.817 kB T / <x*^2>, Butt and Jaschke 1995).
+ *
+ * Ownership: tt_run_tune returns a table the caller frees; the scene is borrowed.
+ */
+#ifndef TIPTAP_RUN_TUNE_H
+#define TIPTAP_RUN_TUNE_H
+
+#include "tiptap/export.h"
+#include "tiptap/config/scene.h"
+#include "tiptap/run/run.h"
+#include "tiptap/util/table.h"
+
+TT_BEGIN_DECLS
+
+typedef struct {
+    double duration;       /* record length, s */
+    long samples_per_cycle;
+    double bin_width;      /* Hz; 0: f0 / (16 Q) of the scene's lever */
+} tt_tune_params;
+
+typedef struct {
+    double temperature;          /* K */
+    double fs, bin_width;        /* sample rate and the spectrum's resolution, Hz */
+    long segments;               /* Welch segments (Hann, half overlapping) */
+    double averages;             /* the independent averages they are worth */
+    double f0, f0_err;           /* fitted resonance, Hz, and its standard error */
+    double Q, Q_err;
+    double k, k_err;             /* chi^2 kB T / (pi P f0 Q / 2), N/m, and its error */
+    double chi;                  /* the optical-lever correction used (1: a point mass) */
+    double white, white_err;     /* the detector's floor, m^2/Hz one-sided (0 without) */
+    double chi2_dof;             /* the fit's weighted residual per degree of freedom */
+    double variance;             /* the record's mean square deflection, m^2 */
+    double variance_err;         /* its statistical error, m^2 */
+    double noise_factor;         /* <x^2> k / kB T the interpolated force gives (below 1) */
+    long cycles;                 /* drive periods integrated */
+} tt_tune_result;
+
+int tt_tune_params_read(const tt_scene *s, tt_tune_params *p);
+
+/* The free lever's mean square thermal deflection relative to kB T / k when the force
+ * is drawn at points per drive period of frequency fd and linear between (its spectrum
+ * 2 c kB T sinc^4(f dt), dt = 1 / (points fd)): the oscillator's |H|^2 weighted mean of
+ * sinc^4, about sinc^4(f0 dt) for a sharp resonance. */
+double tt_tune_noise_factor(double f0, double Q, double fd, int points);
+
+/* Rows f (Hz), psd (m^2/Hz, one-sided), fit (m^2/Hz) over the spectrum's bins; the
+ * result as metadata and in *r when not NULL. TT_EINVAL naming [noise] temperature when
+ * it is 0, [tune] keys when the record is too short for the resolution. */
+int tt_run_tune(const tt_scene *s, tt_table **out, tt_tune_result *r, tt_progress_fn progress, void *user);
+
+TT_END_DECLS
+#endif

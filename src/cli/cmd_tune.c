@@ -1,0 +1,121 @@
+/* tiptap tune: the free lever's thermal spectrum and its fit (tiptap/run/tune.h). */
+#include <math.h>
+#include <stdlib.h>
+
+#include "commands.h"
+#include "tiptap/io/outfile.h"
+#include "tiptap/io/plot.h"
+#include "tiptap/run/tune.h"
+#include "tiptap/util/error.h"
+
+static void help(void)
+{
+    printf("Usage: tiptap tune SCENE... [--set section.key=value]... [-o tune.csv]\n"
+           "                    [--plot tune.png] [-q]\n"
+           "Thermal tune: the free, undriven cantilever's deflection at the [noise] temperature\n"
+           "for [tune] duration, through the [noise] detector floor; its Welch-averaged power\n"
+           "spectral density and a damped-oscillator fit: resonance f, quality factor Q and\n"
+           "spring constant k = chi^2 kB T / <x^2> by equipartition, each with its statistical\n"
+           "standard error for the record's length.\n\n"
+           "  -o, --output FILE  CSV: f_Hz, psd_m2_per_Hz (one-sided), fit_m2_per_Hz\n"
+           "      --plot FILE    PNG: the spectrum and the fit, log-log\n"
+           CLI_HELP_SET
+           "  -q, --quiet        no progress on stderr\n\n"
+           "stdout: f, Q, k with their errors, chi (the optical-lever correction: 1 for the\n"
+           "point-mass lever; docs/force-and-tune.md gives a beam's), the floor, the fit's\n"
+           "chi2 per degree of freedom, the record's <x^2> with its error, and kB T / k times\n"
+           "the factor the thermal force's interpolation gives it (noise_factor).\n");
+}
+
+static int write_csv(const char *path, const tt_table *t)
+{
+    tt_outfile *of;
+    int rc = tt_outfile_open(&of, path);
+    if (rc)
+        return rc;
+    FILE *f = tt_outfile_stream(of);
+    fprintf(f, "f_Hz,psd_m2_per_Hz,fit_m2_per_Hz\n");
+    const double *a = tt_table_numbers(t, 0), *b = tt_table_numbers(t, 1), *c = tt_table_numbers(t, 2);
+    for (size_t i = 0; i < tt_table_rows(t); i++)
+        fprintf(f, "%.9g,%.9g,%.9g\n", a[i], b[i], c[i]);
+    return tt_outfile_close(of, 1);
+}
+
+static int plot(const char *path, const tt_table *t, const tt_tune_result *r, double k_scene)
+{
+    char title[256];
+    snprintf(title, sizeof title, "Thermal tune at %.4g K: k = %.4g +- %.2g N/m (scene %.4g N/m)",
+             r->temperature, r->k, r->k_err, k_scene);
+    tt_figure *f = tt_figure_alloc(1, title);
+    if (!f)
+        return tt_error_nomem("the plot %s", path);
+    size_t n = tt_table_rows(t);
+    double *fk = malloc((n ? n : 1) * sizeof *fk), *p = malloc((n ? n : 1) * sizeof *p),
+           *m = malloc((n ? n : 1) * sizeof *m);
+    int rc = TT_OK;
+    if (!fk || !p || !m)
+        rc = tt_error_nomem("the plot %s", path);
+    for (size_t i = 0; rc == TT_OK && i < n; i++) {
+        fk[i] = tt_table_numbers(t, 0)[i] * 1e-3;
+        /* in fm/sqrt(Hz), the unit of detector floors */
+        p[i] = sqrt(tt_table_numbers(t, 1)[i]) * 1e15;
+        m[i] = sqrt(tt_table_numbers(t, 2)[i]) * 1e15;
+    }
+    if (rc == TT_OK) {
+        char fit[200];
+        snprintf(fit, sizeof fit, "fit: f = %.5g kHz, Q = %.4g", r->f0 * 1e-3, r->Q);
+        tt_figure_axes(f, 0, "frequency (kHz)", "deflection noise density (fm/sqrt(Hz))");
+        tt_figure_log(f, 0, 1, 1);
+        tt_figure_line(f, 0, fk, p, n, "Welch spectrum", 1);
+        tt_figure_line(f, 0, fk, m, n, fit, 2 | TT_PLOT_THICK);
+        rc = tt_figure_write_png(f, path, 1000, 700);
+    }
+    free(fk), free(p), free(m);
+    tt_figure_free(f);
+    return rc;
+}
+
+static void progress(void *user, long done, long total) { cli_progress_show(user, done, total); }
+
+int cmd_tune(int argc, char **argv)
+{
+    static const cli_spec spec = {"tune", CLI_OPT_OUTPUT | CLI_OPT_PLOT | CLI_OPT_SET | CLI_OPT_QUIET,
+                                  NULL, "", help};
+    cli_args args = {.output = "tune.csv"};
+    int code;
+    tt_scene *scene = cli_options_scene(&spec, &args, argc, argv, &code);
+    if (!scene)
+        return code;
+    tt_table *t = NULL;
+    tt_tune_result r;
+    cli_progress prog;
+    double t0 = cli_now(), k_scene = NAN;
+    tt_scene_get_double(scene, "cantilever", NULL, "spring_constant", &k_scene);
+    cli_progress_begin(&prog, "tune", "drive periods", args.quiet);
+    cli_catch_interrupt();
+    int rc = tt_run_tune(scene, &t, &r, progress, &prog);
+    cli_progress_end(&prog);
+    if (rc == TT_OK)
+        rc = write_csv(args.output, t);
+    if (rc == TT_OK && args.plot)
+        rc = plot(args.plot, t, &r, k_scene);
+    if (rc == TT_OK) {
+        const double kT = 1.380649e-23 * r.temperature;
+        printf("temperature_K = %.6g\nsample_rate_Hz = %.6g\nbin_width_Hz = %.6g\nsegments = %ld\n"
+               "averages = %.6g\nf0_Hz = %.8g\nf0_err_Hz = %.3g\nQ = %.6g\nQ_err = %.3g\n"
+               "k_N_per_m = %.6g\nk_err_N_per_m = %.3g\nchi = %.6g\nfloor_m2_per_Hz = %.6g\n"
+               "floor_err_m2_per_Hz = %.3g\nchi2_dof = %.4g\nvariance_m2 = %.6g\n"
+               "variance_err_m2 = %.3g\nequipartition_m2 = %.6g\nnoise_factor = %.6g\n",
+               r.temperature, r.fs, r.bin_width, r.segments, r.averages, r.f0, r.f0_err, r.Q, r.Q_err,
+               r.k, r.k_err, r.chi, r.white, r.white_err, r.chi2_dof, r.variance, r.variance_err,
+               kT / k_scene * r.noise_factor, r.noise_factor);
+        if (!args.quiet)
+            fprintf(stderr, "run_time_s = %.3f\noutput = %s%s%s\n", cli_now() - t0, args.output,
+                    args.plot ? ", plot " : "", args.plot ? args.plot : "");
+    }
+    if (rc)
+        cli_fail(rc, NULL);
+    tt_table_free(t);
+    tt_scene_free(scene);
+    return rc == TT_OK ? CLI_OK : rc == TT_EINTR ? CLI_INTERRUPTED : CLI_FAIL;
+}

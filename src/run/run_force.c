@@ -1,0 +1,247 @@
+/* tiptap force: a force-distance curve of the undriven cantilever (see
+ * include/tiptap/run/force.h). */
+#include "tiptap/run/force.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "run_common.h"
+#include "tiptap/config/config.h"
+#include "tiptap/config/setup.h"
+#include "tiptap/solver/noise.h"
+#include "tiptap/util/cancel.h"
+#include "tiptap/util/error.h"
+
+enum { COL_T, Z, DEFL, SEP, FORCE, LEVER, CONTACT, LEG, NCOL };
+static const run_column columns[NCOL] = {
+    {"t", "s", 0},          {"z", "m", 0},     {"deflection", "m", 0}, {"separation", "m", 0},
+    {"force", "N", 0},      {"lever_force", "N", 0}, {"contact", "", 0}, {"leg", "", 1},
+};
+static const char *const leg_names[3] = {"approach", "dwell", "retract"};
+
+int tt_force_params_read(const tt_scene *s, tt_force_params *p)
+{
+    memset(p, 0, sizeof *p);
+    int rc;
+    p->material = tt_scene_get_string(s, "force", NULL, "material");
+    if ((rc = tt_scene_get_double(s, "force", NULL, "to", &p->to)) ||
+        (rc = tt_scene_get_double(s, "force", NULL, "speed", &p->speed)) ||
+        (rc = tt_scene_get_double(s, "force", NULL, "dwell", &p->dwell)) ||
+        (rc = tt_scene_get_int(s, "force", NULL, "samples", &p->samples)))
+        return rc;
+    int has_from = tt_scene_has(s, "force", NULL, "from"), has_range = tt_scene_has(s, "force", NULL, "range");
+    if (has_from && has_range)
+        return tt_scene_fail(s, "force", NULL, "range", "give from or range, not both");
+    if (has_range) {
+        double range;
+        if ((rc = tt_scene_get_double(s, "force", NULL, "range", &range)))
+            return rc;
+        p->from = p->to + range;
+    } else if ((rc = tt_scene_get_double(s, "force", NULL, "from", &p->from)))
+        return rc;
+    if (!(p->from > p->to))
+        return tt_scene_fail(s, "force", NULL, has_range ? "range" : "from",
+                             "the ramp must start farther from the sample than it turns (from %.4g nm, "
+                             "to %.4g nm)", p->from * 1e9, p->to * 1e9);
+    p->points_per_cycle = 8;
+    return TT_OK;
+}
+
+/* The online analysis of the samples, in time order. */
+typedef struct {
+    tt_force_summary s;
+    double k, vth, u;
+    int touched, left; /* the approach has contacted; the retract has left for good */
+    double last_calm_z, last_calm_f, last_calm_gap;
+    double last_contact_z, last_contact_f;
+} force_scan;
+
+static void analyse(force_scan *a, int leg, double z, double d, double v, double gap, double F, int contact)
+{
+    tt_force_summary *s = &a->s;
+    if (F > s->max_force || isnan(s->max_force))
+        s->max_force = F;
+    if (leg == 0 && !a->touched) {
+        if (contact) {
+            a->touched = 1;
+            s->contact_z = z;
+            s->jumpin_z = a->last_calm_z;
+            s->jumpin_force = a->last_calm_f;
+            s->jumpin_gap = a->last_calm_gap;
+        } else if (fabs(v) <= a->vth) {
+            a->last_calm_z = z;
+            a->last_calm_f = F;
+            a->last_calm_gap = gap;
+        }
+    }
+    (void)d;
+    if (leg == 2) {
+        if (-F > s->adhesion || isnan(s->adhesion))
+            s->adhesion = -F;
+        if (contact) {
+            a->last_contact_z = z;
+            a->last_contact_f = F;
+        } else if (!isnan(a->last_contact_z) && isnan(s->pulloff_z)) {
+            s->pulloff_z = z;
+            s->pulloff_force = a->last_contact_f;
+        }
+    }
+}
+
+/* -dF/dz of the rows of leg in contact whose lever force is above half the leg's
+ * largest, a straight line by least squares; also d(deflection)/dz. NAN with fewer than
+ * three such rows. */
+static void contact_slope(const tt_table *t, const char *leg, double *slope, double *sdefl)
+{
+    const double *z = tt_table_numbers(t, Z), *F = tt_table_numbers(t, LEVER), *y = tt_table_numbers(t, DEFL);
+    const double *c = tt_table_numbers(t, CONTACT);
+    double fmax = 0;
+    for (size_t i = 0; i < tt_table_rows(t); i++)
+        if (c[i] > 0 && F[i] > fmax && strcmp(tt_table_text(t, LEG, i), leg) == 0)
+            fmax = F[i];
+    double n = 0, sz = 0, szz = 0, sf = 0, szf = 0, sy = 0, szy = 0;
+    for (size_t i = 0; i < tt_table_rows(t); i++) {
+        if (strcmp(tt_table_text(t, LEG, i), leg) != 0 || !(c[i] > 0) || !(F[i] >= 0.5 * fmax))
+            continue;
+        n++, sz += z[i], szz += z[i] * z[i], sf += F[i], szf += z[i] * F[i], sy += y[i], szy += z[i] * y[i];
+    }
+    double den = n * szz - sz * sz;
+    *slope = *sdefl = NAN;
+    if (n >= 3 && den > 0 && fmax > 0) {
+        *slope = -(n * szf - sz * sf) / den;
+        *sdefl = (n * szy - sz * sy) / den;
+    }
+}
+
+static int put_meta(tt_table *t, const tt_force_summary *s)
+{
+    const struct {
+        const char *key;
+        double v;
+    } m[] = {{"speed", s->speed},           {"cycles", (double)s->cycles},
+             {"k", s->k},                   {"jumpin_z", s->jumpin_z},
+             {"jumpin_force", s->jumpin_force}, {"jumpin_gap", s->jumpin_gap},
+             {"contact_z", s->contact_z},   {"pulloff_z", s->pulloff_z},
+             {"pulloff_force", s->pulloff_force}, {"adhesion", s->adhesion},
+             {"max_force", s->max_force},   {"slope", s->slope},
+             {"slope_deflection", s->slope_deflection}, {"slope_retract", s->slope_retract}};
+    int rc = TT_OK;
+    for (size_t i = 0; i < sizeof m / sizeof m[0] && rc == TT_OK; i++)
+        rc = run_meta_number(t, m[i].key, m[i].v);
+    return rc;
+}
+
+int tt_run_force(const tt_scene *s, tt_table **out, tt_force_summary *sum, tt_progress_fn progress,
+                 void *user)
+{
+    tt_setup *st = NULL;
+    tt_scene *copy = NULL;
+    tt_force_params p;
+    tt_scan_noise noise;
+    tt_sample *buf = NULL;
+    tt_table *t = NULL;
+    size_t mat;
+    *out = NULL;
+    int rc;
+    if ((rc = tt_force_params_read(s, &p)) || (rc = run_setup(s, &copy, &st)) ||
+        (rc = tt_config_noise(copy, tt_setup_solver(st), tt_setup_cantilever(st)->fd, &noise)) ||
+        (rc = tt_scene_locate(copy, tt_setup_find_material(st, p.material, "force", "material", &mat))) ||
+        (rc = tt_setup_use_material(st, mat)))
+        goto done;
+    tt_sim *sim = tt_setup_sim(st);
+    /* the lever undriven: no base motion, no drive force; the drive period only sets
+     * the length of the solver's cycles */
+    tt_cantilever c = *tt_setup_cantilever(st);
+    c.a_d = 0;
+    c.F0 = 0;
+    tt_sim_set_cantilever(sim, &c);
+    if ((rc = tt_sim_set_thermal(sim, noise.temperature, noise.points)))
+        goto done;
+    tt_sim_noise_key(sim, tt_noise_key(noise.seed, TT_NOISE_THERMAL, 0));
+    const double T = c.T, travel = p.from - p.to;
+    long nleg = (long)ceil(travel / (p.speed * T) - 1e-9), ndwell = (long)llround(p.dwell / T);
+    if (nleg < 1)
+        nleg = 1;
+    if ((double)nleg * 2 + (double)ndwell > 1e9) {
+        rc = tt_scene_locate(copy, tt_scene_fail(copy, "force", NULL, "speed",
+                                                 "the ramp would take %.3g drive periods (more than 1e9): "
+                                                 "a faster ramp or a shorter range",
+                                                 (double)nleg * 2 + (double)ndwell));
+        goto done;
+    }
+    const double u = travel / ((double)nleg * T);
+    const int n = p.points_per_cycle;
+    if (!(buf = calloc((size_t)n, sizeof *buf)) || !(t = run_table(columns, NCOL))) {
+        rc = t ? tt_error_nomem("the force curve's samples") : TT_ENOMEM;
+        goto done;
+    }
+    *out = t;
+    tt_sim_set_sampling(sim, n, buf);
+    tt_sim_reset_free(sim);
+    tt_sim_set_state(sim, 0, 0, 0);
+    force_scan a = {.s = {.speed = u, .k = c.k, .jumpin_z = NAN, .jumpin_force = NAN, .jumpin_gap = NAN,
+                          .contact_z = NAN, .pulloff_z = NAN, .pulloff_force = NAN, .adhesion = NAN,
+                          .max_force = NAN, .slope = NAN, .slope_deflection = NAN, .slope_retract = NAN},
+                    .k = c.k, .u = u, .last_calm_z = NAN, .last_calm_f = NAN, .last_calm_gap = NAN,
+                    .last_contact_z = NAN, .last_contact_f = NAN};
+    /* the snap's start: the tip faster than ten times the ramp, or five times the thermal
+     * rms speed sqrt(kB T / m) when the lever is warm */
+    a.vth = fmax(10 * u, 5 * sqrt(TT_BOLTZMANN * noise.temperature / c.m));
+    const long legs[3] = {nleg, ndwell, nleg}, total = 2 * nleg + ndwell;
+    long done = 0;
+    /* rows: every stride-th sample of a leg, and its last */
+    const long stride_leg = (long)fmax(1, floor((double)nleg * n / (double)p.samples));
+    const long stride_dwell = (long)fmax(1, floor((double)ndwell * n / (double)p.samples));
+    for (int leg = 0; leg < 3 && rc == TT_OK; leg++) {
+        const double sdot = leg == 0 ? -u : leg == 2 ? u : 0, s0 = leg == 2 ? p.to : leg == 0 ? p.from : p.to;
+        const long stride = leg == 1 ? stride_dwell : stride_leg;
+        for (long i = 0; i < legs[leg] && rc == TT_OK; i++) {
+            tt_cycle cy;
+            if (tt_cancel_requested()) {
+                rc = tt_error(TT_EINTR, "interrupted: %ld of %ld drive periods finished", done, total);
+                break;
+            }
+            tt_sim_set_sample(sim, s0 + sdot * (double)i * T, sdot);
+            if ((rc = tt_sim_cycle(sim, &cy)))
+                break;
+            for (int k = 0; k < n && rc == TT_OK; k++) {
+                const tt_sample *x = &buf[k];
+                const double z = x->s, y = x->d - x->z, F = tt_sim_force(sim, x, NULL);
+                analyse(&a, leg, z, x->d, x->v, z - y, F, x->contact);
+                long idx = i * n + k;
+                int last = i == legs[leg] - 1 && k == n - 1;
+                if (idx % stride != 0 && !last)
+                    continue;
+                if ((rc = tt_table_row(t)))
+                    break;
+                const double v[LEG] = {x->t, z, y, z - y, F, -c.k * y, x->contact};
+                for (int col = 0; col < LEG; col++)
+                    tt_table_set(t, (size_t)col, v[col]);
+                rc = tt_table_set_text(t, LEG, leg_names[leg]);
+            }
+            done++;
+            if (progress && (done % 256 == 0 || done == total))
+                progress(user, done, total);
+        }
+    }
+    a.s.cycles = done;
+    if (rc == TT_OK) {
+        double dummy;
+        contact_slope(t, "approach", &a.s.slope, &a.s.slope_deflection);
+        contact_slope(t, "retract", &a.s.slope_retract, &dummy);
+        rc = put_meta(t, &a.s);
+    }
+    if (sum)
+        *sum = a.s;
+done:
+    if (st) {
+        tt_sim_set_sampling(tt_setup_sim(st), 0, NULL);
+        tt_sim_set_thermal(tt_setup_sim(st), 0, 0);
+    }
+    free(buf);
+    tt_setup_free(st);
+    tt_scene_free(copy);
+    return rc;
+}

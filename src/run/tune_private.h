@@ -1,0 +1,31 @@
+/* The thermal tune's spectrum and fit (tune_spectrum.c), private to src/run. */
+#ifndef TIPTAP_RUN_TUNE_PRIVATE_H
+#define TIPTAP_RUN_TUNE_PRIVATE_H
+
+#include <stddef.h>
+
+/* Welch's estimate of the one-sided PSD (m^2/Hz) of x[0..n) sampled at fs: Hann segments
+ * of length L (even), each half overlapping the last, mean removed from each; psd[0..L/2]
+ * (caller's), *segments, *averages (the independent averages the overlapped segments are
+ * worth: K / (1 + 2 (1/6)^2 (K - 1) / K), Welch 1967). TT_ENOMEM. */
+int tune_welch(const double *x, size_t n, double fs, size_t L, double *psd, long *segments,
+               double *averages);
+
+/* The fit's model and result. */
+typedef struct {
+    double P, f0, Q, W;    /* the oscillator's zero-frequency density, resonance, Q, floor */
+    double dt;             /* the thermal force's point spacing (sinc^4 factor) */
+    double cov[4][4];      /* covariance of (ln P, ln f0, ln Q, ln W) */
+    double chi2_dof;
+    int nparam;            /* 3: no floor fitted (W = 0), 4 with it */
+} tune_fit;
+
+/* The model at f: sinc^4(f dt) P / ((1 - u^2)^2 + (u / Q)^2) + W, u = f / f0. */
+double tune_model(const tune_fit *m, double f);
+
+/* Fit psd over bins [k0, k1] (bin width df, averages the Welch estimate's), with the
+ * floor when floor is set; m holds the starting values and dt. TT_ENUM when it fails. */
+int tune_fit_psd(const double *psd, size_t k0, size_t k1, double df, double averages, int floor,
+                 tune_fit *m);
+
+#endif
