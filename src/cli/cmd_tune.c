@@ -18,7 +18,7 @@ static void help(void)
            "spring constant k = chi^2 kB T / <x^2> by equipartition, each with its statistical\n"
            "standard error for the record's length.\n\n"
            "  -o, --output FILE  CSV: f_Hz, psd_m2_per_Hz (one-sided), fit_m2_per_Hz\n"
-           "      --plot FILE    PNG: the spectrum and the fit, log-log\n"
+           "      --plot FILE    PNG: the spectrum and the fit, log-log, and a zoom on the peak\n"
            CLI_HELP_SET
            "  -q, --quiet        no progress on stderr\n\n"
            "stdout: f, Q, k with their errors, chi (the optical-lever correction: 1 for the\n"
@@ -46,7 +46,7 @@ static int plot(const char *path, const tt_table *t, const tt_tune_result *r, do
     char title[256];
     snprintf(title, sizeof title, "Thermal tune at %.4g K: k = %.4g +- %.2g N/m (scene %.4g N/m)",
              r->temperature, r->k, r->k_err, k_scene);
-    tt_figure *f = tt_figure_alloc(1, title);
+    tt_figure *f = tt_figure_alloc(2, title);
     if (!f)
         return tt_error_nomem("the plot %s", path);
     size_t n = tt_table_rows(t);
@@ -63,12 +63,20 @@ static int plot(const char *path, const tt_table *t, const tt_tune_result *r, do
     }
     if (rc == TT_OK) {
         char fit[200];
-        snprintf(fit, sizeof fit, "fit: f = %.5g kHz, Q = %.4g", r->f0 * 1e-3, r->Q);
+        snprintf(fit, sizeof fit, "fit: f = %.6g +- %.2g kHz, Q = %.4g +- %.2g", r->f0 * 1e-3, r->f0_err * 1e-3,
+                 r->Q, r->Q_err);
+        /* the whole spectrum, log-log; then ten linewidths f0 / Q either side of the peak */
         tt_figure_axes(f, 0, "frequency (kHz)", "deflection noise density (fm/sqrt(Hz))");
         tt_figure_log(f, 0, 1, 1);
         tt_figure_line(f, 0, fk, p, n, "Welch spectrum", 1);
-        tt_figure_line(f, 0, fk, m, n, fit, 2 | TT_PLOT_THICK);
-        rc = tt_figure_write_png(f, path, 1000, 700);
+        tt_figure_line(f, 0, fk, m, n, fit, 2);
+        double w = fmin(0.95, 10 / r->Q);
+        tt_figure_axes(f, 1, "frequency (kHz)", "deflection noise density (fm/sqrt(Hz))");
+        tt_figure_log(f, 1, 0, 1);
+        tt_figure_xlim(f, 1, r->f0 * (1 - w) * 1e-3, r->f0 * (1 + w) * 1e-3);
+        tt_figure_line(f, 1, fk, p, n, "Welch spectrum", 1 | TT_PLOT_POINTS);
+        tt_figure_line(f, 1, fk, m, n, "fit", 2);
+        rc = tt_figure_write_png(f, path, 1000, 1000);
     }
     free(fk), free(p), free(m);
     tt_figure_free(f);
@@ -105,10 +113,11 @@ int cmd_tune(int argc, char **argv)
                "averages = %.6g\nf0_Hz = %.8g\nf0_err_Hz = %.3g\nQ = %.6g\nQ_err = %.3g\n"
                "k_N_per_m = %.6g\nk_err_N_per_m = %.3g\nchi = %.6g\nfloor_m2_per_Hz = %.6g\n"
                "floor_err_m2_per_Hz = %.3g\nchi2_dof = %.4g\nvariance_m2 = %.6g\n"
-               "variance_err_m2 = %.3g\nequipartition_m2 = %.6g\nnoise_factor = %.6g\n",
+               "variance_err_m2 = %.3g\nequipartition_m2 = %.6g\nnoise_factor = %.6g\n"
+               "fit_low_Hz = %.6g\nfit_high_Hz = %.6g\n",
                r.temperature, r.fs, r.bin_width, r.segments, r.averages, r.f0, r.f0_err, r.Q, r.Q_err,
                r.k, r.k_err, r.chi, r.white, r.white_err, r.chi2_dof, r.variance, r.variance_err,
-               kT / k_scene * r.noise_factor, r.noise_factor);
+               kT / k_scene * r.noise_factor, r.noise_factor, r.fit_low, r.fit_high);
         if (!args.quiet)
             fprintf(stderr, "run_time_s = %.3f\noutput = %s%s%s\n", cli_now() - t0, args.output,
                     args.plot ? ", plot " : "", args.plot ? args.plot : "");

@@ -145,7 +145,7 @@ int tt_run_force(const tt_scene *s, tt_table **out, tt_force_summary *sum, tt_pr
     size_t mat;
     *out = NULL;
     int rc;
-    if ((rc = tt_force_params_read(s, &p)) || (rc = run_setup(s, &copy, &st)) ||
+    if ((rc = tt_scene_locate(s, tt_force_params_read(s, &p))) || (rc = run_setup(s, &copy, &st)) ||
         (rc = tt_config_noise(copy, tt_setup_solver(st), tt_setup_cantilever(st)->fd, &noise)) ||
         (rc = tt_scene_locate(copy, tt_setup_find_material(st, p.material, "force", "material", &mat))) ||
         (rc = tt_setup_use_material(st, mat)))

@@ -55,6 +55,7 @@ static double acov_square(const tune_fit *m)
     const double h = m->f0 / (m->Q * 64 > 64 ? m->Q * 64 : 64);
     tune_fit o = *m;
     o.W = 0;
+    o.fs = 0; /* the process itself, not its folded samples */
     double s = 0;
     for (double f = 0.5 * h; f < 40 * m->f0; f += h) {
         double v = tune_model(&o, f);
@@ -111,7 +112,7 @@ int tt_run_tune(const tt_scene *s, tt_table **out, tt_tune_result *res, tt_progr
     tt_tune_result r = {.chi = 1};
     *out = NULL;
     int rc;
-    if ((rc = tt_tune_params_read(s, &p)) || (rc = run_setup(s, &copy, &st)) ||
+    if ((rc = tt_scene_locate(s, tt_tune_params_read(s, &p))) || (rc = run_setup(s, &copy, &st)) ||
         (rc = tt_config_noise(copy, tt_setup_solver(st), tt_setup_cantilever(st)->fd, &noise)))
         goto done;
     if (!(noise.temperature > 0)) {
@@ -196,13 +197,17 @@ int tt_run_tune(const tt_scene *s, tt_table **out, tt_tune_result *res, tt_progr
     /* the floor's first guess: the density near Nyquist, where the oscillator's is
      * (f0 / f)^4 smaller */
     const size_t nb = L / 2;
-    tune_fit fit = {.dt = 1 / (c.fd * noise.points)};
+    tune_fit fit = {.dt = 1 / (c.fd * noise.points), .fs = fs};
     first_guess(psd, nb, r.bin_width, noise.detector > 0 ? psd[nb - nb / 16 - 1] : 0, &fit);
-    /* the window: twenty half-widths f0 / 2Q either side of the peak, at most 0.95 f0 */
+    /* the window: twenty half-widths f0 / 2Q either side of the peak, at most 0.95 f0;
+     * with a detector floor on to 0.95 of Nyquist, where the floor shows */
+    size_t k0 = 2, k1 = nb - 1;
     for (int pass = 0; pass < 2 && rc == TT_OK; pass++) {
         double w = fmin(0.95, 10 / fit.Q);
-        size_t k0 = (size_t)fmax(2, floor(fit.f0 * (1 - w) / r.bin_width));
-        size_t k1 = (size_t)fmin((double)nb - 1, ceil(fit.f0 * (1 + w) / r.bin_width));
+        k0 = (size_t)fmax(2, floor(fit.f0 * (1 - w) / r.bin_width));
+        k1 = (size_t)fmin((double)nb - 1, ceil(fit.f0 * (1 + w) / r.bin_width));
+        if (noise.detector > 0)
+            k1 = (size_t)fmax((double)k1, 0.95 * (double)nb);
         rc = tune_fit_psd(psd, k0, k1, r.bin_width, r.averages, noise.detector > 0, &fit);
     }
     if (rc)
@@ -226,6 +231,8 @@ int tt_run_tune(const tt_scene *s, tt_table **out, tt_tune_result *res, tt_progr
     /* Var of the sample variance of a Gaussian record of length T: (2 / T) integral of
      * the autocovariance squared */
     r.variance_err = sqrt(2 * acov_square(&fit) * fs / (double)N);
+    r.fit_low = (double)k0 * r.bin_width;
+    r.fit_high = (double)k1 * r.bin_width;
     tt_table *t = tt_table_alloc(&t) == TT_OK ? t : NULL;
     if (!t || tt_table_add(t, "f", "Hz", 0) || tt_table_add(t, "psd", "m^2/Hz", 0) ||
         tt_table_add(t, "fit", "m^2/Hz", 0)) {
@@ -239,7 +246,8 @@ int tt_run_tune(const tt_scene *s, tt_table **out, tt_tune_result *res, tt_progr
             break;
         tt_table_set(t, 0, (double)k * r.bin_width);
         tt_table_set(t, 1, psd[k]);
-        tt_table_set(t, 2, tune_model(&fit, (double)k * r.bin_width));
+        /* the fit where it was fitted */
+        tt_table_set(t, 2, k >= k0 && k <= k1 ? tune_model(&fit, (double)k * r.bin_width) : NAN);
     }
     const struct {
         const char *key;
@@ -249,7 +257,8 @@ int tt_run_tune(const tt_scene *s, tt_table **out, tt_tune_result *res, tt_progr
                 {"f0_err", r.f0_err}, {"Q", r.Q}, {"Q_err", r.Q_err}, {"k", r.k}, {"k_err", r.k_err},
                 {"chi", r.chi}, {"white", r.white}, {"white_err", r.white_err}, {"chi2_dof", r.chi2_dof},
                 {"variance", r.variance}, {"variance_err", r.variance_err},
-                {"noise_factor", r.noise_factor}, {"cycles", (double)r.cycles}};
+                {"noise_factor", r.noise_factor}, {"cycles", (double)r.cycles},
+                {"fit_low", r.fit_low}, {"fit_high", r.fit_high}};
     for (size_t i = 0; i < sizeof meta / sizeof meta[0] && rc == TT_OK; i++)
         rc = run_meta_number(t, meta[i].key, meta[i].v);
 done:

@@ -15,12 +15,14 @@ int tune_welch(const double *x, size_t n, double fs, size_t L, double *psd, long
 typedef struct {
     double P, f0, Q, W;    /* the oscillator's zero-frequency density, resonance, Q, floor */
     double dt;             /* the thermal force's point spacing (sinc^4 factor) */
+    double fs;             /* the sample rate (the images above Nyquist fold back) */
     double cov[4][4];      /* covariance of (ln P, ln f0, ln Q, ln W) */
     double chi2_dof;
     int nparam;            /* 3: no floor fitted (W = 0), 4 with it */
 } tune_fit;
 
-/* The model at f: sinc^4(f dt) P / ((1 - u^2)^2 + (u / Q)^2) + W, u = f / f0. */
+/* The model at f: sinc^4(f dt) P / ((1 - u^2)^2 + (u / Q)^2), u = f / f0, with its
+ * images at n fs -+ f (n = 1, 2) folded back by the sampling, plus W. */
 double tune_model(const tune_fit *m, double f);
 
 /* Fit psd over bins [k0, k1] (bin width df, averages the Welch estimate's), with the

@@ -59,10 +59,21 @@ int tune_welch(const double *x, size_t n, double fs, size_t L, double *psd, long
 
 static double sinc(double x) { return x == 0 ? 1 : sin(M_PI * x) / (M_PI * x); }
 
-double tune_model(const tune_fit *m, double f)
+/* The oscillator's one-sided density at f >= 0 under the interpolated force. */
+static double oscillator(const tune_fit *m, double f)
 {
     double u = f / m->f0, a = 1 - u * u, b = u / m->Q, s = sinc(f * m->dt);
-    return s * s * s * s * m->P / (a * a + b * b) + m->W;
+    return s * s * s * s * m->P / (a * a + b * b);
+}
+
+double tune_model(const tune_fit *m, double f)
+{
+    /* sampled at fs without a filter, the density above Nyquist folds back: its images
+     * at n fs +- f (two each side: the next are (1/5)^4 of the first) */
+    double S = oscillator(m, f);
+    for (int n = 1; n <= 2 && m->fs > 0; n++)
+        S += oscillator(m, n * m->fs - f) + oscillator(m, n * m->fs + f);
+    return S + m->W;
 }
 
 /* The data of a fit: bins, weights from the last model, the parameters' packing. */

@@ -39,6 +39,7 @@ typedef struct {
     double chi;                  /* the optical-lever correction used (1: a point mass) */
     double white, white_err;     /* the detector's floor, m^2/Hz one-sided (0 without) */
     double chi2_dof;             /* the fit's weighted residual per degree of freedom */
+    double fit_low, fit_high;    /* the fit's window, Hz */
     double variance;             /* the record's mean square deflection, m^2 */
     double variance_err;         /* its statistical error, m^2 */
     double noise_factor;         /* <x^2> k / kB T the interpolated force gives (below 1) */
@@ -53,7 +54,8 @@ int tt_tune_params_read(const tt_scene *s, tt_tune_params *p);
  * sinc^4, about sinc^4(f0 dt) for a sharp resonance. */
 double tt_tune_noise_factor(double f0, double Q, double fd, int points);
 
-/* Rows f (Hz), psd (m^2/Hz, one-sided), fit (m^2/Hz) over the spectrum's bins; the
+/* Rows f (Hz), psd (m^2/Hz, one-sided), fit (m^2/Hz; NAN outside the fit's window) over
+ * the spectrum's bins; the
  * result as metadata and in *r when not NULL. TT_EINVAL naming [noise] temperature when
  * it is 0, [tune] keys when the record is too short for the resolution. */
 int tt_run_tune(const tt_scene *s, tt_table **out, tt_tune_result *r, tt_progress_fn progress, void *user);
