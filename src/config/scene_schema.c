@@ -115,7 +115,7 @@ static const tt_scene_key force_keys[] = {
     {"range", Q(TT_DIM_LENGTH), NULL, 0, INF, POS, NULL, "instead of from: from = to + range"},
     {"speed", Q(TT_DIM_VELOCITY), "1 um/s", 0, INF, POS, NULL, "ramp speed, both ways"},
     {"dwell", Q(TT_DIM_TIME), "0 s", 0, INF, 0, NULL, "pause at the turn"},
-    {"samples", TT_KEY_INT, 0, "1000", 10, 1e7, 0, NULL, "output rows per leg (approach, retract)"},
+    {"samples", TT_KEY_INT, 0, "1000", 10, 1e7, 0, NULL, "output rows per leg (approach, dwell, retract)"},
     {"material", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
      "material under the tip (default: the first [material])"},
 };
@@ -126,7 +126,7 @@ static const tt_scene_key tune_keys[] = {
     {"samples_per_cycle", TT_KEY_INT, 0, "8", 4, 1024, 0, NULL,
      "deflection samples per drive period (sample rate = this times the drive frequency)"},
     {"bin_width", Q(TT_DIM_FREQUENCY), "0 Hz", 0, INF, 0, NULL,
-     "Welch segments' frequency resolution (0: a sixteenth of the resonance's width f/Q)"},
+     "the spectrum's resolution at most (segments of a power of two samples; 0: the scene's f0 / 16 Q)"},
 };
 
 static const tt_scene_key solver_keys[] = {
