@@ -56,6 +56,7 @@
 #include "tiptap/config/config.h"
 #include "tiptap/config/ini.h"
 #include "tiptap/config/meta.h"
+#include "tiptap/config/read_force_tune.h"
 #include "tiptap/config/read_trace.h"
 #include "tiptap/config/scene.h"
 #include "tiptap/config/setup.h"
@@ -64,7 +65,9 @@
 #include "tiptap/config/sweep.h"
 #include "tiptap/config/units.h"
 
+#include "tiptap/run/force.h"
 #include "tiptap/run/run.h"
 #include "tiptap/run/sweep.h"
+#include "tiptap/run/tune.h"
 
 #endif

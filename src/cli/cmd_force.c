@@ -119,7 +119,8 @@ int cmd_force(int argc, char **argv)
     if (rc == TT_OK)
         rc = write_csv(args.output, t);
     if (rc == TT_OK && args.plot) {
-        const char *mat = tt_scene_get_string(scene, "force", NULL, "material");
+        tt_force_params fp;
+        const char *mat = tt_config_force(scene, &fp) == TT_OK ? fp.material : NULL;
         char title[256];
         snprintf(title, sizeof title, "Force curve%s%s: k = %.3g N/m, %.3g um/s", mat ? " on " : "",
                  mat ? mat : "", s.k, s.speed * 1e6);

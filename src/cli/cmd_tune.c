@@ -3,6 +3,7 @@
 #include <stdlib.h>
 
 #include "commands.h"
+#include "tiptap/config/config.h"
 #include "tiptap/io/outfile.h"
 #include "tiptap/io/plot.h"
 #include "tiptap/run/tune.h"
@@ -98,7 +99,9 @@ int cmd_tune(int argc, char **argv)
     tt_tune_result r;
     cli_progress prog;
     double t0 = cli_now(), k_scene = NAN;
-    tt_scene_get_double(scene, "cantilever", NULL, "spring_constant", &k_scene);
+    tt_cantilever lever;
+    if (tt_config_cantilever(scene, &lever) == TT_OK)
+        k_scene = lever.k;
     cli_progress_begin(&prog, "tune", "drive periods", args.quiet);
     cli_catch_interrupt();
     int rc = tt_run_tune(scene, &t, &r, progress, &prog);

@@ -9,6 +9,7 @@
 
 #include "run_common.h"
 #include "tiptap/config/config.h"
+#include "tiptap/config/read_force_tune.h"
 #include "tiptap/config/setup.h"
 #include "tiptap/solver/noise.h"
 #include "tiptap/util/cancel.h"
@@ -21,33 +22,8 @@ static const run_column columns[NCOL] = {
 };
 static const char *const leg_names[3] = {"approach", "dwell", "retract"};
 
-int tt_force_params_read(const tt_scene *s, tt_force_params *p)
-{
-    memset(p, 0, sizeof *p);
-    int rc;
-    p->material = tt_scene_get_string(s, "force", NULL, "material");
-    if ((rc = tt_scene_get_double(s, "force", NULL, "to", &p->to)) ||
-        (rc = tt_scene_get_double(s, "force", NULL, "speed", &p->speed)) ||
-        (rc = tt_scene_get_double(s, "force", NULL, "dwell", &p->dwell)) ||
-        (rc = tt_scene_get_int(s, "force", NULL, "samples", &p->samples)))
-        return rc;
-    int has_from = tt_scene_has(s, "force", NULL, "from"), has_range = tt_scene_has(s, "force", NULL, "range");
-    if (has_from && has_range)
-        return tt_scene_fail(s, "force", NULL, "range", "give from or range, not both");
-    if (has_range) {
-        double range;
-        if ((rc = tt_scene_get_double(s, "force", NULL, "range", &range)))
-            return rc;
-        p->from = p->to + range;
-    } else if ((rc = tt_scene_get_double(s, "force", NULL, "from", &p->from)))
-        return rc;
-    if (!(p->from > p->to))
-        return tt_scene_fail(s, "force", NULL, has_range ? "range" : "from",
-                             "the ramp must start farther from the sample than it turns (from %.4g nm, "
-                             "to %.4g nm)", p->from * 1e9, p->to * 1e9);
-    p->points_per_cycle = 8;
-    return TT_OK;
-}
+/* Samples the analysis reads per drive period: the snap's start to an eighth of one. */
+#define POINTS_PER_PERIOD 8
 
 /* The online analysis of the samples, in time order. */
 typedef struct {
@@ -145,7 +121,7 @@ int tt_run_force(const tt_scene *s, tt_table **out, tt_force_summary *sum, tt_pr
     size_t mat;
     *out = NULL;
     int rc;
-    if ((rc = tt_scene_locate(s, tt_force_params_read(s, &p))) || (rc = run_setup(s, &copy, &st)) ||
+    if ((rc = tt_scene_locate(s, tt_config_force(s, &p))) || (rc = run_setup(s, &copy, &st)) ||
         (rc = tt_config_noise(copy, tt_setup_solver(st), tt_setup_cantilever(st)->fd, &noise)) ||
         (rc = tt_scene_locate(copy, tt_setup_find_material(st, p.material, "force", "material", &mat))) ||
         (rc = tt_setup_use_material(st, mat)))
@@ -161,18 +137,9 @@ int tt_run_force(const tt_scene *s, tt_table **out, tt_force_summary *sum, tt_pr
         goto done;
     tt_sim_noise_key(sim, tt_noise_key(noise.seed, TT_NOISE_THERMAL, 0));
     const double T = c.T, travel = p.from - p.to;
-    long nleg = (long)ceil(travel / (p.speed * T) - 1e-9), ndwell = (long)llround(p.dwell / T);
-    if (nleg < 1)
-        nleg = 1;
-    if ((double)nleg * 2 + (double)ndwell > 1e9) {
-        rc = tt_scene_locate(copy, tt_scene_fail(copy, "force", NULL, "speed",
-                                                 "the ramp would take %.3g drive periods (more than 1e9): "
-                                                 "a faster ramp or a shorter range",
-                                                 (double)nleg * 2 + (double)ndwell));
-        goto done;
-    }
+    const long nleg = p.leg_periods, ndwell = p.dwell_periods;
     const double u = travel / ((double)nleg * T);
-    const int n = p.points_per_cycle;
+    const int n = POINTS_PER_PERIOD;
     if (!(buf = calloc((size_t)n, sizeof *buf)) || !(t = run_table(columns, NCOL))) {
         rc = t ? tt_error_nomem("the force curve's samples") : TT_ENOMEM;
         goto done;

@@ -9,24 +9,11 @@
 #include "run_common.h"
 #include "tune_private.h"
 #include "tiptap/config/config.h"
+#include "tiptap/config/read_force_tune.h"
 #include "tiptap/config/setup.h"
 #include "tiptap/solver/noise.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
-
-/* The record's longest length in samples (8 bytes each): 2e8 is 1.6 GB. */
-#define TUNE_MAX_SAMPLES 2e8
-
-int tt_tune_params_read(const tt_scene *s, tt_tune_params *p)
-{
-    memset(p, 0, sizeof *p);
-    int rc;
-    if ((rc = tt_scene_get_double(s, "tune", NULL, "duration", &p->duration)) ||
-        (rc = tt_scene_get_int(s, "tune", NULL, "samples_per_cycle", &p->samples_per_cycle)) ||
-        (rc = tt_scene_get_double(s, "tune", NULL, "bin_width", &p->bin_width)))
-        return rc;
-    return TT_OK;
-}
 
 static double sinc4(double x)
 {
@@ -64,24 +51,6 @@ static double acov_square(const tune_fit *m)
     return 0.5 * s;
 }
 
-/* The segment length: a power of two giving at most the bin width asked for (0: f0/16Q),
- * refused when the record holds fewer than 8 segments of it. */
-static int segment_length(const tt_scene *s, const tt_tune_params *p, const tt_cantilever *c, double fs,
-                          size_t n, size_t *L)
-{
-    double bw = p->bin_width > 0 ? p->bin_width : c->f0 / (16 * c->Q);
-    size_t l = 16;
-    while ((double)l < fs / bw && l < ((size_t)1 << 30))
-        l *= 2;
-    if ((double)n < 4.5 * (double)l)
-        return tt_scene_fail(s, "tune", NULL, "duration",
-                             "the record (%.4g s) holds fewer than 8 half-overlapping segments of "
-                             "%.4g s (a bin width of %.4g Hz): at least %.4g s, or a wider bin_width",
-                             (double)n / fs, (double)l / fs, fs / (double)l, 4.5 * (double)l / fs);
-    *L = l;
-    return TT_OK;
-}
-
 /* The fit's first guesses from the spectrum: the highest bin above the lowest few, the
  * width at half its height, the level there. */
 static void first_guess(const double *psd, size_t nb, double df, double W, tune_fit *m)
@@ -112,30 +81,13 @@ int tt_run_tune(const tt_scene *s, tt_table **out, tt_tune_result *res, tt_progr
     tt_tune_result r = {.chi = 1};
     *out = NULL;
     int rc;
-    if ((rc = tt_scene_locate(s, tt_tune_params_read(s, &p))) || (rc = run_setup(s, &copy, &st)) ||
+    if ((rc = tt_scene_locate(s, tt_config_tune(s, &p))) || (rc = run_setup(s, &copy, &st)) ||
         (rc = tt_config_noise(copy, tt_setup_solver(st), tt_setup_cantilever(st)->fd, &noise)))
         goto done;
-    if (!(noise.temperature > 0)) {
-        rc = tt_scene_locate(copy, tt_scene_fail(copy, "noise", NULL, "temperature",
-                                                 "tiptap tune needs the thermal force: a temperature "
-                                                 "above 0 K, such as 300 K"));
-        goto done;
-    }
     tt_cantilever c = *tt_setup_cantilever(st);
-    const long n = p.samples_per_cycle;
+    const long n = p.samples_per_cycle, cycles = p.cycles;
     const double fs = (double)n * c.fd;
-    const long cycles = (long)ceil(p.duration * c.fd);
-    if ((double)cycles * (double)n > TUNE_MAX_SAMPLES) {
-        rc = tt_scene_locate(copy, tt_scene_fail(copy, "tune", NULL, "duration",
-                                                 "%.4g samples; at most %.0e (a shorter record or fewer "
-                                                 "samples_per_cycle)", (double)cycles * (double)n,
-                                                 TUNE_MAX_SAMPLES));
-        goto done;
-    }
-    const size_t N = (size_t)cycles * (size_t)n;
-    size_t L = 0;
-    if ((rc = tt_scene_locate(copy, segment_length(copy, &p, &c, fs, N, &L))))
-        goto done;
+    const size_t N = (size_t)cycles * (size_t)n, L = p.segment;
     if (!(buf = calloc((size_t)n, sizeof *buf)) || !(x = malloc(N * sizeof *x)) ||
         !(psd = malloc((L / 2 + 1) * sizeof *psd))) {
         rc = tt_error_nomem("the tune's record (%zu samples)", N);

@@ -15,20 +15,12 @@
 #define TIPTAP_RUN_FORCE_H
 
 #include "tiptap/export.h"
+#include "tiptap/config/read_force_tune.h"
 #include "tiptap/config/scene.h"
 #include "tiptap/run/run.h"
 #include "tiptap/util/table.h"
 
 TT_BEGIN_DECLS
-
-typedef struct {
-    const char *material; /* NULL: the first */
-    double from, to;      /* rest separation at the ramp's start and at its turn, m (from > to) */
-    double speed;         /* m/s */
-    double dwell;         /* s at the turn */
-    long samples;         /* rows per leg of the ramp (approach, retract) */
-    int points_per_cycle; /* samples the analysis reads per drive period */
-} tt_force_params;
 
 /* What a force curve shows. Forces are the tip-sample force (N, repulsive positive);
  * z is the rest separation (m). NAN where there was none (no jump-in, no contact). */
@@ -52,10 +44,8 @@ typedef struct {
     double k;                 /* the lever's spring constant, N/m */
 } tt_force_summary;
 
-/* [force] of the scene, checked (TT_EINVAL naming "[force] KEY"). */
-int tt_force_params_read(const tt_scene *s, tt_force_params *p);
-
-/* A row per sample: t (s), z (m), deflection (m, tip - base, positive toward the sample),
+/* [force] read by tt_config_force (refusals name the file and key, before anything
+ * runs). A row per sample: t (s), z (m), deflection (m, tip - base, positive toward the sample),
  * separation (m, tip-sample gap z - deflection; negative: indentation), force (N,
  * tip-sample), lever_force (N, -k deflection: what the instrument reads), contact (1, 0),
  * leg (approach, dwell, retract). The summary as metadata, and in *sum when not NULL. */

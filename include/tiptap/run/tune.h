@@ -16,17 +16,12 @@
 #define TIPTAP_RUN_TUNE_H
 
 #include "tiptap/export.h"
+#include "tiptap/config/read_force_tune.h"
 #include "tiptap/config/scene.h"
 #include "tiptap/run/run.h"
 #include "tiptap/util/table.h"
 
 TT_BEGIN_DECLS
-
-typedef struct {
-    double duration;       /* record length, s */
-    long samples_per_cycle;
-    double bin_width;      /* Hz; 0: f0 / (16 Q) of the scene's lever */
-} tt_tune_params;
 
 typedef struct {
     double temperature;          /* K */
@@ -46,8 +41,6 @@ typedef struct {
     long cycles;                 /* drive periods integrated */
 } tt_tune_result;
 
-int tt_tune_params_read(const tt_scene *s, tt_tune_params *p);
-
 /* The free lever's mean square thermal deflection relative to kB T / k when the force
  * is drawn at points per drive period of frequency fd and linear between (its spectrum
  * 2 c kB T sinc^4(f dt), dt = 1 / (points fd)): the oscillator's |H|^2 weighted mean of
@@ -56,8 +49,9 @@ double tt_tune_noise_factor(double f0, double Q, double fd, int points);
 
 /* Rows f (Hz), psd (m^2/Hz, one-sided), fit (m^2/Hz; NAN outside the fit's window) over
  * the spectrum's bins; the
- * result as metadata and in *r when not NULL. TT_EINVAL naming [noise] temperature when
- * it is 0, [tune] keys when the record is too short for the resolution. */
+ * result as metadata and in *r when not NULL. [tune] read by tt_config_tune: TT_EINVAL
+ * naming [noise] temperature when it is 0, [tune] duration when the record is too short
+ * for the resolution, before anything runs. */
 int tt_run_tune(const tt_scene *s, tt_table **out, tt_tune_result *r, tt_progress_fn progress, void *user);
 
 TT_END_DECLS
