@@ -175,6 +175,34 @@ static void contact_slope(void **state)
     tt_scene_free(s);
 }
 
+/* A dwell at the turn: its rows sit at z = to for the dwell's length, and it adds its
+ * drive periods to the run. */
+static void dwell(void **state)
+{
+    (void)state;
+    tt_scene *s = scene(stiff, "disk");
+    tt_force_summary a = run(s);
+    if (tt_scene_load_string(s, "[force]\ndwell = 0.5 ms\n", "dwell"))
+        fail_msg("%s", tt_error_message());
+    tt_table *t = NULL;
+    tt_force_summary b;
+    if (tt_run_force(s, &t, &b, NULL, NULL) != TT_OK)
+        fail_msg("%s", tt_error_message());
+    assert_int_equal(b.cycles - a.cycles, 150); /* 0.5 ms at 300 kHz */
+    const double *tm = tt_table_numbers(t, 0), *z = tt_table_numbers(t, 1);
+    double t0 = INFINITY, t1 = -INFINITY;
+    size_t n = 0;
+    for (size_t i = 0; i < tt_table_rows(t); i++)
+        if (strcmp(tt_table_text(t, 7, i), "dwell") == 0) {
+            assert_close(z[i], -1e-9, 1e-15);
+            t0 = fmin(t0, tm[i]), t1 = fmax(t1, tm[i]), n++;
+        }
+    assert_true(n >= 100);
+    assert_close(t1 - t0, 0.5e-3, 0.5e-3 / 100);
+    tt_table_free(t);
+    tt_scene_free(s);
+}
+
 /* Bad [force] keys are refused before anything runs, naming the key. */
 static void refusals(void **state)
 {
@@ -199,6 +227,7 @@ int main(void)
         cmocka_unit_test(adhesion_is_least_load),
         cmocka_unit_test(jumpin_where_stiffness_meets_gradient),
         cmocka_unit_test(contact_slope),
+        cmocka_unit_test(dwell),
         cmocka_unit_test(refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
