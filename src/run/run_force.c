@@ -28,13 +28,13 @@ static const char *const leg_names[3] = {"approach", "dwell", "retract"};
 /* The online analysis of the samples, in time order. */
 typedef struct {
     tt_force_summary s;
-    double k, vth, u;
-    int touched, left; /* the approach has contacted; the retract has left for good */
+    double vth;  /* the tip's speed that marks the snap, m/s */
+    int touched; /* the approach has contacted */
     double last_calm_z, last_calm_f, last_calm_gap;
     double last_contact_z, last_contact_f;
 } force_scan;
 
-static void analyse(force_scan *a, int leg, double z, double d, double v, double gap, double F, int contact)
+static void analyse(force_scan *a, int leg, double z, double v, double gap, double F, int contact)
 {
     tt_force_summary *s = &a->s;
     if (F > s->max_force || isnan(s->max_force))
@@ -52,7 +52,6 @@ static void analyse(force_scan *a, int leg, double z, double d, double v, double
             a->last_calm_gap = gap;
         }
     }
-    (void)d;
     if (leg == 2) {
         if (-F > s->adhesion || isnan(s->adhesion))
             s->adhesion = -F;
@@ -151,7 +150,7 @@ int tt_run_force(const tt_scene *s, tt_table **out, tt_force_summary *sum, tt_pr
     force_scan a = {.s = {.speed = u, .k = c.k, .jumpin_z = NAN, .jumpin_force = NAN, .jumpin_gap = NAN,
                           .contact_z = NAN, .pulloff_z = NAN, .pulloff_force = NAN, .adhesion = NAN,
                           .max_force = NAN, .slope = NAN, .slope_deflection = NAN, .slope_retract = NAN},
-                    .k = c.k, .u = u, .last_calm_z = NAN, .last_calm_f = NAN, .last_calm_gap = NAN,
+                    .last_calm_z = NAN, .last_calm_f = NAN, .last_calm_gap = NAN,
                     .last_contact_z = NAN, .last_contact_f = NAN};
     /* the snap's start: the tip faster than ten times the ramp, or five times the thermal
      * rms speed sqrt(kB T / m) when the lever is warm */
@@ -176,7 +175,7 @@ int tt_run_force(const tt_scene *s, tt_table **out, tt_force_summary *sum, tt_pr
             for (int k = 0; k < n && rc == TT_OK; k++) {
                 const tt_sample *x = &buf[k];
                 const double z = x->s, y = x->d - x->z, F = tt_sim_force(sim, x, NULL);
-                analyse(&a, leg, z, x->d, x->v, z - y, F, x->contact);
+                analyse(&a, leg, z, x->v, z - y, F, x->contact);
                 long idx = i * n + k;
                 int last = i == legs[leg] - 1 && k == n - 1;
                 if (idx % stride != 0 && !last)

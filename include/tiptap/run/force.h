@@ -33,8 +33,8 @@ typedef struct {
     double jumpin_force;      /* the force there: the largest attraction the lever held */
     double jumpin_gap;        /* the tip-sample gap there, m */
     double contact_z;         /* the approach's first contact event */
-    double pulloff_z;         /* the retract's last contact (the tip leaves) */
-    double pulloff_force;     /* the force at that last in-contact point */
+    double pulloff_z;         /* where the tip first leaves the surface on the retract */
+    double pulloff_force;     /* the force at the last in-contact point before it */
     double adhesion;          /* the largest attraction on the retract, -min force, N */
     double max_force;         /* the largest force (at the turn, or the dwell), N */
     double slope;             /* the approach's contact part: -dF/dz, N/m, a straight line
