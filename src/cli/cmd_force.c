@@ -25,10 +25,11 @@ static void help(void)
            CLI_HELP_SET
            "  -q, --quiet        no progress on stderr\n\n"
            "stdout: the jump-in (where the tip snapped, the force it held there), the first\n"
-           "contact, the pull-off (where the tip first leaves, the force just before), the largest\n"
-           "adhesion on the retract, the largest force, and the contact part's slope: -dF/dz\n"
-           "(N/m) and d(deflection)/dz, a straight line through the points above half the\n"
-           "largest force. [noise] temperature adds the thermal force (docs/force-and-tune.md).\n");
+           "contact, the pull-off (where the tip first leaves, the force just before), the\n"
+           "largest adhesion on the retract, the largest force, and the contact part's slope:\n"
+           "-dF/dz (N/m) and d(deflection)/dz, a straight line through the points above half\n"
+           "the largest force. [noise] temperature adds the thermal force\n"
+           "(docs/force-and-tune.md).\n");
 }
 
 static int write_csv(const char *path, const tt_table *t)
