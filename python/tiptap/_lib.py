@@ -129,6 +129,7 @@ typedef struct {
     double step;
     long cycles;
     double seconds;
+    long stretches;
 } tt_scan_error;
 int tt_scan_estimate_error(tt_scan *s, tt_scan_error *e);
 

@@ -175,7 +175,7 @@ def scan(scene, *, set=None, threads=0, progress=None, error_estimate=False, hdf
             "line": e.line, "tolerance": e.tolerance,
             # where it checked (the image's hardest stretch) and what it cost
             "pixels": e.pixels, "pixels_line": e.pixels_line, "first_pixel": e.first,
-            "step_m": e.step, "cycles": e.cycles, "cpu_s": e.seconds,
+            "step_m": e.step, "cycles": e.cycles, "cpu_s": e.seconds, "stretches": e.stretches,
         }
         with col.installed():
             lib.tt_run_scan_warn_error(s, cost, e)

@@ -483,7 +483,11 @@ int cmd_scan(int argc, char **argv)
             else
                 fprintf(stderr, "the profile line (no height step in the image)");
             long integ = tt_scan_cycles_integrated(scan);
-            if (est.pixels < est.pixels_line)
+            if (est.pixels < est.pixels_line && est.stretches > 1)
+                fprintf(stderr, ", %ld pixels of the trace in %ld stretches (the largest step's from "
+                                "pixel %ld, and the first edge of each pair of materials)",
+                        est.pixels, est.stretches, est.first);
+            else if (est.pixels < est.pixels_line)
                 fprintf(stderr, ", %ld of its %ld pixels (the trace's from pixel %ld)", est.pixels,
                         est.pixels_line, est.first);
             else

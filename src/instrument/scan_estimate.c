@@ -77,15 +77,15 @@ static long companion_budget(const tt_scan *S, const tt_solver *tight)
 
 /* Where the image is hardest: the largest height step between neighbouring pixels of
  * the trace (of trace and retrace when the companion covers whole lines, reach >= the
- * pixels), its line, and the first pixel of the stretch of reach pixels the companion
- * runs, the step a quarter into it. The profile line from its start where no line has
- * a step (a flat image, or no height channel). */
-static long hardest_line(const tt_scan *S, long reach, double *step, long *first)
+ * pixels), its line and pixel. The profile line from its start where no line has a
+ * step (a flat image, or no height channel). */
+static long hardest_line(const tt_scan *S, long reach, double *step, long *at)
 {
     const tt_raster *R = &S->raster;
     const int dirs = reach >= R->pixels && R->retrace ? 2 : 1;
-    long best = S->profile_line, at = 0;
+    long best = S->profile_line;
     double top = 0;
+    *at = 0;
     for (long l = 0; l < R->lines; l++) {
         if (!S->line_done[l])
             continue;
@@ -96,19 +96,105 @@ static long hardest_line(const tt_scan *S, long reach, double *step, long *first
                 if (d > top) {
                     top = d;
                     best = l;
-                    at = i;
+                    *at = i;
                 }
             }
         }
     }
     *step = top;
-    *first = 0;
-    if (reach < R->pixels) {
-        *first = at - reach / 4 > 0 ? at - reach / 4 : 0;
-        if (*first + reach > R->pixels)
-            *first = R->pixels - reach;
-    }
     return best;
+}
+
+/* A stretch of the trace the companion runs: its line, the pixel of its feature and its
+ * first pixel. */
+typedef struct {
+    long line, at, first;
+} stretch;
+
+enum { MAX_STRETCHES = 8 };
+
+/* The material under the trace's pixel px of a line (at its centre, without drift). */
+static int material_at(const tt_scan *S, long line, long px, long nc)
+{
+    double x, y;
+    long k = (2 * px + 1) * nc / (2 * S->raster.pixels);
+    tt_raster_position(&S->raster, line, 0, nc, k, &x, &y);
+    return tt_surface_material(S->surface, x, y);
+}
+
+/* The stretches where the image's error is largest: the largest height step (st[0]),
+ * and the first edge of each ordered pair of materials met along the trace (from the
+ * soft sticky matrix onto a stiff disk the every-cycle tier at 1e-7 erred 0.19 pm where
+ * the largest height step, on the disk, erred 0.04 pm: the bench's edge sample), each
+ * as far as no stretch already holds it; at most MAX_STRETCHES. */
+static int hardest_stretches(const tt_scan *S, long reach, long nc, stretch *st, double *step)
+{
+    const tt_raster *R = &S->raster;
+    st[0].line = S->lines_done > 0 ? hardest_line(S, reach, step, &st[0].at) : S->profile_line;
+    if (S->lines_done == 0)
+        *step = 0, st[0].at = 0;
+    int n = 1;
+    int seen[MAX_STRETCHES][2];
+    for (long l = 0; l < R->lines && !S->uniform && reach < R->pixels; l++) {
+        if (!S->line_done[l])
+            continue;
+        int prev = material_at(S, l, 0, nc);
+        for (long i = 1; i < R->pixels; i++) {
+            int m = material_at(S, l, i, nc), known = 0;
+            if (m == prev)
+                continue;
+            for (int k = 1; k < n; k++)
+                known |= seen[k][0] == prev && seen[k][1] == m;
+            /* held by the height step's stretch, a pixel or more from its start */
+            known |= l == st[0].line && i > st[0].at - reach / 4 && i < st[0].at + reach - reach / 4;
+            if (!known && n < MAX_STRETCHES) {
+                seen[n][0] = prev;
+                seen[n][1] = m;
+                st[n++] = (stretch){l, i, 0};
+            }
+            prev = m;
+        }
+    }
+    for (int k = 0; k < n; k++) {
+        st[k].first = 0;
+        if (reach < R->pixels) {
+            st[k].first = st[k].at - reach / 4 > 0 ? st[k].at - reach / 4 : 0;
+            if (st[k].first + reach > R->pixels)
+                st[k].first = R->pixels - reach;
+        }
+    }
+    return n;
+}
+
+/* The pixels a stretch reaches on budget cycles, settle of them settling, less the one
+ * it stops in. */
+static long stretch_reach(long budget, long settle, long nc, long px)
+{
+    return (long)((double)(budget - settle) / (double)nc * (double)px) - 1;
+}
+
+/* The differences of a stretch's two lines (buf: the run's setting, then the tight
+ * one's; [channel][direction] blocks of px) into max and sum, *n counting the pixels. */
+static void compare(const tt_scan *S, const double *buf, long first, int dirs, int partial,
+                    int rerun, double *max, double *sum, long *n)
+{
+    const long px = S->raster.pixels;
+    const double scale[3] = {1, 1 / S->A0, 1};
+    for (int r = 0; r < (partial ? 1 : dirs); r++)
+        for (long i = r ? 0 : first; i < px; i++) {
+            /* a line stopped by its budget: the trace's pixels before the one it stopped in */
+            if (partial && (i + 1 >= px || isnan(buf[(size_t)(6 * px + 1 + i)]) ||
+                            (rerun && isnan(buf[(size_t)(1 + i)]))))
+                break;
+            for (int c = 0; c < 3; c++) {
+                double a = buf[(size_t)((2 * c + r) * px + i)], b = buf[(size_t)((6 + 2 * c + r) * px + i)];
+                double d = fabs(a - b) * scale[c];
+                if (!(d <= max[c]))
+                    max[c] = d; /* a NaN (a pixel without data) stays visible */
+                sum[c] += d * d;
+            }
+            (*n)++;
+        }
 }
 
 int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
@@ -151,65 +237,60 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
      * from the line's start (its noise counted from another cycle, its feedback fresh):
      * the run's setting runs the same stretch beside it, each on half the budget. The
      * trace's pixels the budget reaches, less the one it stops in: */
-    long full = (long)((double)(budget - settle) / (double)nc * (double)px) - 1;
-    if (budget > 0 && full < px)
+    if (budget > 0 && stretch_reach(budget, settle, nc, px) < px)
         rerun = 1;
     if (rerun)
         budget /= 2;
-    long reach = budget > 0 ? (long)((double)(budget - settle) / (double)nc * (double)px) - 1 : 2 * px;
+    long reach = budget > 0 ? stretch_reach(budget, settle, nc, px) : 2 * px;
+    stretch st[MAX_STRETCHES];
+    double step = 0;
+    int ns = hardest_stretches(S, reach, nc, st, &step);
+    /* each stretch its share of the budget, settling included */
+    if (budget > 0 && ns > 1) {
+        budget /= ns;
+        reach = stretch_reach(budget, settle, nc, px);
+        ns = hardest_stretches(S, reach, nc, st, &step);
+    }
     if (budget > 0 && reach < 2) {
-        /* a scan of a line or two: the fifth does not reach past the companion's
-         * settling, and the whole line runs (e->cycles says what it cost) */
+        /* a scan of a line or two: the fifth does not reach past each stretch's
+         * settling, and the whole hardest line runs (e->cycles says what it cost) */
         budget = 0;
         reach = 2 * px;
+        ns = hardest_stretches(S, reach, nc, st, &step);
     }
-    double step = 0;
-    long first = 0;
-    long line = S->lines_done > 0 ? hardest_line(S, reach, &step, &first) : S->profile_line;
-    /* the stretch's first cycle: the first whole cycle of its first pixel */
-    const long k0 = (first * nc + px - 1) / px;
-    int rc[2] = {TT_OK, TT_OK}, hit[2] = {0, 0};
-    long ran[2] = {0, 0};
-    char why[2][512]; /* a worker thread's message is its own: carried back here */
-#pragma omp parallel for num_threads(2) schedule(static, 1) if (rerun)
-    for (int k = 0; k < 2; k++) {
-        if (k == 0 && !rerun) { /* the image's own line */
-            for (int c = 0; c < 3; c++)
-                for (int r = 0; r < dirs; r++)
-                    for (long i = 0; i < px; i++)
-                        buf[(size_t)(2 * c + r) * (size_t)px + (size_t)i] =
-                            S->img[r][c][tt_raster_index(R, line, i)];
-            continue;
-        }
-        rc[k] = companion_line(S, k ? &tight : &S->solver, line, budget, k0,
-                               buf + (size_t)(6 * k * px), &hit[k], &ran[k]);
-        snprintf(why[k], sizeof why[k], "%s", rc[k] ? tt_error_message() : "");
-    }
-    for (int k = 0; k < 2; k++)
-        if (rc[k]) {
-            free(buf);
-            return tt_error(rc[k], "the companion line at tolerance %g: %s",
-                            k ? tight.tolerance : S->solver.tolerance, why[k]);
-        }
-    const int partial = hit[0] || hit[1];
     double max[3] = {0}, sum[3] = {0};
-    const double scale[3] = {1, 1 / S->A0, 1};
-    long n = 0;
-    for (int r = 0; r < (partial ? 1 : dirs); r++)
-        for (long i = r ? 0 : first; i < px; i++) {
-            /* a line stopped by its budget: the trace's pixels before the one it stopped in */
-            if (partial && (i + 1 >= px || isnan(buf[(size_t)(6 * px + 1 + i)]) ||
-                            (rerun && isnan(buf[(size_t)(1 + i)]))))
-                break;
-            for (int c = 0; c < 3; c++) {
-                double a = buf[(size_t)((2 * c + r) * px + i)], b = buf[(size_t)((6 + 2 * c + r) * px + i)];
-                double d = fabs(a - b) * scale[c];
-                if (!(d <= max[c]))
-                    max[c] = d; /* a NaN (a pixel without data) stays visible */
-                sum[c] += d * d;
+    long n = 0, ran[2] = {0, 0};
+    for (int s = 0; s < ns; s++) {
+        const long line = st[s].line, first = st[s].first;
+        /* the stretch's first cycle: the first whole cycle of its first pixel */
+        const long k0 = (first * nc + px - 1) / px;
+        int rc[2] = {TT_OK, TT_OK}, hit[2] = {0, 0};
+        long cyc[2] = {0, 0};
+        char why[2][512]; /* a worker thread's message is its own: carried back here */
+#pragma omp parallel for num_threads(2) schedule(static, 1) if (rerun)
+        for (int k = 0; k < 2; k++) {
+            if (k == 0 && !rerun) { /* the image's own line */
+                for (int c = 0; c < 3; c++)
+                    for (int r = 0; r < dirs; r++)
+                        for (long i = 0; i < px; i++)
+                            buf[(size_t)(2 * c + r) * (size_t)px + (size_t)i] =
+                                S->img[r][c][tt_raster_index(R, line, i)];
+                continue;
             }
-            n++;
+            rc[k] = companion_line(S, k ? &tight : &S->solver, line, budget, k0,
+                                   buf + (size_t)(6 * k * px), &hit[k], &cyc[k]);
+            snprintf(why[k], sizeof why[k], "%s", rc[k] ? tt_error_message() : "");
         }
+        for (int k = 0; k < 2; k++)
+            if (rc[k]) {
+                free(buf);
+                return tt_error(rc[k], "the companion line at tolerance %g: %s",
+                                k ? tight.tolerance : S->solver.tolerance, why[k]);
+            }
+        ran[0] += cyc[0];
+        ran[1] += cyc[1];
+        compare(S, buf, first, dirs, hit[0] || hit[1], rerun, max, sum, &n);
+    }
     free(buf);
     if (n == 0)
         return tt_error(TT_EINVAL, "the companion line compared no pixel");
@@ -221,12 +302,13 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
     e->amplitude_rms = 2 * sqrt(sum[1] / (double)n);
     e->phase_max = 2 * max[2];
     e->phase_rms = 2 * sqrt(sum[2] / (double)n);
-    e->line = line;
+    e->line = st[0].line;
     e->tolerance = tight.tolerance;
     e->pixels = n;
     e->pixels_line = dirs * px;
     e->step = step;
-    e->first = first;
+    e->first = st[0].first;
+    e->stretches = ns;
     e->cycles = ran[0] + ran[1];
     e->seconds = tt_clock(TT_CLOCK_PROCESS) - c0;
     return TT_OK;
