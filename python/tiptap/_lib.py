@@ -171,7 +171,9 @@ void tt_contact_free(tt_contact *c);
 
 /* solver/integrator.h, instrument/accuracy.h */
 typedef enum { TT_METHOD_DOPRI5 = 0, TT_METHOD_RK4 = 1, TT_METHOD_RADAU = 2 } tt_method;
-typedef enum { TT_TIER_EVERY = 0, TT_TIER_ENVELOPE = 1, TT_TIER_AVERAGED = 2 } tt_tier;
+typedef enum { TT_TIER_EVERY = 0, TT_TIER_ENVELOPE = 1, TT_TIER_AVERAGED = 2, TT_TIER_COUNT = 3 } tt_tier;
+const char *tt_tier_name(tt_tier t);
+int tt_tier_count(void);
 typedef struct {
     tt_method method;
     const char *knob;
