@@ -122,6 +122,13 @@ static int material_at(const tt_scan *S, long line, long px, long nc)
     return tt_surface_material(S->surface, x, y);
 }
 
+/* The first pixel of a stretch of reach pixels with its feature (at) a quarter into it. */
+static long first_pixel(long at, long reach, long pixels)
+{
+    long first = at - reach / 4 > 0 ? at - reach / 4 : 0;
+    return first + reach > pixels ? pixels - reach : first;
+}
+
 /* The stretches where the image's error is largest: the largest height step (st[0]),
  * and the first edge of each ordered pair of materials met along the trace (from the
  * soft sticky matrix onto a stiff disk the every-cycle tier at 1e-7 erred 0.19 pm where
@@ -130,11 +137,11 @@ static int material_at(const tt_scan *S, long line, long px, long nc)
 static int hardest_stretches(const tt_scan *S, long reach, long nc, stretch *st, double *step)
 {
     const tt_raster *R = &S->raster;
-    st[0].line = S->lines_done > 0 ? hardest_line(S, reach, step, &st[0].at) : S->profile_line;
-    if (S->lines_done == 0)
-        *step = 0, st[0].at = 0;
-    int n = 1;
-    int seen[MAX_STRETCHES][2];
+    *step = 0;
+    st[0] = (stretch){S->profile_line, 0, 0};
+    if (S->lines_done > 0)
+        st[0].line = hardest_line(S, reach, step, &st[0].at);
+    int n = 1, seen[MAX_STRETCHES][2];
     for (long l = 0; l < R->lines && !S->uniform && reach < R->pixels; l++) {
         if (!S->line_done[l])
             continue;
@@ -146,7 +153,8 @@ static int hardest_stretches(const tt_scan *S, long reach, long nc, stretch *st,
             for (int k = 1; k < n; k++)
                 known |= seen[k][0] == prev && seen[k][1] == m;
             /* held by the height step's stretch, a pixel or more from its start */
-            known |= l == st[0].line && i > st[0].at - reach / 4 && i < st[0].at + reach - reach / 4;
+            long f0 = first_pixel(st[0].at, reach, R->pixels);
+            known |= l == st[0].line && i > f0 && i < f0 + reach;
             if (!known && n < MAX_STRETCHES) {
                 seen[n][0] = prev;
                 seen[n][1] = m;
@@ -155,14 +163,8 @@ static int hardest_stretches(const tt_scan *S, long reach, long nc, stretch *st,
             prev = m;
         }
     }
-    for (int k = 0; k < n; k++) {
-        st[k].first = 0;
-        if (reach < R->pixels) {
-            st[k].first = st[k].at - reach / 4 > 0 ? st[k].at - reach / 4 : 0;
-            if (st[k].first + reach > R->pixels)
-                st[k].first = R->pixels - reach;
-        }
-    }
+    for (int k = 0; k < n; k++)
+        st[k].first = reach < R->pixels ? first_pixel(st[k].at, reach, R->pixels) : 0;
     return n;
 }
 
