@@ -230,6 +230,34 @@ int tt_run_scan_warn_oscillation(const tt_scan *scan, const tt_scan_scope *scope
                                  const char *files);
 int tt_run_scan_warn_error(const tt_scan *scan, const tt_run_scan_cost *cost,
                            const tt_scan_error *e);
+typedef struct {
+    int threads;
+    tt_progress_fn progress;
+    void *user;
+    tt_scan_scope *scope;
+    const char *scope_files;
+    const char *folder;
+    int hdf5;
+    const char *hdf5_file;
+    int estimate;
+    int (*made)(void *user, const tt_scan *scan, const tt_run_scan_cost *cost);
+    int (*ready)(void *user, tt_scan *scan);
+    int (*finished)(void *user, tt_scan *scan, int status);
+    void (*summary)(void *user, const tt_scan *scan, const void *r);
+} tt_run_scan_job;
+typedef struct {
+    tt_scan *scan;
+    tt_run_scan_cost cost;
+    int written;
+    int oscillating;
+    double scan_seconds;
+    double seconds;
+    int estimate_status;
+    tt_scan_error est;
+} tt_run_scan_result;
+int tt_run_scan(const tt_scene *s, const tt_run_scan_job *job, tt_run_scan_result *r);
+int tt_run_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir,
+                              int hdf5, int *written);
 
 /* config/sweep.h, run/sweep.h */
 typedef struct tt_sweep tt_sweep;
