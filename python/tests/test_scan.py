@@ -100,3 +100,15 @@ def test_error_estimate_as_the_program_reports_it(quick_cli):
     assert r.error["cycles"] > 0 and r.error["cpu_s"] >= 0
     assert 0 <= r.error["height_rms_m"] <= r.error["height_max_m"] < 1e-9
     assert r.error["tolerance"] > 0
+
+
+def test_output_writes_the_programs_files_byte_for_byte(quick_cli, tmp_path):
+    out = tmp_path / "py"
+    tiptap.scan(QUICK, set=QUICK_SET, progress=False, output=str(out))
+    written = sorted(os.listdir(out))
+    # the images' files: scan.gwy, each channel's GSF and PNG, profile.csv (the program
+    # adds scene.ini and the scope's files)
+    assert "scan.gwy" in written and "height_trace.gsf" in written and "profile.csv" in written
+    assert len(written) == 1 + 4 * 7 + 1
+    for name in written:
+        assert (out / name).read_bytes() == (quick_cli / name).read_bytes(), name

@@ -129,6 +129,7 @@ typedef struct {
     double step;
     long cycles;
     double seconds;
+    long stretches;
 } tt_scan_error;
 int tt_scan_estimate_error(tt_scan *s, tt_scan_error *e);
 
@@ -170,7 +171,9 @@ void tt_contact_free(tt_contact *c);
 
 /* solver/integrator.h, instrument/accuracy.h */
 typedef enum { TT_METHOD_DOPRI5 = 0, TT_METHOD_RK4 = 1, TT_METHOD_RADAU = 2 } tt_method;
-typedef enum { TT_TIER_EVERY = 0, TT_TIER_ENVELOPE = 1, TT_TIER_AVERAGED = 2 } tt_tier;
+typedef enum { TT_TIER_EVERY = 0, TT_TIER_ENVELOPE = 1, TT_TIER_AVERAGED = 2, TT_TIER_COUNT = 3 } tt_tier;
+const char *tt_tier_name(tt_tier t);
+int tt_tier_count(void);
 typedef struct {
     tt_method method;
     const char *knob;
@@ -227,6 +230,34 @@ int tt_run_scan_warn_oscillation(const tt_scan *scan, const tt_scan_scope *scope
                                  const char *files);
 int tt_run_scan_warn_error(const tt_scan *scan, const tt_run_scan_cost *cost,
                            const tt_scan_error *e);
+typedef struct {
+    int threads;
+    tt_progress_fn progress;
+    void *user;
+    tt_scan_scope *scope;
+    const char *scope_files;
+    const char *folder;
+    int hdf5;
+    const char *hdf5_file;
+    int estimate;
+    int (*made)(void *user, const tt_scan *scan, const tt_run_scan_cost *cost);
+    int (*ready)(void *user, tt_scan *scan);
+    int (*finished)(void *user, tt_scan *scan, int status);
+    void (*summary)(void *user, const tt_scan *scan, const void *r);
+} tt_run_scan_job;
+typedef struct {
+    tt_scan *scan;
+    tt_run_scan_cost cost;
+    int written;
+    int oscillating;
+    double scan_seconds;
+    double seconds;
+    int estimate_status;
+    tt_scan_error est;
+} tt_run_scan_result;
+int tt_run_scan(const tt_scene *s, const tt_run_scan_job *job, tt_run_scan_result *r);
+int tt_run_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir,
+                              int hdf5, int *written);
 
 /* config/sweep.h, run/sweep.h */
 typedef struct tt_sweep tt_sweep;

@@ -5,7 +5,6 @@ import os
 
 from ._errors import check
 from ._lib import ffi, lib
-from .scan import scan_meta
 
 
 def check_output(path, scene):
@@ -15,13 +14,3 @@ def check_output(path, scene):
     f = ffi.new("tt_h5 **")
     check(lib.tt_h5_create(f, os.fsencode(path)))
     check(lib.tt_h5_close(f[0], 0))
-
-
-def write_scan(scan_p, scene, path):
-    """The scan as one HDF5 file at path (written under a temporary name, then renamed)."""
-    m = scan_meta(scan_p, scene)
-    try:
-        check(lib.tt_scan_write_hdf5(os.fsencode(path), scan_p, m.keys, m.values, m.n,
-                                     scene.text().encode()))
-    finally:
-        lib.tt_meta_free(m)

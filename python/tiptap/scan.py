@@ -110,7 +110,8 @@ class ScanResult:
                 f"{self.run['lines_total']} lines, channels {', '.join(self.channels)}>")
 
 
-def scan(scene, *, set=None, threads=0, progress=None, error_estimate=False, hdf5=None, **keys):
+def scan(scene, *, set=None, threads=0, progress=None, error_estimate=False, hdf5=None,
+         output=None, **keys):
     """Closed-loop tapping image of a scene, as `tiptap scan` makes it.
 
     scene: a Scene, a scene file or a list of them (read in order); set / keywords:
@@ -120,6 +121,10 @@ def scan(scene, *, set=None, threads=0, progress=None, error_estimate=False, hdf
     progress(done, total) called after each line. error_estimate: also run the companion
     line at a tighter tolerance (r.error), as `tiptap scan` does. hdf5: a file name to
     write the scan into (docs/hdf5.md), also the finished lines of an interrupted scan.
+    output: a folder (made if missing) to write the files `tiptap scan -o` writes of the
+    images: scan.gwy (every channel, trace and retrace, titled "height (trace)", ...),
+    CHANNEL_trace.gsf and CHANNEL_retrace.gsf, their PNG previews and profile.csv, with
+    the run's parameters as metadata, byte for byte as the program's.
 
     Returns a ScanResult. Bad input raises SceneError, and a scan needing more memory
     than the process can allocate TiptapMemoryError (the program's estimate), before
@@ -127,57 +132,47 @@ def scan(scene, *, set=None, threads=0, progress=None, error_estimate=False, hdf
     the finished lines. The program's warnings (the estimate of a long run, a material
     not used, a contact past the force laws' validity, the loop oscillating, the z piezo
     at its range's end, the error estimate above the tolerance) are raised with
-    warnings.warn as TiptapWarning subclasses and kept in r.warnings.
+    warnings.warn as TiptapWarning subclasses after the run and kept in r.warnings.
     """
     scene = Scene.of(scene, set, caller="scan", **keys)
-    path = c_bytes(hdf5, "hdf5") if hdf5 is not None else None
+    names = {}  # the C strings the job points to, alive for the run
+    if hdf5 is not None:
+        names["hdf5"] = ffi.new("char[]", c_bytes(hdf5, "hdf5"))
+    if output is not None:
+        names["output"] = ffi.new("char[]", c_bytes(output, "output"))
     col = Collector()
-    out = ffi.new("tt_scan **")
-    cost = ffi.new("tt_run_scan_cost *")
-    with col.installed():
-        check(lib.tt_run_scan_alloc(scene._p, int(threads), out, cost))
-    s = ffi.gc(out[0], lib.tt_scan_free)
     sp = ffi.new("tt_scan_scope **")
     check(lib.tt_scan_scope_alloc(sp))
     scope = ffi.gc(sp[0], lib.tt_scan_scope_free)
-    # the profile line's full-rate record, where the loop's oscillation shows
-    lib.tt_scan_scope_attach(s, lib.tt_scan_profile_line(s), scope)
-    # the warnings before the run, as the program gives them before its folder's checks
-    with col.installed():
-        lib.tt_run_scan_warn_inputs(scene._p, cost)
-    col.emit(stacklevel=2)
-    if path is not None:
-        from .hdf5 import check_output
-
-        check_output(path, scene)
     prog = Progress(progress, "scan", "lines")
-    status, message, interrupted = run(lambda: lib.tt_scan_run(s, int(threads), prog.c, ffi.NULL),
-                                       prog, col)
-    with col.installed():
-        lib.tt_run_scan_warn_result(s)
-        lib.tt_run_scan_warn_oscillation(s, scope, ffi.NULL)
+    # the library's scan sequence (tt_run_scan), the program's: the warnings, the
+    # profile line's full-rate record, the outputs asked for, the estimate
+    job = ffi.new("tt_run_scan_job *")
+    job.threads = int(threads)
+    job.progress = prog.c
+    job.scope = scope
+    job.folder = names.get("output", ffi.NULL)
+    job.hdf5_file = names.get("hdf5", ffi.NULL)
+    job.estimate = bool(error_estimate)
+    r = ffi.new("tt_run_scan_result *")
+    status, message, interrupted = run(lambda: lib.tt_run_scan(scene._p, job, r), prog, col)
+    if r.scan == ffi.NULL:  # refused before the scan was made
+        col.emit(stacklevel=2)
+        finish(status, message, interrupted, "scan", None, prog)
+    s = ffi.gc(r.scan, lib.tt_scan_free)
     lib.tt_scan_scope_attach(s, 0, ffi.NULL)
     result = ScanResult(s, scene) if lib.tt_scan_lines_done(s) > 0 else None
-    if result is not None and path is not None:
-        from .hdf5 import write_scan
-
-        write_scan(s, scene, path)
-    col.emit(stacklevel=2, result=result)
-    finish(status, message, interrupted, "scan", result, prog)
-    if error_estimate:
-        e = ffi.new("tt_scan_error *")
-        status, message, interrupted = run(lambda: lib.tt_scan_estimate_error(s, e), None, col)
-        finish(status, message, interrupted, "scan: the error estimate's companion line", result)
+    if result is not None and r.estimate_status == 0:
+        e = r.est
         result.error = {
             "height_max_m": e.height_max, "height_rms_m": e.height_rms,
             "amplitude_max_rel": e.amplitude_max, "amplitude_rms_rel": e.amplitude_rms,
             "phase_max_deg": e.phase_max, "phase_rms_deg": e.phase_rms,
             "line": e.line, "tolerance": e.tolerance,
-            # where it checked (the image's hardest stretch) and what it cost
+            # where it checked (the image's hardest stretches) and what it cost
             "pixels": e.pixels, "pixels_line": e.pixels_line, "first_pixel": e.first,
-            "step_m": e.step, "cycles": e.cycles, "cpu_s": e.seconds,
+            "step_m": e.step, "cycles": e.cycles, "cpu_s": e.seconds, "stretches": e.stretches,
         }
-        with col.installed():
-            lib.tt_run_scan_warn_error(s, cost, e)
-        col.emit(stacklevel=2, result=result)
+    col.emit(stacklevel=2, result=result)
+    finish(status, message, interrupted, "scan", result, prog)
     return result

@@ -181,11 +181,16 @@ int cli_scope_write(const tt_scan *scan, const tt_scan_scope *sc, const char *di
 
 void cli_scope_warn(const char *cmd, const tt_scan *scan, const tt_scan_scope *sc)
 {
+    if (tt_run_scan_warn_oscillation(scan, sc, "scope.csv, scope.png"))
+        cli_scope_note(cmd, scan, sc);
+}
+
+void cli_scope_note(const char *cmd, const tt_scan *scan, const tt_scan_scope *sc)
+{
     tt_loop loop;
     tt_oscillation o;
     tt_scan_loop(scan, &loop);
-    if (!tt_run_scan_warn_oscillation(scan, sc, "scope.csv, scope.png") ||
-        tt_scan_oscillation(sc, &loop, &o))
+    if (tt_scan_oscillation(sc, &loop, &o))
         return;
     if (isfinite(o.ki_suggested))
         fprintf(stderr, "tiptap %s: note: integral_gain %.0f Hz has a phase margin of %.0f deg "

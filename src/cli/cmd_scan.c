@@ -62,8 +62,9 @@ static void help(void)
            "free oscillation's drive work per cycle: a check) and the error estimate of height,\n"
            "phase and amplitude: twice their difference from a companion run at a 100 times\n"
            "tighter tolerance (rk4: 4 times the steps) of the image's hardest line (the largest\n"
-           "height step between pixels; the profile line on a flat image), or of a stretch of\n"
-           "it: the companion runs at most a fifth of the cycles the scan integrated\n"
+           "height step between pixels; the profile line on a flat image), or of stretches of\n"
+           "the trace at that step and at the first edge of each pair of materials: the\n"
+           "companion runs at most a fifth of the cycles the scan integrated\n"
            "(estimate_cycles, estimate_cpu_s); run_time_s includes it. A warning when the\n"
            "estimate exceeds 1e-3 of the free amplitude or 0.1 deg.\n"
            "[solver] tier: envelope (default; most cycles from the cycle map's model under\n"
@@ -73,64 +74,11 @@ static void help(void)
            "and pixels where an impact collapsed the oscillation are named; docs/dynamics.md).\n");
 }
 
-static void show_progress(void *user, long done, long total)
-{
-    cli_progress_show(user, done, total);
-}
-
-static double display_scale(int ch, const char **unit, tt_colormap *cmap)
-{
-    /* higher harmonics are tens of picometres where the fundamental is nanometres */
-    if (ch >= TT_CH_HARMONIC_PHASE_INDEX) {
-        *unit = "deg";
-        *cmap = TT_CMAP_VIRIDIS;
-        return 1;
-    }
-    if (ch >= TT_CH_HARMONIC_INDEX) {
-        *unit = "pm";
-        *cmap = TT_CMAP_VIRIDIS;
-        return 1e12;
-    }
-    switch (ch) {
-    case 2: *unit = "deg"; *cmap = TT_CMAP_VIRIDIS; return 1;
-    case 3: *unit = "nN"; *cmap = TT_CMAP_VIRIDIS; return 1e9;
-    case 5: *unit = "aJ"; *cmap = TT_CMAP_VIRIDIS; return 1e18;
-    case 1: *unit = "nm"; *cmap = TT_CMAP_DIVERGING; return 1e9;
-    default: *unit = "nm"; *cmap = TT_CMAP_GOLD; return 1e9;
-    }
-}
-
-/* The path of channel ch's image file in dir: retrace r, PNG or GSF. */
-static void channel_path(char *buf, size_t len, const char *dir, int ch, int r, int png)
-{
-    snprintf(buf, len, "%s/%s_%s.%s", dir, tt_scan_channel_name(ch), r ? "retrace" : "trace",
-             png ? "png" : "gsf");
-}
+static void show_progress(void *user, long done, long total);
 
 int cli_scan_check_outputs(const char *dir, const tt_scan *scan, int hdf5)
 {
-    /* written by every scan (scope.*: when the record holds a line) */
-    static const char *const written[] = {"scene.ini", "profile.csv", "scan.gwy", "scope.csv", "scope.png"};
-    char path[4200];
-    int rc = TT_OK;
-    for (size_t i = 0; i < sizeof written / sizeof written[0] && !rc; i++) {
-        snprintf(path, sizeof path, "%s/%s", dir, written[i]);
-        rc = tt_output_check(path);
-    }
-    /* scan.h5 with hdf5 (without, an earlier run's is removed); the lock file checks
-     * its own kind (tt_folder_lock) */
-    snprintf(path, sizeof path, "%s/scan.h5", dir);
-    if (!rc)
-        rc = hdf5 ? tt_output_check(path) : tt_output_check_inputs(path);
-    snprintf(path, sizeof path, "%s/.tiptap.lock", dir);
-    if (!rc)
-        rc = tt_output_check_inputs(path);
-    /* every channel's files, also those this run does not write: it may remove them */
-    for (int k = 0; k < 4 * TT_CH_COUNT && !rc; k++) {
-        channel_path(path, sizeof path, dir, k / 4, k / 2 % 2, k % 2);
-        rc = tt_scan_image(scan, k / 4, k / 2 % 2) ? tt_output_check(path) : tt_output_check_inputs(path);
-    }
-    return rc;
+    return tt_run_scan_check_outputs(dir, scan, hdf5);
 }
 
 int cli_scan_folder_take(const char *cmd, const char *dir, const tt_scan *scan, int hdf5, int *lock)
@@ -158,7 +106,7 @@ static void remove_stale(const tt_scan *scan, const char *dir, int hdf5)
         if (k == 4 * TT_CH_COUNT)
             snprintf(path, sizeof path, "%s/scan.h5", dir);
         else
-            channel_path(path, sizeof path, dir, ch, r, k % 2);
+            tt_run_scan_channel_file(path, sizeof path, dir, ch, r, k % 2);
         if (lstat(path, &st) != 0 || !(S_ISREG(st.st_mode) || S_ISLNK(st.st_mode)) ||
             unlink(path) != 0)
             continue;
@@ -170,6 +118,15 @@ static void remove_stale(const tt_scan *scan, const char *dir, int hdf5)
                         "does not write: %s\n", dir, n, n > 1 ? "s" : "", names);
 }
 
+int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int hdf5,
+                           int *written)
+{
+    int rc = tt_run_scan_write_outputs(scan, scene, dir, hdf5, written);
+    if (rc == TT_OK)
+        remove_stale(scan, dir, hdf5);
+    return rc;
+}
+
 /* DIR/scan.h5 can be written (made and removed again), before the scan runs. */
 static int check_hdf5(const char *dir)
 {
@@ -178,109 +135,6 @@ static int check_hdf5(const char *dir)
     snprintf(path, sizeof path, "%s/scan.h5", dir);
     int rc = tt_h5_create(&f, path);
     return rc ? rc : tt_h5_close(f, 0);
-}
-
-/* DIR/scan.h5 (docs/hdf5.md) with the metadata of the other files and the effective
- * scene. */
-static int write_hdf5(const tt_scan *scan, const tt_scene *scene, const char *dir, const tt_meta *m)
-{
-    char path[4200];
-    char *text = tt_scene_write_string(scene, NULL);
-    if (!text)
-        return TT_ENOMEM;
-    snprintf(path, sizeof path, "%s/scan.h5", dir);
-    int rc = tt_scan_write_hdf5(path, scan, (const char *const *)m->keys,
-                                (const char *const *)m->values, m->n, text);
-    free(text);
-    return rc;
-}
-
-/* Every channel, trace and retrace, with the run's parameters: GSF and PNG files, and
- * one .gwy holding them all (scan.gwy); with hdf5 also scan.h5. *written counts the
- * files. */
-int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int hdf5,
-                           int *written)
-{
-    char path[4096], title[TT_CH_COUNT][2][128];
-    long xres = tt_scan_xres(scan), yres = tt_scan_yres(scan);
-    char v[3][64];
-    snprintf(v[0], sizeof v[0], "%s", TIPTAP_VERSION_STRING);
-    snprintf(v[1], sizeof v[1], "%ld", tt_scan_lines_done(scan));
-    snprintf(v[2], sizeof v[2], "%ld", tt_scan_lines(scan));
-    const char *keys[] = {"tiptap_version", "lines_finished", "lines_total"};
-    const char *vals[] = {v[0], v[1], v[2]};
-    tt_meta meta;
-    int rc = tt_meta_scene(&meta, scene, keys, vals, 3);
-    if (rc)
-        return rc;
-    tt_gwy_channel gch[2 * TT_CH_COUNT];
-    size_t ng = 0;
-    for (int ch = 0; ch < TT_CH_COUNT && rc == TT_OK; ch++) {
-        for (int r = 0; r < 2 && rc == TT_OK; r++) {
-            const double *img = tt_scan_image(scan, ch, r);
-            if (!img)
-                continue;
-            const char *dirn = r ? "retrace" : "trace";
-            snprintf(title[ch][r], sizeof title[ch][r], "%s (%s)", tt_scan_channel_name(ch), dirn);
-            tt_gsf_field g = {(size_t)xres, (size_t)yres, tt_scan_size_x(scan), tt_scan_size_y(scan),
-                              0, 0, "m", tt_scan_channel_unit(ch), title[ch][r], img,
-                              (const char *const *)meta.keys, (const char *const *)meta.values, meta.n};
-            gch[ng++] = (tt_gwy_channel){title[ch][r], (size_t)xres, (size_t)yres, tt_scan_size_x(scan),
-                                         tt_scan_size_y(scan), 0, 0, "m", tt_scan_channel_unit(ch), img};
-            channel_path(path, sizeof path, dir, ch, r, 0);
-            if ((rc = tt_gsf_write(path, &g)))
-                break;
-            tt_image im = {(size_t)xres, (size_t)yres, tt_scan_size_x(scan), tt_scan_size_y(scan),
-                           img, title[ch][r], NULL, 1, TT_CMAP_GOLD};
-            im.unit_scale = display_scale(ch, &im.unit, &im.cmap);
-            channel_path(path, sizeof path, dir, ch, r, 1);
-            rc = tt_image_write_png(path, &im);
-            *written += rc == TT_OK ? 2 : 1;
-        }
-    }
-    snprintf(path, sizeof path, "%s/scan.gwy", dir);
-    if (rc == TT_OK && ng > 0 &&
-        (rc = tt_gwy_write(path, gch, ng, (const char *const *)meta.keys,
-                           (const char *const *)meta.values, meta.n)) == TT_OK)
-        (*written)++;
-    if (rc == TT_OK && hdf5 && (rc = write_hdf5(scan, scene, dir, &meta)) == TT_OK)
-        (*written)++;
-    tt_meta_free(&meta);
-    if (rc)
-        return rc;
-    /* the line profile along the fast axis */
-    snprintf(path, sizeof path, "%s/profile.csv", dir);
-    tt_outfile *of;
-    if ((rc = tt_outfile_open(&of, path)))
-        return rc;
-    FILE *f = tt_outfile_stream(of);
-    long line = tt_scan_profile_line(scan);
-    /* the profile runs along the fast axis: a row, or a column when it is y */
-    int fy = tt_scan_fast_y(scan);
-    long n = fy ? yres : xres;
-    double size = fy ? tt_scan_size_y(scan) : tt_scan_size_x(scan);
-    fprintf(f, "position_nm");
-    for (int ch = 0; ch < TT_CH_COUNT; ch++)
-        for (int r = 0; r < 2; r++)
-            if (tt_scan_image(scan, ch, r))
-                fprintf(f, ",%s_%s_%s", tt_scan_channel_name(ch), r ? "retrace" : "trace",
-                        tt_scan_channel_unit(ch));
-    fputc('\n', f);
-    for (long px = 0; px < n; px++) {
-        fprintf(f, "%.9g", (px + 0.5) * size / (double)n * 1e9);
-        for (int ch = 0; ch < TT_CH_COUNT; ch++)
-            for (int r = 0; r < 2; r++) {
-                const double *img = tt_scan_image(scan, ch, r);
-                if (img)
-                    fprintf(f, ",%.9g", img[fy ? px * xres + line : line * xres + px]);
-            }
-        fputc('\n', f);
-    }
-    rc = tt_outfile_close(of, 1);
-    *written += rc == TT_OK;
-    if (rc == TT_OK)
-        remove_stale(scan, dir, hdf5);
-    return rc;
 }
 
 /* The first line on stderr once every check passed: the cycles, the time and the memory
@@ -314,6 +168,166 @@ static void note_averaged(const tt_scan *scan)
                         "free amplitudes or its penetration one free amplitude, beyond the "
                         "averaged tier's table: its forces there came from quadrature (slower)\n",
                 out, out > 1 ? "s" : "");
+}
+
+/* What the program adds to the library's scan sequence (tt_run_scan): its stderr,
+ * the folder's lock and scene.ini, the scope's files and the stale channel files. */
+typedef struct {
+    const tt_scene *scene;
+    const char *dir;
+    int quiet, hdf5, lock, reported, written;
+    tt_scan_params params; /* the plain values the summary reads */
+    int have_params;
+    double t0;
+    tt_scan_scope *scope;
+    cli_progress prog;
+} scan_cli;
+
+static void show_progress(void *user, long done, long total)
+{
+    cli_progress_show(&((scan_cli *)user)->prog, done, total);
+}
+
+static int scan_made(void *user, const tt_scan *scan, const tt_run_scan_cost *cost)
+{
+    (void)scan;
+    scan_cli *x = user;
+    int rc = tt_config_scan(x->scene, &x->params);
+    if (rc)
+        return rc;
+    tt_config_scan_free(&x->params);
+    x->have_params = 1;
+    report_cost(cost, x->quiet);
+    return TT_OK;
+}
+
+/* The folder locked for the run (two scans into one folder would mix their images and
+ * scene.ini), scan.h5 checked, the effective scene written; from here on a signal keeps
+ * the lines finished. */
+static int scan_ready(void *user, tt_scan *scan)
+{
+    (void)scan;
+    scan_cli *x = user;
+    char path[4096];
+    tt_outfile *of;
+    int rc;
+    cli_catch_interrupt();
+    if ((x->lock = cli_lock_folder("scan", x->dir)) < 0) {
+        x->reported = 1;
+        return TT_EINVAL;
+    }
+    if (x->hdf5 && (rc = check_hdf5(x->dir)))
+        return rc;
+    snprintf(path, sizeof path, "%s/scene.ini", x->dir);
+    if ((rc = tt_outfile_open(&of, path)))
+        return rc;
+    if ((rc = tt_scene_write(x->scene, tt_outfile_stream(of), NULL))) {
+        tt_outfile_close(of, 0);
+        return rc;
+    }
+    if ((rc = tt_outfile_close(of, 1)))
+        return rc;
+    x->written = 1; /* scene.ini */
+    cli_progress_begin(&x->prog, "scan", "lines", x->quiet);
+    return TT_OK;
+}
+
+static int scan_finished(void *user, tt_scan *scan, int status)
+{
+    scan_cli *x = user;
+    cli_progress_end(&x->prog);
+    note_averaged(scan);
+    if (tt_scan_lines_done(scan) == 0 || status)
+        return TT_OK;
+    remove_stale(scan, x->dir, x->hdf5);
+    return cli_scope_write(scan, x->scope, x->dir, &x->written);
+}
+
+static void scan_summary(void *user, const tt_scan *scan, const tt_run_scan_result *r)
+{
+    scan_cli *x = user;
+    const tt_scan_params *p = &x->params;
+    const int quiet = x->quiet, have_est = r->estimate_status == TT_OK;
+    const double wall = r->seconds, scan_wall = r->scan_seconds;
+    if (r->oscillating)
+        cli_scope_note("scan", scan, x->scope);
+    if (!x->have_params)
+        return;
+    if (r->estimate_status > 0 && r->estimate_status != TT_EINTR && !quiet)
+        fprintf(stderr, "tiptap: no error estimate: %s\n", tt_error_message());
+    if (!quiet && (p->solver.tier == TT_TIER_ENVELOPE ||
+                   (p->solver.tier == TT_TIER_AVERAGED && !tt_scan_averaged_tier(p)))) {
+        long all = tt_scan_cycles(scan), done = tt_scan_cycles_integrated(scan);
+        /* the tier runs at any Q and with any noise: every cycle integrated means the
+         * model held on no stretch */
+        const char *why = done < all ? ": the rest followed on the cycle map's model"
+                                     : ": the model held on none (docs/dynamics.md)";
+        fprintf(stderr, "cycles_integrated = %ld (%.1f %%; envelope tier%s)\n", done,
+                all > 0 ? 100.0 * (double)done / (double)all : 0.0, why);
+    }
+    if (p->solver.tier == TT_TIER_AVERAGED && !tt_scan_averaged_tier(p))
+        fprintf(stderr, "tiptap scan: note: the averaged tier needs a quality factor of 30 or "
+                        "more and the drive within 5 %% of resonance (here Q %g, drive at %g of "
+                        "resonance): the scan ran on the envelope tier's terms "
+                        "(docs/dynamics.md, Averaged)\n",
+                p->cantilever.Q, p->cantilever.fd / p->cantilever.f0);
+    if (!quiet && tt_scan_averaged_tier(p))
+        fprintf(stderr, "averaged_tables_s = %.3f (averaged tier: the force's harmonics of %zu "
+                        "material%s tabulated once, in run_time_s; table error %.2g of k A0; no "
+                        "cycle integrated)\n",
+                tt_scan_averaged_build_seconds(scan), tt_scan_materials(scan),
+                tt_scan_materials(scan) > 1 ? "s" : "", tt_scan_averaged_table_error(scan));
+    if (!quiet) {
+        fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f (the whole run; the scan %.3f, "
+                        "the error estimate %.3f)\ninstrument_time_s = %.3f\n"
+                        "real_time_factor = %.3f\nenergy_balance = %.3g (largest energy-balance "
+                        "residual of a cycle / free drive work per cycle: a check, not the error)\n",
+                tt_scan_lines_done(scan), tt_scan_lines(scan), tt_scan_cycles(scan), wall, scan_wall,
+                wall - scan_wall, tt_scan_instrument_time(scan),
+                tt_scan_instrument_time(scan) * (double)tt_scan_lines_done(scan) /
+                    (double)tt_scan_lines(scan) / wall,
+                tt_scan_error_estimate(scan));
+        int rk4 = p->solver.method == TT_METHOD_RK4, avg = tt_scan_averaged_tier(p);
+        if (have_est) {
+            const tt_scan_error *e = &r->est;
+            fprintf(stderr, "error_estimate_height_m = %.2g (rms; max %.2g)\n"
+                            "error_estimate_phase_deg = %.2g (rms; max %.2g)\n"
+                            "error_estimate_amplitude_rel = %.2g (rms; max %.2g)\n"
+                            "# from a companion run of line %ld %s %s %.3g, ",
+                    e->height_rms, e->height_max, e->phase_rms, e->phase_max, e->amplitude_rms,
+                    e->amplitude_max, e->line,
+                    avg ? "on the envelope tier (the averaged model's error) at" : "at",
+                    rk4 ? "steps_per_cycle" : "tolerance",
+                    rk4 ? (double)tt_companion_solver(&p->solver).steps_per_cycle : e->tolerance);
+            if (e->step > 0)
+                fprintf(stderr, "the image's hardest line (height steps up to %.2g m between pixels)",
+                        e->step);
+            else
+                fprintf(stderr, "the profile line (no height step in the image)");
+            long integ = tt_scan_cycles_integrated(scan);
+            if (e->pixels < e->pixels_line && e->stretches > 1)
+                fprintf(stderr, ", %ld pixels of the trace in %ld stretches (the largest step's from "
+                                "pixel %ld, and the first edge of each pair of materials)",
+                        e->pixels, e->stretches, e->first);
+            else if (e->pixels < e->pixels_line)
+                fprintf(stderr, ", %ld of its %ld pixels (the trace's from pixel %ld)", e->pixels,
+                        e->pixels_line, e->first);
+            else
+                fprintf(stderr, ", all its %ld pixels", e->pixels_line);
+            fprintf(stderr, "\nestimate_cycles = %ld", e->cycles);
+            if (integ > 0)
+                fprintf(stderr, " (%.1f %% of the scan's %ld cycles integrated)",
+                        100.0 * (double)e->cycles / (double)integ, integ);
+            else /* the averaged tier integrates none: its companion has no bound */
+                fprintf(stderr, " (the scan integrated none)");
+            fprintf(stderr, "\nestimate_cpu_s = %.3f\n", e->seconds);
+        }
+        if (have_est)
+            tt_run_scan_warn_error(scan, &r->cost, &r->est);
+        fprintf(stderr, "output = %s: %d files (scan.gwy: every channel, trace and retrace; "
+                        "CHANNEL_trace/retrace.gsf and .png; profile.csv; scope.csv and .png; scene.ini%s)\n",
+                x->dir, x->written + r->written, x->hdf5 ? "; scan.h5" : "");
+    }
 }
 
 int cmd_scan(int argc, char **argv)
@@ -351,163 +365,31 @@ int cmd_scan(int argc, char **argv)
     tt_scene *scene = cli_args_scene(&spec, &args, argc, argv, &code);
     if (!scene)
         return code;
-    double t0 = cli_now();
-    tt_scan *scan = NULL;
-    tt_scan_scope *scope = NULL;
-    tt_scan_params params;
-    char path[4096];
-    tt_outfile *of = NULL;
-    int rc, reported = 0, lock = -1;
+    scan_cli x = {.scene = scene, .dir = dir, .quiet = quiet, .hdf5 = hdf5, .lock = -1};
+    tt_run_scan_result r;
+    int rc = tt_scan_scope_alloc(&x.scope);
     /* Every key, every material and the surface are checked, the force laws built and
      * the memory estimated, before the folder is made: a refused scan leaves no folder
-     * and touches none. */
-    tt_run_scan_cost cost;
-    if ((rc = tt_run_scan_alloc(scene, threads, &scan, &cost))) {
-        if (rc == TT_ENOMEM) {
-            fprintf(stderr, "tiptap scan: %s\n", tt_error_message());
-            reported = 1;
-        }
-        goto done;
+     * and touches none. Then the folder's outputs: a bad output folder fails at once,
+     * not after an hour of scanning. */
+    const tt_run_scan_job job = {.threads = threads, .progress = quiet ? NULL : show_progress,
+                                 .user = &x, .scope = x.scope, .scope_files = "scope.csv, scope.png",
+                                 .folder = dir, .hdf5 = hdf5, .estimate = !quiet,
+                                 .made = scan_made, .ready = scan_ready,
+                                 .finished = scan_finished, .summary = scan_summary};
+    if (!rc)
+        rc = tt_run_scan(scene, &job, &r);
+    else
+        r.scan = NULL;
+    if (rc == TT_ENOMEM && !r.scan) {
+        fprintf(stderr, "tiptap scan: %s\n", tt_error_message());
+        x.reported = 1;
     }
-    /* the plain values the summary reads (tt_run_scan_alloc read them already) */
-    if ((rc = tt_config_scan(scene, &params)))
-        goto done;
-    tt_config_scan_free(&params);
-    if ((rc = tt_scan_scope_alloc(&scope)))
-        goto done;
-    tt_scan_scope_attach(scan, tt_scan_profile_line(scan), scope);
-    report_cost(&cost, quiet);
-    tt_run_scan_warn_inputs(scene, &cost);
-    /* Then the folder and the effective scene: a bad output folder fails at once, not
-     * after an hour of scanning. The folder is locked for the run: two scans into one
-     * folder would mix their images and scene.ini. From here on a signal keeps the lines
-     * finished. */
-    if ((rc = cli_scan_check_outputs(dir, scan, hdf5)))
-        goto done;
-    cli_catch_interrupt();
-    if ((rc = tt_mkdirs(dir)))
-        goto done;
-    if ((lock = cli_lock_folder("scan", dir)) < 0) {
-        rc = TT_EINVAL;
-        reported = 1;
-        goto done;
-    }
-    if (hdf5 && (rc = check_hdf5(dir)))
-        goto done;
-    snprintf(path, sizeof path, "%s/scene.ini", dir);
-    if ((rc = tt_outfile_open(&of, path)))
-        goto done;
-    if ((rc = tt_scene_write(scene, tt_outfile_stream(of), NULL))) {
-        tt_outfile_close(of, 0);
-        goto done;
-    }
-    if ((rc = tt_outfile_close(of, 1)))
-        goto done;
-    cli_progress prog;
-    cli_progress_begin(&prog, "scan", "lines", quiet);
-    rc = tt_scan_run(scan, threads, quiet ? NULL : show_progress, &prog);
-    cli_progress_end(&prog);
-    tt_run_scan_warn_result(scan);
-    note_averaged(scan);
-    int written = 1; /* scene.ini */
-    if (tt_scan_lines_done(scan) > 0) {
-        char saved[1024];
-        snprintf(saved, sizeof saved, "%s", tt_error_message());
-        int wrc = cli_scan_write_outputs(scan, scene, dir, hdf5, &written);
-        if (!wrc)
-            wrc = cli_scope_write(scan, scope, dir, &written);
-        cli_scope_warn("scan", scan, scope);
-        if (wrc && !rc)
-            rc = wrc;
-        else if (rc)
-            tt_error(rc, "%s", saved);
-    }
-    double scan_wall = cli_now() - t0;
-    tt_scan_error est;
-    int erc = rc == TT_OK && !quiet ? tt_scan_estimate_error(scan, &est) : TT_EINVAL;
-    /* run_time_s is the whole run's, the estimate's companion line included */
-    double wall = cli_now() - t0;
-    int have_est = erc == TT_OK;
-    if (erc == TT_EINTR) /* stopped in the companion: the images are written, the exit says so */
-        rc = tt_error(erc, "interrupted in the error estimate's companion line; the images "
-                           "(%ld of %ld lines) are written", tt_scan_lines_done(scan),
-                      tt_scan_lines(scan));
-    else if (rc == TT_OK && !quiet && !have_est)
-        fprintf(stderr, "tiptap: no error estimate: %s\n", tt_error_message());
-    if (!quiet && (params.solver.tier == TT_TIER_ENVELOPE ||
-                   (params.solver.tier == TT_TIER_AVERAGED && !tt_scan_averaged_tier(&params)))) {
-        long all = tt_scan_cycles(scan), done = tt_scan_cycles_integrated(scan);
-        /* the tier runs at any Q and with any noise: every cycle integrated means the
-         * model held on no stretch */
-        const char *why = done < all ? ": the rest followed on the cycle map's model"
-                                     : ": the model held on none (docs/dynamics.md)";
-        fprintf(stderr, "cycles_integrated = %ld (%.1f %%; envelope tier%s)\n", done,
-                all > 0 ? 100.0 * (double)done / (double)all : 0.0, why);
-    }
-    if (params.solver.tier == TT_TIER_AVERAGED && !tt_scan_averaged_tier(&params))
-        fprintf(stderr, "tiptap scan: note: the averaged tier needs a quality factor of 30 or "
-                        "more and the drive within 5 %% of resonance (here Q %g, drive at %g of "
-                        "resonance): the scan ran on the envelope tier's terms "
-                        "(docs/dynamics.md, Averaged)\n",
-                params.cantilever.Q, params.cantilever.fd / params.cantilever.f0);
-    if (!quiet && tt_scan_averaged_tier(&params))
-        fprintf(stderr, "averaged_tables_s = %.3f (averaged tier: the force's harmonics of %zu "
-                        "material%s tabulated once, in run_time_s; table error %.2g of k A0; no "
-                        "cycle integrated)\n",
-                tt_scan_averaged_build_seconds(scan), tt_scan_materials(scan),
-                tt_scan_materials(scan) > 1 ? "s" : "", tt_scan_averaged_table_error(scan));
-    if (!quiet) {
-        fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f (the whole run; the scan %.3f, "
-                        "the error estimate %.3f)\ninstrument_time_s = %.3f\n"
-                        "real_time_factor = %.3f\nenergy_balance = %.3g (largest energy-balance "
-                        "residual of a cycle / free drive work per cycle: a check, not the error)\n",
-                tt_scan_lines_done(scan), tt_scan_lines(scan), tt_scan_cycles(scan), wall, scan_wall,
-                wall - scan_wall, tt_scan_instrument_time(scan),
-                tt_scan_instrument_time(scan) * (double)tt_scan_lines_done(scan) /
-                    (double)tt_scan_lines(scan) / wall,
-                tt_scan_error_estimate(scan));
-        int rk4 = params.solver.method == TT_METHOD_RK4, avg = tt_scan_averaged_tier(&params);
-        if (have_est) {
-            fprintf(stderr, "error_estimate_height_m = %.2g (rms; max %.2g)\n"
-                            "error_estimate_phase_deg = %.2g (rms; max %.2g)\n"
-                            "error_estimate_amplitude_rel = %.2g (rms; max %.2g)\n"
-                            "# from a companion run of line %ld %s %s %.3g, ",
-                    est.height_rms, est.height_max, est.phase_rms, est.phase_max, est.amplitude_rms,
-                    est.amplitude_max, est.line,
-                    avg ? "on the envelope tier (the averaged model's error) at" : "at",
-                    rk4 ? "steps_per_cycle" : "tolerance",
-                    rk4 ? (double)tt_companion_solver(&params.solver).steps_per_cycle : est.tolerance);
-            if (est.step > 0)
-                fprintf(stderr, "the image's hardest line (height steps up to %.2g m between pixels)",
-                        est.step);
-            else
-                fprintf(stderr, "the profile line (no height step in the image)");
-            long integ = tt_scan_cycles_integrated(scan);
-            if (est.pixels < est.pixels_line)
-                fprintf(stderr, ", %ld of its %ld pixels (the trace's from pixel %ld)", est.pixels,
-                        est.pixels_line, est.first);
-            else
-                fprintf(stderr, ", all its %ld pixels", est.pixels_line);
-            fprintf(stderr, "\nestimate_cycles = %ld", est.cycles);
-            if (integ > 0)
-                fprintf(stderr, " (%.1f %% of the scan's %ld cycles integrated)",
-                        100.0 * (double)est.cycles / (double)integ, integ);
-            else /* the averaged tier integrates none: its companion has no bound */
-                fprintf(stderr, " (the scan integrated none)");
-            fprintf(stderr, "\nestimate_cpu_s = %.3f\n", est.seconds);
-        }
-        if (have_est)
-            tt_run_scan_warn_error(scan, &cost, &est);
-        fprintf(stderr, "output = %s: %d files (scan.gwy: every channel, trace and retrace; "
-                        "CHANNEL_trace/retrace.gsf and .png; profile.csv; scope.csv and .png; scene.ini%s)\n",
-                dir, written, hdf5 ? "; scan.h5" : "");
-    }
-done:
-    if (rc && !reported)
+    if (rc && !x.reported)
         cli_fail(rc, NULL);
-    cli_unlock_folder(dir, lock);
-    tt_scan_free(scan);
-    tt_scan_scope_free(scope);
+    cli_unlock_folder(dir, x.lock);
+    tt_scan_free(r.scan);
+    tt_scan_scope_free(x.scope);
     tt_scene_free(scene);
     return rc == TT_OK ? CLI_OK : rc == TT_EINTR ? CLI_INTERRUPTED : CLI_FAIL;
 }

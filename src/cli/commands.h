@@ -43,6 +43,9 @@ int cli_scope_write(const tt_scan *scan, const tt_scan_scope *sc, const char *di
 /* The warning, when the record shows the loop oscillating (tt_run_scan_warn_oscillation),
  * and a note on stderr naming command cmd with the gain the loop's model suggests. */
 void cli_scope_warn(const char *cmd, const tt_scan *scan, const tt_scan_scope *sc);
+/* The note that follows an oscillation warning: the phase margin of the loop fitted to
+ * the ring and the integral gain that gives 60 deg. */
+void cli_scope_note(const char *cmd, const tt_scan *scan, const tt_scan_scope *sc);
 
 /* Exit codes: 0 success, 1 bad input or failure, 2 usage, 130 interrupted (Ctrl-C);
  * 143 stopped by SIGTERM (main turns CLI_INTERRUPTED into 128 + the signal). */

@@ -15,9 +15,8 @@ int tt_solver_from_scene(tt_solver *s, const tt_scene *scene)
     else if (m && strcmp(m, "radau") == 0)
         s->method = TT_METHOD_RADAU;
     const char *t = tt_scene_get_string(scene, "solver", NULL, "tier");
-    s->tier = t && strcmp(t, "envelope") == 0   ? TT_TIER_ENVELOPE
-              : t && strcmp(t, "averaged") == 0 ? TT_TIER_AVERAGED
-                                                : TT_TIER_EVERY;
+    if (tt_tier_parse(t, &s->tier)) /* the schema allows only the tiers' names */
+        s->tier = TT_TIER_EVERY;
     long n;
     int rc;
     if ((rc = tt_scene_get_double(scene, "solver", NULL, "tolerance", &s->tolerance)) ||

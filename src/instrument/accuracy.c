@@ -167,9 +167,7 @@ static int own_setting(const tt_solver *own, tt_tier tier, const tt_accuracy_lad
     k->method = own->method;
     k->tier = tier;
     k->knob = NULL;
-    k->name = tier == TT_TIER_ENVELOPE   ? "envelope"
-              : tier == TT_TIER_AVERAGED ? "averaged"
-                                         : tt_method_name(own->method);
+    k->name = tier == TT_TIER_EVERY ? tt_method_name(own->method) : tt_tier_name(tier);
     *value = NAN;
     size_t n;
     const tt_accuracy_ladder *all = tt_accuracy_ladders(&n);
@@ -682,5 +680,5 @@ const char *tt_accuracy_role_name(tt_accuracy_role r)
 
 const char *tt_accuracy_tier_name(tt_tier t)
 {
-    return t == TT_TIER_ENVELOPE ? "envelope" : t == TT_TIER_AVERAGED ? "averaged" : "every";
+    return tt_tier_name(t);
 }

@@ -1,4 +1,4 @@
-/* The per-cycle steps of a scan line that the every-cycle tier (scan.c) and the
+/* The per-cycle steps of a scan line that the every-cycle tier (scan_line.c) and the
  * envelope tier (scan_envelope.c) share: a cycle's inputs, its integration, its
  * per-cycle channels and the lock-in block's end (see scan_private.h). */
 #include <math.h>
@@ -6,24 +6,6 @@
 #include "scan_private.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
-
-/* The surface at the start of cycle k (settling: the line's first pixel). */
-surf_pt tt_scan_surface_at(const line_ctx *L, long k)
-{
-    const tt_scan *S = L->S;
-    const long kk = L->phase ? k : L->k0;
-    surf_pt p = {.k = k};
-    double x, y;
-    tt_raster_position(&S->raster, L->line, L->dir, L->nc, kk, &x, &y);
-    if (S->plain) {
-        p.h = p.topo = S->flat ? 0 : tt_surface_height(S->surface, x, y);
-    } else {
-        double t = tt_scan_clock_at(S, L->line, L->phase, L->nc, kk);
-        p.h = tt_scan_sample_at(S, &x, &y, t, &p.topo);
-    }
-    p.mat = S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
-    return p;
-}
 
 /* The surface at cycle k's start, from the two found ahead when they hold it. */
 static surf_pt surface_cached(const line_ctx *L, const line_state *st, long k)

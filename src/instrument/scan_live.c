@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "scan_private.h"
+#include "scan_engine.h"
 #include "tiptap/util/error.h"
 
 void tt_scan_get_feedback(const tt_scan *S, tt_feedback_params *p)

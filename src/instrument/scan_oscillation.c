@@ -1,7 +1,7 @@
 /* Is the feedback loop oscillating: rings in a line's record, the loop's measured pole,
  * and a gain suggestion (see include/tiptap/instrument/scan_oscillation.h). */
 #include "tiptap/instrument/scan_oscillation.h"
-#include "scan_private.h"
+#include "scan_engine.h"
 
 #include <complex.h>
 #include <math.h>

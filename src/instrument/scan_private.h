@@ -1,114 +1,14 @@
-/* The scan's private state, shared by its line loops: scan.c (every cycle) and
- * scan_envelope.c (the envelope tier), and the per-cycle steps they share
- * (scan_cycle.c). Private to libtiptap. */
+/* The line engine's own machinery, shared by its files: one line's context, state and
+ * cycles (scan_line.c), the per-cycle steps the tiers share (scan_cycle.c), where the
+ * sample is (scan_sample.c), the scope's record (scan_scope.c) and the tiers' lines
+ * (scan_line.c every cycle, scan_envelope.c, scan_averaged.c). The scan's drivers see
+ * only scan_engine.h. Private to libtiptap. */
 #ifndef TIPTAP_SCAN_PRIVATE_H
 #define TIPTAP_SCAN_PRIVATE_H
 
-#include <stdint.h>
-
-#include "tiptap/instrument/scan.h"
-#include "tiptap/instrument/scan_scope.h"
-#include "tiptap/solver/averaged.h"
-#include "tiptap/solver/envelope.h"
-#include "tiptap/solver/graze.h"
-#include "tiptap/solver/noise.h"
+#include "scan_engine.h"
 
 enum { NHARM = TT_CH_HARMONIC_MAX - 1 }; /* harmonic channels of each kind */
-_Static_assert(TT_CH_COUNT <= 8 * sizeof(unsigned), "a channel mask holds every channel");
-
-/* One thread's workspace: its own simulation, lock-in and sample buffer. */
-typedef struct {
-    tt_sim *sim;
-    double tolerance; /* its solver's: the companion's is tighter than the scan's */
-    double model_tol; /* the envelope tier's model's per cycle, relative to A0 */
-    tt_lockin *lockin;
-    tt_sample *samples;
-    double *y; /* the lock-in block's periods: samples, or on the envelope tier each
-                * period's components (tt_lockin_transform) */
-    /* continuous lines: the feedback and the z piezo's ramp where the last line ended */
-    int engaged;
-    tt_feedback fb;
-    double z_from, z_to;
-    tt_piezo pz;
-    double z_act;
-    double zn; /* the z piezo's noise */
-    /* the envelope tier (NULL: every cycle): its model, a snapshot of the lock-in and
-     * of the block's periods (y) to roll back to, and two observable vectors */
-    tt_envelope *env;
-    tt_graze *graze; /* the touch branch of a grazing tip (the free one: env) */
-    int env_shape;   /* the noise the model was made for (scan.c, model_shape) */
-    tt_lockin *lockin_save;
-    double *y_save, *obs;
-    /* the greatest indentation of the trace and retrace cycles, per material */
-    double *indent;
-    /* the averaged tier (averaged: on): its slow state where the last line ended */
-    int averaged;
-    tt_averaged_state avg;
-    /* the rest separation at z = 0 of the line's engage: continuous lines keep the
-     * first engage's, so that a new setpoint does not move the sample */
-    double s_ref;
-    /* the scope the line under way records into (NULL: none) */
-    tt_scan_scope *scope;
-    /* the error estimate's companion line stops after this many cycles (0: never), so
-     * that it costs a bounded share of the scan; budget_hit says it stopped there */
-    long budget;
-    int budget_hit;
-    /* and engages and starts its trace at this cycle of the direction (0: the line's
-     * start), so that its stretch lies where the image is hardest */
-    long k0;
-} worker;
-
-/* A line stopped at its worker's cycle budget: its pixels so far are kept. */
-enum { TT_SCAN_BUDGET = 100 };
-
-struct tt_scan {
-    tt_cantilever cantilever;
-    tt_solver solver;
-    size_t nmaterials;
-    tt_contact **contacts; /* every material's force law, shared by the threads */
-    double *Qi;
-    double *contact_R;     /* each force law's radius, m */
-    char (*names)[128];    /* each material's name, for messages */
-    double *indent;        /* the greatest indentation recorded in each material, m */
-    tt_raster raster;
-    tt_surface *surface;
-    tt_dilation *dilation; /* the surface as the tip's shape images it; NULL: the apex */
-    tt_instrument_params inst;
-    int plain;             /* a point tip on an ideal instrument: the heights as they are */
-    int uniform, flat;
-    unsigned channels;
-    long settle_cycles;
-    long profile_line;
-    tt_scan_noise noise;
-    double sd;           /* per-sample detector noise, m rms */
-    tt_noise_ou zn;      /* the z piezo's noise, sampled at each drive cycle's start (sd 0: off) */
-    int continuous;
-    /* lock-in and feedback */
-    tt_lockin_params lockin;
-    double setpoint, kp, ki, z_range;
-    double A0;
-    /* results: [retrace][channel] -> lines * pixels */
-    double *img[2][TT_CH_COUNT];
-    char *line_done;
-    long lines_done;
-    long cycles;
-    long integrated; /* cycles integrated (the envelope tier skips some) */
-    double worst_residual;
-    int clamped;
-    /* the averaged tier: each material's table, and the pixels where the tip collapsed
-     * onto the sample or left the table (first: the first such line and pixel) */
-    tt_averaged **avg;
-    double avg_seconds, avg_error;
-    long collapsed, outside, collapse_line, collapse_px;
-    /* the first failure of any thread */
-    int status;
-    char message[1024];
-    /* tt_scan_step's workspace (NULL until the first stepped line), and the line
-     * tt_scan_run records into a scope (watch_line -1: none) */
-    worker *step;
-    long watch_line;
-    tt_scan_scope *watch;
-};
 
 /* Per-pixel sums of one scan direction. */
 typedef struct {
@@ -118,15 +18,8 @@ typedef struct {
     long nblk; /* cycles of the lock-in blocks that ended in this pixel */
 } pixel_acc;
 
-/* Where a line's pixels go: the scan's images, or (packed) one line's worth per
- * channel and direction. */
-typedef struct {
-    double *img[2][TT_CH_COUNT];
-    int packed;
-} line_out;
-
 /* The instrument's clock at the start of cycle k of phase 0 (settling), 1 (trace) or
- * 2 (retrace); the sample under raster position (x, y) at time t (scan.c). */
+ * 2 (retrace); the sample under raster position (x, y) at time t (scan_sample.c). */
 double tt_scan_clock_at(const tt_scan *S, long line, int phase, long nc, long k);
 double tt_scan_sample_at(const tt_scan *S, double *x, double *y, double t, double *topo);
 
@@ -188,7 +81,7 @@ typedef struct {
 /* A tier's cycles of one phase (L->phase), from st (k = 0). */
 typedef int (*scan_phase_fn)(const line_ctx *L, line_state *st, void *tier);
 
-/* One line (scan.c): engage at its first pixel, settle, trace and retrace, each phase's
+/* One line (scan_line.c): engage at its first pixel, settle, trace and retrace, each phase's
  * cycles run by the tier's run; the pixels' means into out. */
 int tt_scan_line_run(tt_scan *S, worker *W, long line, const line_out *out, scan_phase_fn run,
                      void *tier, long *cycles, double *worst, int *clamped);
@@ -206,22 +99,12 @@ int tt_scan_integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_
 int tt_scan_cycle_end(const line_ctx *L, line_state *st, const cycle_in *in, double peak,
                       double indent, double ets);
 
-/* The surface at the start of cycle k of the phase (scan_cycle.c). */
+/* The surface at the start of cycle k of the phase (scan_sample.c). */
 surf_pt tt_scan_surface_at(const line_ctx *L, long k);
 /* The end of lock-in block b (its periods in W->y: samples, or components on the
  * envelope and averaged tiers): demodulate, update the feedback, and (trace, retrace)
  * add the lock-in's outputs to the pixel of the block's last cycle (scan_cycle.c). */
 int tt_scan_block_end(const line_ctx *L, line_state *st, long b);
-
-/* A worker's buffers freed (scan.c). */
-void tt_scan_worker_free(worker *W);
-/* A worker made to fit the scan's noise after a change (scan.c): the thermal force on
- * its sim, the envelope tier's model made anew where the noise changes its inputs or
- * order (z piezo noise: the travel; thermal or z piezo: second order) and its noise. */
-int tt_scan_worker_retune(tt_scan *S, worker *W);
-/* The z piezo's noise of n for the cantilever's drive period (sd 0: off); TT_EINVAL naming
- * [noise] z_piezo_bandwidth when its band is not within (0, fd / 2]. */
-int tt_scan_piezo_noise(const tt_scan_noise *n, const tt_cantilever *c, tt_noise_ou *zn);
 
 /* The scope (scan_scope.c): made ready for line `line` before it runs (its points NaN),
  * block b's point written at the block's end from the lock-in's filtered amplitude A
@@ -240,5 +123,9 @@ int tt_scan_line_averaged(tt_scan *S, worker *W, long line, const line_out *out,
  * *integrated counts the cycles integrated, the rest followed the model. */
 int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
                           long *integrated, double *worst, int *clamped);
+
+/* One line on the every-cycle tier (scan_line.c), through tt_scan_line_run. */
+int tt_scan_line_every(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
+                       long *integrated, double *worst, int *clamped);
 
 #endif

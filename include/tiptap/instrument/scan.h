@@ -256,9 +256,12 @@ tt_solver tt_companion_solver(const tt_solver *s);
  * the image; each figure is twice the largest or rms difference over the pixels
  * compared. The companion runs at most TT_ESTIMATE_SHARE of the scan's cost (its cycles
  * bounded by the scan's integrated cycles, over the tighter setting's cost per cycle):
- * where that does not cover the line, it runs a stretch of the trace with the step a
- * quarter into it, engaged at its start, and the run's setting runs the same stretch
- * beside it (as for continuous lines and the averaged tier), on two threads. */
+ * where that does not cover the line, it runs stretches of the trace, one with the
+ * largest height step a quarter into it and one with the first edge of each ordered
+ * pair of materials the trace meets (a soft matrix onto a stiff disk errs most; at most
+ * 8 stretches), each engaged at its start on an equal share of the budget, and the
+ * run's setting runs the same stretches beside them (as for continuous lines and the
+ * averaged tier), on two threads. */
 #define TT_ESTIMATE_SHARE 0.2
 typedef struct {
     double height_max, height_rms;       /* m */
@@ -271,11 +274,12 @@ typedef struct {
     double step;                         /* the line's largest height step in reach, m */
     long cycles;                         /* the companion's cycles (all its lines) */
     double seconds;                      /* its CPU time, s (all threads) */
+    long stretches;                      /* the stretches it ran (1: one, or the whole line) */
 } tt_scan_error;
 
-/* The images are untouched. Where a fifth of the scan's cost does not reach the
- * companion's settling and two pixels (a scan of a few lines), the whole line runs,
- * over the fifth. */
+/* The images are untouched. Where a fifth of the scan's cost does not reach each
+ * stretch's settling and two pixels (a scan of a few lines), the whole hardest line
+ * runs, over the fifth. */
 int tt_scan_estimate_error(tt_scan *s, tt_scan_error *e);
 /* Whether the z piezo hit its range limits during the scan. */
 int tt_scan_clamped(const tt_scan *s);

@@ -23,6 +23,7 @@
 #include "tiptap/config/scene.h"
 #include "tiptap/instrument/accuracy.h"
 #include "tiptap/instrument/scan.h"
+#include "tiptap/instrument/scan_scope.h"
 #include "tiptap/physics/contact.h"
 #include "tiptap/util/table.h"
 
@@ -91,6 +92,69 @@ typedef struct {
     double f0, fd;         /* resonance and drive frequency, Hz */
 } tt_run_scan_cost;
 int tt_run_scan_alloc(const tt_scene *s, int threads, tt_scan **out, tt_run_scan_cost *cost);
+
+/* tiptap scan's whole sequence, the one the program, the console and the Python package
+ * run: the scan made (tt_run_scan_alloc: nothing runs on a refusal), the input warnings
+ * (tt_run_scan_warn_inputs), the outputs asked for checked and their folder made, the
+ * lines run (tt_scan_run: progress, cancellation), the result warnings
+ * (tt_run_scan_warn_result), the finished lines written (also after a failure or a
+ * cancel), the oscillation warning on the scope's line, the error estimate when asked
+ * for after a scan that finished (a cancel in it: TT_EINTR, the images written) and its
+ * warning (tt_run_scan_warn_error). The hooks let a caller add its own steps where the
+ * program has them; each is optional (NULL). */
+typedef struct tt_run_scan_result tt_run_scan_result;
+typedef struct {
+    int threads;              /* lines in parallel (0: all cores) */
+    tt_progress_fn progress;  /* after each finished line (NULL: none) */
+    void *user;               /* progress's and the hooks' */
+    tt_scan_scope *scope;     /* records the profile line (NULL: none) */
+    const char *scope_files;  /* where the caller writes the scope, named by the oscillation
+                               * warning ("scope.csv, scope.png"; NULL: none) */
+    const char *folder;       /* the outputs of `tiptap scan -o` (NULL: none): checked before
+                               * the lines run (tt_run_scan_check_outputs), the folder made,
+                               * written after (tt_run_scan_write_outputs) */
+    int hdf5;                 /* with folder: FOLDER/scan.h5 too */
+    const char *hdf5_file;    /* one HDF5 file (NULL: none), checked before the lines run */
+    int estimate;             /* the error estimate (tt_scan_estimate_error) */
+    /* the scan made, its cost known, before any warning (non-zero stops the run) */
+    int (*made)(void *user, const tt_scan *scan, const tt_run_scan_cost *cost);
+    /* the outputs checked and the folder made, before the lines run (non-zero stops) */
+    int (*ready)(void *user, tt_scan *scan);
+    /* the lines ran and the outputs were written (status: how that went; lines_done 0:
+     * nothing written): the caller's own outputs; a failure it returns becomes the run's
+     * when the run had none */
+    int (*finished)(void *user, tt_scan *scan, int status);
+    /* the estimate ran (or not: r->estimate_status): the caller's summary, which raises
+     * the estimate's warning (tt_run_scan_warn_error) where it wants it among its lines;
+     * without it tt_run_scan raises the warning */
+    void (*summary)(void *user, const tt_scan *scan, const tt_run_scan_result *r);
+} tt_run_scan_job;
+struct tt_run_scan_result {
+    tt_scan *scan;            /* the caller frees it (tt_scan_free); NULL when refused */
+    tt_run_scan_cost cost;
+    int written;              /* files written into the folder */
+    int oscillating;          /* the oscillation warning was raised */
+    double scan_seconds;      /* wall time to the outputs written, s */
+    double seconds;           /* the whole run's, the estimate included, s */
+    int estimate_status;      /* TT_OK: est holds the estimate; -1: it did not run (not
+                               * asked for, or the run failed); else why it failed */
+    tt_scan_error est;
+};
+int tt_run_scan(const tt_scene *s, const tt_run_scan_job *job, tt_run_scan_result *r);
+
+/* The outputs of `tiptap scan -o DIR` can be written: every file it writes (and every
+ * channel's, which it may remove) is no input of the scene and no folder. */
+int tt_run_scan_check_outputs(const char *dir, const tt_scan *scan, int hdf5);
+/* Every channel, trace and retrace, with the run's parameters as metadata: GSF and PNG
+ * files (CHANNEL_trace.gsf, ...), one .gwy holding them all (scan.gwy), profile.csv
+ * (the profile line) and with hdf5 scan.h5 (docs/hdf5.md), each under a temporary name
+ * and renamed; *written counts the files. */
+int tt_run_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir,
+                              int hdf5, int *written);
+/* The scan as one HDF5 file at path, with the same metadata and the effective scene. */
+int tt_run_scan_write_hdf5(const tt_scan *scan, const tt_scene *scene, const char *path);
+/* The path of channel ch's image file in dir: retrace r, PNG (png) or GSF. */
+void tt_run_scan_channel_file(char *buf, size_t len, const char *dir, int ch, int r, int png);
 
 /* Before a scan runs: a run longer than a minute by estimate (TT_WARN_RUN), each
  * material the surface map never puts under the tip (TT_WARN_INPUT, at most 8 and a

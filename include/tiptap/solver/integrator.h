@@ -35,7 +35,14 @@ typedef enum { TT_METHOD_DOPRI5 = 0, TT_METHOD_RK4 = 1, TT_METHOD_RADAU = 2 } tt
  * envelope tier's error control asks for (tiptap/solver/envelope.h), or none: the
  * averaged preview tier follows the slow flow of amplitude and phase instead
  * (tiptap/solver/averaged.h). */
-typedef enum { TT_TIER_EVERY = 0, TT_TIER_ENVELOPE = 1, TT_TIER_AVERAGED = 2 } tt_tier;
+typedef enum { TT_TIER_EVERY = 0, TT_TIER_ENVELOPE = 1, TT_TIER_AVERAGED = 2, TT_TIER_COUNT = 3 } tt_tier;
+/* The tiers' names in enum order ("every", "envelope", "averaged"; "?" for no tier): the
+ * one table the scene's [solver] tier, the outputs and the console's page read. A tier
+ * named (0) or -1 for a name that is none; tt_tier_count for a caller that lists them by
+ * index (TT_TIER_COUNT). */
+const char *tt_tier_name(tt_tier t);
+int tt_tier_parse(const char *name, tt_tier *t);
+int tt_tier_count(void);
 
 typedef struct {
     tt_method method;

@@ -1,0 +1,317 @@
+/* The images' error estimate: a companion line at a tighter setting where the image is
+ * hardest, compared with the image (see tt_scan_estimate_error in
+ * include/tiptap/instrument/scan.h). */
+#include "scan_engine.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tiptap/util/clock.h"
+#include "tiptap/util/error.h"
+
+/* One companion line on a solver setting: height, amplitude and phase of trace and
+ * retrace into buf (6 blocks of pixels: [channel][direction]), stopped after budget
+ * cycles (0: none); *hit says it stopped there, *ran counts its cycles. */
+static int companion_line(tt_scan *S, const tt_solver *solver, long line, long budget, long k0,
+                          double *buf, int *hit, long *ran)
+{
+    worker W;
+    line_out out = {{{0}}, 1};
+    long px = S->raster.pixels;
+    for (long i = 0; i < 6 * px; i++)
+        buf[i] = NAN; /* pixels the budget left out stay NaN */
+    for (int c = 0; c < 3; c++)
+        for (int r = 0; r < (S->raster.retrace ? 2 : 1); r++)
+            out.img[r][c] = buf + (size_t)(2 * c + r) * (size_t)px;
+    line_tally t = {0};
+    int rc = tt_scan_worker_alloc(S, &W, solver);
+    /* The tight line's model is held ten times tighter than the run's, as its steps are
+     * (a hundred times: see tt_companion_solver), so that the difference of the two is
+     * the run's error, the model's included; a hundred times tighter is below what the
+     * grazing touches' model can follow (1e-9 of A0 over the blend's orbit), and the
+     * tight line would integrate every grazing cycle at 1e-10 (16 G instructions, a
+     * fifth of the README job's) */
+    W.model_tol = fmax(W.model_tol, S->solver.tolerance);
+    W.budget = budget;
+    W.k0 = k0;
+    if (!rc)
+        rc = tt_scan_worker_line(S, &W, line, &out, NULL, &t);
+    *hit = W.budget_hit;
+    *ran = t.cycles;
+    tt_scan_worker_free(&W);
+    return rc;
+}
+
+/* A hundred times tighter (rk4: four times the steps, 16 times at its order of 2 on
+ * contact), so that the difference of the two runs is the run's own error even where
+ * the error does not fall with the tolerance: on the bistable scene the envelope
+ * model's error control changes course between 1e-9 and 1e-10, and the amplitude moved
+ * 3.5 times more from 1e-9 to 1e-10 than from 1e-8 to 1e-9. Not below 1e-14, where the
+ * steps' rounding takes over. */
+tt_solver tt_companion_solver(const tt_solver *s)
+{
+    tt_solver t = *s;
+    t.tolerance = fmax(s->tolerance / 100, fmin(s->tolerance, 1e-14));
+    t.steps_per_cycle = s->steps_per_cycle <= 2500000 ? 4 * s->steps_per_cycle : 10000000;
+    return t;
+}
+
+/* The companion's cycles: a fifth of the scan's cost, counted as the cycles the scan
+ * integrated. On the every-cycle tier each of the companion's costs what its tighter
+ * setting asks (dopri5's steps grow as the tolerance to the -1/5, 2.5 times at a
+ * hundredth; rk4 runs four times the steps); on the envelope tier a cycle the scan
+ * integrated cost 17 to 21 us with its model's work (the README's main job, the
+ * teaching scene), a companion cycle 4 to 17 us, so one counts as one. 0 (no bound)
+ * where the scan integrated none (the averaged tier). */
+static long companion_budget(const tt_scan *S, const tt_solver *tight)
+{
+    double per = S->solver.method == TT_METHOD_RK4
+                     ? (double)tight->steps_per_cycle / (double)S->solver.steps_per_cycle
+                     : pow(S->solver.tolerance / tight->tolerance, 0.2);
+    if (!(per >= 1) || tt_scan_envelope_usable(S, &S->solver))
+        per = 1;
+    return S->integrated > 0 ? (long)(TT_ESTIMATE_SHARE * (double)S->integrated / per) : 0;
+}
+
+/* Where the image is hardest: the largest height step between neighbouring pixels of
+ * the trace (of trace and retrace when the companion covers whole lines, reach >= the
+ * pixels), its line and pixel. The profile line from its start where no line has a
+ * step (a flat image, or no height channel). */
+static long hardest_line(const tt_scan *S, long reach, double *step, long *at)
+{
+    const tt_raster *R = &S->raster;
+    const int dirs = reach >= R->pixels && R->retrace ? 2 : 1;
+    long best = S->profile_line;
+    double top = 0;
+    *at = 0;
+    for (long l = 0; l < R->lines; l++) {
+        if (!S->line_done[l])
+            continue;
+        for (int r = 0; r < dirs && S->img[r][0]; r++) {
+            const double *h = S->img[r][0];
+            for (long i = 1; i < R->pixels; i++) {
+                double d = fabs(h[tt_raster_index(R, l, i)] - h[tt_raster_index(R, l, i - 1)]);
+                if (d > top) {
+                    top = d;
+                    best = l;
+                    *at = i;
+                }
+            }
+        }
+    }
+    *step = top;
+    return best;
+}
+
+/* A stretch of the trace the companion runs: its line, the pixel of its feature and its
+ * first pixel. */
+typedef struct {
+    long line, at, first;
+} stretch;
+
+enum { MAX_STRETCHES = 8 };
+
+/* The material under the trace's pixel px of a line (at its centre, without drift). */
+static int material_at(const tt_scan *S, long line, long px, long nc)
+{
+    double x, y;
+    long k = (2 * px + 1) * nc / (2 * S->raster.pixels);
+    tt_raster_position(&S->raster, line, 0, nc, k, &x, &y);
+    return tt_surface_material(S->surface, x, y);
+}
+
+/* The first pixel of a stretch of reach pixels with its feature (at) a quarter into it. */
+static long first_pixel(long at, long reach, long pixels)
+{
+    long first = at - reach / 4 > 0 ? at - reach / 4 : 0;
+    return first + reach > pixels ? pixels - reach : first;
+}
+
+/* The stretches where the image's error is largest: the largest height step (st[0]),
+ * and the first edge of each ordered pair of materials met along the trace (from the
+ * soft sticky matrix onto a stiff disk the every-cycle tier at 1e-7 erred 0.19 pm where
+ * the largest height step, on the disk, erred 0.04 pm: the bench's edge sample), each
+ * as far as no stretch already holds it; at most MAX_STRETCHES. */
+static int hardest_stretches(const tt_scan *S, long reach, long nc, stretch *st, double *step)
+{
+    const tt_raster *R = &S->raster;
+    *step = 0;
+    st[0] = (stretch){S->profile_line, 0, 0};
+    if (S->lines_done > 0)
+        st[0].line = hardest_line(S, reach, step, &st[0].at);
+    int n = 1, seen[MAX_STRETCHES][2];
+    for (long l = 0; l < R->lines && !S->uniform && reach < R->pixels; l++) {
+        if (!S->line_done[l])
+            continue;
+        int prev = material_at(S, l, 0, nc);
+        for (long i = 1; i < R->pixels; i++) {
+            int m = material_at(S, l, i, nc), known = 0;
+            if (m == prev)
+                continue;
+            for (int k = 1; k < n; k++)
+                known |= seen[k][0] == prev && seen[k][1] == m;
+            /* held by the height step's stretch, a pixel or more from its start */
+            long f0 = first_pixel(st[0].at, reach, R->pixels);
+            known |= l == st[0].line && i > f0 && i < f0 + reach;
+            if (!known && n < MAX_STRETCHES) {
+                seen[n][0] = prev;
+                seen[n][1] = m;
+                st[n++] = (stretch){l, i, 0};
+            }
+            prev = m;
+        }
+    }
+    for (int k = 0; k < n; k++)
+        st[k].first = reach < R->pixels ? first_pixel(st[k].at, reach, R->pixels) : 0;
+    return n;
+}
+
+/* The pixels a stretch reaches on budget cycles, settle of them settling, less the one
+ * it stops in. */
+static long stretch_reach(long budget, long settle, long nc, long px)
+{
+    return (long)((double)(budget - settle) / (double)nc * (double)px) - 1;
+}
+
+/* The differences of a stretch's two lines (buf: the run's setting, then the tight
+ * one's; [channel][direction] blocks of px) into max and sum, *n counting the pixels. */
+static void compare(const tt_scan *S, const double *buf, long first, int dirs, int partial,
+                    int rerun, double *max, double *sum, long *n)
+{
+    const long px = S->raster.pixels;
+    const double scale[3] = {1, 1 / S->A0, 1};
+    for (int r = 0; r < (partial ? 1 : dirs); r++)
+        for (long i = r ? 0 : first; i < px; i++) {
+            /* a line stopped by its budget: the trace's pixels before the one it stopped in */
+            if (partial && (i + 1 >= px || isnan(buf[(size_t)(6 * px + 1 + i)]) ||
+                            (rerun && isnan(buf[(size_t)(1 + i)]))))
+                break;
+            for (int c = 0; c < 3; c++) {
+                double a = buf[(size_t)((2 * c + r) * px + i)], b = buf[(size_t)((6 + 2 * c + r) * px + i)];
+                double d = fabs(a - b) * scale[c];
+                if (!(d <= max[c]))
+                    max[c] = d; /* a NaN (a pixel without data) stays visible */
+                sum[c] += d * d;
+            }
+            (*n)++;
+        }
+}
+
+int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
+{
+    memset(e, 0, sizeof *e);
+    const tt_raster *R = &S->raster;
+    const long px = R->pixels;
+    const int dirs = R->retrace ? 2 : 1;
+    double *buf = calloc((size_t)(12 * px), sizeof *buf);
+    if (!buf)
+        return tt_error_nomem("the companion line's profile");
+    double c0 = tt_clock(TT_CLOCK_PROCESS);
+    tt_solver tight = tt_companion_solver(&S->solver);
+    /* the averaged tier's error is its model's, which no tolerance moves: its companion
+     * is the envelope tier at the run's tolerance (as accurate as every cycle) */
+    const int avg = tt_scan_averaged_usable(S, &S->solver);
+    if (avg) {
+        tight = S->solver;
+        tight.tier = TT_TIER_ENVELOPE;
+    }
+    int trc = avg ? tt_scan_averaged_tables(S) : TT_OK;
+    if (trc) {
+        free(buf);
+        return trc;
+    }
+    /* Lines that do not carry on from one another are each a function of the line alone
+     * (the noise keyed by line, the envelope model forgotten): the image's own line is
+     * what the run's setting gives, and only the tight line runs. Continuous lines start
+     * where the last one ended, so the run's setting runs again beside it, from the
+     * same engage, on half the budget each. */
+    int rerun = S->continuous || avg;
+    for (int c = 0; c < 3; c++) /* and where the image lacks a channel it compares */
+        for (int r = 0; r < dirs; r++)
+            rerun |= !S->img[r][c];
+    const long nc = tt_raster_cycles_per_direction(R, S->cantilever.T);
+    const long settle = (S->settle_cycles + S->lockin.periods_per_block - 1) /
+                        S->lockin.periods_per_block * S->lockin.periods_per_block;
+    long budget = companion_budget(S, &tight);
+    /* A stretch inside the line engages there, not where the image's line reached it
+     * from the line's start (its noise counted from another cycle, its feedback fresh):
+     * the run's setting runs the same stretch beside it, each on half the budget. The
+     * trace's pixels the budget reaches, less the one it stops in: */
+    if (budget > 0 && stretch_reach(budget, settle, nc, px) < px)
+        rerun = 1;
+    if (rerun)
+        budget /= 2;
+    long reach = budget > 0 ? stretch_reach(budget, settle, nc, px) : 2 * px;
+    stretch st[MAX_STRETCHES];
+    double step = 0;
+    int ns = hardest_stretches(S, reach, nc, st, &step);
+    /* each stretch its share of the budget, settling included */
+    if (budget > 0 && ns > 1) {
+        budget /= ns;
+        reach = stretch_reach(budget, settle, nc, px);
+        ns = hardest_stretches(S, reach, nc, st, &step);
+    }
+    if (budget > 0 && reach < 2) {
+        /* a scan of a line or two: the fifth does not reach past each stretch's
+         * settling, and the whole hardest line runs (e->cycles says what it cost) */
+        budget = 0;
+        reach = 2 * px;
+        ns = hardest_stretches(S, reach, nc, st, &step);
+    }
+    double max[3] = {0}, sum[3] = {0};
+    long n = 0, ran[2] = {0, 0};
+    for (int s = 0; s < ns; s++) {
+        const long line = st[s].line, first = st[s].first;
+        /* the stretch's first cycle: the first whole cycle of its first pixel */
+        const long k0 = (first * nc + px - 1) / px;
+        int rc[2] = {TT_OK, TT_OK}, hit[2] = {0, 0};
+        long cyc[2] = {0, 0};
+        char why[2][512]; /* a worker thread's message is its own: carried back here */
+#pragma omp parallel for num_threads(2) schedule(static, 1) if (rerun)
+        for (int k = 0; k < 2; k++) {
+            if (k == 0 && !rerun) { /* the image's own line */
+                for (int c = 0; c < 3; c++)
+                    for (int r = 0; r < dirs; r++)
+                        for (long i = 0; i < px; i++)
+                            buf[(size_t)(2 * c + r) * (size_t)px + (size_t)i] =
+                                S->img[r][c][tt_raster_index(R, line, i)];
+                continue;
+            }
+            rc[k] = companion_line(S, k ? &tight : &S->solver, line, budget, k0,
+                                   buf + (size_t)(6 * k * px), &hit[k], &cyc[k]);
+            snprintf(why[k], sizeof why[k], "%s", rc[k] ? tt_error_message() : "");
+        }
+        for (int k = 0; k < 2; k++)
+            if (rc[k]) {
+                free(buf);
+                return tt_error(rc[k], "the companion line at tolerance %g: %s",
+                                k ? tight.tolerance : S->solver.tolerance, why[k]);
+            }
+        ran[0] += cyc[0];
+        ran[1] += cyc[1];
+        compare(S, buf, first, dirs, hit[0] || hit[1], rerun, max, sum, &n);
+    }
+    free(buf);
+    if (n == 0)
+        return tt_error(TT_EINVAL, "the companion line compared no pixel");
+    /* the difference stands for the run's error to within a tenth; twice it covers that
+     * and the other lines, which the companion did not run */
+    e->height_max = 2 * max[0];
+    e->height_rms = 2 * sqrt(sum[0] / (double)n);
+    e->amplitude_max = 2 * max[1];
+    e->amplitude_rms = 2 * sqrt(sum[1] / (double)n);
+    e->phase_max = 2 * max[2];
+    e->phase_rms = 2 * sqrt(sum[2] / (double)n);
+    e->line = st[0].line;
+    e->tolerance = tight.tolerance;
+    e->pixels = n;
+    e->pixels_line = dirs * px;
+    e->step = step;
+    e->first = st[0].first;
+    e->stretches = ns;
+    e->cycles = ran[0] + ran[1];
+    e->seconds = tt_clock(TT_CLOCK_PROCESS) - c0;
+    return TT_OK;
+}

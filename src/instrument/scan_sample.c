@@ -1,0 +1,45 @@
+/* Where the sample is under the tip: the instrument's clock, the sample's point and
+ * height at a raster position (tilt, drift, dilation), and the surface at a line's
+ * cycle (see scan_private.h). */
+#include "scan_private.h"
+
+/* The instrument's clock (tt_instrument_params) at the start of cycle k of phase 0
+ * (settling: the line's start), 1 (trace) or 2 (retrace). */
+double tt_scan_clock_at(const tt_scan *S, long line, int phase, long nc, long k)
+{
+    double half = 0.5 / S->raster.line_rate, t = (double)line / S->raster.line_rate;
+    if (phase == 0)
+        return t;
+    return t + (phase == 2 ? half : 0) + half * (double)k / (double)nc;
+}
+
+/* The sample under raster position (x, y) at time t: *x, *y become the surface's point
+ * there (drift); returns the height the apex meets (dilated, tilted, drifted in z) and
+ * the true height in *topo. */
+double tt_scan_sample_at(const tt_scan *S, double *x, double *y, double t, double *topo)
+{
+    const tt_instrument_params *in = &S->inst;
+    *x -= in->drift_x * t;
+    *y -= in->drift_y * t;
+    *topo = S->flat ? 0 : tt_surface_height(S->surface, *x, *y);
+    double h = S->dilation ? tt_dilation_height(S->dilation, *x, *y) : *topo;
+    return h + in->tilt_x * *x + in->tilt_y * *y + in->drift_z * t;
+}
+
+/* The surface at the start of cycle k (settling: the line's first pixel). */
+surf_pt tt_scan_surface_at(const line_ctx *L, long k)
+{
+    const tt_scan *S = L->S;
+    const long kk = L->phase ? k : L->k0;
+    surf_pt p = {.k = k};
+    double x, y;
+    tt_raster_position(&S->raster, L->line, L->dir, L->nc, kk, &x, &y);
+    if (S->plain) {
+        p.h = p.topo = S->flat ? 0 : tt_surface_height(S->surface, x, y);
+    } else {
+        double t = tt_scan_clock_at(S, L->line, L->phase, L->nc, kk);
+        p.h = tt_scan_sample_at(S, &x, &y, t, &p.topo);
+    }
+    p.mat = S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
+    return p;
+}

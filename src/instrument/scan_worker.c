@@ -1,0 +1,248 @@
+/* The scan's line engine: a worker made for a solver setting (its sim, lock-in and the
+ * tier the setting runs on here), retuned to a change of noise, and one line run on its
+ * tier (see scan_engine.h). */
+#include "scan_private.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tiptap/solver/noise.h"
+#include "tiptap/util/clock.h"
+#include "tiptap/util/error.h"
+
+void tt_scan_worker_free(worker *W)
+{
+    tt_sim_free(W->sim);
+    tt_lockin_free(W->lockin);
+    free(W->samples);
+    free(W->y);
+    tt_envelope_free(W->env);
+    tt_graze_free(W->graze);
+    tt_lockin_free(W->lockin_save);
+    free(W->y_save);
+    free(W->obs);
+    free(W->indent);
+}
+
+/* The averaged tier takes the drive, the damping and the tip-sample force for small
+ * against the cantilever's own forces at the drive frequency (Krylov-Bogoliubov): below
+ * Q 30 (a liquid's Q 1 gave NaN before this bound) or with the drive more than 5 % from
+ * resonance (the detuning k - m w^2 over a tenth of k; at twice and half the resonance
+ * its images were wrong by 100 nm) the scan runs on the envelope tier instead. */
+static int averaged_allowed(const tt_cantilever *c)
+{
+    double detune = 1 - (c->fd / c->f0) * (c->fd / c->f0);
+    return c->Q >= 30 && fabs(detune) <= 0.1;
+}
+
+int tt_scan_averaged_tier(const tt_scan_params *p)
+{
+    return p->solver.tier == TT_TIER_AVERAGED && averaged_allowed(&p->cantilever);
+}
+
+int tt_scan_envelope_tier(const tt_scan_params *p)
+{
+    int tier = p->solver.tier == TT_TIER_AVERAGED && !averaged_allowed(&p->cantilever)
+                   ? TT_TIER_ENVELOPE
+                   : p->solver.tier;
+    return tier == TT_TIER_ENVELOPE;
+}
+
+/* Whether a solver setting runs on the averaged tier here. */
+int tt_scan_averaged_usable(const tt_scan *S, const tt_solver *solver)
+{
+    return solver->tier == TT_TIER_AVERAGED && averaged_allowed(&S->cantilever);
+}
+
+/* Whether a solver setting runs on the envelope tier here (the averaged tier's
+ * fallback included). It runs at any Q and with any noise: above Q 3000 its checks bound a
+ * stretch's drift (scan_envelope.c); at low Q the map contracts within a few cycles and
+ * the model follows it (Q 10, 3, 1 and 0.3 skipped 89 to 98 % of the cycles within
+ * their estimates; a fallback below Q 30 was a guess, never measured); thermal and
+ * detector noise run on it to first order, the z piezo's (smooth below its bandwidth)
+ * as the sample's position it is (docs/dynamics.md, "Noise on the envelope tier"). */
+int tt_scan_envelope_usable(const tt_scan *S, const tt_solver *solver)
+{
+    int tier = solver->tier == TT_TIER_AVERAGED && !tt_scan_averaged_usable(S, solver) ? TT_TIER_ENVELOPE
+                                                                              : solver->tier;
+    return tier == TT_TIER_ENVELOPE;
+}
+
+/* The envelope tier's models kept per thread with noise that moves the state, 7 kB each
+ * on the standard lock-in: a line of the teaching grating at 300 K builds a few hundred
+ * (with 64 kept its lines took 9 % more instructions) */
+enum { KEPT_MODELS = 512 };
+
+/* What the envelope model's shape follows from the noise: 1, the travel as an input (z
+ * piezo noise); 2, second order. */
+static int model_shape(const tt_scan *S)
+{
+    return (S->zn.sd > 0 ? 1 : 0) | (tt_scan_second_order(S) ? 2 : 0);
+}
+
+static int envelope_alloc(tt_scan *S, worker *W)
+{
+    W->env_shape = model_shape(S);
+    size_t n = (size_t)S->lockin.samples_per_period * (size_t)S->lockin.periods_per_block;
+    int rc = tt_envelope_alloc(&W->env, &S->cantilever, S->lockin.samples_per_period);
+    /* the gaps around the closest approach, from which a grazing tip's branch and the
+     * time of its jump-in are predicted (tiptap/solver/graze.h) */
+    if (!rc)
+        rc = tt_envelope_set_probes(W->env, TT_GRAZE_PROBES);
+    if (!rc) {
+        const int m = tt_lockin_components(W->lockin);
+        double *scale = calloc(2 * ((size_t)m + TT_ENV_EXTRA), sizeof *scale);
+        if (!scale)
+            return tt_error_nomem("a scan thread's envelope tier");
+        double *floor = scale + m + TT_ENV_EXTRA;
+        const tt_cantilever *c = &S->cantilever;
+        for (int i = 0; i < m; i++)
+            scale[i] = c->A0;
+        scale[m + TT_ENV_PEAK] = c->k * c->A0;
+        scale[m + TT_ENV_INDENT] = c->A0;
+        scale[m + TT_ENV_ETS] = c->k * c->A0 * c->A0;
+        /* a touch's peak force and greatest indentation scatter from one grazing touch
+         * to the next by up to 4e-5 k A0 and 1e-6 A0 (the maximum sought on each step's
+         * samples; the blend's matrix): held to 1e-4 and 1e-5 of their scales, 8 pN and
+         * 0.2 pm on the standard cantilever, which a pixel's hundreds of cycles average */
+        floor[m + TT_ENV_PEAK] = 1e-4;
+        floor[m + TT_ENV_INDENT] = 1e-5;
+        rc = tt_graze_alloc(&W->graze, &S->cantilever, m + TT_ENV_EXTRA, scale, floor);
+        free(scale);
+    }
+    if (!rc)
+        rc = tt_lockin_alloc(&W->lockin_save, &S->lockin);
+    if (rc)
+        return rc;
+    /* the model's cycles give the lock-in its per-period components, not samples: a few
+     * dozen multiply-adds a cycle instead of n products and a transform */
+    rc = tt_envelope_reduce(W->env, tt_lockin_components(W->lockin),
+                            tt_lockin_component_matrix(W->lockin));
+    if (rc)
+        return rc;
+    /* the z piezo's noise moves the sample within each cycle by a travel of its own
+     * (about pi n fc sqrt(2 T) rms): an input of the model, as the sample's position is */
+    if (S->zn.sd > 0)
+        tt_envelope_use_travel(W->env);
+    if (tt_scan_second_order(S) && (rc = tt_envelope_use_second_order(W->env)))
+        return rc;
+    /* noise to first order in the model's cycles: the thermal force's PSD (2 c kB T) and
+     * the detector's per-sample rms; the sim integrates without the thermal force */
+    const tt_cantilever *c = &S->cantilever;
+    rc = tt_envelope_set_noise(W->env, 2 * c->c * TT_BOLTZMANN * S->noise.temperature, S->sd);
+    /* the second-order model holds near where its derivatives were taken, and the noise
+     * brings the state back near the same places: models kept for recall */
+    if (!rc && tt_scan_second_order(S))
+        rc = tt_envelope_keep_models(W->env, KEPT_MODELS);
+    if (rc)
+        return rc;
+    W->y_save = calloc(n, sizeof *W->y_save);
+    W->obs = calloc(2 * (size_t)tt_envelope_size(W->env), sizeof *W->obs);
+    if (!W->y_save || !W->obs)
+        return tt_error_nomem("a scan thread's envelope tier");
+    return TT_OK;
+}
+
+/* The averaged tier's tables, once per scan (before any thread runs a line): every
+ * material's, with the harmonics the lock-in keeps. */
+int tt_scan_averaged_tables(tt_scan *S)
+{
+    if (S->avg)
+        return TT_OK;
+    double t0 = tt_clock(TT_CLOCK_THREAD);
+    S->avg = calloc(S->nmaterials, sizeof *S->avg);
+    if (!S->avg)
+        return tt_error_nomem("the averaged tier's tables of %zu materials", S->nmaterials);
+    for (size_t i = 0; i < S->nmaterials; i++) {
+        int rc = tt_averaged_alloc(&S->avg[i], &S->cantilever, S->contacts[i], S->Qi[i],
+                                   S->lockin.harmonics);
+        if (rc)
+            return rc;
+        double e = tt_averaged_table_error(S->avg[i]);
+        if (e > S->avg_error)
+            S->avg_error = e;
+    }
+    S->avg_seconds = tt_clock(TT_CLOCK_THREAD) - t0; /* with the check */
+    return TT_OK;
+}
+
+int tt_scan_worker_retune(tt_scan *S, worker *W)
+{
+    const int env = tt_scan_envelope_usable(S, &S->solver);
+    if (W->averaged)
+        return TT_OK; /* noiseless (docs/dynamics.md, Averaged) */
+    /* the model's inputs and order follow the noise: made anew when they change */
+    if (W->env && (!env || W->env_shape != model_shape(S))) {
+        tt_envelope_free(W->env);
+        tt_graze_free(W->graze); /* envelope_alloc makes a new one when the tier returns */
+        tt_lockin_free(W->lockin_save);
+        free(W->y_save);
+        free(W->obs);
+        W->env = NULL;
+        W->graze = NULL;
+        W->lockin_save = NULL;
+        W->y_save = W->obs = NULL;
+    }
+    int rc = tt_sim_set_thermal(W->sim, env ? 0 : S->noise.temperature, S->noise.points);
+    if (rc || !env)
+        return rc;
+    if (!W->env)
+        return envelope_alloc(S, W);
+    return tt_envelope_set_noise(W->env, 2 * S->cantilever.c * TT_BOLTZMANN * S->noise.temperature,
+                                 S->sd);
+}
+
+int tt_scan_worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)
+{
+    memset(W, 0, sizeof *W);
+    W->tolerance = solver->tolerance;
+    W->model_tol = 10 * solver->tolerance;
+    int rc;
+    if ((rc = tt_sim_alloc(&W->sim, &S->cantilever, solver)) ||
+        (rc = tt_sim_set_thermal(W->sim, tt_scan_envelope_usable(S, solver) ? 0 : S->noise.temperature,
+                                 S->noise.points)) ||
+        (rc = tt_lockin_alloc(&W->lockin, &S->lockin)))
+        return rc;
+    size_t n = (size_t)S->lockin.samples_per_period * (size_t)S->lockin.periods_per_block;
+    W->samples = calloc(n, sizeof *W->samples);
+    W->y = calloc(n, sizeof *W->y);
+    W->indent = malloc(S->nmaterials * sizeof *W->indent);
+    if (!W->samples || !W->y || !W->indent)
+        return tt_error_nomem("a scan thread's lock-in samples");
+    for (size_t i = 0; i < S->nmaterials; i++)
+        W->indent[i] = -INFINITY;
+    if (tt_scan_averaged_usable(S, solver)) {
+        W->averaged = 1;
+        return tt_scan_averaged_tables(S);
+    }
+    return tt_scan_envelope_usable(S, solver) ? envelope_alloc(S, W) : TT_OK;
+}
+
+int tt_scan_worker_line(tt_scan *S, worker *W, long line, const line_out *out,
+                        tt_scan_scope *scope, line_tally *t)
+{
+    line_out images;
+    if (!out) {
+        memcpy(images.img, S->img, sizeof images.img);
+        images.packed = 0;
+        out = &images;
+    }
+    memset(t, 0, sizeof *t);
+    int rc = scope ? tt_scan_scope_begin(scope, S, line) : TT_OK;
+    if (rc)
+        return rc;
+    W->scope = scope;
+    if (W->env)
+        rc = tt_scan_line_envelope(S, W, line, out, &t->cycles, &t->integrated, &t->worst,
+                                   &t->clamped);
+    else if (W->averaged)
+        rc = tt_scan_line_averaged(S, W, line, out, &t->cycles, &t->worst, &t->clamped);
+    else
+        rc = tt_scan_line_every(S, W, line, out, &t->cycles, &t->integrated, &t->worst,
+                                &t->clamped);
+    W->scope = NULL;
+    if (scope)
+        tt_scan_scope_end(scope, rc == TT_OK);
+    return rc;
+}
