@@ -30,6 +30,22 @@ enum {
 };
 
 typedef struct pss pss;
+
+/* An instrument: a page's own controls and engine (its scan, images and exports). It
+ * outlives its page, idle (the engine waits: no CPU), so that a reload finds it again and
+ * its exports stay; a new page takes it over, reset to the start, only when no slot is
+ * free (the one idle longest). */
+typedef struct {
+    int number;                 /* 1 ..: in the page's messages and export paths */
+    tt_live_controls *controls; /* NULL with engine: not made yet, or its reset failed */
+    tt_live_engine *engine;
+    unsigned long controls_version;
+    pss *page;                  /* the page that holds it (NULL: none) */
+    int used;                   /* a page has held it since it was made */
+    double released_at;         /* when its last page left, wall s */
+    unsigned long generation;   /* bumped when it is remade: a waiting export notices */
+} instrument;
+
 struct pss {
     struct lws *wsi;
     pss *next;
@@ -39,9 +55,13 @@ struct pss {
     FILE *file;
     size_t len, pos;
     int headers, waiting, head;
-    unsigned long export_id;
+    instrument *export_inst;
+    unsigned long export_id, export_gen;
     char export_name[128];
-    /* WebSocket: what it has seen */
+    /* WebSocket: its instrument (NULL: all are held by other pages, it waits for one), the
+     * one it asked for (its path /N: a reload's; 0 none), and what it has seen */
+    instrument *inst;
+    int want;
     unsigned long seen_controls, seen_frame, seen_rows, seen_scope, seen_status;
     int have_reply, reply_ok;
     unsigned dropped;
@@ -54,11 +74,12 @@ struct pss {
 
 typedef struct {
     struct lws_context *ctx;
-    tt_live_controls *controls;
-    tt_live_engine *engine;
+    tt_live_controls *controls; /* the start: each instrument's controls are a copy */
     const tt_live_options *o;
-    unsigned long controls_version;
-    int clients, max_clients, port;
+    instrument *inst;           /* max_inst of them */
+    instrument *last;           /* the one last taken or changed: /export/NAME's */
+    int clients, max_clients, max_inst, port;
+    int closing; /* the instruments are freed: the closing pages leave nothing to do */
     pss *all;
     tt_live_buf out;
     lws_sorted_usec_list_t sul;
@@ -132,16 +153,19 @@ static int ws_writeable(server *s, pss *p)
 {
     tt_live_buf_reset(&s->out);
     int more = 1;
+    instrument *in = p->inst;
     if (p->have_reply) {
         tt_live_msg_reply(&s->out, p->reply_ok, p->reply, p->dropped);
         p->have_reply = 0;
         p->dropped = 0;
-    } else if (p->seen_controls != s->controls_version) {
-        tt_live_msg_controls(&s->out, s->controls);
-        p->seen_controls = s->controls_version;
+    } else if (!in) {
+        return 0; /* no instrument yet: nothing more to send */
+    } else if (p->seen_controls != in->controls_version) {
+        tt_live_msg_controls(&s->out, in->controls, in->number, s->max_inst);
+        p->seen_controls = in->controls_version;
     } else {
-        tt_live_engine_lock(s->engine);
-        const tt_live_view *v = tt_live_engine_view(s->engine);
+        tt_live_engine_lock(in->engine);
+        const tt_live_view *v = tt_live_engine_view(in->engine);
         if (p->seen_frame != v->frame_version && v->row_version) {
             tt_live_msg_frame(&s->out, v);
             p->seen_frame = v->frame_version;
@@ -165,7 +189,7 @@ static int ws_writeable(server *s, pss *p)
                 more = 0;
             }
         }
-        tt_live_engine_unlock(s->engine);
+        tt_live_engine_unlock(in->engine);
         if (!more)
             return 0;
     }
@@ -183,11 +207,101 @@ static void reply(pss *p, int ok, const char *why)
     lws_callback_on_writable(p->wsi);
 }
 
-/* A checked change to the engine, which makes its scan now or refuses it. */
+/* A checked change to the instrument's engine, which makes its scan now or refuses it. */
 static int take(void *user, tt_scene *scene, tt_scan_params *p, int restart)
 {
-    server *s = user;
-    return tt_live_engine_submit(s->engine, scene, p, restart);
+    instrument *in = user;
+    return tt_live_engine_submit(in->engine, scene, p, restart);
+}
+
+/* An instrument made afresh at the start's settings (its old engine and controls freed):
+ * TT_OK, or the error with the slot left empty. */
+static int make_instrument(server *s, instrument *in)
+{
+    in->generation++;
+    tt_live_engine_free(in->engine);
+    tt_live_controls_free(in->controls);
+    in->engine = NULL;
+    in->controls = NULL;
+    in->used = 0;
+    tt_scene *scene = NULL;
+    tt_scan_params prm;
+    int rc = tt_live_controls_copy(&in->controls, s->controls);
+    if (!rc && !(rc = tt_live_controls_scene(in->controls, &scene, &prm)))
+        rc = tt_live_engine_alloc(&in->engine, scene, &prm, wake, s);
+    if (rc) {
+        tt_live_controls_free(in->controls);
+        in->controls = NULL;
+        return rc;
+    }
+    tt_live_engine_set_writer(in->engine, s->o->write, s->o->write_user);
+    in->controls_version++;
+    return TT_OK;
+}
+
+/* A page's instrument: the one it asked for where no page holds it (a reload), else one
+ * no page has held, else a new one while fewer than max_inst are made, else the one idle
+ * longest, reset; none while every one is held (the page is told, and waits). */
+static void attach(server *s, pss *p)
+{
+    instrument *in = NULL, *idle = NULL;
+    int keep = 0; /* a reload's instrument, taken as it is */
+    if (p->want >= 1 && p->want <= s->max_inst && s->inst[p->want - 1].engine &&
+        !s->inst[p->want - 1].page) {
+        in = &s->inst[p->want - 1];
+        keep = 1;
+    }
+    for (int i = 0; !in && i < s->max_inst; i++)
+        if (s->inst[i].engine && !s->inst[i].page && !s->inst[i].used)
+            in = &s->inst[i];
+    for (int i = 0; !in && i < s->max_inst; i++)
+        if (!s->inst[i].engine)
+            in = &s->inst[i];
+    for (int i = 0; !in && i < s->max_inst; i++)
+        if (!s->inst[i].page && (!idle || s->inst[i].released_at < idle->released_at))
+            idle = &s->inst[i];
+    if (!in && !idle) {
+        char why[300];
+        snprintf(why, sizeof why, "console: all %d instruments are in use by other pages (tiptap "
+                 "live --instruments N allows more); this page gets one when another closes",
+                 s->max_inst);
+        reply(p, 0, why);
+        return;
+    }
+    if (!keep && (!in || !in->engine || in->used)) {
+        in = in ? in : idle;
+        if (make_instrument(s, in)) {
+            reply(p, 0, tt_error_message());
+            return;
+        }
+    }
+    in->page = p;
+    in->used = 1;
+    p->inst = in;
+    p->seen_controls = p->seen_frame = p->seen_rows = p->seen_scope = p->seen_status = 0;
+    s->last = in;
+    /* a page looks: the engine runs (it waits, no CPU, while none does) */
+    tt_live_engine_watched(in->engine, 1);
+    lws_callback_on_writable(p->wsi);
+}
+
+/* A page gone: its instrument idles, kept for a reload; the page waiting longest takes it. */
+static void detach(server *s, pss *p)
+{
+    instrument *in = p->inst;
+    p->inst = NULL;
+    if (!in || s->closing)
+        return;
+    in->page = NULL;
+    in->released_at = tt_clock(TT_CLOCK_WALL);
+    tt_live_engine_watched(in->engine, 0);
+    /* the page waiting longest: the list is newest first */
+    pss *wait = NULL;
+    for (pss *q = s->all; q; q = q->next)
+        if (q->ws && !q->inst && q != p)
+            wait = q;
+    if (wait)
+        attach(s, wait);
 }
 
 /* A whole message from a page: checked by the controls, taken by the engine, or
@@ -218,23 +332,32 @@ static void ws_message(server *s, pss *p)
     size_t n = p->rxlen;
     while (n > 0 && (p->rx[n - 1] == '\n' || p->rx[n - 1] == '\r' || p->rx[n - 1] == ' '))
         n--;
+    instrument *in = p->inst;
+    if (!in) {
+        char why[200];
+        snprintf(why, sizeof why, "console: this page has no instrument yet (all %d are in use)",
+                 s->max_inst);
+        reply(p, 0, why);
+        return;
+    }
     int pause = n == 5 && memcmp(p->rx, "pause", 5) == 0, resume = n == 6 && memcmp(p->rx, "resume", 6) == 0,
         step = n == 4 && memcmp(p->rx, "step", 4) == 0;
     if (pause || resume || step) {
         if (step)
-            tt_live_engine_step(s->engine);
+            tt_live_engine_step(in->engine);
         else
-            tt_live_engine_pause(s->engine, pause);
+            tt_live_engine_pause(in->engine, pause);
         reply(p, 1, "");
         wake_all(s);
         return;
     }
     tt_live_change ch;
-    if (tt_live_controls_apply(s->controls, p->rx, p->rxlen, &ch, take, s)) {
+    if (tt_live_controls_apply(in->controls, p->rx, p->rxlen, &ch, take, in)) {
         reply(p, 0, ch.why);
         return;
     }
-    s->controls_version++;
+    in->controls_version++;
+    s->last = in;
     reply(p, 1, "");
     wake_all(s);
 }
@@ -330,10 +453,21 @@ static int http_request(server *s, pss *p, const char *uri)
         return http_send(p, HTTP_STATUS_METHOD_NOT_ALLOWED, "text/plain", not_allowed,
                          sizeof not_allowed - 1, "GET, HEAD");
     if (strncmp(uri, "/export/", 8) == 0) {
-        if (!export_name_ok(uri + 8))
+        /* /export/N/NAME: instrument N's; /export/NAME: the one last taken or changed */
+        const char *name = uri + 8;
+        instrument *in = s->last;
+        if (name[0] >= '1' && name[0] <= '9') {
+            char *end;
+            long k = strtol(name, &end, 10);
+            in = *end == '/' && k <= s->max_inst ? &s->inst[k - 1] : NULL;
+            name = in ? end + 1 : name;
+        }
+        if (!in || !in->engine || !export_name_ok(name))
             return lws_return_http_status(p->wsi, HTTP_STATUS_NOT_FOUND, "no such export") ? -1 : 0;
-        snprintf(p->export_name, sizeof p->export_name, "%s", uri + 8);
-        p->export_id = tt_live_engine_export(s->engine);
+        snprintf(p->export_name, sizeof p->export_name, "%s", name);
+        p->export_inst = in;
+        p->export_gen = in->generation;
+        p->export_id = tt_live_engine_export(in->engine);
         p->waiting = 1;
         /* the engine writes it between two lines: give it a slow line's time */
         lws_set_timeout(p->wsi, PENDING_TIMEOUT_HTTP_CONTENT, EXPORT_WAIT_S);
@@ -353,17 +487,25 @@ static int http_export(server *s, pss *p)
     const char *dir, *why;
     int status;
     char path[4400], disp[200], msg[600];
-    tt_live_engine_lock(s->engine);
-    unsigned long done = tt_live_engine_exported(s->engine, &dir, &status, &why);
+    instrument *in = p->export_inst;
+    (void)s;
+    if (in->generation != p->export_gen || !in->engine) {
+        /* another page took the instrument over: its files are gone with it */
+        p->waiting = 0;
+        lws_set_timeout(p->wsi, NO_PENDING_TIMEOUT, 0);
+        return lws_return_http_status(p->wsi, HTTP_STATUS_NOT_FOUND, "the instrument was reset") ? -1 : 0;
+    }
+    tt_live_engine_lock(in->engine);
+    unsigned long done = tt_live_engine_exported(in->engine, &dir, &status, &why);
     if (done < p->export_id) {
-        tt_live_engine_unlock(s->engine);
+        tt_live_engine_unlock(in->engine);
         return 0;
     }
     int bad = status != TT_OK || !dir;
     tt_live_text(msg, sizeof msg, bad ? why : "");
     snprintf(path, sizeof path, "%s/%s", dir ? dir : "", p->export_name);
     FILE *f = bad ? NULL : fopen(path, "rb");
-    tt_live_engine_unlock(s->engine);
+    tt_live_engine_unlock(in->engine);
     struct stat st;
     if (f && fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode)) {
         p->file = f;
@@ -446,7 +588,7 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
         if (s->clients >= s->max_clients || !trusted(wsi, s->port))
             return 1;
         return 0;
-    case LWS_CALLBACK_ESTABLISHED:
+    case LWS_CALLBACK_ESTABLISHED: {
         if (p->wsi) /* an HTTP connection upgraded: it was listed as one */
             unlink_pss(s, p);
         memset(p, 0, sizeof *p);
@@ -457,9 +599,15 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
         p->next = s->all;
         s->all = p;
         s->clients++;
-        tt_live_engine_watched(s->engine, s->clients);
+        /* the path /N: the instrument this page had before a reload */
+        char u[32];
+        if (lws_hdr_copy(wsi, u, sizeof u, WSI_TOKEN_GET_URI) > 1 && u[0] == '/' && u[1] >= '1' &&
+            u[1] <= '9' && strlen(u) <= 4)
+            p->want = atoi(u + 1);
+        attach(s, p);
         lws_callback_on_writable(wsi);
         return 0;
+    }
     case LWS_CALLBACK_SERVER_WRITEABLE:
         return ws_writeable(s, p);
     case LWS_CALLBACK_RECEIVE:
@@ -469,8 +617,7 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
         unlink_pss(s, p);
         if (p->ws) {
             s->clients--;
-            /* no page looks: the engine waits (no CPU) until one comes */
-            tt_live_engine_watched(s->engine, s->clients);
+            detach(s, p);
         }
         p->ws = 0;
         return 0;
@@ -524,7 +671,7 @@ int tt_live_serve(tt_live_controls *c, const tt_live_options *o)
     s.controls = c;
     s.o = o;
     s.max_clients = o->max_clients > 0 ? o->max_clients : 16;
-    s.controls_version = 1;
+    s.max_inst = o->max_instruments > 0 ? o->max_instruments : 4;
     s.out.pre = LWS_PRE;
     s.out.max = OUT_MAX;
     lws_set_log_level(LLL_ERR, log_line);
@@ -552,25 +699,33 @@ int tt_live_serve(tt_live_controls *c, const tt_live_options *o)
                                 "another): %s", o->port,
                         lws_last[0] ? lws_last : "libwebsockets failed to start");
     s.port = lws_get_vhost_listen_port(lws_get_vhost_by_name(s.ctx, "default"));
-    tt_scene *scene = NULL;
-    tt_scan_params prm;
-    rc = tt_live_controls_scene(c, &scene, &prm);
+    /* the first instrument now: a scene that cannot be scanned fails before any page */
+    if (!(s.inst = calloc((size_t)s.max_inst, sizeof *s.inst)))
+        rc = tt_error_nomem("the console's instruments");
+    for (int i = 0; !rc && i < s.max_inst; i++)
+        s.inst[i].number = i + 1;
     if (!rc)
-        rc = tt_live_engine_alloc(&s.engine, scene, &prm, wake, &s);
+        rc = make_instrument(&s, &s.inst[0]);
     if (rc) {
+        free(s.inst);
         lws_context_destroy(s.ctx);
         return rc;
     }
-    tt_live_engine_set_writer(s.engine, o->write, o->write_user);
+    s.last = &s.inst[0];
     if (o->ready)
         o->ready(o->ready_user, s.port);
     lws_sul_schedule(s.ctx, 0, &s.sul, tick, 200 * LWS_US_PER_MS);
     while (!tt_cancel_requested())
         if (lws_service(s.ctx, 0) < 0)
             break;
-    /* the engine first: its line stops at the cancellation; then the connections */
-    tt_live_engine_free(s.engine);
+    /* the engines first: their lines stop at the cancellation; then the connections */
+    for (int i = 0; i < s.max_inst; i++) {
+        tt_live_engine_free(s.inst[i].engine);
+        tt_live_controls_free(s.inst[i].controls);
+    }
+    s.closing = 1;
     lws_context_destroy(s.ctx);
+    free(s.inst);
     tt_live_buf_free(&s.out);
     return TT_OK;
 }

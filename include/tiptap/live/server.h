@@ -36,6 +36,9 @@ extern "C" {
 typedef struct {
     int port;        /* 0: one the system picks */
     int max_clients; /* WebSockets at once (0: 16) */
+    /* instruments at once (0: 4): each page has its own (controls, engine, exports), and
+     * a page beyond them is told so and waits for one */
+    int max_instruments;
     /* writes the current scan's files into dir as tiptap scan does (the exports) */
     int (*write)(void *user, const tt_scan *scan, const tt_scene *scene, const char *dir);
     void *write_user;
