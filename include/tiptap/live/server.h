@@ -19,8 +19,14 @@
  * page may drive or read the instrument, nor a rebound name); only GET and HEAD are
  * served (others 405). Every text sent is UTF-8.
  *
- * Ownership: tt_live_serve borrows the controls; it makes and frees the engine, and runs
- * until cancellation is requested (util/cancel.h), then closes every connection.
+ * Each page (WebSocket) drives an instrument of its own, at most max_instruments of them
+ * (docs/live.md, "One instrument per page"): a copy of the controls and an engine, kept
+ * idle after its page closes (for its exports and a reload at /N) until a new page needs
+ * the slot; its exports are /export/N/NAME.
+ *
+ * Ownership: tt_live_serve borrows the controls (the start's settings, copied for each
+ * instrument); it makes and frees the instruments, and runs until cancellation is
+ * requested (util/cancel.h), then closes every connection.
  */
 #ifndef TIPTAP_LIVE_SERVER_H
 #define TIPTAP_LIVE_SERVER_H
