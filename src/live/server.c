@@ -10,7 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <time.h>
 
 #include "live_private.h"
@@ -19,71 +18,7 @@
 #include "tiptap/util/error.h"
 #include "tiptap/util/clock.h"
 
-enum {
-    RX_MAX = 16384,         /* bytes of one message from a page */
-    RATE = 20, BURST = 40,  /* messages a second from one page, and its burst */
-    OUT_MAX = 64 << 20,     /* the largest message sent (a row of 16384 pixels is ~1 MB) */
-    EXPORT_WAIT_S = 300,    /* how long an export may wait for the line under way */
-    CONN_MAX = 64,          /* connections at once, pages and requests (a browser opens 6
-                             * a host; more wait in the kernel's backlog) */
-    CHUNK = 16384           /* bytes of a file sent at a time: all a request holds */
-};
-
-typedef struct pss pss;
-
-/* An instrument: a page's own controls and engine (its scan, images and exports). It
- * outlives its page, idle (the engine waits: no CPU), so that a reload finds it again and
- * its exports stay; a new page takes it over, reset to the start, only when no slot is
- * free (the one idle longest). */
-typedef struct {
-    int number;                 /* 1 ..: in the page's messages and export paths */
-    tt_live_controls *controls; /* NULL with engine: not made yet, or its reset failed */
-    tt_live_engine *engine;
-    unsigned long controls_version;
-    pss *page;                  /* the page that holds it (NULL: none) */
-    int used;                   /* a page has held it since it was made */
-    double released_at;         /* when its last page left, wall s */
-    unsigned long generation;   /* bumped when it is remade: a waiting export notices */
-} instrument;
-
-struct pss {
-    struct lws *wsi;
-    pss *next;
-    int ws;
-    /* HTTP: a body from memory (the page) or streamed from a file (an export) */
-    const unsigned char *body;
-    FILE *file;
-    size_t len, pos;
-    int headers, waiting, head;
-    instrument *export_inst;
-    unsigned long export_id, export_gen;
-    char export_name[128];
-    /* WebSocket: its instrument (NULL: all are held by other pages, it waits for one), the
-     * one it asked for (its path /N: a reload's; 0 none), and what it has seen */
-    instrument *inst;
-    int want;
-    unsigned long seen_controls, seen_frame, seen_rows, seen_scope, seen_status;
-    int have_reply, reply_ok;
-    unsigned dropped;
-    char reply[600];
-    char *rx;
-    size_t rxlen;
-    int rx_over;
-    double tokens, tokens_at;
-};
-
-typedef struct {
-    struct lws_context *ctx;
-    tt_live_controls *controls; /* the start: each instrument's controls are a copy */
-    const tt_live_options *o;
-    instrument *inst;           /* max_inst of them */
-    instrument *last;           /* the one last taken or changed: /export/NAME's */
-    int clients, max_clients, max_inst, port;
-    int closing; /* the instruments are freed: the closing pages leave nothing to do */
-    pss *all;
-    tt_live_buf out;
-    lws_sorted_usec_list_t sul;
-} server;
+#include "server_private.h"
 
 static void wake(void *user)
 {
@@ -121,23 +56,6 @@ static void unlink_pss(server *s, pss *p)
     p->rx = NULL;
 }
 
-/* The Host, and the Origin where a browser sends one, must be this server's: another web
- * page open in the same browser may not drive the instrument nor read it, and a name that
- * resolves to 127.0.0.1 (DNS rebinding) is not this server's. Every request passes here,
- * a page's as a WebSocket's. */
-static int trusted(struct lws *wsi, int port)
-{
-    char h[256];
-    int n = lws_hdr_total_length(wsi, WSI_TOKEN_HOST);
-    if (n <= 0 || n >= (int)sizeof h || lws_hdr_copy(wsi, h, sizeof h, WSI_TOKEN_HOST) <= 0 ||
-        !tt_live_authority_ok(h, 0, port))
-        return 0;
-    if ((n = lws_hdr_total_length(wsi, WSI_TOKEN_ORIGIN)) <= 0)
-        return 1; /* not a browser, or a browser's plain navigation */
-    return n < (int)sizeof h && lws_hdr_copy(wsi, h, sizeof h, WSI_TOKEN_ORIGIN) > 0 &&
-           tt_live_authority_ok(h, 1, port);
-}
-
 /* One message to a page: the buffer's text as a WebSocket text frame. */
 static int send_buf(server *s, struct lws *wsi)
 {
@@ -158,8 +76,8 @@ static int ws_writeable(server *s, pss *p)
         tt_live_msg_reply(&s->out, p->reply_ok, p->reply, p->dropped);
         p->have_reply = 0;
         p->dropped = 0;
-    } else if (!in) {
-        return 0; /* no instrument yet: nothing more to send */
+    } else if (!in || !in->engine) {
+        return 0; /* no instrument yet (or the server is closing): nothing more to send */
     } else if (p->seen_controls != in->controls_version) {
         tt_live_msg_controls(&s->out, in->controls, in->number, s->max_inst);
         p->seen_controls = in->controls_version;
@@ -379,184 +297,6 @@ static void ws_receive(server *s, pss *p, const void *in, size_t len)
     }
 }
 
-static const tt_live_asset *find_asset(const char *uri)
-{
-    size_t n;
-    const tt_live_asset *a = tt_live_assets(&n);
-    if (strcmp(uri, "/") == 0)
-        uri = "/index.html";
-    for (size_t i = 0; i < n; i++)
-        if (strcmp(a[i].path, uri) == 0)
-            return &a[i];
-    return NULL;
-}
-
-/* The names an export may ask for: scene.ini, scan.gwy, CHANNEL_trace.gsf, ... */
-static int export_name_ok(const char *name)
-{
-    size_t n = strlen(name);
-    if (n == 0 || n > 100 || strchr(name, '/') || name[0] == '.')
-        return 0;
-    for (size_t i = 0; i < n; i++)
-        if (!((name[i] >= 'a' && name[i] <= 'z') || (name[i] >= '0' && name[i] <= '9') ||
-              name[i] == '_' || name[i] == '.'))
-            return 0;
-    return strcmp(name, "scene.ini") == 0 || strcmp(name, "scan.gwy") == 0 || strcmp(name, "lesson.ini") == 0 ||
-           (n > 4 && strcmp(name + n - 4, ".gsf") == 0);
-}
-
-static int http_headers(struct lws *wsi, unsigned code, const char *mime, size_t len,
-                        const char *disposition, const char *allow)
-{
-    unsigned char buf[LWS_PRE + 1024], *start = buf + LWS_PRE, *p = start, *end = buf + sizeof buf - 1;
-    if (lws_add_http_common_headers(wsi, code, mime, (lws_filepos_t)len, &p, end))
-        return -1;
-    if (lws_add_http_header_by_name(wsi, (const unsigned char *)"cache-control:",
-                                    (const unsigned char *)"no-store", 8, &p, end))
-        return -1;
-    if (disposition &&
-        lws_add_http_header_by_name(wsi, (const unsigned char *)"content-disposition:",
-                                    (const unsigned char *)disposition, (int)strlen(disposition),
-                                    &p, end))
-        return -1;
-    if (allow && lws_add_http_header_by_name(wsi, (const unsigned char *)"allow:",
-                                             (const unsigned char *)allow, (int)strlen(allow), &p, end))
-        return -1;
-    return lws_finalize_write_http_header(wsi, start, &p, end) ? -1 : 0;
-}
-
-/* A reply whose body is in memory (static: the page's files, or a line of text), sent
- * from the writeable callback; a HEAD request's without its body. */
-static int http_send(pss *p, unsigned code, const char *mime, const void *body, size_t len,
-                     const char *allow)
-{
-    p->body = body;
-    p->len = len;
-    p->pos = 0;
-    if (http_headers(p->wsi, code, mime, len, NULL, allow))
-        return -1;
-    p->headers = 1;
-    lws_callback_on_writable(p->wsi);
-    return 0;
-}
-
-static int http_request(server *s, pss *p, const char *uri)
-{
-    static const char forbidden[] = "not this server's Host or Origin\n",
-                      not_allowed[] = "only GET and HEAD\n";
-    char *u;
-    int ul, method = lws_http_get_uri_and_method(p->wsi, &u, &ul);
-    p->head = method == LWSHUMETH_HEAD;
-    if (!trusted(p->wsi, s->port))
-        return http_send(p, HTTP_STATUS_FORBIDDEN, "text/plain", forbidden, sizeof forbidden - 1, NULL);
-    if (method != LWSHUMETH_GET && method != LWSHUMETH_HEAD)
-        return http_send(p, HTTP_STATUS_METHOD_NOT_ALLOWED, "text/plain", not_allowed,
-                         sizeof not_allowed - 1, "GET, HEAD");
-    if (strncmp(uri, "/export/", 8) == 0) {
-        /* /export/N/NAME: instrument N's; /export/NAME: the one last taken or changed */
-        const char *name = uri + 8;
-        instrument *in = s->last;
-        if (name[0] >= '1' && name[0] <= '9') {
-            char *end;
-            long k = strtol(name, &end, 10);
-            in = *end == '/' && k <= s->max_inst ? &s->inst[k - 1] : NULL;
-            name = in ? end + 1 : name;
-        }
-        if (!in || !in->engine || !export_name_ok(name))
-            return lws_return_http_status(p->wsi, HTTP_STATUS_NOT_FOUND, "no such export") ? -1 : 0;
-        snprintf(p->export_name, sizeof p->export_name, "%s", name);
-        p->export_inst = in;
-        p->export_gen = in->generation;
-        p->export_id = tt_live_engine_export(in->engine);
-        p->waiting = 1;
-        /* the engine writes it between two lines: give it a slow line's time */
-        lws_set_timeout(p->wsi, PENDING_TIMEOUT_HTTP_CONTENT, EXPORT_WAIT_S);
-        return 0; /* answered when the engine has written it (http_export) */
-    }
-    const tt_live_asset *a = find_asset(uri);
-    if (!a)
-        return lws_return_http_status(p->wsi, HTTP_STATUS_NOT_FOUND, NULL) ? -1 : 0;
-    return http_send(p, HTTP_STATUS_OK, a->mime, a->data, a->len, NULL);
-}
-
-/* The export asked for, once written: opened (the engine may remove the folder once it
- * writes the next; the open file stays readable) and streamed a chunk at a time, so that
- * a request holds a chunk's memory whatever the file's size. */
-static int http_export(server *s, pss *p)
-{
-    const char *dir, *why;
-    int status;
-    char path[4400], disp[200], msg[600];
-    instrument *in = p->export_inst;
-    (void)s;
-    if (in->generation != p->export_gen || !in->engine) {
-        /* another page took the instrument over: its files are gone with it */
-        p->waiting = 0;
-        lws_set_timeout(p->wsi, NO_PENDING_TIMEOUT, 0);
-        return lws_return_http_status(p->wsi, HTTP_STATUS_NOT_FOUND, "the instrument was reset") ? -1 : 0;
-    }
-    tt_live_engine_lock(in->engine);
-    unsigned long done = tt_live_engine_exported(in->engine, &dir, &status, &why);
-    if (done < p->export_id) {
-        tt_live_engine_unlock(in->engine);
-        return 0;
-    }
-    int bad = status != TT_OK || !dir;
-    tt_live_text(msg, sizeof msg, bad ? why : "");
-    snprintf(path, sizeof path, "%s/%s", dir ? dir : "", p->export_name);
-    FILE *f = bad ? NULL : fopen(path, "rb");
-    tt_live_engine_unlock(in->engine);
-    struct stat st;
-    if (f && fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode)) {
-        p->file = f;
-        p->len = (size_t)st.st_size;
-    } else {
-        if (f)
-            fclose(f);
-        if (!bad)
-            snprintf(msg, sizeof msg, "%s: not written by this scan", p->export_name);
-    }
-    p->waiting = 0;
-    lws_set_timeout(p->wsi, NO_PENDING_TIMEOUT, 0);
-    if (!p->file)
-        return lws_return_http_status(p->wsi, HTTP_STATUS_NOT_FOUND, msg) ? -1 : 0;
-    p->pos = 0;
-    snprintf(disp, sizeof disp, "attachment; filename=\"%s\"", p->export_name);
-    const char *mime = strstr(p->export_name, ".ini") ? "text/plain" : "application/octet-stream";
-    if (http_headers(p->wsi, HTTP_STATUS_OK, mime, p->len, disp, NULL))
-        return -1;
-    p->headers = 1;
-    lws_callback_on_writable(p->wsi);
-    return 0;
-}
-
-static int http_writeable(server *s, pss *p)
-{
-    if (p->waiting)
-        return http_export(s, p);
-    if (!p->headers)
-        return 0;
-    unsigned char buf[LWS_PRE + CHUNK];
-    size_t n = p->head ? 0 : p->len - p->pos < CHUNK ? p->len - p->pos : CHUNK;
-    if (n && p->file && fread(buf + LWS_PRE, 1, n, p->file) != n)
-        return -1; /* the file shrank: the reply cannot be completed */
-    if (n && !p->file)
-        memcpy(buf + LWS_PRE, p->body + p->pos, n);
-    p->pos += n;
-    int final = p->head || p->pos >= p->len;
-    if (!p->head && lws_write(p->wsi, buf + LWS_PRE, n, final ? LWS_WRITE_HTTP_FINAL : LWS_WRITE_HTTP) < (int)n)
-        return -1;
-    if (final) {
-        if (p->file)
-            fclose(p->file);
-        p->file = NULL;
-        p->headers = 0;
-        return lws_http_transaction_completed(p->wsi) ? -1 : 0;
-    }
-    lws_callback_on_writable(p->wsi);
-    return 0;
-}
-
 static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *user, void *in,
                     size_t len)
 {
@@ -572,9 +312,9 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
             p->next = s->all;
             s->all = p;
         }
-        return http_request(s, p, in);
+        return tt_live_http_request(s, p, in);
     case LWS_CALLBACK_HTTP_WRITEABLE:
-        return http_writeable(s, p);
+        return tt_live_http_writeable(s, p);
     case LWS_CALLBACK_CLOSED_HTTP:
     case LWS_CALLBACK_HTTP_DROP_PROTOCOL:
         if (p && p->wsi && !p->ws)
@@ -585,7 +325,7 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
     case LWS_CALLBACK_FILTER_PROTOCOL_CONNECTION:
         /* refused here, it never counts as a page (ESTABLISHED counts, CLOSED of a page
          * uncounts) */
-        if (s->clients >= s->max_clients || !trusted(wsi, s->port))
+        if (s->clients >= s->max_clients || !tt_live_trusted(wsi, s->port))
             return 1;
         return 0;
     case LWS_CALLBACK_ESTABLISHED: {
@@ -722,6 +462,8 @@ int tt_live_serve(tt_live_controls *c, const tt_live_options *o)
     for (int i = 0; i < s.max_inst; i++) {
         tt_live_engine_free(s.inst[i].engine);
         tt_live_controls_free(s.inst[i].controls);
+        s.inst[i].engine = NULL;
+        s.inst[i].controls = NULL;
     }
     s.closing = 1;
     lws_context_destroy(s.ctx);
