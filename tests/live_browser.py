@@ -60,4 +60,4 @@ def main(b):
     shot(b, shots, "live-steady.png")
 
 
-run(main, chromium, url, 1320, 1320)
+run(main, chromium, url, 1024, 768)  # a projector's size

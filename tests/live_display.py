@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """The console's display in a real browser (headless Chromium over the DevTools protocol,
 tests/live_cdp.py), at a projector's 1024 x 768: no text under 13 px; a field shows the
-value in force (a refused value put back, another page's change shown in a focused field,
-unsent text kept); an image's colour range (1 to 99 %, frame, manual) and line flatten
+value in force (a refused value put back, a change in force shown in a focused field,
+unsent text kept and marked stale); two pages are two instruments (a gain changed on one
+does not reach the other, nor its exported scene); an image's colour range (1 to 99 %, frame, manual) and line flatten
 (offset, slope) give the pixels they say, read back from the canvas; the scope's hold,
 cursor read-out, zoom, time axis and stored reference.
 
@@ -77,40 +78,73 @@ def fields(b, url):
     print("ok before any change: no 'last change'; P gain in %s; '%s'; the icon %s served (%d)"
           % (unit, every, icon, code))
 
-    # a refused value: the field returns to the value in force
+    sp0 = in_force(b, "feedback.setpoint")
+    # a refused value typed into the field and sent with Enter, the field keeping the focus:
+    # it returns to the value in force (the issue's -5 left in the field)
     ki0 = in_force(b, "feedback.integral_gain")
     assert field(b, KI) == ki0, (field(b, KI), ki0)
     replies = b.eval("tiptapLive.replies")
-    b.eval("tiptapSet('feedback.integral_gain', '-5')")
+    b.eval("(() => { const e = document.querySelector('%s'); e.focus(); e.select(); })()" % KI)
+    b.call("Input.insertText", {"text": "-5"})
+    assert field(b, KI) == "-5", field(b, KI)
+    b.call("Input.dispatchKeyEvent", {"type": "keyDown", "key": "Enter", "code": "Enter",
+                                      "windowsVirtualKeyCode": 13, "text": "\r"})
+    b.call("Input.dispatchKeyEvent", {"type": "keyUp", "key": "Enter", "code": "Enter",
+                                      "windowsVirtualKeyCode": 13})
     msg = wait_for(b, "tiptapLive.replies > %d && !tiptapLive.lastReply.ok && "
                       "document.getElementById('reply').textContent" % replies, "the refusal")
+    assert b.eval("document.activeElement === document.querySelector('%s')" % KI), "the field lost the focus"
     assert field(b, KI) == ki0, "the field holds %r after '%s'; in force: %s" % (field(b, KI), msg, ki0)
-    print("ok -5 Hz refused (%s); the field shows the value in force again, %s" % (msg, ki0))
+    print("ok -5 Hz typed and sent with Enter is refused (%s); the focused field shows the value in "
+          "force again, %s" % (msg, ki0))
 
-    # a second page changes the gain: the first page's focused field shows it
+    # two pages are two instruments: a gain changed on the second does not reach the first
     a = b.session
     other = b.open_page(url, 1024, 768)
-    wait_for(b, "window.tiptapLive && tiptapLive.controls.length > 0", "the second page's controls")
-    b.session = a
-    b.eval("document.querySelector('%s').focus()" % KI)
+    wait_for(b, "window.tiptapLive && tiptapLive.controls.length > 0 && tiptapLive.status", "the second page's controls")
+    mine, theirs = b.eval("tiptapLive.instrument", a), b.eval("tiptapLive.instrument", other)
+    assert mine and theirs and mine != theirs, (mine, theirs)
     b.eval("tiptapSet('feedback.integral_gain', '1500')", other)
-    wait_for(b, "document.activeElement === document.querySelector('%s') && "
-                "document.querySelector('%s').value === '1500'" % (KI, KI), "the focused field updated")
-    print("ok a change from another page shows in this page's focused I gain field: 1500")
+    wait_for(b, "tiptapLive.lastReply && tiptapLive.lastReply.ok && tiptapLive.controls.find(c => "
+                "c.name === 'feedback.integral_gain').value === '1500'", "1500 Hz in force on the second page")
+    # a line run on the second page since: its engine took the change (an export is
+    # written between two lines, of the scene the image was made at)
+    new_scope(b, "a line at 1500 Hz on the second page")
+    b.session = a
+    frame_a = b.eval("tiptapLive.status.frame * 1e6 + tiptapLive.status.line")
+    wait_for(b, "tiptapLive.status.frame * 1e6 + tiptapLive.status.line > %d" % frame_a, "a line more on the first page")
+    assert in_force(b, "feedback.integral_gain") == ki0 and field(b, KI) == ki0, (in_force(b, "feedback.integral_gain"), field(b, KI))
+    scenes = [b.call("Runtime.evaluate", {"expression": "fetch('/export/%d/scene.ini').then(r => r.text())" % n,
+                                          "awaitPromise": True, "returnByValue": True})["result"]["value"]
+              for n in (mine, theirs)]
+    gains = [[l for l in t.splitlines() if l.startswith("integral_gain")] for t in scenes]
+    assert gains == [["integral_gain = %s Hz" % ki0], ["integral_gain = 1500 Hz"]], gains
+    print("ok two pages, two instruments (%d and %d): 1500 Hz on the second; the first keeps %s Hz "
+          "in force, in its field and in its exported scene (%s against %s)" % (mine, theirs, ki0, gains[0], gains[1]))
 
-    # text typed and not yet sent is kept while another change comes, then put back on leaving
+    # a focused field whose value changes in force (here a message sent on the page's own
+    # socket, not through the field) shows the new value
+    b.eval("document.querySelector('%s').focus()" % KI)
+    b.eval("tiptapLive.ws.send('set feedback.integral_gain = 1200 Hz')")
+    wait_for(b, "document.activeElement === document.querySelector('%s') && "
+                "document.querySelector('%s').value === '1200'" % (KI, KI), "the focused field updated")
+    print("ok a change in force shows in the focused I gain field: 1200")
+
+    # text typed and not yet sent is kept while the value in force changes under it, marked
+    # stale with the value in force, then put back on leaving
     b.eval("(() => { const e = document.querySelector('%s'); e.focus(); e.value = '17.5'; "
            "e.dispatchEvent(new Event('input')); })()" % SP)
-    seen = b.eval("tiptapLive.controlsSeen")
-    b.eval("tiptapSet('feedback.integral_gain', '%s')" % ki0, other)
-    wait_for(b, "tiptapLive.controlsSeen > %d && document.querySelector('%s').value === '%s'" % (seen, KI, ki0),
-             "the I gain back on the first page")
+    b.eval("tiptapLive.ws.send('set feedback.setpoint = 18 nm')")
+    wait_for(b, "tiptapLive.controls.find(c => c.name === 'feedback.setpoint').value === '18'", "18 nm in force")
     assert field(b, SP) == "17.5", field(b, SP)
+    stale = b.eval("(() => { const e = document.querySelector('%s'); return e.classList.contains('stale') + ' ' + e.title; })()" % SP)
+    assert stale.startswith("true") and "18" in stale, stale
     b.eval("document.querySelector('%s').blur()" % SP)
-    sp = in_force(b, "feedback.setpoint")
-    assert field(b, SP) == sp, (field(b, SP), sp)
-    print("ok unsent text (setpoint 17.5) kept while the I gain changed from the other page; "
-          "put back to %s nm on leaving the field" % sp)
+    assert field(b, SP) == "18" and not b.eval("document.querySelector('%s').classList.contains('stale')" % SP), field(b, SP)
+    print("ok unsent text (setpoint 17.5) kept and marked stale ('%s') while 18 nm came into force; "
+          "put back to 18 on leaving the field" % stale[5:])
+    b.eval("tiptapLive.ws.send('set feedback.integral_gain = %s Hz\\nset feedback.setpoint = %s nm')" % (ki0, sp0))
+    wait_for(b, "tiptapLive.controls.find(c => c.name === 'feedback.setpoint').value === '%s'" % sp0, "the setpoint back")
     b.call("Target.closeTarget", {"targetId": b.targets[other]}, session=False)
     wait_for(b, "tiptapLive.status && tiptapLive.status.preview_ms > 0 && "
                 "document.getElementById('status').textContent.includes('last change')",

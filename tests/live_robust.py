@@ -2,11 +2,13 @@
 """tiptap live under abuse and in use, over its WebSocket and HTTP (no browser): bad
 messages get a clear reply and change nothing, in UTF-8 whatever the page sent; a page or
 a request from another origin or Host is refused (DNS rebinding), and only GET and HEAD
-are served; refused handshakes do not lift the 16-page limit; 300 idle connections hold
-a bounded number of the server's descriptors;
+are served; refused handshakes do not lift the 16-page limit; each page has an instrument
+of its own, four at most (a fifth page is told so, and takes an instrument, reset, when a
+page closes); 300 idle connections hold a bounded number of the server's descriptors;
 four pages at once, one closed mid-stream, one flooding and one never reading: the
-others keep their updates and the server's memory stays bounded; the exports are what
-tiptap scan writes for the exported scene, byte for byte.
+others keep their updates and the server's memory stays bounded; the exports of a page's
+instrument (/export/N/NAME, after the page closed) are what tiptap scan writes for the
+exported scene, byte for byte.
 
 usage: live_robust.py PORT SERVER_PID TIPTAP WORKDIR"""
 import filecmp
@@ -149,15 +151,30 @@ try:
     ok(False, "a 17th page is refused")
 except (Refused, ConnectionError, OSError):
     ok(True, "a 17th page is refused")
+# each page its own instrument, four at most (the default): the fifth is told so and waits
+first = [w.recv() for w in many[:5]]
 counts = set()
 for _ in range(200):
-    m = many[-1].recv()
+    m = many[0].recv()
     if m["type"] == "status":
         counts.add(m["clients"])
         if m["clients"] == 16:
             break
 ok(16 in counts and min(counts) > 0, "the pages are told %s pages" % sorted(counts))
-for w in many:
+numbers = [m.get("instrument") for m in first[:4]]
+r = first[4]
+ok(sorted(numbers) == [1, 2, 3, 4] and r["type"] == "reply" and not r["ok"]
+   and "all 4 instruments are in use" in r["error"],
+   "pages 1 to 4 have instruments %s; the fifth is told: %s" % (numbers, r["error"][:90]))
+r = ask(many[4], "set feedback.integral_gain = 2 kHz")
+ok(not r["ok"] and "no instrument" in r["error"], "a change from it is refused: %s" % r["error"])
+ok(ask(many[1], "set feedback.integral_gain = 2 kHz")["ok"], "page 2 sets 2 kHz on its instrument")
+many[1].close()
+m = many[4].recv_type("controls")
+ok(m["instrument"] == numbers[1] and control(m, "feedback.integral_gain") == ki0,
+   "once page 2 closed, the fifth took its instrument %d, reset to the start (I gain %s Hz)"
+   % (m["instrument"], control(m, "feedback.integral_gain")))
+for w in many[:1] + many[2:]:
     w.close()
 
 # ---- connections at once are bounded: 300 idle ones hold under 100 of the server's
@@ -191,6 +208,11 @@ ok(st == 200, "served again once they closed (%d)" % st)
 rss0 = rss_kb()
 pages = [WS(port) for _ in range(4)]
 flood, mute, gone, calm = pages
+# each page drives an instrument of its own: the flooding and the mute page's are paused,
+# so that one engine runs beside the server as when the pages shared one (the flood's
+# drops need the server's thread to read faster than 20 messages a second)
+for p in (flood, mute):
+    ok(ask(p, "pause")["ok"], "an instrument paused")
 raw = socket.create_connection(("127.0.0.1", port))  # half a handshake, then nothing
 raw.sendall(b"GET / HTTP/1.1\r\nHost: 127.0.0.1\r\n")
 gone.recv_type("row")
@@ -227,6 +249,7 @@ raw.close()
 
 # ---- the exports: wait for a whole frame at one setting, then tiptap scan its scene
 c = WS(port)
+mine = c.recv_type("controls")["instrument"]
 ok(ask(c, "set feedback.integral_gain = 2 kHz")["ok"], "a good gain accepted")
 deadline = time.time() + float(os.environ.get("TT_LIVE_WAIT", "300"))
 st = None
@@ -241,9 +264,16 @@ exp = os.path.join(work, "export")
 os.makedirs(exp, exist_ok=True)
 names = ["scene.ini", "scan.gwy", "height_trace.gsf", "height_retrace.gsf", "phase_trace.gsf"]
 for n in names:
-    with urllib.request.urlopen("http://127.0.0.1:%d/export/%s" % (port, n), timeout=300) as r:
+    # the page's own instrument's, by its number: kept (idle) after its page closed
+    with urllib.request.urlopen("http://127.0.0.1:%d/export/%d/%s" % (port, mine, n), timeout=300) as r:
         with open(os.path.join(exp, n), "wb") as f:
             f.write(r.read())
+for bad_path in ("9/scene.ini", "0/scene.ini", "%d/x/scene.ini" % mine):
+    try:
+        urllib.request.urlopen("http://127.0.0.1:%d/export/%s" % (port, bad_path), timeout=20)
+        ok(False, "/export/%s is refused" % bad_path)
+    except urllib.error.HTTPError as e:
+        ok(e.code == 404, "/export/%s is refused (%d)" % (bad_path, e.code))
 try:
     urllib.request.urlopen("http://127.0.0.1:%d/export/..%%2Fscene.ini" % port, timeout=20)
     ok(False, "an export outside the export folder is refused")

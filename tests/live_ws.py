@@ -12,10 +12,10 @@ class Refused(Exception):
 
 
 class WS:
-    def __init__(self, port, origin=None, host=None, protocol="tiptap-live", timeout=30):
+    def __init__(self, port, origin=None, host=None, protocol="tiptap-live", timeout=30, path="/"):
         self.s = socket.create_connection(("127.0.0.1", port), timeout=timeout)
         key = base64.b64encode(os.urandom(16)).decode()
-        lines = ["GET / HTTP/1.1", "Host: %s" % (host or "127.0.0.1:%d" % port),
+        lines = ["GET %s HTTP/1.1" % path, "Host: %s" % (host or "127.0.0.1:%d" % port),
                  "Upgrade: websocket", "Connection: Upgrade", "Sec-WebSocket-Key: " + key,
                  "Sec-WebSocket-Version: 13"]
         if protocol:

@@ -308,6 +308,43 @@ static void a_lesson_locks_and_hides(void **st)
     unlink(path);
 }
 
+/* Each page's instrument has a copy of the controls: a change to one is not the other's,
+ * and a copy keeps the lesson's locks (borrowed: freed with the original, after it). */
+static void a_copy_is_its_own(void **st)
+{
+    (void)st;
+    char path[] = "/tmp/tt-lesson-XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    fprintf(f, "[lesson]\ntitle = T\nlock = scan_size\n[feedback]\nsetpoint = 15 nm\n");
+    fclose(f);
+    tt_live_lesson *l = NULL;
+    assert_int_equal(tt_live_lesson_load(&l, path), TT_OK);
+    unlink(path);
+    tt_live_controls *c = NULL, *a = NULL, *b = NULL;
+    if (tt_live_controls_alloc_lesson(&c, l, files, 2, NULL, 0, SRC "/surfaces", NULL) != TT_OK)
+        fail_msg("%s", tt_error_message());
+    tt_live_change ch;
+    assert_int_equal(apply(c, "set feedback.integral_gain = 2 kHz\nset sample = edges", &ch), TT_OK);
+    assert_int_equal(tt_live_controls_copy(&a, c), TT_OK);
+    assert_int_equal(tt_live_controls_copy(&b, c), TT_OK);
+    assert_close(ki_of(a), 2000, 0); /* a copy starts at the values in force */
+    assert_int_equal(apply(a, "set feedback.integral_gain = 7 kHz", &ch), TT_OK);
+    assert_close(ki_of(a), 7000, 0);
+    assert_close(ki_of(b), 2000, 0);
+    assert_close(ki_of(c), 2000, 0);
+    assert_int_equal(apply(b, "set sample = grating", &ch), TT_OK);
+    assert_string_equal(tt_live_controls_sample(a, (size_t)tt_live_controls_sample_index(a)), "edges");
+    assert_string_equal(tt_live_controls_sample(b, (size_t)tt_live_controls_sample_index(b)), "grating");
+    assert_ptr_equal(tt_live_controls_lesson(a), tt_live_controls_lesson(c));
+    assert_int_equal(apply(a, "set scan.size = 1 um", &ch), TT_EINVAL);
+    assert_non_null(strstr(ch.why, "scan.size is locked by the lesson"));
+    tt_live_controls_free(a);
+    tt_live_controls_free(b);
+    tt_live_controls_free(c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -319,6 +356,7 @@ int main(void)
         cmocka_unit_test(replies_are_utf8),
         cmocka_unit_test(hosts_and_origins),
         cmocka_unit_test(a_lesson_locks_and_hides),
+        cmocka_unit_test(a_copy_is_its_own),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -15,7 +15,7 @@
 static void help(void)
 {
     printf("Usage: tiptap live [--lesson FILE] SCENE... [--port N] [--set section.key=value]...\n"
-           "                  [--surfaces DIR]\n"
+           "                  [--surfaces DIR] [--instruments N]\n"
            "The instrument's console in a browser: a scan of the scene run line by line on\n"
            "the instrument's clock, served on http://127.0.0.1:N/ (this machine only) with\n"
            "its controls (setpoint, P and I gains, line rate, scan size and fast axis,\n"
@@ -33,6 +33,9 @@ static void help(void)
            "                     page's lesson.ini saves the scene in force with the lesson\n"
            "  -p, --port N       the port (default 8421; 0: one the system picks); the URL\n"
            "                     is printed on stdout once it listens\n"
+           "      --instruments N  instruments at once (default 4, at most 64): each page\n"
+           "                     (browser tab) drives its own scan, controls and exports; a\n"
+           "                     page beyond N is told so and waits for one to free\n"
            "      --surfaces DIR the bundled samples the console offers (default: the\n"
            "                     source tree's surfaces/)\n"
            CLI_HELP_SET
@@ -84,10 +87,11 @@ int cmd_live(int argc, char **argv)
     static const struct option opts[] = {{"port", required_argument, NULL, 'p'},
                                          {"surfaces", required_argument, NULL, 'S'},
                                          {"lesson", required_argument, NULL, 'l'},
+                                         {"instruments", required_argument, NULL, 'I'},
                                          {NULL, 0, NULL, 0}};
     static const cli_spec spec = {"live", CLI_OPT_SET, opts, "p:l:", help};
     cli_args args = {0};
-    long port = 8421;
+    long port = 8421, instruments = 4;
     const char *surfaces = TT_SURFACES_DIR, *lesson_path = NULL;
     int c;
     while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) {
@@ -95,6 +99,11 @@ int cmd_live(int argc, char **argv)
             surfaces = optarg;
         } else if (c == 'l') {
             lesson_path = optarg;
+        } else if (c == 'I') {
+            if (cli_whole("live", "--instruments", optarg, 1, 64, "a number of instruments", &instruments)) {
+                cli_args_free(&args);
+                return CLI_USAGE;
+            }
         } else if (cli_whole("live", "--port", optarg, 0, 65535, "a port", &port)) {
             cli_args_free(&args);
             return CLI_USAGE;
@@ -137,7 +146,9 @@ int cmd_live(int argc, char **argv)
     cli_args_free(&args);
     if (rc)
         return cli_fail(rc, NULL);
-    tt_live_options o = {(int)port, 16, write_outputs, (void *)tt_live_controls_lesson(controls), ready, NULL};
+    tt_live_options o = {.port = (int)port, .max_clients = 16, .max_instruments = (int)instruments,
+                         .write = write_outputs, .write_user = (void *)tt_live_controls_lesson(controls),
+                         .ready = ready, .ready_user = NULL};
     cli_catch_interrupt();
     rc = tt_live_serve(controls, &o);
     tt_live_controls_free(controls);

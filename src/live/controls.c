@@ -58,6 +58,7 @@ struct tt_live_controls {
     int have_params;
     double (*memory)(void); /* the bytes this process may still take (NULL: no check) */
     tt_live_lesson *lesson; /* NULL: none */
+    int owns_lesson;        /* 0: a copy's, borrowed from the controls it was copied from */
 };
 
 const tt_live_control *tt_live_control_table(size_t *count)
@@ -257,6 +258,7 @@ int tt_live_controls_alloc_lesson(tt_live_controls **out, tt_live_lesson *lesson
     int rc = TT_OK;
     c->memory = memory;
     c->lesson = lesson;
+    c->owns_lesson = 1;
     /* the lesson's scene files first, as if given before the others */
     int nl = lesson ? lesson->nfiles : 0;
     c->files = calloc((size_t)(nfiles + nl) + 1, sizeof *c->files);
@@ -309,7 +311,8 @@ void tt_live_controls_free(tt_live_controls *c)
         return;
     for (int i = 0; i < c->nfiles; i++)
         free(c->files[i]);
-    tt_live_lesson_free(c->lesson);
+    if (c->owns_lesson)
+        tt_live_lesson_free(c->lesson);
     for (int i = 0; i < c->nsets; i++)
         free(c->sets[i]);
     for (size_t i = 0; i < c->nsamples; i++)
@@ -322,6 +325,57 @@ void tt_live_controls_free(tt_live_controls *c)
     free(c->sets);
     free(c->surfaces);
     free(c);
+}
+
+/* A string array's copy (n entries and a NULL), or NULL out of memory. */
+static char **copy_strs(char *const *a, int n)
+{
+    char **b = calloc((size_t)n + 1, sizeof *b);
+    for (int i = 0; b && i < n; i++)
+        if (!(b[i] = tt_strdup(a[i]))) {
+            while (i--)
+                free(b[i]);
+            free(b);
+            return NULL;
+        }
+    return b;
+}
+
+int tt_live_controls_copy(tt_live_controls **out, const tt_live_controls *c)
+{
+    tt_live_controls *d = calloc(1, sizeof *d);
+    if (!d)
+        return tt_error_nomem("the console's controls");
+    *d = *c;
+    d->owns_lesson = 0;
+    d->have_params = 0;
+    d->files = copy_strs(c->files, c->nfiles);
+    d->sets = copy_strs(c->sets, c->nsets);
+    d->surfaces = tt_strdup(c->surfaces);
+    memset(d->samples, 0, sizeof d->samples);
+    memset(d->given, 0, sizeof d->given);
+    int rc = d->files && d->sets && d->surfaces ? TT_OK : tt_error_nomem("the console's controls");
+    if (!d->files)
+        d->nfiles = 0;
+    if (!d->sets)
+        d->nsets = 0;
+    for (size_t i = 0; i < c->nsamples && !rc; i++)
+        if (!(d->samples[i] = tt_strdup(c->samples[i])))
+            rc = tt_error_nomem("the console's samples");
+    for (size_t i = 0; i < NKNOBS && !rc; i++)
+        if (c->given[i] && !(d->given[i] = tt_strdup(c->given[i])))
+            rc = tt_error_nomem("the console's values");
+    /* the parameters anew from the same scene: a copy owns its own materials */
+    tt_scene *s = NULL;
+    if (!rc && !(rc = build(d, d->given, d->sample, d->noise_off, &s)) && !(rc = check(d, s, &d->params)))
+        d->have_params = 1;
+    tt_scene_free(s);
+    if (rc) {
+        tt_live_controls_free(d);
+        return rc;
+    }
+    *out = d;
+    return TT_OK;
 }
 
 static int knob(const char *name, size_t n)

@@ -13,81 +13,14 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "engine_private.h"
 #include "live_private.h"
 #include "tiptap/config/config.h"
-#include "tiptap/instrument/scan_oscillation.h"
 #include "tiptap/instrument/scan_scope.h"
-#include "tiptap/io/decimate.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 #include "tiptap/util/clock.h"
 
-/* What a change needs made before the engine takes it: the scan of a new frame and the
- * page's images of it, made on the submitting thread, so that taking a change cannot
- * fail (a running scan that takes it between lines frees them unused). */
-typedef struct {
-    tt_scan *scan;
-    double *rows[TT_LIVE_NCH][2];
-    unsigned long *row_version;
-    unsigned char *row_tier;
-    double *line_buf;
-    int ch_index[TT_LIVE_NCH];
-} fresh;
-
-struct tt_live_engine {
-    pthread_t thread;
-    int started;
-    pthread_mutex_t mu;
-    pthread_cond_t cv;
-    int stop;
-    void (*wake)(void *);
-    void *user;
-    /* the next scene, from the console (the latest wins) */
-    tt_scene *next_scene;
-    tt_scan_params next_params;
-    fresh next_fresh;
-    int have_next, next_restart;
-    double next_at; /* when it arrived */
-    double rate;    /* the line rate in force (under mu) */
-    /* set (under mu, read atomically by tt_cancel_requested on each thread) when a change
-     * makes the line under way meaningless: a new frame or line rate abandons the engine's
-     * line; any change, the preview's */
-    int abandon, pabandon;
-    /* what runs: owned by the thread */
-    tt_scene *scene;
-    tt_scan_params params;
-    tt_scan *scan;
-    tt_scan_scope *scope;
-    double *line_buf;
-    int running; /* the thread is inside a line (under mu) */
-    long steps;  /* lines asked for while paused (under mu) */
-    /* the preview thread: the averaged tier's twin of the scan, its own scope and line,
-     * and the latest change for it (a copy of the engine's) */
-    pthread_t pthread;
-    int pstarted;
-    tt_scan *pscan;
-    tt_scan_scope *pscope;
-    double *pline;
-    long ppixels;
-    tt_scan_params pnext;
-    int pnext_have, prestart;
-    double pat;
-    unsigned long pwant, pdone, pchange;
-    /* exports */
-    int (*write)(void *, const tt_scan *, const tt_scene *, const char *);
-    void *write_user;
-    unsigned long export_asked, export_done;
-    int export_status;
-    char export_dir[4096], export_why[512];
-    /* published, under mu */
-    tt_live_view v;
-    double *rows[TT_LIVE_NCH][2];
-    unsigned long *row_version;
-    unsigned char *row_tier;
-    double *series[2][TT_LIVE_NS];
-    int ch_index[TT_LIVE_NCH];
-    long clean_pass; /* the first pass that runs wholly at the current settings */
-};
 
 static int channel_by_name(const char *name)
 {
@@ -280,130 +213,6 @@ static void take_change(tt_live_engine *e, tt_scene *scene, tt_scan_params *p, i
     pthread_mutex_unlock(&e->mu);
 }
 
-/* A scope record, decimated for a screen, into the view (under mu). */
-static void publish_scope(tt_live_engine *e, const tt_scan_scope *sc, long line, int tier)
-{
-    static const int q[TT_LIVE_NS] = {TT_SCOPE_POSITION, TT_SCOPE_Z, TT_SCOPE_ERROR,
-                                      TT_SCOPE_AMPLITUDE, TT_SCOPE_PHASE, TT_SCOPE_SURFACE};
-    for (int r = 0; r < 2; r++) {
-        long n = tt_scan_scope_points(sc, r);
-        tt_decimate *d = NULL;
-        e->v.scope_n[r] = 0;
-        if (n <= 0 || tt_decimate_alloc(&d, TT_LIVE_NS, (double)n, TT_LIVE_SCOPE_BUDGET))
-            continue;
-        const double *src[TT_LIVE_NS];
-        for (int k = 0; k < TT_LIVE_NS; k++)
-            src[k] = tt_scan_scope_series(sc, r, q[k]);
-        const double *t = tt_scan_scope_series(sc, r, TT_SCOPE_TIME);
-        for (long i = 0; i < n; i++) {
-            double v[TT_LIVE_NS];
-            for (int k = 0; k < TT_LIVE_NS; k++)
-                v[k] = src[k] ? src[k][i] : NAN;
-            tt_decimate_push(d, v);
-        }
-        tt_decimate_finish(d);
-        size_t m = tt_decimate_count(d);
-        for (int k = 0; k < TT_LIVE_NS; k++) {
-            double *a = realloc(e->series[r][k], (m ? m : 1) * sizeof(double));
-            if (!a)
-                break;
-            memcpy(a, tt_decimate_line(d, (size_t)k), m * sizeof(double));
-            e->series[r][k] = a;
-            e->v.scope[r][k] = a;
-        }
-        e->v.scope_n[r] = m;
-        e->v.scope_t0[r] = t ? t[0] : 0;
-        e->v.scope_t1[r] = t ? t[n - 1] : 0;
-        tt_decimate_free(d);
-    }
-    e->v.scope_line = line;
-    e->v.scope_tier = tier;
-    e->v.scope_rate = tt_scan_scope_rate(sc);
-    e->v.scope_version = e->v.version;
-}
-
-/* Line `line`'s pixels from scan s (buf: a line's room) into the published rows, as
- * tier's (under mu). */
-static void publish_row(tt_live_engine *e, const tt_scan *s, double *buf, long line, int tier)
-{
-    long px = e->v.pixels;
-    unsigned long ver = ++e->v.version;
-    for (int c = 0; c < TT_LIVE_NCH; c++)
-        for (int r = 0; r < 2; r++)
-            if (e->rows[c][r] && tt_scan_line_values(s, e->ch_index[c], r, line, buf) == TT_OK)
-                memcpy(e->rows[c][r] + line * px, buf, (size_t)px * sizeof(double));
-    e->row_version[line] = ver;
-    e->row_tier[line] = (unsigned char)tier;
-    e->v.status_version = ver;
-}
-
-/* The oscillation warning and the gain suggestion, from the line's record on the scan's
- * own tier (instrument/scan_oscillation.h): z and the error at the loop's rate, not the
- * pixel means, which hide a ring of a period a pixel (under mu). */
-static void judge_loop(tt_live_engine *e)
-{
-    tt_loop loop;
-    tt_oscillation o;
-    tt_scan_loop(e->scan, &loop);
-    if (tt_scan_oscillation(e->scope, &loop, &o) != TT_OK)
-        return;
-    e->v.oscillating = o.rings;
-    e->v.ring_hz = o.rings ? o.frequency : 0;
-    e->v.ring_nm = o.rings ? o.z_peak_to_peak : 0;
-    e->v.ring_damping = o.rings && isfinite(o.damping) ? o.damping : 0;
-    e->v.suggest_ki = o.rings && isfinite(o.ki_suggested) && o.ki_suggested > 0 ? o.ki_suggested : 0;
-    /* what the page needs to say whether the loop lags and whether the image shows the
-     * ring: the error's rms over the record, and the height pixels' spread */
-    double sum = 0;
-    long n = 0;
-    for (int r = 0; r < 2; r++) {
-        const double *er = tt_scan_scope_series(e->scope, r, TT_SCOPE_ERROR);
-        long m = tt_scan_scope_points(e->scope, r);
-        for (long i = 0; er && i < m; i++)
-            if (isfinite(er[i])) {
-                sum += er[i] * er[i];
-                n++;
-            }
-    }
-    double lo = INFINITY, hi = -INFINITY;
-    const double *h = e->rows[TT_LIVE_HEIGHT][0];
-    for (long i = 0; h && i < e->v.pixels; i++) {
-        double z = h[e->v.line * e->v.pixels + i];
-        if (isfinite(z)) {
-            lo = z < lo ? z : lo;
-            hi = z > hi ? z : hi;
-        }
-    }
-    /* how far z strays from the true surface (its mean offset taken off), against the
-     * surface's own peak to peak on the line: a loop that lags leaves z behind */
-    double dz = 0, dz2 = 0, slo = INFINITY, shi = -INFINITY;
-    long nz = 0;
-    for (int r = 0; r < 2; r++) {
-        const double *z = tt_scan_scope_series(e->scope, r, TT_SCOPE_Z);
-        const double *su = tt_scan_scope_series(e->scope, r, TT_SCOPE_SURFACE);
-        long m = tt_scan_scope_points(e->scope, r);
-        for (long i = 0; z && su && i < m; i++)
-            if (isfinite(z[i]) && isfinite(su[i])) {
-                double d = z[i] - su[i];
-                dz += d;
-                dz2 += d * d;
-                nz++;
-                slo = su[i] < slo ? su[i] : slo;
-                shi = su[i] > shi ? su[i] : shi;
-            }
-    }
-    e->v.track_rms = nz ? sqrt(fmax(0, dz2 / (double)nz - (dz / (double)nz) * (dz / (double)nz))) : NAN;
-    e->v.surface_range = shi >= slo ? shi - slo : NAN;
-    /* the rule (docs/live.md): z strays by more than 0.35 of a surface's relief of 1 nm or
-     * more (teaching grating at 8 Hz: 0.48 at ki 100 Hz, 0.44 at 300 Hz, 0.31 at 1 kHz) */
-    e->v.lagging = e->v.surface_range >= 1e-9 && e->v.track_rms > 0.35 * e->v.surface_range;
-    e->v.error_rms = n ? sqrt(sum / (double)n) : NAN;
-    e->v.setpoint = e->params.feedback.setpoint;
-    e->v.height_range = hi >= lo ? hi - lo : NAN;
-    e->v.judged_line = e->v.line;
-    e->v.judged++;
-}
-
 /* Run line `line` on the scan's own tier and publish it. */
 static int run_line(tt_live_engine *e, long line, double changed_at)
 {
@@ -422,9 +231,9 @@ static int run_line(tt_live_engine *e, long line, double changed_at)
         pthread_mutex_unlock(&e->mu);
         return rc;
     }
-    publish_row(e, e->scan, e->line_buf, line, (int)e->params.solver.tier);
-    publish_scope(e, e->scope, line, (int)e->params.solver.tier);
-    judge_loop(e);
+    tt_live_publish_row(e, e->scan, e->line_buf, line, (int)e->params.solver.tier);
+    tt_live_publish_scope(e, e->scope, line, (int)e->params.solver.tier);
+    tt_live_judge_loop(e);
     if (changed_at > 0)
         e->v.accurate_ms = 1e3 * (t1 - changed_at);
     e->v.line_seconds = t1 - t0;
@@ -597,8 +406,8 @@ static void preview_line(tt_live_engine *e, unsigned long change, double at)
         return;
     pthread_mutex_lock(&e->mu);
     if (e->v.frame == frame && e->row_version[line] < change) {
-        publish_row(e, e->pscan, e->pline, line, TT_TIER_AVERAGED);
-        publish_scope(e, e->pscope, line, TT_TIER_AVERAGED);
+        tt_live_publish_row(e, e->pscan, e->pline, line, TT_TIER_AVERAGED);
+        tt_live_publish_scope(e, e->pscope, line, TT_TIER_AVERAGED);
         e->v.preview_ms = 1e3 * (tt_clock(TT_CLOCK_WALL) - at);
     }
     pthread_mutex_unlock(&e->mu);

@@ -54,7 +54,8 @@ void tt_live_text(char *dst, size_t cap, const char *src);
 int tt_live_authority_ok(const char *text, int is_origin, int port);
 
 /* The messages (each one JSON object). */
-void tt_live_msg_controls(tt_live_buf *b, const tt_live_controls *c);
+/* number: the page's instrument (1 ..), of count at most */
+void tt_live_msg_controls(tt_live_buf *b, const tt_live_controls *c, int number, int count);
 void tt_live_msg_frame(tt_live_buf *b, const tt_live_view *v);
 void tt_live_msg_status(tt_live_buf *b, const tt_live_view *v, int clients);
 void tt_live_msg_row(tt_live_buf *b, const tt_live_view *v, long line);

@@ -197,12 +197,13 @@ static const char *tier_name(int t)
     return t == 0 ? "every" : t == 1 ? "envelope" : "averaged";
 }
 
-void tt_live_msg_controls(tt_live_buf *b, const tt_live_controls *c)
+void tt_live_msg_controls(tt_live_buf *b, const tt_live_controls *c, int number, int count)
 {
     size_t n;
     const tt_live_control *t = tt_live_control_table(&n);
     char v[256];
-    tt_live_buf_printf(b, "{\"type\":\"controls\",\"controls\":[");
+    tt_live_buf_printf(b, "{\"type\":\"controls\",\"instrument\":%d,\"instruments\":%d,\"controls\":[",
+                       number, count);
     for (size_t i = 0; i < n; i++) {
         tt_live_buf_printf(b, "%s{\"name\":", i ? "," : "");
         str(b, t[i].name);

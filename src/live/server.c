@@ -10,7 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <time.h>
 
 #include "live_private.h"
@@ -19,50 +18,7 @@
 #include "tiptap/util/error.h"
 #include "tiptap/util/clock.h"
 
-enum {
-    RX_MAX = 16384,         /* bytes of one message from a page */
-    RATE = 20, BURST = 40,  /* messages a second from one page, and its burst */
-    OUT_MAX = 64 << 20,     /* the largest message sent (a row of 16384 pixels is ~1 MB) */
-    EXPORT_WAIT_S = 300,    /* how long an export may wait for the line under way */
-    CONN_MAX = 64,          /* connections at once, pages and requests (a browser opens 6
-                             * a host; more wait in the kernel's backlog) */
-    CHUNK = 16384           /* bytes of a file sent at a time: all a request holds */
-};
-
-typedef struct pss pss;
-struct pss {
-    struct lws *wsi;
-    pss *next;
-    int ws;
-    /* HTTP: a body from memory (the page) or streamed from a file (an export) */
-    const unsigned char *body;
-    FILE *file;
-    size_t len, pos;
-    int headers, waiting, head;
-    unsigned long export_id;
-    char export_name[128];
-    /* WebSocket: what it has seen */
-    unsigned long seen_controls, seen_frame, seen_rows, seen_scope, seen_status;
-    int have_reply, reply_ok;
-    unsigned dropped;
-    char reply[600];
-    char *rx;
-    size_t rxlen;
-    int rx_over;
-    double tokens, tokens_at;
-};
-
-typedef struct {
-    struct lws_context *ctx;
-    tt_live_controls *controls;
-    tt_live_engine *engine;
-    const tt_live_options *o;
-    unsigned long controls_version;
-    int clients, max_clients, port;
-    pss *all;
-    tt_live_buf out;
-    lws_sorted_usec_list_t sul;
-} server;
+#include "server_private.h"
 
 static void wake(void *user)
 {
@@ -100,23 +56,6 @@ static void unlink_pss(server *s, pss *p)
     p->rx = NULL;
 }
 
-/* The Host, and the Origin where a browser sends one, must be this server's: another web
- * page open in the same browser may not drive the instrument nor read it, and a name that
- * resolves to 127.0.0.1 (DNS rebinding) is not this server's. Every request passes here,
- * a page's as a WebSocket's. */
-static int trusted(struct lws *wsi, int port)
-{
-    char h[256];
-    int n = lws_hdr_total_length(wsi, WSI_TOKEN_HOST);
-    if (n <= 0 || n >= (int)sizeof h || lws_hdr_copy(wsi, h, sizeof h, WSI_TOKEN_HOST) <= 0 ||
-        !tt_live_authority_ok(h, 0, port))
-        return 0;
-    if ((n = lws_hdr_total_length(wsi, WSI_TOKEN_ORIGIN)) <= 0)
-        return 1; /* not a browser, or a browser's plain navigation */
-    return n < (int)sizeof h && lws_hdr_copy(wsi, h, sizeof h, WSI_TOKEN_ORIGIN) > 0 &&
-           tt_live_authority_ok(h, 1, port);
-}
-
 /* One message to a page: the buffer's text as a WebSocket text frame. */
 static int send_buf(server *s, struct lws *wsi)
 {
@@ -132,16 +71,19 @@ static int ws_writeable(server *s, pss *p)
 {
     tt_live_buf_reset(&s->out);
     int more = 1;
+    instrument *in = p->inst;
     if (p->have_reply) {
         tt_live_msg_reply(&s->out, p->reply_ok, p->reply, p->dropped);
         p->have_reply = 0;
         p->dropped = 0;
-    } else if (p->seen_controls != s->controls_version) {
-        tt_live_msg_controls(&s->out, s->controls);
-        p->seen_controls = s->controls_version;
+    } else if (!in || !in->engine) {
+        return 0; /* no instrument yet (or the server is closing): nothing more to send */
+    } else if (p->seen_controls != in->controls_version) {
+        tt_live_msg_controls(&s->out, in->controls, in->number, s->max_inst);
+        p->seen_controls = in->controls_version;
     } else {
-        tt_live_engine_lock(s->engine);
-        const tt_live_view *v = tt_live_engine_view(s->engine);
+        tt_live_engine_lock(in->engine);
+        const tt_live_view *v = tt_live_engine_view(in->engine);
         if (p->seen_frame != v->frame_version && v->row_version) {
             tt_live_msg_frame(&s->out, v);
             p->seen_frame = v->frame_version;
@@ -165,7 +107,7 @@ static int ws_writeable(server *s, pss *p)
                 more = 0;
             }
         }
-        tt_live_engine_unlock(s->engine);
+        tt_live_engine_unlock(in->engine);
         if (!more)
             return 0;
     }
@@ -183,11 +125,101 @@ static void reply(pss *p, int ok, const char *why)
     lws_callback_on_writable(p->wsi);
 }
 
-/* A checked change to the engine, which makes its scan now or refuses it. */
+/* A checked change to the instrument's engine, which makes its scan now or refuses it. */
 static int take(void *user, tt_scene *scene, tt_scan_params *p, int restart)
 {
-    server *s = user;
-    return tt_live_engine_submit(s->engine, scene, p, restart);
+    instrument *in = user;
+    return tt_live_engine_submit(in->engine, scene, p, restart);
+}
+
+/* An instrument made afresh at the start's settings (its old engine and controls freed):
+ * TT_OK, or the error with the slot left empty. */
+static int make_instrument(server *s, instrument *in)
+{
+    in->generation++;
+    tt_live_engine_free(in->engine);
+    tt_live_controls_free(in->controls);
+    in->engine = NULL;
+    in->controls = NULL;
+    in->used = 0;
+    tt_scene *scene = NULL;
+    tt_scan_params prm;
+    int rc = tt_live_controls_copy(&in->controls, s->controls);
+    if (!rc && !(rc = tt_live_controls_scene(in->controls, &scene, &prm)))
+        rc = tt_live_engine_alloc(&in->engine, scene, &prm, wake, s);
+    if (rc) {
+        tt_live_controls_free(in->controls);
+        in->controls = NULL;
+        return rc;
+    }
+    tt_live_engine_set_writer(in->engine, s->o->write, s->o->write_user);
+    in->controls_version++;
+    return TT_OK;
+}
+
+/* A page's instrument: the one it asked for where no page holds it (a reload), else one
+ * no page has held, else a new one while fewer than max_inst are made, else the one idle
+ * longest, reset; none while every one is held (the page is told, and waits). */
+static void attach(server *s, pss *p)
+{
+    instrument *in = NULL, *idle = NULL;
+    int keep = 0; /* a reload's instrument, taken as it is */
+    if (p->want >= 1 && p->want <= s->max_inst && s->inst[p->want - 1].engine &&
+        !s->inst[p->want - 1].page) {
+        in = &s->inst[p->want - 1];
+        keep = 1;
+    }
+    for (int i = 0; !in && i < s->max_inst; i++)
+        if (s->inst[i].engine && !s->inst[i].page && !s->inst[i].used)
+            in = &s->inst[i];
+    for (int i = 0; !in && i < s->max_inst; i++)
+        if (!s->inst[i].engine)
+            in = &s->inst[i];
+    for (int i = 0; !in && i < s->max_inst; i++)
+        if (!s->inst[i].page && (!idle || s->inst[i].released_at < idle->released_at))
+            idle = &s->inst[i];
+    if (!in && !idle) {
+        char why[300];
+        snprintf(why, sizeof why, "console: all %d instruments are in use by other pages (tiptap "
+                 "live --instruments N allows more); this page gets one when another closes",
+                 s->max_inst);
+        reply(p, 0, why);
+        return;
+    }
+    if (!keep && (!in || !in->engine || in->used)) {
+        in = in ? in : idle;
+        if (make_instrument(s, in)) {
+            reply(p, 0, tt_error_message());
+            return;
+        }
+    }
+    in->page = p;
+    in->used = 1;
+    p->inst = in;
+    p->seen_controls = p->seen_frame = p->seen_rows = p->seen_scope = p->seen_status = 0;
+    s->last = in;
+    /* a page looks: the engine runs (it waits, no CPU, while none does) */
+    tt_live_engine_watched(in->engine, 1);
+    lws_callback_on_writable(p->wsi);
+}
+
+/* A page gone: its instrument idles, kept for a reload; the page waiting longest takes it. */
+static void detach(server *s, pss *p)
+{
+    instrument *in = p->inst;
+    p->inst = NULL;
+    if (!in || s->closing)
+        return;
+    in->page = NULL;
+    in->released_at = tt_clock(TT_CLOCK_WALL);
+    tt_live_engine_watched(in->engine, 0);
+    /* the page waiting longest: the list is newest first */
+    pss *wait = NULL;
+    for (pss *q = s->all; q; q = q->next)
+        if (q->ws && !q->inst && q != p)
+            wait = q;
+    if (wait)
+        attach(s, wait);
 }
 
 /* A whole message from a page: checked by the controls, taken by the engine, or
@@ -218,23 +250,32 @@ static void ws_message(server *s, pss *p)
     size_t n = p->rxlen;
     while (n > 0 && (p->rx[n - 1] == '\n' || p->rx[n - 1] == '\r' || p->rx[n - 1] == ' '))
         n--;
+    instrument *in = p->inst;
+    if (!in) {
+        char why[200];
+        snprintf(why, sizeof why, "console: this page has no instrument yet (all %d are in use)",
+                 s->max_inst);
+        reply(p, 0, why);
+        return;
+    }
     int pause = n == 5 && memcmp(p->rx, "pause", 5) == 0, resume = n == 6 && memcmp(p->rx, "resume", 6) == 0,
         step = n == 4 && memcmp(p->rx, "step", 4) == 0;
     if (pause || resume || step) {
         if (step)
-            tt_live_engine_step(s->engine);
+            tt_live_engine_step(in->engine);
         else
-            tt_live_engine_pause(s->engine, pause);
+            tt_live_engine_pause(in->engine, pause);
         reply(p, 1, "");
         wake_all(s);
         return;
     }
     tt_live_change ch;
-    if (tt_live_controls_apply(s->controls, p->rx, p->rxlen, &ch, take, s)) {
+    if (tt_live_controls_apply(in->controls, p->rx, p->rxlen, &ch, take, in)) {
         reply(p, 0, ch.why);
         return;
     }
-    s->controls_version++;
+    in->controls_version++;
+    s->last = in;
     reply(p, 1, "");
     wake_all(s);
 }
@@ -256,165 +297,6 @@ static void ws_receive(server *s, pss *p, const void *in, size_t len)
     }
 }
 
-static const tt_live_asset *find_asset(const char *uri)
-{
-    size_t n;
-    const tt_live_asset *a = tt_live_assets(&n);
-    if (strcmp(uri, "/") == 0)
-        uri = "/index.html";
-    for (size_t i = 0; i < n; i++)
-        if (strcmp(a[i].path, uri) == 0)
-            return &a[i];
-    return NULL;
-}
-
-/* The names an export may ask for: scene.ini, scan.gwy, CHANNEL_trace.gsf, ... */
-static int export_name_ok(const char *name)
-{
-    size_t n = strlen(name);
-    if (n == 0 || n > 100 || strchr(name, '/') || name[0] == '.')
-        return 0;
-    for (size_t i = 0; i < n; i++)
-        if (!((name[i] >= 'a' && name[i] <= 'z') || (name[i] >= '0' && name[i] <= '9') ||
-              name[i] == '_' || name[i] == '.'))
-            return 0;
-    return strcmp(name, "scene.ini") == 0 || strcmp(name, "scan.gwy") == 0 || strcmp(name, "lesson.ini") == 0 ||
-           (n > 4 && strcmp(name + n - 4, ".gsf") == 0);
-}
-
-static int http_headers(struct lws *wsi, unsigned code, const char *mime, size_t len,
-                        const char *disposition, const char *allow)
-{
-    unsigned char buf[LWS_PRE + 1024], *start = buf + LWS_PRE, *p = start, *end = buf + sizeof buf - 1;
-    if (lws_add_http_common_headers(wsi, code, mime, (lws_filepos_t)len, &p, end))
-        return -1;
-    if (lws_add_http_header_by_name(wsi, (const unsigned char *)"cache-control:",
-                                    (const unsigned char *)"no-store", 8, &p, end))
-        return -1;
-    if (disposition &&
-        lws_add_http_header_by_name(wsi, (const unsigned char *)"content-disposition:",
-                                    (const unsigned char *)disposition, (int)strlen(disposition),
-                                    &p, end))
-        return -1;
-    if (allow && lws_add_http_header_by_name(wsi, (const unsigned char *)"allow:",
-                                             (const unsigned char *)allow, (int)strlen(allow), &p, end))
-        return -1;
-    return lws_finalize_write_http_header(wsi, start, &p, end) ? -1 : 0;
-}
-
-/* A reply whose body is in memory (static: the page's files, or a line of text), sent
- * from the writeable callback; a HEAD request's without its body. */
-static int http_send(pss *p, unsigned code, const char *mime, const void *body, size_t len,
-                     const char *allow)
-{
-    p->body = body;
-    p->len = len;
-    p->pos = 0;
-    if (http_headers(p->wsi, code, mime, len, NULL, allow))
-        return -1;
-    p->headers = 1;
-    lws_callback_on_writable(p->wsi);
-    return 0;
-}
-
-static int http_request(server *s, pss *p, const char *uri)
-{
-    static const char forbidden[] = "not this server's Host or Origin\n",
-                      not_allowed[] = "only GET and HEAD\n";
-    char *u;
-    int ul, method = lws_http_get_uri_and_method(p->wsi, &u, &ul);
-    p->head = method == LWSHUMETH_HEAD;
-    if (!trusted(p->wsi, s->port))
-        return http_send(p, HTTP_STATUS_FORBIDDEN, "text/plain", forbidden, sizeof forbidden - 1, NULL);
-    if (method != LWSHUMETH_GET && method != LWSHUMETH_HEAD)
-        return http_send(p, HTTP_STATUS_METHOD_NOT_ALLOWED, "text/plain", not_allowed,
-                         sizeof not_allowed - 1, "GET, HEAD");
-    if (strncmp(uri, "/export/", 8) == 0) {
-        if (!export_name_ok(uri + 8))
-            return lws_return_http_status(p->wsi, HTTP_STATUS_NOT_FOUND, "no such export") ? -1 : 0;
-        snprintf(p->export_name, sizeof p->export_name, "%s", uri + 8);
-        p->export_id = tt_live_engine_export(s->engine);
-        p->waiting = 1;
-        /* the engine writes it between two lines: give it a slow line's time */
-        lws_set_timeout(p->wsi, PENDING_TIMEOUT_HTTP_CONTENT, EXPORT_WAIT_S);
-        return 0; /* answered when the engine has written it (http_export) */
-    }
-    const tt_live_asset *a = find_asset(uri);
-    if (!a)
-        return lws_return_http_status(p->wsi, HTTP_STATUS_NOT_FOUND, NULL) ? -1 : 0;
-    return http_send(p, HTTP_STATUS_OK, a->mime, a->data, a->len, NULL);
-}
-
-/* The export asked for, once written: opened (the engine may remove the folder once it
- * writes the next; the open file stays readable) and streamed a chunk at a time, so that
- * a request holds a chunk's memory whatever the file's size. */
-static int http_export(server *s, pss *p)
-{
-    const char *dir, *why;
-    int status;
-    char path[4400], disp[200], msg[600];
-    tt_live_engine_lock(s->engine);
-    unsigned long done = tt_live_engine_exported(s->engine, &dir, &status, &why);
-    if (done < p->export_id) {
-        tt_live_engine_unlock(s->engine);
-        return 0;
-    }
-    int bad = status != TT_OK || !dir;
-    tt_live_text(msg, sizeof msg, bad ? why : "");
-    snprintf(path, sizeof path, "%s/%s", dir ? dir : "", p->export_name);
-    FILE *f = bad ? NULL : fopen(path, "rb");
-    tt_live_engine_unlock(s->engine);
-    struct stat st;
-    if (f && fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode)) {
-        p->file = f;
-        p->len = (size_t)st.st_size;
-    } else {
-        if (f)
-            fclose(f);
-        if (!bad)
-            snprintf(msg, sizeof msg, "%s: not written by this scan", p->export_name);
-    }
-    p->waiting = 0;
-    lws_set_timeout(p->wsi, NO_PENDING_TIMEOUT, 0);
-    if (!p->file)
-        return lws_return_http_status(p->wsi, HTTP_STATUS_NOT_FOUND, msg) ? -1 : 0;
-    p->pos = 0;
-    snprintf(disp, sizeof disp, "attachment; filename=\"%s\"", p->export_name);
-    const char *mime = strstr(p->export_name, ".ini") ? "text/plain" : "application/octet-stream";
-    if (http_headers(p->wsi, HTTP_STATUS_OK, mime, p->len, disp, NULL))
-        return -1;
-    p->headers = 1;
-    lws_callback_on_writable(p->wsi);
-    return 0;
-}
-
-static int http_writeable(server *s, pss *p)
-{
-    if (p->waiting)
-        return http_export(s, p);
-    if (!p->headers)
-        return 0;
-    unsigned char buf[LWS_PRE + CHUNK];
-    size_t n = p->head ? 0 : p->len - p->pos < CHUNK ? p->len - p->pos : CHUNK;
-    if (n && p->file && fread(buf + LWS_PRE, 1, n, p->file) != n)
-        return -1; /* the file shrank: the reply cannot be completed */
-    if (n && !p->file)
-        memcpy(buf + LWS_PRE, p->body + p->pos, n);
-    p->pos += n;
-    int final = p->head || p->pos >= p->len;
-    if (!p->head && lws_write(p->wsi, buf + LWS_PRE, n, final ? LWS_WRITE_HTTP_FINAL : LWS_WRITE_HTTP) < (int)n)
-        return -1;
-    if (final) {
-        if (p->file)
-            fclose(p->file);
-        p->file = NULL;
-        p->headers = 0;
-        return lws_http_transaction_completed(p->wsi) ? -1 : 0;
-    }
-    lws_callback_on_writable(p->wsi);
-    return 0;
-}
-
 static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *user, void *in,
                     size_t len)
 {
@@ -430,9 +312,9 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
             p->next = s->all;
             s->all = p;
         }
-        return http_request(s, p, in);
+        return tt_live_http_request(s, p, in);
     case LWS_CALLBACK_HTTP_WRITEABLE:
-        return http_writeable(s, p);
+        return tt_live_http_writeable(s, p);
     case LWS_CALLBACK_CLOSED_HTTP:
     case LWS_CALLBACK_HTTP_DROP_PROTOCOL:
         if (p && p->wsi && !p->ws)
@@ -443,10 +325,10 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
     case LWS_CALLBACK_FILTER_PROTOCOL_CONNECTION:
         /* refused here, it never counts as a page (ESTABLISHED counts, CLOSED of a page
          * uncounts) */
-        if (s->clients >= s->max_clients || !trusted(wsi, s->port))
+        if (s->clients >= s->max_clients || !tt_live_trusted(wsi, s->port))
             return 1;
         return 0;
-    case LWS_CALLBACK_ESTABLISHED:
+    case LWS_CALLBACK_ESTABLISHED: {
         if (p->wsi) /* an HTTP connection upgraded: it was listed as one */
             unlink_pss(s, p);
         memset(p, 0, sizeof *p);
@@ -457,9 +339,15 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
         p->next = s->all;
         s->all = p;
         s->clients++;
-        tt_live_engine_watched(s->engine, s->clients);
+        /* the path /N: the instrument this page had before a reload */
+        char u[32];
+        if (lws_hdr_copy(wsi, u, sizeof u, WSI_TOKEN_GET_URI) > 1 && u[0] == '/' && u[1] >= '1' &&
+            u[1] <= '9' && strlen(u) <= 4)
+            p->want = atoi(u + 1);
+        attach(s, p);
         lws_callback_on_writable(wsi);
         return 0;
+    }
     case LWS_CALLBACK_SERVER_WRITEABLE:
         return ws_writeable(s, p);
     case LWS_CALLBACK_RECEIVE:
@@ -469,8 +357,7 @@ static int callback(struct lws *wsi, enum lws_callback_reasons reason, void *use
         unlink_pss(s, p);
         if (p->ws) {
             s->clients--;
-            /* no page looks: the engine waits (no CPU) until one comes */
-            tt_live_engine_watched(s->engine, s->clients);
+            detach(s, p);
         }
         p->ws = 0;
         return 0;
@@ -524,7 +411,7 @@ int tt_live_serve(tt_live_controls *c, const tt_live_options *o)
     s.controls = c;
     s.o = o;
     s.max_clients = o->max_clients > 0 ? o->max_clients : 16;
-    s.controls_version = 1;
+    s.max_inst = o->max_instruments > 0 ? o->max_instruments : 4;
     s.out.pre = LWS_PRE;
     s.out.max = OUT_MAX;
     lws_set_log_level(LLL_ERR, log_line);
@@ -552,25 +439,35 @@ int tt_live_serve(tt_live_controls *c, const tt_live_options *o)
                                 "another): %s", o->port,
                         lws_last[0] ? lws_last : "libwebsockets failed to start");
     s.port = lws_get_vhost_listen_port(lws_get_vhost_by_name(s.ctx, "default"));
-    tt_scene *scene = NULL;
-    tt_scan_params prm;
-    rc = tt_live_controls_scene(c, &scene, &prm);
+    /* the first instrument now: a scene that cannot be scanned fails before any page */
+    if (!(s.inst = calloc((size_t)s.max_inst, sizeof *s.inst)))
+        rc = tt_error_nomem("the console's instruments");
+    for (int i = 0; !rc && i < s.max_inst; i++)
+        s.inst[i].number = i + 1;
     if (!rc)
-        rc = tt_live_engine_alloc(&s.engine, scene, &prm, wake, &s);
+        rc = make_instrument(&s, &s.inst[0]);
     if (rc) {
+        free(s.inst);
         lws_context_destroy(s.ctx);
         return rc;
     }
-    tt_live_engine_set_writer(s.engine, o->write, o->write_user);
+    s.last = &s.inst[0];
     if (o->ready)
         o->ready(o->ready_user, s.port);
     lws_sul_schedule(s.ctx, 0, &s.sul, tick, 200 * LWS_US_PER_MS);
     while (!tt_cancel_requested())
         if (lws_service(s.ctx, 0) < 0)
             break;
-    /* the engine first: its line stops at the cancellation; then the connections */
-    tt_live_engine_free(s.engine);
+    /* the engines first: their lines stop at the cancellation; then the connections */
+    for (int i = 0; i < s.max_inst; i++) {
+        tt_live_engine_free(s.inst[i].engine);
+        tt_live_controls_free(s.inst[i].controls);
+        s.inst[i].engine = NULL;
+        s.inst[i].controls = NULL;
+    }
+    s.closing = 1;
     lws_context_destroy(s.ctx);
+    free(s.inst);
     tt_live_buf_free(&s.out);
     return TT_OK;
 }

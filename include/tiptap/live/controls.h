@@ -59,6 +59,9 @@ int tt_live_controls_alloc(tt_live_controls **out, char *const *files, int nfile
                            char *const *sets, int nsets, const char *surfaces,
                            double (*memory)(void));
 void tt_live_controls_free(tt_live_controls *c);
+/* Another set of controls at c's values, for another instrument (a page of its own): its
+ * files, values and scene copied, its lesson c's (borrowed: free the copy before c). */
+int tt_live_controls_copy(tt_live_controls **out, const tt_live_controls *c);
 
 /* The same with a lesson (live/lesson.h; taken, freed with the controls, NULL: none): its
  * scene files come before files, its own sections after them and before sets; a change

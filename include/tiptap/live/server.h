@@ -19,8 +19,14 @@
  * page may drive or read the instrument, nor a rebound name); only GET and HEAD are
  * served (others 405). Every text sent is UTF-8.
  *
- * Ownership: tt_live_serve borrows the controls; it makes and frees the engine, and runs
- * until cancellation is requested (util/cancel.h), then closes every connection.
+ * Each page (WebSocket) drives an instrument of its own, at most max_instruments of them
+ * (docs/live.md, "One instrument per page"): a copy of the controls and an engine, kept
+ * idle after its page closes (for its exports and a reload at /N) until a new page needs
+ * the slot; its exports are /export/N/NAME.
+ *
+ * Ownership: tt_live_serve borrows the controls (the start's settings, copied for each
+ * instrument); it makes and frees the instruments, and runs until cancellation is
+ * requested (util/cancel.h), then closes every connection.
  */
 #ifndef TIPTAP_LIVE_SERVER_H
 #define TIPTAP_LIVE_SERVER_H
@@ -36,6 +42,9 @@ extern "C" {
 typedef struct {
     int port;        /* 0: one the system picks */
     int max_clients; /* WebSockets at once (0: 16) */
+    /* instruments at once (0: 4): each page has its own (controls, engine, exports), and
+     * a page beyond them is told so and waits for one */
+    int max_instruments;
     /* writes the current scan's files into dir as tiptap scan does (the exports) */
     int (*write)(void *user, const tt_scan *scan, const tt_scene *scene, const char *dir);
     void *write_user;
