@@ -243,10 +243,16 @@ static int h5_attach(tt_h5_file *f, const char *data, const char *scale, unsigne
     return r < 0 ? failed(f) : 0;
 }
 
+static int h5_link(tt_h5_file *f, const char *target, const char *path)
+{
+    begin(f);
+    return H5Lcreate_hard(f->file, target, f->file, path, f->lcpl, H5P_DEFAULT) < 0 ? failed(f) : 0;
+}
+
 const tt_h5_ops *tt_h5_module(void)
 {
-    static const tt_h5_ops ops = {TT_H5_MODULE_VERSION, h5_create, h5_close, h5_group, h5_doubles,
-                                  h5_texts,    h5_attr,   h5_scale, h5_attach, h5_reason,
-                                  h5_create_reason};
+    static const tt_h5_ops ops = {TT_H5_MODULE_VERSION, h5_create, h5_close,  h5_group,
+                                  h5_doubles,           h5_texts,  h5_attr,   h5_scale,
+                                  h5_attach,            h5_reason, h5_create_reason, h5_link};
     return &ops;
 }

@@ -198,3 +198,9 @@ int tt_h5_attach(tt_h5 *f, const char *data, const char *scale, unsigned dim, co
     return ops->attach(f->file, data, scale, dim, label) < 0 ? fail(f, "attaching a dimension scale to", data)
                                                            : TT_OK;
 }
+
+int tt_h5_link(tt_h5 *f, const char *target, const char *path)
+{
+    SKIP_AFTER_FAILURE(f);
+    return ops->link(f->file, target, path) < 0 ? fail(f, "the link", path) : TT_OK;
+}
