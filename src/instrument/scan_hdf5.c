@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "scan_nexus.h"
 #include "tiptap/util/error.h"
 
 /* The pyNSID release whose reader (pyNSID.io.hdf_utils.check_if_main) these datasets
@@ -154,6 +155,9 @@ int tt_scan_write_hdf5(const char *path, const tt_scan *s, const char *const *ke
     if (!(rc = tt_h5_attr_text(f, "/", "file_kind", "tiptap scan")) &&
         !(rc = tt_h5_attr_text(f, "/", "layout", "tiptap HDF5 1 (docs/hdf5.md), after pycroscopy's NSID")))
         rc = tt_scan_hdf5_group(f, "/Measurement_000", s, keys, values, n, scene);
+    /* the same images as a NeXus NXafm entry, linked (docs/hdf5.md) */
+    if (!rc && !(rc = tt_h5_attr_text(f, "/", "default", "entry")))
+        rc = tt_scan_nexus_entry(f, "/entry", "/Measurement_000", s, keys, values, n);
     int crc = tt_h5_close(f, rc == TT_OK);
     return rc ? rc : crc;
 }

@@ -47,6 +47,8 @@ typedef struct {
     void (*create_reason)(int *err, char *why, size_t len);
     /* path: a hard link to the object at target */
     int (*link)(tt_h5_file *f, const char *target, const char *path);
+    /* a one-dimensional attribute of n texts */
+    int (*attr_texts)(tt_h5_file *f, const char *object, const char *name, size_t n, const char *const *texts);
 } tt_h5_ops;
 
 /* The module's one exported function. */
