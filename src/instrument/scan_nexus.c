@@ -146,9 +146,7 @@ static int sample(nx *x, const char *entry)
         const char *k = x->keys[i];
         if (strncmp(k, "surface.", 8) && strncmp(k, "material.", 9))
             continue;
-        char name[256];
-        snprintf(name, sizeof name, "%s", k);
-        rc = text(x, smp, name, x->values[i]);
+        rc = text(x, smp, k, x->values[i]);
     }
     return rc;
 }
