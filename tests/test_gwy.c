@@ -79,11 +79,26 @@ static void truncated_file_refused(void **st)
     remove(path);
 }
 
+/* The titles TopoStats and AFMReader select channels by: TopoStats' default "Height" is
+ * the height trace; a retrace is told apart, a long name is cut, never overrun. */
+static void titles(void **st)
+{
+    (void)st;
+    char t[32];
+    assert_string_equal(tt_gwy_title(t, sizeof t, "height", 0), "Height");
+    assert_string_equal(tt_gwy_title(t, sizeof t, "height", 1), "Height (retrace)");
+    assert_string_equal(tt_gwy_title(t, sizeof t, "peak_force", 0), "Peak force");
+    assert_string_equal(tt_gwy_title(t, sizeof t, "harmonic2_phase", 1), "Harmonic2 phase (retrace)");
+    char small[7] = "xxxxxx";
+    assert_string_equal(tt_gwy_title(small, sizeof small, "height", 1), "Height");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(round_trip),
         cmocka_unit_test(truncated_file_refused),
+        cmocka_unit_test(titles),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -243,10 +243,33 @@ static int h5_attach(tt_h5_file *f, const char *data, const char *scale, unsigne
     return r < 0 ? failed(f) : 0;
 }
 
+static int h5_link(tt_h5_file *f, const char *target, const char *path)
+{
+    begin(f);
+    return H5Lcreate_hard(f->file, target, f->file, path, f->lcpl, H5P_DEFAULT) < 0 ? failed(f) : 0;
+}
+
+static int h5_attr_texts(tt_h5_file *f, const char *object, const char *name, size_t n, const char *const *texts)
+{
+    hsize_t d = n;
+    begin(f);
+    hid_t space = H5Screate_simple(1, &d, NULL);
+    hid_t a = space < 0 ? -1
+                        : H5Acreate_by_name(f->file, object, name, f->str, space, H5P_DEFAULT, H5P_DEFAULT,
+                                            H5P_DEFAULT);
+    herr_t w = a < 0 ? -1 : H5Awrite(a, f->str, texts);
+    if (a >= 0 && H5Aclose(a) < 0)
+        w = -1;
+    if (space >= 0)
+        H5Sclose(space);
+    return w < 0 ? failed(f) : 0;
+}
+
 const tt_h5_ops *tt_h5_module(void)
 {
-    static const tt_h5_ops ops = {TT_H5_MODULE_VERSION, h5_create, h5_close, h5_group, h5_doubles,
-                                  h5_texts,    h5_attr,   h5_scale, h5_attach, h5_reason,
-                                  h5_create_reason};
+    static const tt_h5_ops ops = {TT_H5_MODULE_VERSION, h5_create, h5_close,  h5_group,
+                                  h5_doubles,           h5_texts,  h5_attr,   h5_scale,
+                                  h5_attach,            h5_reason, h5_create_reason, h5_link,
+                                  h5_attr_texts};
     return &ops;
 }

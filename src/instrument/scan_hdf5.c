@@ -5,7 +5,19 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "scan_nexus.h"
 #include "tiptap/util/error.h"
+
+/* The pyNSID release whose reader (pyNSID.io.hdf_utils.check_if_main) these datasets
+ * satisfy: its main datasets carry this as pyNSID_version. */
+#define NSID_VERSION "0.0.7.2"
+
+/* What channel() writes beside the image: the group's metadata pairs and the scan. */
+typedef struct {
+    const tt_scan *s;
+    const char *const *keys, *const *values;
+    size_t n;
+} meta;
 
 /* The pixel centres of n pixels over size metres. */
 static int centres(tt_h5 *f, const char *path, long n, double size)
@@ -34,9 +46,57 @@ static int spatial(tt_h5 *f, const char *chan, const char *axis, long n, double 
     return tt_h5_attr_text(f, path, "dimension_type", "SPATIAL");
 }
 
-/* Channel ch's image in direction r as group/Channel_NNN/NAME_DIRECTION. */
-static int channel(tt_h5 *f, const char *group, int number, const tt_scan *s, int ch, int r)
+/* The run's figures (tiptap scan's summary on stderr) as attributes of group, each
+ * name prefix + figure ("run." on the measurement, "" in a channel's metadata). */
+static int figures(tt_h5 *f, const char *group, const char *prefix, const tt_scan *s)
 {
+    static const char *const name[] = {"lines_finished", "lines_total", "fast_axis", "profile_line",
+                                       "instrument_time_s", "cycles", "cycles_integrated",
+                                       "energy_balance", "z_clamped"};
+    char k[9][64];
+    for (int i = 0; i < 9; i++)
+        snprintf(k[i], sizeof k[i], "%s%s", prefix, name[i]);
+    int rc;
+    if ((rc = tt_h5_attr_long(f, group, k[0], tt_scan_lines_done(s))) ||
+        (rc = tt_h5_attr_long(f, group, k[1], tt_scan_lines(s))) ||
+        (rc = tt_h5_attr_text(f, group, k[2], tt_scan_fast_y(s) ? "y" : "x")) ||
+        (rc = tt_h5_attr_long(f, group, k[3], tt_scan_profile_line(s))) ||
+        (rc = tt_h5_attr_double(f, group, k[4], tt_scan_instrument_time(s))) ||
+        (rc = tt_h5_attr_long(f, group, k[5], tt_scan_cycles(s))) ||
+        (rc = tt_h5_attr_long(f, group, k[6], tt_scan_cycles_integrated(s))) ||
+        (rc = tt_h5_attr_double(f, group, k[7], tt_scan_error_estimate(s))))
+        return rc;
+    return tt_h5_attr_long(f, group, k[8], tt_scan_clamped(s));
+}
+
+/* A channel's metadata as pyNSID lays out a sidpy.Dataset's dictionaries, groups of
+ * attributes beside the image that its reader hands to sidpy: original_metadata the
+ * scene's keys (as the GSF headers), metadata the run's figures. The first channel's
+ * groups are written, the others' are hard links to them (stored once). */
+static int channel_meta(tt_h5 *f, const char *group, const char *chan, int number, const meta *m)
+{
+    static const char *const name[] = {"original_metadata", "metadata"};
+    char path[2][512], first[2][512];
+    for (int i = 0; i < 2; i++) {
+        snprintf(path[i], sizeof path[i], "%s/%s", chan, name[i]);
+        snprintf(first[i], sizeof first[i], "%s/Channel_000/%s", group, name[i]);
+    }
+    int rc;
+    if (number > 0)
+        return (rc = tt_h5_link(f, first[0], path[0])) ? rc : tt_h5_link(f, first[1], path[1]);
+    rc = tt_h5_group(f, path[0]);
+    for (size_t i = 0; i < m->n && !rc; i++)
+        rc = tt_h5_attr_text(f, path[0], m->keys[i], m->values[i]);
+    if (!rc)
+        rc = tt_h5_group(f, path[1]);
+    return rc ? rc : figures(f, path[1], "", m->s);
+}
+
+/* Channel ch's image in direction r as group/Channel_NNN/NAME_DIRECTION, an NSID main
+ * dataset. */
+static int channel(tt_h5 *f, const char *group, int number, const meta *m, int ch, int r)
+{
+    const tt_scan *s = m->s;
     char chan[256], data[512], title[128], x[512], y[512];
     const char *name = tt_scan_channel_name(ch), *dir = r ? "retrace" : "trace";
     long xres = tt_scan_xres(s), yres = tt_scan_yres(s);
@@ -56,25 +116,12 @@ static int channel(tt_h5 *f, const char *group, int number, const tt_scan *s, in
         (rc = tt_h5_attr_text(f, data, "direction", dir)) ||
         (rc = tt_h5_attr_long(f, data, "harmonic", tt_scan_channel_harmonic(ch))) ||
         (rc = tt_h5_attr_text(f, data, "data_type", "IMAGE")) ||
-        (rc = tt_h5_attr_text(f, data, "modality", "tapping-mode AFM (simulated)")))
+        (rc = tt_h5_attr_text(f, data, "modality", "tapping-mode AFM (simulated)")) ||
+        (rc = tt_h5_attr_text(f, data, "source", "tiptap scan")) ||
+        (rc = tt_h5_attr_text(f, data, "main_data_name", title)) ||
+        (rc = tt_h5_attr_text(f, data, "pyNSID_version", NSID_VERSION)))
         return rc;
-    return tt_h5_attr_text(f, data, "source", "tiptap scan");
-}
-
-/* The run's figures (tiptap scan's summary on stderr) as attributes of group. */
-static int figures(tt_h5 *f, const char *group, const tt_scan *s)
-{
-    int rc;
-    if ((rc = tt_h5_attr_long(f, group, "run.lines_finished", tt_scan_lines_done(s))) ||
-        (rc = tt_h5_attr_long(f, group, "run.lines_total", tt_scan_lines(s))) ||
-        (rc = tt_h5_attr_text(f, group, "run.fast_axis", tt_scan_fast_y(s) ? "y" : "x")) ||
-        (rc = tt_h5_attr_long(f, group, "run.profile_line", tt_scan_profile_line(s))) ||
-        (rc = tt_h5_attr_double(f, group, "run.instrument_time_s", tt_scan_instrument_time(s))) ||
-        (rc = tt_h5_attr_long(f, group, "run.cycles", tt_scan_cycles(s))) ||
-        (rc = tt_h5_attr_long(f, group, "run.cycles_integrated", tt_scan_cycles_integrated(s))) ||
-        (rc = tt_h5_attr_double(f, group, "run.energy_balance", tt_scan_error_estimate(s))))
-        return rc;
-    return tt_h5_attr_long(f, group, "run.z_clamped", tt_scan_clamped(s));
+    return channel_meta(f, group, chan, number, m);
 }
 
 int tt_scan_hdf5_group(tt_h5 *f, const char *group, const tt_scan *s, const char *const *keys,
@@ -85,15 +132,16 @@ int tt_scan_hdf5_group(tt_h5 *f, const char *group, const tt_scan *s, const char
     for (size_t i = 0; i < n && !rc; i++)
         rc = tt_h5_attr_text(f, group, keys[i], values[i]);
     if (!rc)
-        rc = figures(f, group, s);
+        rc = figures(f, group, "run.", s);
     snprintf(path, sizeof path, "%s/scene", group);
     if (!rc && scene)
         rc = tt_h5_text(f, path, scene);
     int number = 0;
+    meta m = {s, keys, values, n};
     for (int ch = 0; ch < TT_CH_COUNT && !rc; ch++)
         for (int r = 0; r < 2 && !rc; r++)
             if (tt_scan_image(s, ch, r))
-                rc = channel(f, group, number++, s, ch, r);
+                rc = channel(f, group, number++, &m, ch, r);
     return rc;
 }
 
@@ -107,6 +155,9 @@ int tt_scan_write_hdf5(const char *path, const tt_scan *s, const char *const *ke
     if (!(rc = tt_h5_attr_text(f, "/", "file_kind", "tiptap scan")) &&
         !(rc = tt_h5_attr_text(f, "/", "layout", "tiptap HDF5 1 (docs/hdf5.md), after pycroscopy's NSID")))
         rc = tt_scan_hdf5_group(f, "/Measurement_000", s, keys, values, n, scene);
+    /* the same images as a NeXus NXafm entry, linked (docs/hdf5.md) */
+    if (!rc && !(rc = tt_h5_attr_text(f, "/", "default", "entry")))
+        rc = tt_scan_nexus_entry(f, "/entry", "/Measurement_000", s, keys, values, n);
     int crc = tt_h5_close(f, rc == TT_OK);
     return rc ? rc : crc;
 }

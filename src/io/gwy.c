@@ -119,6 +119,19 @@ static void data_field(buf *B, const tt_gwy_channel *c)
     obj_end(B, at);
 }
 
+char *tt_gwy_title(char *out, size_t n, const char *channel, int retrace)
+{
+    if (!n)
+        return out;
+    snprintf(out, n, "%s%s", channel, retrace ? " (retrace)" : "");
+    for (char *c = out; *c; c++)
+        if (*c == '_')
+            *c = ' ';
+    if (out[0] >= 'a' && out[0] <= 'z')
+        out[0] = (char)(out[0] - 'a' + 'A');
+    return out;
+}
+
 int tt_gwy_write(const char *path, const tt_gwy_channel *ch, size_t n, const char *const *keys,
                  const char *const *values, size_t nmeta)
 {

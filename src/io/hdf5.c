@@ -160,15 +160,19 @@ int tt_h5_texts(tt_h5 *f, const char *path, int rank, const size_t *dims, const 
     return ops->texts(f->file, path, rank, dims, texts) < 0 ? fail(f, "the dataset", path) : TT_OK;
 }
 
+/* The failure of writing attribute name of object. */
+static int attr_failed(tt_h5 *f, const char *object, const char *name)
+{
+    char what[1200];
+    snprintf(what, sizeof what, "%s of %s", name, object);
+    return fail(f, "the attribute", what);
+}
+
 /* Attribute name of object, of type type, from value. */
 static int attribute(tt_h5 *f, const char *object, const char *name, int type, const void *value)
 {
     SKIP_AFTER_FAILURE(f);
-    if (ops->attr(f->file, object, name, type, value) == 0)
-        return TT_OK;
-    char what[1200];
-    snprintf(what, sizeof what, "%s of %s", name, object);
-    return fail(f, "the attribute", what);
+    return ops->attr(f->file, object, name, type, value) == 0 ? TT_OK : attr_failed(f, object, name);
 }
 
 int tt_h5_attr_text(tt_h5 *f, const char *object, const char *name, const char *value)
@@ -197,4 +201,16 @@ int tt_h5_attach(tt_h5 *f, const char *data, const char *scale, unsigned dim, co
     SKIP_AFTER_FAILURE(f);
     return ops->attach(f->file, data, scale, dim, label) < 0 ? fail(f, "attaching a dimension scale to", data)
                                                            : TT_OK;
+}
+
+int tt_h5_link(tt_h5 *f, const char *target, const char *path)
+{
+    SKIP_AFTER_FAILURE(f);
+    return ops->link(f->file, target, path) < 0 ? fail(f, "the link", path) : TT_OK;
+}
+
+int tt_h5_attr_texts(tt_h5 *f, const char *object, const char *name, size_t n, const char *const *texts)
+{
+    SKIP_AFTER_FAILURE(f);
+    return ops->attr_texts(f->file, object, name, n, texts) == 0 ? TT_OK : attr_failed(f, object, name);
 }

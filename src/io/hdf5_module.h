@@ -18,7 +18,7 @@
 #include <stddef.h>
 
 /* What tt_h5_module() returns; version changes with the table. */
-#define TT_H5_MODULE_VERSION 2
+#define TT_H5_MODULE_VERSION 3
 
 enum { TT_H5_TEXT = 0, TT_H5_DOUBLE = 1, TT_H5_LONG = 2 };
 
@@ -45,6 +45,10 @@ typedef struct {
     void (*reason)(const tt_h5_file *f, int *err, char *why, size_t len);
     /* The reason of a failed create, whose file is gone. */
     void (*create_reason)(int *err, char *why, size_t len);
+    /* path: a hard link to the object at target */
+    int (*link)(tt_h5_file *f, const char *target, const char *path);
+    /* a one-dimensional attribute of n texts */
+    int (*attr_texts)(tt_h5_file *f, const char *object, const char *name, size_t n, const char *const *texts);
 } tt_h5_ops;
 
 /* The module's one exported function. */

@@ -101,7 +101,7 @@ static int write_hdf5(const tt_scan *scan, const tt_scene *scene, const char *pa
 int tt_run_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int hdf5,
                               int *written)
 {
-    char path[4096], title[TT_CH_COUNT][2][128];
+    char path[4096], title[TT_CH_COUNT][2][128], gwy_title[TT_CH_COUNT][2][128];
     long xres = tt_scan_xres(scan), yres = tt_scan_yres(scan);
     tt_meta meta;
     int rc = scan_meta(&meta, scan, scene);
@@ -119,7 +119,8 @@ int tt_run_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const 
             tt_gsf_field g = {(size_t)xres, (size_t)yres, tt_scan_size_x(scan), tt_scan_size_y(scan),
                               0, 0, "m", tt_scan_channel_unit(ch), title[ch][r], img,
                               (const char *const *)meta.keys, (const char *const *)meta.values, meta.n};
-            gch[ng++] = (tt_gwy_channel){title[ch][r], (size_t)xres, (size_t)yres, tt_scan_size_x(scan),
+            tt_gwy_title(gwy_title[ch][r], sizeof gwy_title[ch][r], tt_scan_channel_name(ch), r);
+            gch[ng++] = (tt_gwy_channel){gwy_title[ch][r], (size_t)xres, (size_t)yres, tt_scan_size_x(scan),
                                          tt_scan_size_y(scan), 0, 0, "m", tt_scan_channel_unit(ch), img};
             tt_run_scan_channel_file(path, sizeof path, dir, ch, r, 0);
             if ((rc = tt_gsf_write(path, &g)))

@@ -33,6 +33,13 @@ typedef struct {
     const double *data;       /* xres * yres values, row 0 = top row; NaN allowed */
 } tt_gwy_channel;
 
+/* The title of a scan channel's image in a .gwy file, by which TopoStats and AFMReader
+ * select it (an exact match with the title string): the channel's name with a capital
+ * and spaces for underscores, "Height" for the height trace (TopoStats' default
+ * channel) and "Height (retrace)" for its retrace; "Peak force", "Harmonic2 phase".
+ * Writes at most n bytes to out, NUL-terminated; returns out. */
+char *tt_gwy_title(char *out, size_t n, const char *channel, int retrace);
+
 /* Write n channels, each with the same metadata (nmeta key/value strings), through a
  * temporary file (outfile.h). */
 int tt_gwy_write(const char *path, const tt_gwy_channel *ch, size_t n, const char *const *keys,

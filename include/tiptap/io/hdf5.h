@@ -57,5 +57,11 @@ int tt_h5_attr_long(tt_h5 *f, const char *object, const char *name, long value);
 int tt_h5_scale(tt_h5 *f, const char *scale, const char *name);
 int tt_h5_attach(tt_h5 *f, const char *data, const char *scale, unsigned dim, const char *label);
 
+/* A one-dimensional attribute of n texts. */
+int tt_h5_attr_texts(tt_h5 *f, const char *object, const char *name, size_t n, const char *const *texts);
+
+/* A second name, path, for the existing object at target (a hard link: stored once). */
+int tt_h5_link(tt_h5 *f, const char *target, const char *path);
+
 TT_END_DECLS
 #endif

@@ -1,0 +1,7 @@
+"""
+Basic computational utilities
+"""
+
+from . import fitter
+
+__all__ = ['fitter']
