@@ -258,6 +258,8 @@ double tt_surface_height(const tt_surface *S, double x, double y)
     case S_ROUGH:
     case S_PNG:
         return grid_at(S, x, y);
+    case S_MEASURED:
+        return tt_surface_measured_at(S, x, y);
     default:
         return 0;
     }
@@ -354,6 +356,9 @@ int tt_surface_alloc(tt_surface **out, const tt_surface_params *p, const tt_mate
     case S_PNG:
         rc = tt_surface_build_png_height(S, p);
         break;
+    case S_MEASURED:
+        rc = tt_surface_build_measured(S, p);
+        break;
     default:
         break;
     }
@@ -383,6 +388,7 @@ void tt_surface_free(tt_surface *S)
     free(S->cell_start);
     free(S->cell_list);
     fftw_free(S->grid);
+    tt_surface_measured_free(S);
     free(S->mgrid);
     free(S);
 }

@@ -194,6 +194,18 @@ int tt_surface_build_png_height(tt_surface *S, const tt_surface_params *p)
 }
 
 
+int tt_surface_read_png16(const char *key, const char *path, unsigned short **pix, int *w, int *h)
+{
+    int maxv, rc = read_png(key, path, 0, pix, w, h, &maxv);
+    if (rc == TT_OK && maxv != 65535) {
+        free(*pix);
+        *pix = NULL;
+        return tt_error(TT_EINVAL, "%s: %s: an 8-bit PNG (256 levels); expected a 16-bit grey image "
+                                   "(or type = png for a drawn map)", key, path);
+    }
+    return rc;
+}
+
 /* ---- material map ---- */
 
 /* A material's map_value as the pixel it names in a map of maxval (255 or 65535),

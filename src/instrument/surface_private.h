@@ -3,9 +3,11 @@
 #ifndef TIPTAP_SURFACE_PRIVATE_H
 #define TIPTAP_SURFACE_PRIVATE_H
 
+#include <gsl/gsl_interp2d.h>
+
 #include "tiptap/instrument/surface.h"
 
-typedef enum { S_FLAT, S_STEPS, S_GRATING, S_PARTICLES, S_ROUGH, S_PNG } shape;
+typedef enum { S_FLAT, S_STEPS, S_GRATING, S_PARTICLES, S_ROUGH, S_PNG, S_MEASURED } shape;
 typedef enum { M_UNIFORM, M_STRIPES, M_DISKS, M_CHECKER, M_ISLANDS, M_PNG } mapkind;
 
 struct tt_surface {
@@ -28,6 +30,12 @@ struct tt_surface {
     double map_period, map_duty, map_radius;
     int *mgrid;             /* png material map */
     int mw, mh;
+    /* measured image (surface_measured.c): GSL's interpolation over nodes xa, ya */
+    gsl_interp2d *interp;
+    double *xa, *ya, *za;
+    size_t nx, ny;
+    double lo_x, hi_x, lo_y, hi_y; /* the nodes' span: queries are clamped into it */
+    double wrap_x, wrap_y;         /* periodic edges: the image's size (0: clamped) */
 };
 
 /* surface_png.c: a PNG height map (type png) and a PNG material map (map png). */
@@ -37,5 +45,10 @@ int tt_surface_build_png_map(tt_surface *S, const tt_surface_params *p, const tt
 /* A 16-bit grey PNG's levels (0 to 65535) into *pix (w * h, caller frees); errors name
  * the key and the file. */
 int tt_surface_read_png16(const char *key, const char *path, unsigned short **pix, int *w, int *h);
+
+/* surface_measured.c: a measured height image, read, prepared and interpolated. */
+int tt_surface_build_measured(tt_surface *S, const tt_surface_params *p);
+double tt_surface_measured_at(const tt_surface *S, double x, double y);
+void tt_surface_measured_free(tt_surface *S);
 
 #endif
