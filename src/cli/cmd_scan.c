@@ -51,7 +51,8 @@ static void help(void)
            "indentation (m), dissipation (J per cycle),\n"
            "topography (the true surface, m), harmonic2 ... harmonic8 (amplitude of the\n"
            "deflection's harmonic h, m; needs [lockin] harmonics >= h), harmonic2_phase ...\n"
-           "harmonic8_phase (its lag behind cos(h w t), deg). Ctrl-C (or SIGTERM) abandons the\n"
+           "harmonic8_phase (its lag behind cos(h w t), deg), artefact (height - topography, m;\n"
+           "added on a measured surface unless [scan] channels is set).\nCtrl-C (or SIGTERM) abandons the\n"
            "lines under way and writes the finished lines (the others are NaN, shown grey).\n"
            "stderr starts with an estimate of the cycles, time and memory; a scan needing\n"
            "more memory than the machine has is refused, and so is a second scan into a\n"
@@ -80,6 +81,11 @@ static void show_progress(void *user, long done, long total)
 
 static double display_scale(int ch, const char **unit, tt_colormap *cmap)
 {
+    if (ch == TT_CH_ARTEFACT_INDEX) { /* a difference: either sign */
+        *unit = "nm";
+        *cmap = TT_CMAP_DIVERGING;
+        return 1e9;
+    }
     /* higher harmonics are tens of picometres where the fundamental is nanometres */
     if (ch >= TT_CH_HARMONIC_PHASE_INDEX) {
         *unit = "deg";

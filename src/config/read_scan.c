@@ -108,8 +108,13 @@ static int read_measured(const tt_scene *s, tt_surface_params *p)
 
 /* The measured image read and prepared once, before the run is estimated: a bad file,
  * crop or size is refused here in one line. */
-static int check_measured(const tt_scene *s, const tt_scan_params *p)
+static int check_measured(const tt_scene *s, tt_scan_params *p)
 {
+    if (p->surface.type != TT_SURFACE_MEASURED)
+        return TT_OK;
+    /* the comparison with the input, unless the scene chose its channels */
+    if (!tt_scene_has(s, "scan", NULL, "channels"))
+        p->channels |= TT_CH_TOPOGRAPHY | TT_CH_ARTEFACT;
     return tt_scene_locate(s, tt_surface_check_measured(&p->surface, p->raster.size_x, p->raster.size_y));
 }
 

@@ -24,7 +24,7 @@ static const struct {
     {"harmonic6", "m"},  {"harmonic7", "m"},   {"harmonic8", "m"},
     {"harmonic2_phase", "deg"}, {"harmonic3_phase", "deg"}, {"harmonic4_phase", "deg"},
     {"harmonic5_phase", "deg"}, {"harmonic6_phase", "deg"}, {"harmonic7_phase", "deg"},
-    {"harmonic8_phase", "deg"},
+    {"harmonic8_phase", "deg"}, {"artefact", "m"},
 };
 
 const char *tt_scan_channel_name(int i) { return i >= 0 && i < TT_CH_COUNT ? channel_info[i].name : "?"; }
@@ -63,7 +63,7 @@ int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t l
             snprintf(why, len,
                      "unknown channel '%.*s'; channels are height, error, amplitude, phase, "
                      "peak_force, indentation, dissipation, topography, harmonic2 to harmonic%d, "
-                     "harmonic2_phase to harmonic%d_phase",
+                     "harmonic2_phase to harmonic%d_phase, artefact",
                      (int)(e - p), p, TT_CH_HARMONIC_MAX, TT_CH_HARMONIC_MAX);
             return -1;
         }
@@ -547,7 +547,9 @@ static void line_done(const tt_scan *S, worker *W, long line, const line_state *
                 /* lock-in channels come once per lock-in block, the rest per cycle */
                 long cnt = tt_scan_channel_harmonic(ch) ? a->nblk : a->n;
                 double v = cnt ? a->sum[ch] / (double)cnt : NAN;
-                if (ch >= TT_CH_HARMONIC_PHASE_INDEX && cnt)
+                if (ch == TT_CH_ARTEFACT_INDEX)
+                    v = cnt ? (a->sum[0] - a->sum[6]) / (double)cnt : NAN;
+                else if (ch >= TT_CH_HARMONIC_PHASE_INDEX && cnt)
                     v = lag(a->sum[ch], a->quad[ch - TT_CH_HARMONIC_PHASE_INDEX]) * 180 / M_PI;
                 if (out->img[dir][ch])
                     out->img[dir][ch][out->packed ? px : tt_raster_index(R, line, px)] = v;
