@@ -89,7 +89,7 @@ static void resampling(void **st)
     tt_surface_free(S);
     S = make(q, "interpolation = bicubic\n", 4e-9, 4e-9, 1);
     assert_close(at(S, 1, 1), 8, 1e-12);
-    assert_true(fabs(at(S, 1.5, 1) - 4) > 0.1);
+    assert_close(at(S, 1.5, 1), 4.6, 1e-9); /* the overshoot docs/surfaces.md quotes */
     tt_surface_free(S);
     /* edges: clamped past the image, periodic across its seam */
     S = make(p, "edges = clamp\n", 8e-9, 4e-9, 1);
