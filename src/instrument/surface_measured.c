@@ -69,8 +69,10 @@ static int crop(const tt_surface_params *p, tt_height_image *im)
     const long *c = p->crop;
     if (c[2] == 0)
         return TT_OK;
-    if (c[0] < 0 || c[1] < 0 || c[2] < 2 || c[3] < 2 || (size_t)(c[0] + c[2]) > im->xres ||
-        (size_t)(c[1] + c[3]) > im->yres)
+    /* compared by subtraction: left + width could overflow */
+    if (c[0] < 0 || c[1] < 0 || c[2] < 2 || c[3] < 2 || (size_t)c[0] >= im->xres ||
+        (size_t)c[1] >= im->yres || (size_t)c[2] > im->xres - (size_t)c[0] ||
+        (size_t)c[3] > im->yres - (size_t)c[1])
         return tt_error(TT_EINVAL, "[surface] crop: %s: %ld %ld %ld %ld; expected left top width height "
                                    "within the image's %zu x %zu pixels, at least 2 x 2",
                         p->image, c[0], c[1], c[2], c[3], im->xres, im->yres);
