@@ -37,3 +37,9 @@ $t profiles -q --title "line-rate-fast without noise: turnaround on a wall (2 um
 # each scan's scope.csv holds a point per lock-in block (megabytes at 2 Hz): not
 # committed; scope.png shows it, and the scan writes it again
 find examples -name scope.csv -delete
+# a tiptap image re-imaged as a measured surface; only its small files are committed
+$t scan scans/quick.ini examples/measured-reimage/scene.ini -q -o examples/measured-reimage/out
+$t profiles -q --title "re-imaged at 1 Hz: trace, retrace and the input (the 4 Hz scan's height)" \
+   -o examples/measured-reimage/profiles.png examples/measured-reimage/out
+find examples/measured-reimage/out -type f ! -name 'profile.csv' ! -name 'artefact_*.png' \
+   ! -name 'height_trace.png' ! -name 'topography_trace.png' -delete

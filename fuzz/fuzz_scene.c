@@ -62,7 +62,8 @@ static int checked(int rc, const char *what)
 static void build_surface(const tt_scene *s, const tt_scan_params *sp)
 {
     const tt_surface_params *p = &sp->surface;
-    if (p->type == TT_SURFACE_ROUGH || p->type == TT_SURFACE_PNG || p->map == TT_MAP_PNG ||
+    if (p->type == TT_SURFACE_ROUGH || p->type == TT_SURFACE_PNG || p->type == TT_SURFACE_MEASURED ||
+        p->map == TT_MAP_PNG ||
         (p->type == TT_SURFACE_PARTICLES && p->particle_count > 2000))
         return;
     tt_surface *S = NULL;

@@ -224,10 +224,37 @@ class Scene:
                 check(lib.tt_scene_set(self._p, line))
         return self
 
+    def set_surface_image(self, heights, pixel_size):
+        """A measured topography from a numpy array: heights (2-D, metres, row 0 at y = 0)
+        with pixel_size (metres, a number or (dx, dy)) become [surface] type = measured,
+        through a Gwyddion Simple Field file (float32, as the format stores heights) in a
+        temporary folder that lives as long as this scene and its copies. The preparation
+        keys (level, line_level, crop, interpolation, edges, z_scale, z_offset) apply as to
+        a file (docs/surfaces.md). The library's checks apply: a NaN pixel or an absurd
+        pixel size raises SceneError when the scene is run."""
+        import numpy as np
+        import tempfile
+
+        z = np.asarray(heights, dtype="<f4")
+        if z.ndim != 2:
+            raise ValueError(f"set_surface_image: heights must be a 2-D array, not {z.ndim}-D")
+        dx, dy = (pixel_size, pixel_size) if np.ndim(pixel_size) == 0 else pixel_size
+        dx, dy = float(dx), float(dy)
+        ny, nx = z.shape
+        folder = tempfile.TemporaryDirectory(prefix="tiptap-surface-")
+        path = os.path.join(folder.name, "heights.gsf")
+        head = (f"Gwyddion Simple Field 1.0\nXRes = {nx}\nYRes = {ny}\nXReal = {nx * dx!r}\n"
+                f"YReal = {ny * dy!r}\nXYUnits = m\nZUnits = m\nTitle = numpy\n").encode()
+        with open(path, "wb") as f:
+            f.write(head + b"\0" * (4 - len(head) % 4) + z.tobytes())
+        self.__dict__.setdefault("_folders", []).append(folder)
+        return self.set({"surface.type": "measured", "surface.image": path})
+
     def copy(self):
         """A deep copy."""
         c = Scene.__new__(Scene)
         c._lock = threading.RLock()
+        c._folders = list(getattr(self, "_folders", []))
         with self._lock:
             p = lib.tt_scene_copy(self._p)
         if p == ffi.NULL:

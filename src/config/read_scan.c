@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <unistd.h>
 
 #include "scene_private.h"
@@ -50,6 +51,73 @@ static int check_png_file(const tt_scene *s, const char *path)
     return tt_scene_locate(s, tt_error(TT_EINVAL, "[surface] png: %s", why));
 }
 
+/* The index of an enum key's value among choices. */
+static int enum_of(const tt_scene *s, const char *key, const char *const *choices, int n)
+{
+    const char *v = tt_scene_get_string(s, "surface", NULL, key);
+    for (int i = 0; v && i < n; i++)
+        if (strcmp(v, choices[i]) == 0)
+            return i;
+    return 0;
+}
+
+/* A measured image's keys; the file itself is read by check_measured, once the scan
+ * area is known. */
+static int read_measured(const tt_scene *s, tt_surface_params *p)
+{
+    static const char *const levels[] = {"none", "offset", "plane"};
+    static const char *const lines[] = {"none", "offset", "slope", "median", "median_difference"};
+    static const char *const edges[] = {"refuse", "clamp", "periodic"};
+    int rc;
+    if (!tt_scene_has(s, "surface", NULL, "image"))
+        return tt_scene_fail(s, "surface", NULL, "type",
+                             "measured needs [surface] image = a .gsf, .gwy or 16-bit .png height image");
+    if ((rc = tt_scene_get_path(s, "surface", NULL, "image", p->image, sizeof p->image)) ||
+        (rc = get_d(s, "z_scale", &p->z_scale)) || (rc = get_d(s, "z_offset", &p->z_offset)))
+        return rc;
+    const char *ch = tt_scene_get_string(s, "surface", NULL, "channel");
+    snprintf(p->channel, sizeof p->channel, "%s", ch ? ch : "");
+    if (tt_scene_has(s, "surface", NULL, "pixel_size") && (rc = get_d(s, "pixel_size", &p->pixel_size)))
+        return rc;
+    /* a PNG's levels have no height of their own: the range is not left to a default */
+    if (tt_scene_has(s, "surface", NULL, "png_height_range") &&
+        (rc = get_d(s, "png_height_range", &p->png_height_range)))
+        return rc;
+    size_t n = strlen(p->image);
+    if (n > 4 && strcasecmp(p->image + n - 4, ".png") == 0 &&
+        !tt_scene_has(s, "surface", NULL, "png_height_range"))
+        return tt_scene_fail(s, "surface", NULL, "png_height_range",
+                             "a PNG's levels carry no height: expected the height of level 65535 "
+                             "(e.g. 20 nm) for %s", p->image);
+    p->level = (tt_surface_level)enum_of(s, "level", levels, 3);
+    p->line_level = (tt_surface_lines)enum_of(s, "line_level", lines, 5);
+    p->edges = (tt_surface_edges)enum_of(s, "edges", edges, 3);
+    const char *interp = tt_scene_get_string(s, "surface", NULL, "interpolation");
+    p->bicubic = interp && strcmp(interp, "bicubic") == 0;
+    const char *c = tt_scene_get_string(s, "surface", NULL, "crop");
+    if (c) {
+        char tail;
+        if (sscanf(c, "%ld %ld %ld %ld %c", &p->crop[0], &p->crop[1], &p->crop[2], &p->crop[3], &tail) != 4 ||
+            p->crop[0] < 0 || p->crop[1] < 0 || p->crop[2] < 2 || p->crop[3] < 2)
+            return tt_scene_fail(s, "surface", NULL, "crop",
+                                 "'%s'; expected four whole numbers of pixels: left top width height "
+                                 "(width and height at least 2)", c);
+    }
+    return TT_OK;
+}
+
+/* The measured image read and prepared once, before the run is estimated: a bad file,
+ * crop or size is refused here in one line. */
+static int check_measured(const tt_scene *s, tt_scan_params *p)
+{
+    if (p->surface.type != TT_SURFACE_MEASURED)
+        return TT_OK;
+    /* the comparison with the input, unless the scene chose its channels */
+    if (!tt_scene_has(s, "scan", NULL, "channels"))
+        p->channels |= TT_CH_TOPOGRAPHY | TT_CH_ARTEFACT;
+    return tt_scene_locate(s, tt_surface_check_measured(&p->surface, p->raster.size_x, p->raster.size_y));
+}
+
 static int read_shape(const tt_scene *s, tt_surface_params *p)
 {
     int rc = TT_OK;
@@ -81,6 +149,8 @@ static int read_shape(const tt_scene *s, tt_surface_params *p)
             (rc = check_png_file(s, p->png)))
             return rc;
         return get_d(s, "png_height_range", &p->png_height_range);
+    case TT_SURFACE_MEASURED:
+        return read_measured(s, p);
     default:
         return TT_OK;
     }
@@ -118,7 +188,7 @@ static int read_map_materials(const tt_scene *s, const char *list, const tt_mate
     return TT_OK;
 }
 
-static const char *const surface_types[] = {"flat", "steps", "grating", "particles", "rough", "png"};
+static const char *const surface_types[] = {"flat", "steps", "grating", "particles", "rough", "png", "measured"};
 static const char *const surface_maps[] = {"uniform", "stripes", "disks", "checkerboard", "islands", "png"};
 
 /* A two-material map: which materials, its period, duty and disk radius. */
@@ -154,10 +224,10 @@ int tt_config_surface(const tt_scene *s, const tt_material *m, size_t n, tt_surf
     memset(p, 0, sizeof *p);
     const char *t = tt_scene_get_string(s, "surface", NULL, "type");
     const char *mp = tt_scene_get_string(s, "surface", NULL, "map");
-    for (int i = 0; i < 6; i++) {
+    for (int i = 0; i < 7; i++) {
         if (t && strcmp(t, surface_types[i]) == 0)
             p->type = (tt_surface_type)i;
-        if (mp && strcmp(mp, surface_maps[i]) == 0)
+        if (i < 6 && mp && strcmp(mp, surface_maps[i]) == 0)
             p->map = (tt_surface_map)i;
     }
     int rc = read_shape(s, p);
@@ -416,6 +486,7 @@ int tt_config_scan(const tt_scene *s, tt_scan_params *p)
         (rc = read_noise(s, p)) ||
         (rc = tt_config_feedback(s, p->cantilever.A0, &p->feedback)) ||
         (rc = tt_config_surface(s, m, n, &p->surface)) || (rc = check_particles(s, p)) ||
+        (rc = check_measured(s, p)) ||
         (rc = tt_config_tip_shape(s, &p->tip)) || (rc = tt_config_instrument(s, &p->instrument))) {
         tt_config_scan_free(p);
         return rc;
@@ -463,11 +534,11 @@ void tt_config_note_inputs(const tt_scene *s)
 {
     for (size_t i = 0; i < s->nfiles; i++)
         tt_input_note(s->files[i], "scene file");
-    static const char *const keys[] = {"png", "map_png"};
+    static const char *const keys[] = {"png", "map_png", "image"};
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
         char path[4096];
         if (tt_scene_has(s, "surface", NULL, keys[i]) &&
             tt_scene_get_path(s, "surface", NULL, keys[i], path, sizeof path) == TT_OK)
-            tt_input_note(path, "PNG map");
+            tt_input_note(path, i < 2 ? "PNG map" : "height image");
     }
 }

@@ -147,7 +147,7 @@ static const tt_scene_key solver_keys[] = {
 
 /* [surface], [lockin], [feedback]: imaging (tiptap scan). */
 static const tt_scene_key surface_keys[] = {
-    {"type", TT_KEY_ENUM, 0, "flat", 0, 0, 0, "flat|steps|grating|particles|rough|png",
+    {"type", TT_KEY_ENUM, 0, "flat", 0, 0, 0, "flat|steps|grating|particles|rough|png|measured",
      "topography (docs/surfaces.md)"},
     {"step_height", Q(TT_DIM_LENGTH), "1 nm", -INF, INF, 0, NULL, "steps: height of each step (up along x)"},
     {"step_width", Q(TT_DIM_LENGTH), "250 nm", 0, INF, POS, NULL, "steps: terrace width"},
@@ -166,7 +166,29 @@ static const tt_scene_key surface_keys[] = {
     {"seed", TT_KEY_INT, 0, "1", 0, 2147483647, 0, NULL, "particles, rough: random seed"},
     {"png", TT_KEY_STRING, 0, NULL, 0, 0, TT_KEY_PATH, NULL,
      "png: grey height map (8 or 16 bit) spanning the scan area, top row at y = 0"},
-    {"png_height_range", Q(TT_DIM_LENGTH), "10 nm", -INF, INF, 0, NULL, "png: height of white above black"},
+    {"png_height_range", Q(TT_DIM_LENGTH), "10 nm", -INF, INF, 0, NULL,
+     "png: height of white above black; measured .png: height of level 65535 (required)"},
+    {"image", TT_KEY_STRING, 0, NULL, 0, 0, TT_KEY_PATH, NULL,
+     "measured: height image, .gsf, .gwy or 16-bit grey .png, top row at y = 0"},
+    {"channel", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
+     "measured .gwy: the channel's title or number (default: the first)"},
+    {"pixel_size", Q(TT_DIM_LENGTH), NULL, 0, INF, POS, NULL,
+     "measured .png: the image's pixel (square); .gsf and .gwy carry their own"},
+    {"level", TT_KEY_ENUM, 0, "none", 0, 0, 0, "none|offset|plane",
+     "measured: offset: the mean taken off; plane: the least-squares plane taken off"},
+    {"line_level", TT_KEY_ENUM, 0, "none", 0, 0, 0, "none|offset|slope|median|median_difference",
+     "measured: each row levelled after level: its mean, line or median taken off, or "
+     "median_difference: the median step from the row above taken off"},
+    {"crop", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
+     "measured: left top width height, in the image's pixels (default: the whole image)"},
+    {"interpolation", TT_KEY_ENUM, 0, "bilinear", 0, 0, 0, "bilinear|bicubic",
+     "measured: between pixel centres (GSL gsl_interp2d); bilinear stays within the pixels' "
+     "heights, bicubic has continuous slopes but overshoots at steps"},
+    {"edges", TT_KEY_ENUM, 0, "refuse", 0, 0, 0, "refuse|clamp|periodic",
+     "measured: refuse an image smaller than the scan area, or continue its edge pixels "
+     "(clamp) or repeat it (periodic)"},
+    {"z_scale", Q(TT_DIM_NONE), "1", -1e6, 1e6, 0, NULL, "measured: factor on the levelled heights"},
+    {"z_offset", Q(TT_DIM_LENGTH), "0 nm", -1e-3, 1e-3, 0, NULL, "measured: added after z_scale"},
     {"map", TT_KEY_ENUM, 0, "uniform", 0, 0, 0, "uniform|stripes|disks|checkerboard|islands|png",
      "material map"},
     {"map_materials", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
@@ -215,7 +237,7 @@ static const tt_scene_key scan_keys[] = {
      0, 0, NULL,
      "what to record: height, error (amplitude - setpoint), amplitude (the lock-in's), phase, "
      "peak_force, indentation, dissipation, topography, "
-     "harmonic2 to harmonic8 (need [lockin] harmonics >= h), harmonic2_phase to harmonic8_phase"},
+     "harmonic2 to harmonic8 (need [lockin] harmonics >= h), harmonic2_phase to harmonic8_phase, artefact (height - topography; added by default on a measured surface)"},
     {"profile_line", TT_KEY_INT, 0, "-1", -1, 16383, 0, NULL,
      "line written to profile.csv (-1: the middle line)"},
     {"settle_cycles", TT_KEY_INT, 0, "3000", 0, 1e9, 0, NULL,

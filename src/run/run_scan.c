@@ -21,6 +21,11 @@
 
 static double display_scale(int ch, const char **unit, tt_colormap *cmap)
 {
+    if (ch == TT_CH_ARTEFACT_INDEX) { /* a difference: either sign */
+        *unit = "nm";
+        *cmap = TT_CMAP_DIVERGING;
+        return 1e9;
+    }
     /* higher harmonics are tens of picometres where the fundamental is nanometres */
     if (ch >= TT_CH_HARMONIC_PHASE_INDEX) {
         *unit = "deg";

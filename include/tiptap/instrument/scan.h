@@ -60,7 +60,11 @@ enum {
     TT_CH_HARMONIC_MAX = 8,
     TT_CH_HARMONIC_INDEX = 8,
     TT_CH_HARMONIC_PHASE_INDEX = 15,
-    TT_CH_COUNT = 22
+    /* height - topography at each pixel, m: what the loop and the tip made of the
+     * sample (with the standing offset of the tip's rest at the setpoint) */
+    TT_CH_ARTEFACT_INDEX = 22,
+    TT_CH_ARTEFACT = 1 << 22,
+    TT_CH_COUNT = 23
 };
 
 /* Name ("height"), unit ("m", "deg", "N", "J") and title of channel index i. */

@@ -22,8 +22,15 @@ TT_BEGIN_DECLS
 
 typedef enum {
     TT_SURFACE_FLAT, TT_SURFACE_STEPS, TT_SURFACE_GRATING, TT_SURFACE_PARTICLES,
-    TT_SURFACE_ROUGH, TT_SURFACE_PNG
+    TT_SURFACE_ROUGH, TT_SURFACE_PNG, TT_SURFACE_MEASURED
 } tt_surface_type;
+
+/* A measured image's preparation (docs/surfaces.md, "Measured surfaces"). */
+typedef enum { TT_LEVEL_NONE, TT_LEVEL_OFFSET, TT_LEVEL_PLANE } tt_surface_level;
+typedef enum {
+    TT_LINES_NONE, TT_LINES_OFFSET, TT_LINES_SLOPE, TT_LINES_MEDIAN, TT_LINES_MEDIAN_DIFFERENCE
+} tt_surface_lines;
+typedef enum { TT_EDGES_REFUSE, TT_EDGES_CLAMP, TT_EDGES_PERIODIC } tt_surface_edges;
 
 typedef enum {
     TT_MAP_UNIFORM, TT_MAP_STRIPES, TT_MAP_DISKS, TT_MAP_CHECKERBOARD, TT_MAP_ISLANDS, TT_MAP_PNG
@@ -40,7 +47,17 @@ typedef struct {
     double rms, correlation_length;             /* rough */
     long seed;                                  /* particles, rough */
     char png[4096];                             /* png: grey height map */
-    double png_height_range;
+    double png_height_range;                    /* png; measured .png: level 65535's height */
+    char image[4096];                           /* measured: .gsf, .gwy or 16-bit .png */
+    char channel[256];                          /* measured .gwy: title or number ("": first) */
+    double pixel_size;                          /* measured .png: m */
+    tt_surface_level level;                     /* measured: the whole image's levelling */
+    tt_surface_lines line_level;                /* measured: each row's, after level */
+    long crop[4];                               /* measured: left, top, width, height in
+                                                 * pixels (width 0: the whole image) */
+    int bicubic;                                /* measured: 1 bicubic, 0 bilinear */
+    tt_surface_edges edges;                     /* measured: past the image's edges */
+    double z_scale, z_offset;                   /* measured: z = z_scale * levelled + z_offset */
     tt_surface_map map;
     int materials[2];                           /* two-material maps: background, other */
     double map_period, map_duty, map_radius;
@@ -63,6 +80,11 @@ void tt_surface_free(tt_surface *s);
  * cannot make out (tt_surface_alloc then says why). */
 int tt_surface_check_map_values(const tt_surface_params *p, const tt_material *materials,
                                 size_t nmaterials);
+
+/* A measured surface (p->type measured) read and prepared as tt_surface_alloc would, and
+ * dropped: so that a bad file, key or crop is refused, in one line naming the key, the
+ * file and what is expected, before a run is estimated. TT_OK for other types. */
+int tt_surface_check_measured(const tt_surface_params *p, double size_x, double size_y);
 
 double tt_surface_height(const tt_surface *s, double x, double y);
 int tt_surface_material(const tt_surface *s, double x, double y);

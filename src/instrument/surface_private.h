@@ -1,0 +1,54 @@
+/* The surface's inside, shared by its files: surface.c (shapes, evaluation), surface_png.c
+ * (PNG height and material maps) and surface_measured.c (measured height images). */
+#ifndef TIPTAP_SURFACE_PRIVATE_H
+#define TIPTAP_SURFACE_PRIVATE_H
+
+#include <gsl/gsl_interp2d.h>
+
+#include "tiptap/instrument/surface.h"
+
+typedef enum { S_FLAT, S_STEPS, S_GRATING, S_PARTICLES, S_ROUGH, S_PNG, S_MEASURED } shape;
+typedef enum { M_UNIFORM, M_STRIPES, M_DISKS, M_CHECKER, M_ISLANDS, M_PNG } mapkind;
+
+struct tt_surface {
+    shape type;
+    mapkind map;
+    double sx, sy;
+    /* shapes */
+    double step_h, step_w, period, duty, height, edge;
+    double pr;              /* particle radius */
+    double *px, *py;        /* particle centres */
+    long np;
+    int *cell_start, *cell_list; /* particles binned on a grid of cells at least 2 r wide */
+    int ncx, ncy;
+    double cw;              /* cell width, m */
+    /* height grid (rough, png) */
+    double *grid;
+    int gw, gh, periodic;
+    /* map */
+    int mat[2];             /* background, second material */
+    double map_period, map_duty, map_radius;
+    int *mgrid;             /* png material map */
+    int mw, mh;
+    /* measured image (surface_measured.c): GSL's interpolation over nodes xa, ya */
+    gsl_interp2d *interp;
+    double *xa, *ya, *za;
+    size_t nx, ny;
+    double lo_x, hi_x, lo_y, hi_y; /* the nodes' span: queries are clamped into it */
+    double wrap_x, wrap_y;         /* periodic edges: the image's size (0: clamped) */
+};
+
+/* surface_png.c: a PNG height map (type png) and a PNG material map (map png). */
+int tt_surface_build_png_height(tt_surface *S, const tt_surface_params *p);
+int tt_surface_build_png_map(tt_surface *S, const tt_surface_params *p, const tt_material *mat,
+                             size_t nm);
+/* A 16-bit grey PNG's levels (0 to 65535) into *pix (w * h, caller frees); errors name
+ * the key and the file. */
+int tt_surface_read_png16(const char *key, const char *path, unsigned short **pix, int *w, int *h);
+
+/* surface_measured.c: a measured height image, read, prepared and interpolated. */
+int tt_surface_build_measured(tt_surface *S, const tt_surface_params *p);
+double tt_surface_measured_at(const tt_surface *S, double x, double y);
+void tt_surface_measured_free(tt_surface *S);
+
+#endif
