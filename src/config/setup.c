@@ -99,6 +99,14 @@ const tt_contact *tt_setup_contact(const tt_setup *st, size_t i)
     return i < st->nmaterials ? st->contacts[i] : NULL;
 }
 
+int tt_setup_viscous(const tt_setup *st)
+{
+    for (size_t i = 0; i < st->nmaterials; i++)
+        if (tt_material_viscous(tt_setup_material(st, i)))
+            return 1;
+    return 0;
+}
+
 int tt_setup_find_material(const tt_setup *st, const char *name, const char *key_section,
                            const char *key, size_t *index)
 {
