@@ -173,7 +173,8 @@ static int read_material(const tt_scene *s, const tt_tip *tip, const char *name,
     if (tt_scene_has(s, "material", name, "interaction_quality_factor") &&
         (rc = tt_scene_get_double(s, "material", name, "interaction_quality_factor", &m->Qi)))
         return rc;
-    if ((rc = tt_scene_get_double(s, "material", name, "viscosity", &p->viscosity)))
+    if (tt_scene_has(s, "material", name, "viscosity") &&
+        (rc = tt_scene_get_double(s, "material", name, "viscosity", &p->viscosity)))
         return rc;
     if (tt_scene_has(s, "material", name, "film_thickness")) {
         if ((rc = tt_scene_get_double(s, "material", name, "film_thickness", &p->film_thickness)))
