@@ -43,7 +43,7 @@ typedef enum {
     TT_DIM_NONE = 1, TT_DIM_LENGTH = 2, TT_DIM_FREQUENCY = 4, TT_DIM_STIFFNESS = 8,
     TT_DIM_SURFACE_ENERGY = 16, TT_DIM_PRESSURE = 32, TT_DIM_FORCE = 64, TT_DIM_TIME = 128,
     TT_DIM_ENERGY = 256, TT_DIM_VELOCITY = 512, TT_DIM_ANGLE = 1024, TT_DIM_FRACTION = 2048,
-    TT_DIM_TEMPERATURE = 4096, TT_DIM_NOISE_DENSITY = 8192
+    TT_DIM_TEMPERATURE = 4096, TT_DIM_NOISE_DENSITY = 8192, TT_DIM_VISCOSITY = 16384
 } tt_dim;
 const char *tt_units_describe(unsigned dims);
 const char *tt_units_symbol(tt_dim dim);
@@ -162,6 +162,8 @@ typedef struct {
     double w;
     double xi0;
     double lambda;
+    double viscosity;
+    double film_thickness;
 } tt_contact_params;
 typedef struct tt_contact tt_contact;
 int tt_contact_model_parse(const char *name, tt_contact_model *out);

@@ -83,7 +83,9 @@ def approach(scene, *, set=None, progress=None, **keys):
     """The approach curve of the scene's [approach] (`tiptap approach`): a row per point
     of both branches; z, amplitude, phase, mean_deflection, peak_force, max_indentation,
     contact_fraction, dissipated, branch, settled, cycles, drive_work, energy_residual,
-    deflection_min, deflection_max. Points that did not settle are warned of
+    deflection_min, deflection_max, period; with a viscous material (viscosity,
+    film_thickness) also the loss per mechanism, dissipated_hysteresis,
+    dissipated_damping, dissipated_viscous. Points that did not settle are warned of
     (tiptap.SettleWarning)."""
     s = Scene.of(scene, set, caller="approach", **keys)
     return _run_table(lambda out, c: lib.tt_run_approach(s._p, out, c, ffi.NULL), "approach",

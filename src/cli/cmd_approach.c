@@ -23,7 +23,10 @@ static void help(void)
            "                     mean_deflection_nm, peak_force_nN, max_indentation_nm,\n"
            "                     contact_fraction, dissipated_aJ, branch, settled, cycles,\n"
            "                     drive_work_aJ, energy_residual, deflection_min_nm,\n"
-           "                     deflection_max_nm, period (default approach.csv)\n"
+           "                     deflection_max_nm, period (default approach.csv); with a\n"
+           "                     viscous material (viscosity, film_thickness) also the\n"
+           "                     loss per mechanism: dissipated_hysteresis_aJ,\n"
+           "                     dissipated_damping_aJ, dissipated_viscous_aJ\n"
            "      --plot FILE    PNG of amplitude, phase and dissipation against z\n"
            CLI_HELP_SET
            "  -q, --quiet        no summary on stderr\n\n"
@@ -45,16 +48,19 @@ static void help(void)
            "stable orbits at the same separation.\n");
 }
 
-static void write_row(FILE *f, const tt_approach_point *p)
+static void write_row(FILE *f, const tt_approach_point *p, int viscous)
 {
     const tt_cycle *c = &p->cycle;
     double rel = c->residual_rel;
-    fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%s,%d,%ld,%.9g,%.3g,%.9g,%.9g,%d\n", p->z * 1e9,
+    fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%s,%d,%ld,%.9g,%.3g,%.9g,%.9g,%d", p->z * 1e9,
             c->amplitude * 1e9, c->phase * 180 / M_PI, c->mean * 1e9, c->peak_force * 1e9,
             c->max_indentation * 1e9, c->contact_fraction, c->e_ts * 1e18,
             p->retract ? "retract" : "approach", p->settled, p->cycles, c->e_drive * 1e18, rel,
             isfinite(c->y_min) ? c->y_min * 1e9 : NAN, isfinite(c->y_max) ? c->y_max * 1e9 : NAN,
             p->period);
+    if (viscous)
+        fprintf(f, ",%.9g,%.9g,%.9g", c->e_hyst * 1e18, c->e_ci * 1e18, c->e_visc * 1e18);
+    fputc('\n', f);
 }
 
 static int plot(const char *path, const tt_approach_point *pts, size_t n, int ramp)
@@ -246,9 +252,11 @@ int cmd_approach(int argc, char **argv)
         goto done;
     }
     FILE *f = tt_outfile_stream(of);
+    int viscous = tt_setup_viscous(st); /* the loss per mechanism: viscous scenes only */
     fprintf(f, "z_nm,amplitude_nm,phase_deg,mean_deflection_nm,peak_force_nN,max_indentation_nm,"
                "contact_fraction,dissipated_aJ,branch,settled,cycles,drive_work_aJ,energy_residual,"
-               "deflection_min_nm,deflection_max_nm,period\n");
+               "deflection_min_nm,deflection_max_nm,period%s\n",
+            viscous ? ",dissipated_hysteresis_aJ,dissipated_damping_aJ,dissipated_viscous_aJ" : "");
     cli_progress prog;
     cli_progress_begin(&prog, "approach", "points", quiet);
     while (!tt_approach_done(ap)) {
@@ -259,7 +267,7 @@ int cmd_approach(int argc, char **argv)
         }
         if (rc)
             break;
-        write_row(f, &pts[n]);
+        write_row(f, &pts[n], viscous);
         n++;
         cli_progress_show(&prog, (long)n, (long)tt_approach_rows(ap));
     }

@@ -58,6 +58,8 @@ static const char point_columns[] =
     "z_nm,amplitude_nm,phase_deg,mean_deflection_nm,peak_force_nN,max_indentation_nm,"
     "contact_fraction,dissipated_aJ,drive_work_aJ,energy_residual,regime,direction,settled,"
     "cycles,period,found";
+static const char point_columns_viscous[] =
+    ",dissipated_hysteresis_aJ,dissipated_damping_aJ,dissipated_viscous_aJ";
 static const char scan_columns[] =
     "folder,lines_done,energy_balance,error_estimate_height_nm,error_estimate_phase_deg,material,"
     "pixels,height_mean_nm,height_std_nm,phase_mean_deg,"
@@ -74,6 +76,7 @@ static const csv_format setpoint_format = {1e9, 'g'};
 static const csv_format point_format[] = {
     {1e9, 'g'}, {1e9, 'g'}, {1, 'g'}, {1e9, 'g'}, {1e9, 'g'}, {1e9, 'g'}, {1, 'g'}, {1e18, 'g'},
     {1e18, 'g'}, {1, '3'}, {1, 's'}, {1, 's'}, {1, 'd'}, {1, 'd'}, {1, 's'}, {1, 'd'},
+    {1e18, 'g'}, {1e18, 'g'}, {1e18, 'g'}, /* viscous grids: the loss per mechanism */
 };
 static const csv_format scan_format[] = {
     {1, 's'}, {1, 'd'}, {1, '3'}, {1e9, '3'}, {1, '3'}, {1, 's'}, {1, 'd'}, {1e9, 'g'}, {1e9, 'g'},
@@ -98,8 +101,9 @@ void sweep_header(const sweep_job *job, char *buf, size_t len)
                                  u[0] ? "[" : "", u, u[0] ? "]" : "");
     }
     if (used < len)
-        snprintf(buf + used, len - used, ",%s%s\n", job->kind == TT_SWEEP_SETPOINT ? "setpoint_nm," : "",
-                 job->kind == TT_SWEEP_SCAN ? scan_columns : point_columns);
+        snprintf(buf + used, len - used, ",%s%s%s\n", job->kind == TT_SWEEP_SETPOINT ? "setpoint_nm," : "",
+                 job->kind == TT_SWEEP_SCAN ? scan_columns : point_columns,
+                 job->kind != TT_SWEEP_SCAN && tt_sweep_viscous(job->grid) ? point_columns_viscous : "");
 }
 
 /* The table's rows as CSV: the combination, the varied keys (SI numbers, or the text),

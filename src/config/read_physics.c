@@ -173,6 +173,17 @@ static int read_material(const tt_scene *s, const tt_tip *tip, const char *name,
     if (tt_scene_has(s, "material", name, "interaction_quality_factor") &&
         (rc = tt_scene_get_double(s, "material", name, "interaction_quality_factor", &m->Qi)))
         return rc;
+    if (tt_scene_has(s, "material", name, "viscosity") &&
+        (rc = tt_scene_get_double(s, "material", name, "viscosity", &p->viscosity)))
+        return rc;
+    if (tt_scene_has(s, "material", name, "film_thickness")) {
+        if ((rc = tt_scene_get_double(s, "material", name, "film_thickness", &p->film_thickness)))
+            return rc;
+        if (p->w > 0 && p->model != TT_CONTACT_HERTZ)
+            return tt_scene_fail(s, "material", name, "film_thickness",
+                                 "the bottom-effect series is for the Hertz law: give "
+                                 "adhesion_energy = 0 or model = hertz");
+    }
     m->map_rgb = -1;
     m->map_grey = -1;
     const char *v = tt_scene_get_string(s, "material", name, "map_value");

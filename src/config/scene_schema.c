@@ -63,6 +63,12 @@ static const tt_scene_key material_keys[] = {
      "contact model: Maugis-Dugdale (eq. 7) or one of its limits"},
     {"interaction_quality_factor", Q(TT_DIM_NONE), NULL, 0, INF, POS, NULL,
      "Q_i of the interaction damping in contact (c_i = m* w_c / Q_i); absent: none"},
+    {"viscosity", Q(TT_DIM_VISCOSITY), NULL, 0, INF, 0, NULL,
+     "Kelvin-Voigt sample viscosity eta: the force eta a d(delta)/dt in contact, a the "
+     "contact radius (docs/physics.md); absent or 0: elastic"},
+    {"film_thickness", Q(TT_DIM_LENGTH), NULL, 0, INF, POS, NULL,
+     "thickness h of a film bonded to a rigid substrate (Garcia & Garcia's bottom effect on "
+     "the Hertz load and the viscous force; Hertz law only); absent: bulk"},
     {"map_value", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
      "grey level (0-255 or 0-65535) or colour (#rrggbb) of this material in a PNG material map"},
 };

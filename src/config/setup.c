@@ -99,6 +99,14 @@ const tt_contact *tt_setup_contact(const tt_setup *st, size_t i)
     return i < st->nmaterials ? st->contacts[i] : NULL;
 }
 
+int tt_setup_viscous(const tt_setup *st)
+{
+    for (size_t i = 0; i < st->nmaterials; i++)
+        if (tt_material_viscous(tt_setup_material(st, i)))
+            return 1;
+    return 0;
+}
+
 int tt_setup_find_material(const tt_setup *st, const char *name, const char *key_section,
                            const char *key, size_t *index)
 {
@@ -162,7 +170,7 @@ int tt_setup_apply(tt_setup *st, const char *key, double value)
         if (strcmp(sec[i].name, section) == 0)
             for (size_t j = 0; j < sec[i].nkeys; j++)
                 if (strcmp(sec[i].keys[j].key, k) == 0 && sec[i].keys[j].kind == TT_KEY_QUANTITY)
-                    for (unsigned d = 1; d <= TT_DIM_FRACTION; d <<= 1)
+                    for (unsigned d = 1; d <= TT_DIM_VISCOSITY; d <<= 1)
                         if ((sec[i].keys[j].dims & d) && d != TT_DIM_NONE) {
                             unit = d == TT_DIM_FRACTION ? "" : tt_units_symbol((tt_dim)d);
                             break;

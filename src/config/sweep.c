@@ -26,6 +26,29 @@ struct tt_sweep {
     size_t naxes;
 };
 
+static int ends_with(const char *s, const char *tail)
+{
+    size_t n = strlen(s), m = strlen(tail);
+    return n >= m && strcmp(s + n - m, tail) == 0;
+}
+
+int tt_sweep_viscous(const tt_sweep *sw)
+{
+    for (size_t k = 0; k < sw->naxes; k++)
+        if (ends_with(sw->axes[k].key, ".viscosity") || ends_with(sw->axes[k].key, ".film_thickness"))
+            return 1;
+    tt_material *m = NULL;
+    size_t n = 0;
+    int viscous = 0;
+    if (tt_config_materials(sw->base, &m, &n) == TT_OK)
+        for (size_t i = 0; i < n; i++)
+            viscous |= tt_material_viscous(&m[i]);
+    else
+        tt_error_clear();
+    free(m);
+    return viscous;
+}
+
 int tt_sweep_alloc(tt_sweep **out, const tt_scene *base)
 {
     *out = calloc(1, sizeof **out);

@@ -37,6 +37,9 @@ static const struct {
     {"K", TT_DIM_TEMPERATURE, 1.0},
     {"m/sqrt(Hz)", TT_DIM_NOISE_DENSITY, 1.0},
     {"m/rtHz", TT_DIM_NOISE_DENSITY, 1.0},
+    {"Pa s", TT_DIM_VISCOSITY, 1.0},
+    {"Pa*s", TT_DIM_VISCOSITY, 1.0},
+    {"Pa.s", TT_DIM_VISCOSITY, 1.0},
 };
 
 static const struct {
@@ -68,6 +71,7 @@ static const struct {
     {TT_DIM_FRACTION, "", "a percentage such as '80 %'"},
     {TT_DIM_TEMPERATURE, "K", "a temperature such as '300 K'"},
     {TT_DIM_NOISE_DENSITY, "m/sqrt(Hz)", "a noise density such as '50 fm/sqrt(Hz)'"},
+    {TT_DIM_VISCOSITY, "Pa s", "a viscosity such as '5 Pa s'"},
 };
 
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))

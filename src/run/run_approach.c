@@ -11,7 +11,7 @@
 #include "tiptap/util/error.h"
 
 enum { Z, AMP, PHASE, MEAN, PEAK, INDENT, FRACTION, DISS, BRANCH, SETTLED, CYCLES, DRIVE,
-       RESIDUAL, YMIN, YMAX, PERIOD, NCOL };
+       RESIDUAL, YMIN, YMAX, PERIOD, NCOL_ELASTIC, HYST = NCOL_ELASTIC, CI, VISC, NCOL };
 
 static const run_column columns[NCOL] = {
     {"z", "m", 0}, {"amplitude", "m", 0}, {"phase", "deg", 0}, {"mean_deflection", "m", 0},
@@ -19,10 +19,13 @@ static const run_column columns[NCOL] = {
     {"dissipated", "J", 0}, {"branch", "", 1}, {"settled", "", 0}, {"cycles", "", 0},
     {"drive_work", "J", 0}, {"energy_residual", "", 0}, {"deflection_min", "m", 0},
     {"deflection_max", "m", 0}, {"period", "", 0},
+    /* viscous scenes only (tt_setup_viscous): the loss per mechanism */
+    {"dissipated_hysteresis", "J", 0}, {"dissipated_damping", "J", 0},
+    {"dissipated_viscous", "J", 0},
 };
 
 /* One point as the CSV's row, in SI (tiptap approach's write_row). */
-static int put(tt_table *t, const tt_approach_point *p)
+static int put(tt_table *t, const tt_approach_point *p, int ncol)
 {
     const tt_cycle *c = &p->cycle;
     int rc = tt_table_row(t);
@@ -32,8 +35,8 @@ static int put(tt_table *t, const tt_approach_point *p)
                             c->max_indentation, c->contact_fraction, c->e_ts, NAN, p->settled,
                             (double)p->cycles, c->e_drive, c->residual_rel,
                             isfinite(c->y_min) ? c->y_min : NAN, isfinite(c->y_max) ? c->y_max : NAN,
-                            (double)p->period};
-    for (int k = 0; k < NCOL; k++)
+                            (double)p->period, c->e_hyst, c->e_ci, c->e_visc};
+    for (int k = 0; k < ncol; k++)
         tt_table_set(t, (size_t)k, v[k]);
     return tt_table_set_text(t, BRANCH, p->retract ? "retract" : "approach");
 }
@@ -48,7 +51,8 @@ int tt_run_approach(const tt_scene *s, tt_table **out, tt_progress_fn progress, 
     int rc;
     if ((rc = run_setup(s, &copy, &st)) || (rc = tt_config_approach_alloc(&ap, st, copy, &p)))
         goto done;
-    tt_table *t = run_table(columns, NCOL);
+    int ncol = tt_setup_viscous(st) ? NCOL : NCOL_ELASTIC;
+    tt_table *t = run_table(columns, (size_t)ncol);
     if (!t) {
         rc = TT_ENOMEM;
         goto done;
@@ -59,7 +63,7 @@ int tt_run_approach(const tt_scene *s, tt_table **out, tt_progress_fn progress, 
         tt_approach_point pt;
         if (tt_cancel_requested())
             rc = tt_error(TT_EINTR, "interrupted: %zu of %ld points finished", tt_table_rows(t), total);
-        else if ((rc = tt_approach_iterate(ap, &pt)) == TT_OK && (rc = put(t, &pt)) == TT_OK &&
+        else if ((rc = tt_approach_iterate(ap, &pt)) == TT_OK && (rc = put(t, &pt, ncol)) == TT_OK &&
                  progress)
             progress(user, (long)tt_table_rows(t), total);
     }

@@ -30,14 +30,17 @@ int tt_sweep_kind_parse(const char *name, tt_sweep_kind *kind)
 const char *tt_sweep_kind_name(tt_sweep_kind kind) { return kinds[kind <= TT_SWEEP_SCAN ? kind : 0]; }
 
 enum { Z, AMP, PHASE, MEAN, PEAK, INDENT, FRACTION, DISS, DRIVE, RESIDUAL, REGIME, DIRECTION,
-       SETTLED, CYCLES, PERIOD, FOUND, NPOINT };
+       SETTLED, CYCLES, PERIOD, FOUND, NPOINT, HYST = NPOINT, CI, VISC, NPOINT_VISCOUS };
 
-static const run_column point_columns[NPOINT] = {
+static const run_column point_columns[NPOINT_VISCOUS] = {
     {"z", "m", 0}, {"amplitude", "m", 0}, {"phase", "deg", 0}, {"mean_deflection", "m", 0},
     {"peak_force", "N", 0}, {"max_indentation", "m", 0}, {"contact_fraction", "", 0},
     {"dissipated", "J", 0}, {"drive_work", "J", 0}, {"energy_residual", "", 0},
     {"regime", "", 1}, {"direction", "", 1}, {"settled", "", 0}, {"cycles", "", 0}, {"period", "", 0},
     {"found", "", 1},
+    /* viscous grids only (tt_sweep_viscous): the loss per mechanism */
+    {"dissipated_hysteresis", "J", 0}, {"dissipated_damping", "J", 0},
+    {"dissipated_viscous", "J", 0},
 };
 
 enum { FOLDER, LINES, BALANCE, EST_H, EST_P, MATERIAL, PIXELS, HMEAN, HSTD, PMEAN, PSTD, HCONTRAST,
@@ -63,7 +66,8 @@ int tt_run_sweep_columns(const tt_sweep *grid, tt_sweep_kind kind, tt_table **ou
     if (!rc && kind == TT_SWEEP_SETPOINT)
         rc = tt_table_add(t, "setpoint", "m", 0);
     const run_column *c = kind == TT_SWEEP_SCAN ? scan_columns : point_columns;
-    for (size_t i = 0; i < (kind == TT_SWEEP_SCAN ? NSCAN : NPOINT) && !rc; i++)
+    size_t n = kind == TT_SWEEP_SCAN ? NSCAN : tt_sweep_viscous(grid) ? NPOINT_VISCOUS : NPOINT;
+    for (size_t i = 0; i < n && !rc; i++)
         rc = tt_table_add(t, c[i].name, c[i].unit, c[i].text);
     if (rc) {
         tt_table_free(t);
@@ -124,6 +128,11 @@ static int put_point(tt_table *t, size_t c, const tt_approach_point *p, double A
     for (size_t k = 0; k < NPOINT; k++)
         if (!isnan(v[k]))
             tt_table_set(t, c + k, v[k]);
+    if (tt_table_columns(t) >= c + NPOINT_VISCOUS) {
+        tt_table_set(t, c + HYST, y->e_hyst);
+        tt_table_set(t, c + CI, y->e_ci);
+        tt_table_set(t, c + VISC, y->e_visc);
+    }
     if ((rc = tt_table_set_text(t, c + REGIME, regime(y, A0))) ||
         (rc = tt_table_set_text(t, c + DIRECTION, p->retract ? "retract" : "approach")))
         return rc;

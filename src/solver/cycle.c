@@ -85,7 +85,10 @@ static void cycle_result(const tt_sim *S, double E_start, tt_cycle *out)
     out->contact_fraction = S->y[Y_TC] / T;
     out->e_drive = S->y[Y_WDRIVE];
     out->e_damp = S->y[Y_WDAMP];
-    out->e_ts = S->y[Y_WCI] + S->e_jumps;
+    out->e_ts = S->y[Y_WCI] + S->y[Y_WVISC] + S->e_jumps;
+    out->e_hyst = S->e_jumps;
+    out->e_ci = S->y[Y_WCI];
+    out->e_visc = S->y[Y_WVISC];
     out->e_sample = S->y[Y_WS];
     out->residual = out->e_drive - out->e_damp - out->e_ts - out->e_sample - (E_end - E_start);
     out->residual_rel = fabs(out->residual) / (M_PI * c->c * c->wd * c->A0 * c->A0);

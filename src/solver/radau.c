@@ -91,7 +91,7 @@ static double accel(const tt_sim *S, double tau, const drive_val *dv, double d, 
 {
     const tt_cantilever *c = &S->c;
     double s = S->s0 + S->sdot * tau;
-    tt_contact_forces f = {0.0, 0.0};
+    tt_contact_forces f = {0.0, 0.0, 0.0};
     if (S->contact)
         f = S->force(S->contact, S->ci, d - s, v - S->sdot, contact, NULL);
     return (-c->c * (v - dv->zd) - c->k * (d - dv->z) - f.conservative - f.dissipative + dv->F) *
@@ -114,7 +114,7 @@ static void radau_setup(const tt_sim *S, double h, radau_ctx *R)
     R->scd = R->tol * S->c.A0;
     R->scv = R->scd * S->c.wd;
     const double t = R->t;
-    tt_contact_detail law = {{0.0, 0.0}, 0.0, 0.0, 0.0};
+    tt_contact_detail law = {{0.0, 0.0, 0.0}, 0.0, 0.0, 0.0};
     if (S->contact)
         tt_contact_evaluate(S->contact, S->ci, R->d0 - (S->s0 + S->sdot * t), R->v0 - S->sdot,
                             R->cs, NULL, &law);

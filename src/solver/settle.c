@@ -92,6 +92,9 @@ void tt_cycle_mean(const tt_cycle *c, int n, tt_cycle *out)
         m.e_drive += c[k].e_drive;
         m.e_damp += c[k].e_damp;
         m.e_ts += c[k].e_ts;
+        m.e_hyst += c[k].e_hyst;
+        m.e_ci += c[k].e_ci;
+        m.e_visc += c[k].e_visc;
         m.e_sample += c[k].e_sample;
         m.residual += c[k].residual;
         m.residual_rel = fmax(m.residual_rel, c[k].residual_rel);
@@ -115,6 +118,9 @@ void tt_cycle_mean(const tt_cycle *c, int n, tt_cycle *out)
     m.e_drive /= n;
     m.e_damp /= n;
     m.e_ts /= n;
+    m.e_hyst /= n;
+    m.e_ci /= n;
+    m.e_visc /= n;
     m.e_sample /= n;
     m.residual /= n;
     m.steps = lround(steps / n);

@@ -18,6 +18,7 @@ enum {
     Y_WDRIVE, /* drive work */
     Y_WDAMP,  /* cantilever damping loss */
     Y_WCI,    /* interaction damping loss */
+    Y_WVISC,  /* the sample's viscous loss (the law's viscous force) */
     Y_WS,     /* work on a moving sample */
     Y_IC,     /* integral of y cos(w t) */
     Y_IS,     /* integral of y sin(w t) */
@@ -208,7 +209,7 @@ static inline void rhs_with(const tt_sim *S, double tau, const drive_val *dv, co
     double d = Y[Y_D], v = Y[Y_V];
     double s = S->s0 + S->sdot * tau;
     double delta = d - s, deltad = v - S->sdot;
-    tt_contact_forces f = {0.0, 0.0};
+    tt_contact_forces f = {0.0, 0.0, 0.0};
     if (S->contact)
         f = S->force(S->contact, S->ci, delta, deltad, contact, NULL);
     double P = f.conservative, Fi = f.dissipative;
@@ -218,7 +219,8 @@ static inline void rhs_with(const tt_sim *S, double tau, const drive_val *dv, co
     Fo[Y_V] = (-damp - spring - P - Fi + Fd) * S->inv_m;
     Fo[Y_WDRIVE] = Fd * v - (spring + damp) * zd;
     Fo[Y_WDAMP] = damp * (v - zd);
-    Fo[Y_WCI] = Fi * deltad;
+    Fo[Y_WCI] = (Fi - f.viscous) * deltad;
+    Fo[Y_WVISC] = f.viscous * deltad;
     Fo[Y_WS] = (P + Fi) * S->sdot;
     Fo[Y_IC] = y * cw;
     Fo[Y_IS] = y * sw;

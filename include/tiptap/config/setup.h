@@ -36,6 +36,8 @@ const tt_solver *tt_setup_solver(const tt_setup *st);
 size_t tt_setup_materials(const tt_setup *st);
 const tt_material *tt_setup_material(const tt_setup *st, size_t i);
 const tt_contact *tt_setup_contact(const tt_setup *st, size_t i);
+/* 1 when some material of the scene is viscous (tt_material_viscous). */
+int tt_setup_viscous(const tt_setup *st);
 
 /* Index of a material by name; name NULL means the first. TT_EINVAL naming the
  * section and key (key_section, key) that asked for it when unknown. */

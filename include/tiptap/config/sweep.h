@@ -62,6 +62,11 @@ double tt_sweep_value(const tt_sweep *sw, size_t i, size_t k);
 size_t tt_sweep_level(const tt_sweep *sw, size_t i, size_t k);
 size_t tt_sweep_levels(const tt_sweep *sw, size_t k);
 
+/* 1 when the grid's scenes may be viscous: a material of the base scene has a viscosity
+ * or a film (tt_material_viscous), or a varied key is a material's viscosity or
+ * film_thickness; the sweep's rows then carry the loss per mechanism. */
+int tt_sweep_viscous(const tt_sweep *sw);
+
 /* "cantilever.free_amplitude=10 nm, approach.material=disk" for messages. */
 void tt_sweep_label(const tt_sweep *sw, size_t i, char *buf, size_t len);
 

@@ -28,7 +28,8 @@ typedef enum {
     TT_DIM_ANGLE = 1 << 10,         /* rad, deg (stored in radians) */
     TT_DIM_FRACTION = 1 << 11,      /* %, stored as a fraction (80 % -> 0.8) */
     TT_DIM_TEMPERATURE = 1 << 12,   /* K */
-    TT_DIM_NOISE_DENSITY = 1 << 13  /* m/sqrt(Hz): a length noise's spectral density */
+    TT_DIM_NOISE_DENSITY = 1 << 13, /* m/sqrt(Hz): a length noise's spectral density */
+    TT_DIM_VISCOSITY = 1 << 14      /* Pa s (also Pa*s, Pa.s): a dynamic viscosity */
 } tt_dim;
 
 /* Parse text into an SI value of one of the dimensions in the mask.

@@ -43,6 +43,12 @@ typedef struct {
     double w;      /* Dupre work of adhesion, J/m^2 (>= 0; 0 is exactly Hertz) */
     double xi0;    /* equilibrium interatomic distance, m (> 0 when w > 0 unless lambda given) */
     double lambda; /* Maugis parameter; NAN: derived from xi0 (Lennard-Jones, eq. 3) */
+    /* the sample's own losses and support (contact_visco.c, docs/physics.md): both 0
+     * leave the elastic law exactly as it is */
+    double viscosity;      /* Kelvin-Voigt viscosity eta, Pa s (>= 0): the law adds
+                            * eta a(delta) ddelta/dt in contact, a the contact radius */
+    double film_thickness; /* m (>= 0; 0: bulk): a film bonded to a rigid substrate,
+                            * Garcia & Garcia's bottom-effect series (Hertz law only) */
 } tt_contact_params;
 
 typedef struct {
@@ -108,14 +114,17 @@ double tt_contact_load(const tt_contact *c, double delta, int in_contact, double
  * row it was built with (tt_contact_law_of): Maugis-Dugdale, DMT and JKR through their
  * tables, Hertz in closed form, and the custom law of tt_contact_alloc_custom. A law
  * takes the penetration delta (m), its rate (m/s) and its own internal state
- * (state_size doubles; every law so far is elastic, state_size 0, state NULL) and gives
- * the conservative force (the load P = dU/ddelta, positive when repulsive) and the
+ * (state_size doubles; every law so far has state_size 0, state NULL) and gives the
+ * conservative force (the load P = dU/ddelta, positive when repulsive) and the
  * dissipative force apart, since the energy balance books them apart. The dissipative
- * force of the elastic laws is the interaction damping ci * rate in contact and 0 out of
- * contact, where ci = m* w0 / Q_i (kg/s) is the oscillator's, given at each call. */
+ * force is the interaction damping ci * rate in contact and 0 out of contact, where
+ * ci = m* w0 / Q_i (kg/s) is the oscillator's, given at each call, plus the sample's
+ * viscous force (the Kelvin-Voigt row, when the material has a viscosity or a film),
+ * which it also gives alone so that the loss is booked per mechanism. */
 typedef struct {
     double conservative; /* N: the load P */
-    double dissipative;  /* N: the law's damping force, along the rate */
+    double dissipative;  /* N: the law's damping force, along the rate (viscous included) */
+    double viscous;      /* N: the sample's viscous part of it (0 for the elastic rows) */
 } tt_contact_forces;
 
 /* The forces with their derivatives, for Jacobians and stiffness checks. */

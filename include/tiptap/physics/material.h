@@ -32,6 +32,11 @@ typedef struct {
                                 * own depth; -1: none */
 } tt_material;
 
+/* 1 when the material has a viscosity or a film (the Kelvin-Voigt law): the runs then
+ * write the tip-sample loss per mechanism (hysteresis, interaction damping, viscous)
+ * beside the total, which elastic scenes keep as they were. */
+int tt_material_viscous(const tt_material *m);
+
 /* The pair's reduced modulus (Burnham et al. section 2.2.1) from the tip's and the
  * sample's Young's moduli (Pa) and Poisson ratios. */
 double tt_material_reduced_modulus(const tt_tip *tip, double E, double nu);

@@ -67,7 +67,11 @@ typedef struct {
     double contact_fraction; /* fraction of the cycle in contact */
     double e_drive;          /* work done by the drive */
     double e_damp;           /* lost to the cantilever's damping */
-    double e_ts;             /* lost in the tip-sample interaction: damping + hysteresis */
+    double e_ts;             /* lost in the tip-sample interaction: the three below */
+    double e_hyst;           /* ... of it to adhesion hysteresis (the jumps' energy) */
+    double e_ci;             /* ... to interaction damping (c_i, the oscillator's) */
+    double e_visc;           /* ... to the sample's viscosity (Kelvin-Voigt); NAN where a
+                              * tier does not book the mechanisms apart */
     double e_sample;         /* work done on a moving sample (ramps, scans) */
     double residual;         /* e_drive - e_damp - e_ts - e_sample - (E_end - E_start) */
     double residual_rel;     /* |residual| relative to the free oscillation's loss per cycle,
