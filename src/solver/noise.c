@@ -55,7 +55,7 @@ int tt_sim_set_thermal(tt_sim *S, double temperature, int points)
     S->nz_f = NULL;
     S->nz_n = 0;
     if (!(temperature > 0)) {
-        tt_flight_setup(S);
+        tt_step_setup(S);
         return TT_OK;
     }
     if (points < 4)
@@ -72,7 +72,7 @@ int tt_sim_set_thermal(tt_sim *S, double temperature, int points)
     /* white noise of two-sided density 2 c kB T drawn every dt: variance 2 c kB T / dt */
     S->nz_sigma = sqrt(2.0 * S->c.c * TT_BOLTZMANN * temperature / S->nz_dt);
     S->nz_cycle = 0;
-    tt_flight_setup(S);
+    tt_step_setup(S);
     return TT_OK;
 }
 

@@ -26,24 +26,16 @@ enum {
     NY
 };
 
-/* Free flight (flight.c): Gauss-Legendre nodes per step and rungs of the step ladder. */
-enum { FL_N = 6, FL_RUNGS = 12 };
-
-/* The free oscillator's propagator and the drive's rotation at the nodes and the end
- * (index FL_N) of a flight step of length h. */
-typedef struct {
-    double h;
-    double e[FL_N + 1], cd[FL_N + 1], sd[FL_N + 1]; /* exp(-sig tau), cos, sin(wdm tau) */
-    double cw[FL_N + 1], sw[FL_N + 1];              /* cos, sin(w tau) */
-    int ok;
-} fl_cache;
-
 typedef struct tt_step_type tt_step_type;
 
+/* The evolve loop's own state: the system (cantilever, contact, sample, thermal force),
+ * the state vector and the cycle's bookkeeping. The step types keep their own state
+ * behind `step` (stepper.h); they write only the current step's record below. */
 struct tt_sim {
     tt_cantilever c;
     tt_solver solver;
     const tt_step_type *type; /* the method's steps (stepper.h) */
+    void *step;               /* the step type's own state (type->alloc) */
     const tt_contact *contact;
     /* the law's time-loop kernel, chosen when the contact is set (tt_sim_set_contact):
      * one indirect call, no dispatch among the laws per evaluation */
@@ -59,26 +51,15 @@ struct tt_sim {
     double tau;          /* time within the cycle, s */
     double y[NY];
     int contact_state;
-    double h;            /* dopri5, radau: next step size */
-    int rk4_j;           /* rk4: index of the next grid point in the cycle */
     /* first-same-as-last derivative at (tau, y), valid while fsal_ok */
     double fsal[NY];
     int fsal_ok;
-    /* the current step, for dense output */
+    /* the current step, written by the step type: its start and length, the state and
+     * the derivative at both ends (dydt_out unset after a long step) */
     double step_tau, step_h;
-    double y0[NY], y1[NY], k[7][NY];
-    double rcont[5][2];  /* dense output of d and v: dopri5's, or radau's collocation
-                          * polynomial in Newton form */
-    /* radau: the last accepted step's collocation polynomial, extrapolated for the
-     * Newton starting values (valid while ext_ok), and the Newton iteration's memory */
-    double ext[4][2], ext_tau, ext_h;
-    int ext_ok;
-    double radau_tol;    /* the tolerance radau's O(h^4) estimate is held to */
-    double radau_hmax;   /* radau's longest step, for the quadratures (INFINITY otherwise) */
-    double newton_eta;   /* contraction estimate theta / (1 - theta) of the last step */
-    int newton_it;       /* Newton iterations of the last step (0: it failed) */
-    int last_rejected;
-    double rk4_dmax;     /* rk4: deepest penetration among the step's stages and end */
+    double y0[NY], y1[NY], dydt_in[NY], dydt_out[NY];
+    int step_long;       /* a long exact step (flight): no derivative at its end, and its
+                          * ends too far apart to stand for the turning points between */
     /* sampling */
     int nsamp;
     tt_sample *samples;
@@ -95,25 +76,6 @@ struct tt_sim {
     int switches_there; /* ... and how many were made at that instant */
     int switches_near;  /* ... and within 1e-12 T of one another (events.c) */
     long steps, rejected, events;
-    /* free flight: exponential steps out of contact (dopri5 only; see flight.c) */
-    int fl_ok;           /* this sim may fly: dopri5, underdamped, no extremes tracked */
-    int step_flight;     /* the current step is a flight step: dense output from fl_* */
-    int fl_rung;         /* ladder rung of the flight's next step */
-    int fl_nrung;        /* rungs usable (w0 h >= 0.1; see flight_particular) */
-    int fl_skip;         /* dopri5 steps to take before the flight is tried again */
-    int fl_wait;         /* handed over near the surface: dopri5 until the tip recedes */
-    int fl_rej;          /* the last flight attempt was rejected: do not lengthen the next */
-    double fl_h0;        /* the ladder's longest step, min(T, 2 pi / w0) / 8 */
-    double fl_sig, fl_wdm, fl_w02; /* decay rate c / 2m, damped frequency, k / m */
-    double fl_hr[FL_RUNGS]; /* the rungs' step lengths, fl_h0 2^(-r/4) */
-    double fl_Dr, fl_Di; /* steady drive response d_p = Dr cos(w t) - Di sin(w t) */
-    double fl_margin;    /* hand over to dopri5 within this penetration of jump-in */
-    double fl_vinv[FL_N][FL_N]; /* node values to monomial coefficients in theta */
-    fl_cache fl_lad[FL_RUNGS], fl_scr; /* propagators per ladder rung, and a scratch one */
-    /* the current flight step: q(theta) = sum b_k theta^k and the homogeneous part's
-     * initial offset r0 and its time derivative */
-    double fl_b[FL_N], fl_r0, fl_r0d;
-    double fl_pen[FL_N + 2], fl_vel[FL_N + 2]; /* penetration and its rate at 0, nodes, 1 */
     /* thermal noise (noise.c): the Langevin force at the cycle's nz_n + 1 equally spaced
      * points, linear between them; NULL when off */
     double *nz_f;
@@ -122,6 +84,12 @@ struct tt_sim {
     uint64_t nz_key;
     long nz_cycle;       /* cycles drawn since the key was set */
 };
+
+/* The run's time at tau within the current cycle, s. */
+static inline double sim_time(const tt_sim *S, double tau)
+{
+    return (double)S->cycle * S->c.T + tau;
+}
 
 /* Draw the thermal force's points of the cycle about to start (noise.c). */
 void tt_noise_cycle(tt_sim *S);
@@ -141,8 +109,6 @@ static inline double noise_force(const tt_sim *S, double tau)
     return S->nz_f[j] + f * (S->nz_f[j + 1] - S->nz_f[j]);
 }
 
-/* The state was changed from outside the steps (sim.c). */
-void tt_sim_invalidate(tt_sim *S);
 
 /* sin and cos of a drive phase in [0, 2 pi] and a little beyond, to within 2 ulp:
  * quadrant reduction with a two-part pi/2 and Taylor polynomials on [-pi/4, pi/4].
