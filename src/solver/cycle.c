@@ -72,7 +72,7 @@ static void cycle_result(const tt_sim *S, double E_start, tt_cycle *out)
 {
     const tt_cantilever *c = &S->c;
     const double T = c->T;
-    double E_end = energy(S, T, S->y, S->contact_state);
+    double E_end = S->sys.energy(S, T, S->y, S->contact_state);
     double X = 2.0 / T * S->y[Y_IC], Yq = 2.0 / T * S->y[Y_IS];
     out->amplitude = hypot(X, Yq);
     double ph = atan2(Yq, X);
@@ -103,7 +103,7 @@ int tt_sim_cycle(tt_sim *S, tt_cycle *out)
     const double T = S->c.T;
     memset(out, 0, sizeof *out);
     cycle_begin(S);
-    double E_start = energy(S, 0, S->y, S->contact_state);
+    double E_start = S->sys.energy(S, 0, S->y, S->contact_state);
     tt_observe_start(S);
     long guard = 0;
     while (S->tau < T) {

@@ -100,24 +100,24 @@ static double dopri5_step(void *state, tt_sim *S, double h)
     memcpy(yt, y0, sizeof yt);
     for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + h * A21 * k0[i];
-    tt_sim_rhs(S, t + C2 * h, yt, cs, k[1]);
+    S->sys.rhs(S, t + C2 * h, yt, cs, k[1]);
     for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + h * (A31 * k0[i] + A32 * k[1][i]);
-    tt_sim_rhs(S, t + C3 * h, yt, cs, k[2]);
+    S->sys.rhs(S, t + C3 * h, yt, cs, k[2]);
     for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + h * (A41 * k0[i] + A42 * k[1][i] + A43 * k[2][i]);
-    tt_sim_rhs(S, t + C4 * h, yt, cs, k[3]);
+    S->sys.rhs(S, t + C4 * h, yt, cs, k[3]);
     for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + h * (A51 * k0[i] + A52 * k[1][i] + A53 * k[2][i] + A54 * k[3][i]);
-    tt_sim_rhs(S, t + C5 * h, yt, cs, k[4]);
+    S->sys.rhs(S, t + C5 * h, yt, cs, k[4]);
     for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + h * (A61 * k0[i] + A62 * k[1][i] + A63 * k[2][i] + A64 * k[3][i] +
                              A65 * k[4][i]);
-    tt_sim_rhs(S, t + h, yt, cs, k[5]);
+    S->sys.rhs(S, t + h, yt, cs, k[5]);
     for (int i = 0; i < NY; i++)
         S->y1[i] = y0[i] + h * (A71 * k0[i] + A73 * k[2][i] + A74 * k[3][i] + A75 * k[4][i] +
                                 A76 * k[5][i]);
-    tt_sim_rhs(S, t + h, S->y1, cs, k6);
+    S->sys.rhs(S, t + h, S->y1, cs, k6);
     /* Error on the motion only, relative to the free amplitude (and its velocity). */
     double sc[2] = {S->solver.tolerance * S->c.A0, S->solver.tolerance * S->c.A0 * S->c.wd};
     double err = 0;

@@ -122,9 +122,9 @@ int tt_event_take(tt_sim *S, double th)
     }
     /* Energy jumps by U_old - U_new at the switch: the hysteresis loss (Burnham et al.;
      * docs/physics.md). */
-    double U_old = energy(S, S->tau, S->y, S->contact_state);
+    double U_old = S->sys.energy(S, S->tau, S->y, S->contact_state);
     S->contact_state = !S->contact_state;
-    double U_new = energy(S, S->tau, S->y, S->contact_state);
+    double U_new = S->sys.energy(S, S->tau, S->y, S->contact_state);
     S->e_jumps += U_old - U_new;
     S->switches_near = same_instant(S) ? S->switches_near + 1 : 1;
     S->switches_there = S->tau == S->switched_at ? S->switches_there + 1 : 1;

@@ -30,15 +30,15 @@ static void rk4_step(rk4_state *st, tt_sim *S, double h)
     for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + 0.5 * h * k0[i];
     double dmax = yt[Y_D] - smid;
-    tt_sim_rhs(S, t + 0.5 * h, yt, cs, k[1]);
+    S->sys.rhs(S, t + 0.5 * h, yt, cs, k[1]);
     for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + 0.5 * h * k[1][i];
     dmax = fmax(dmax, yt[Y_D] - smid);
-    tt_sim_rhs(S, t + 0.5 * h, yt, cs, k[2]);
+    S->sys.rhs(S, t + 0.5 * h, yt, cs, k[2]);
     for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + h * k[2][i];
     dmax = fmax(dmax, yt[Y_D] - send);
-    tt_sim_rhs(S, t + h, yt, cs, k[3]);
+    S->sys.rhs(S, t + h, yt, cs, k[3]);
     for (int i = 0; i < NY; i++)
         S->y1[i] = y0[i] + h / 6.0 * (k0[i] + 2 * k[1][i] + 2 * k[2][i] + k[3][i]);
     /* A step that enters a stiff contact (from its soft onset, where the stiffness at the
@@ -46,7 +46,7 @@ static void rk4_step(rk4_state *st, tt_sim *S, double h)
     st->dmax = fmax(dmax, S->y1[Y_D] - send);
     /* The derivative at the end serves the cubic Hermite dense output and, unless the
      * state changes there, the next step's first stage. */
-    tt_sim_rhs(S, t + h, S->y1, cs, k6);
+    S->sys.rhs(S, t + h, S->y1, cs, k6);
     memcpy(S->y0, y0, sizeof S->y0);
     S->step_tau = t;
     S->step_h = h;

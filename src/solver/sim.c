@@ -37,6 +37,7 @@ int tt_sim_alloc(tt_sim **out, const tt_cantilever *c, const tt_solver *solver)
     S->c = *c;
     S->inv_m = 1.0 / c->m;
     S->solver = *solver;
+    tt_system_plan(S, 0);
     S->type = tt_step_types[solver->method];
     S->step = S->type->alloc(S);
     if (!S->step) {
@@ -116,6 +117,7 @@ void tt_sim_set_cantilever(tt_sim *S, const tt_cantilever *c)
     /* Same drive period required: the cycle bookkeeping assumes it. */
     S->c = *c;
     S->inv_m = 1.0 / c->m;
+    tt_system_plan(S, S->sys.rhs == tt_system_rhs_n);
     tt_step_setup(S);
     tt_sim_set_contact(S, S->contact, S->ci > 0 ? S->c.m * S->c.w0 / S->ci : NAN);
 }

@@ -28,12 +28,29 @@ enum {
 
 typedef struct tt_step_type tt_step_type;
 
+/* The system the steps integrate, planned when the sim is made (system.c): its dimension
+ * (position and velocity of each mode, the quadratures after them) and its kernels, the
+ * right-hand side and the energy. The one-mode elastic system (n = 2) has specialised
+ * kernels (sim.h's rhs_with and energy); the generic ones loop over the modes and equal
+ * them bit for bit at n = 2 (tests/test_system.c). Mode 0 is the tip's position, each
+ * further mode i a deflection q_i (m_i q_i'' + c_i q_i' + k_i q_i = the force on the
+ * tip) added to it. The state arrays of tt_sim hold one mode (NY) so far. */
+enum { TT_MODES_MAX = 4 };
+typedef struct {
+    int n;         /* motion components, 2 per mode; the quadratures start at index n */
+    int modes;
+    double m[TT_MODES_MAX], k[TT_MODES_MAX], c[TT_MODES_MAX], inv_m[TT_MODES_MAX];
+    void (*rhs)(const tt_sim *S, double tau, const double *Y, int contact, double *Fo);
+    double (*energy)(const tt_sim *S, double tau, const double *Y, int contact);
+} tt_system;
+
 /* The evolve loop's own state: the system (cantilever, contact, sample, thermal force),
  * the state vector and the cycle's bookkeeping. The step types keep their own state
  * behind `step` (stepper.h); they write only the current step's record below. */
 struct tt_sim {
     tt_cantilever c;
     tt_solver solver;
+    tt_system sys;            /* dimension and kernels (system.c) */
     const tt_step_type *type; /* the method's steps (stepper.h) */
     void *step;               /* the step type's own state (type->alloc) */
     const tt_contact *contact;
@@ -163,6 +180,20 @@ typedef struct {
     double z, zd, F, cw, sw;
 } drive_val;
 
+/* The tip-sample force on the contact branch at the tip's (d, v) at tau, and the
+ * penetration's rate in *deltad. */
+static inline tt_contact_forces tip_forces(const tt_sim *S, double tau, double d, double v,
+                                           int contact, double *deltad)
+{
+    double s = S->s0 + S->sdot * tau;
+    double delta = d - s;
+    *deltad = v - S->sdot;
+    tt_contact_forces f = {0.0, 0.0};
+    if (S->contact)
+        f = S->force(S->contact, S->ci, delta, *deltad, contact, NULL);
+    return f;
+}
+
 /* The right-hand side: Burnham et al. eq. 2 plus the per-cycle integrals. The contact
  * state is fixed for the whole step (docs/physics.md: never flip it inside the
  * right-hand side; events flip it). */
@@ -172,11 +203,8 @@ static inline void rhs_with(const tt_sim *S, double tau, const drive_val *dv, co
     const tt_cantilever *c = &S->c;
     double z = dv->z, zd = dv->zd, Fd = dv->F, cw = dv->cw, sw = dv->sw;
     double d = Y[Y_D], v = Y[Y_V];
-    double s = S->s0 + S->sdot * tau;
-    double delta = d - s, deltad = v - S->sdot;
-    tt_contact_forces f = {0.0, 0.0};
-    if (S->contact)
-        f = S->force(S->contact, S->ci, delta, deltad, contact, NULL);
+    double deltad;
+    tt_contact_forces f = tip_forces(S, tau, d, v, contact, &deltad);
     double P = f.conservative, Fi = f.dissipative;
     double spring = c->k * (d - z), damp = c->c * (v - zd);
     double y = d - z;
@@ -192,29 +220,25 @@ static inline void rhs_with(const tt_sim *S, double tau, const drive_val *dv, co
     Fo[Y_TC] = contact ? 1.0 : 0.0;
 }
 
-/* The right-hand side with the drive evaluated at tau (sim.c; out of line: the explicit
- * steps call it several times each). */
+/* The right-hand side with the drive evaluated at tau (system.c): the system's kernel,
+ * specialised (tt_sim_rhs) or generic (tt_system_rhs_n), chosen when it is planned. */
 void tt_sim_rhs(const tt_sim *S, double tau, const double *Y, int contact, double *Fo);
+void tt_system_rhs_n(const tt_sim *S, double tau, const double *Y, int contact, double *Fo);
+/* The energy (system.c), specialised (tt_sim_energy) or generic. */
+double tt_sim_energy(const tt_sim *S, double tau, const double *Y, int contact);
+double tt_system_energy_n(const tt_sim *S, double tau, const double *Y, int contact);
+/* Plan the system of the sim's cantilever (one mode): the specialised kernels, or the
+ * generic ones when generic is set (for the test of their equality). */
+void tt_system_plan(tt_sim *S, int generic);
 
 /* The derivative at the current state, for a step's first stage: kept from the last
  * step's end (first same as last) unless the state changed since. */
 static inline void ensure_fsal(tt_sim *S)
 {
     if (!S->fsal_ok) {
-        tt_sim_rhs(S, S->tau, S->y, S->contact_state, S->fsal);
+        S->sys.rhs(S, S->tau, S->y, S->contact_state, S->fsal);
         S->fsal_ok = 1;
     }
-}
-
-/* Mechanical energy of the tip system on the current branch: kinetic + spring +
- * tip-sample potential. */
-static inline double energy(const tt_sim *S, double tau, const double *Y, int contact)
-{
-    double z, zd, Fd, cw, sw;
-    drive_at(S, tau, &z, &zd, &Fd, &cw, &sw);
-    double d = Y[Y_D], v = Y[Y_V];
-    double U = S->contact ? tt_contact_energy(S->contact, d - (S->s0 + S->sdot * tau), contact) : 0;
-    return 0.5 * S->c.m * v * v + 0.5 * S->c.k * (d - z) * (d - z) + U;
 }
 
 #endif
