@@ -35,7 +35,7 @@ static inline int tt_control_advance(tt_step_control *C, void *state, tt_sim *S,
     if (h > C->hmax)
         h = C->hmax;
     int last = 0;
-    if (S->nz_f) {
+    if (S->sys.nz_f) {
         /* steps end on the thermal force's points, where its slope changes */
         double tk = tt_noise_next_knot(S, hmin);
         if (S->tau + h > tk - hmin) {

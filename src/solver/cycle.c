@@ -50,7 +50,7 @@ static void cycle_begin(tt_sim *S)
     S->step_long = 0;
     if (S->type->cycle)
         S->type->cycle(S->step, S->c.T);
-    if (S->nz_f)
+    if (S->sys.nz_f)
         tt_noise_cycle(S);
 }
 
@@ -129,7 +129,7 @@ int tt_sim_cycle(tt_sim *S, tt_cycle *out)
     cycle_result(S, E_start, out);
     /* the next cycle starts at tau = 0 with the sample carried on */
     S->cycle++;
-    S->s0 += S->sdot * T;
+    S->sys.s0 += S->sys.sdot * T;
     S->tau = 0;
     return TT_OK;
 }

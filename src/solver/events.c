@@ -20,7 +20,7 @@ static int same_instant(const tt_sim *S)
  * 1e-23 m), and a sign inside that floor says nothing about the side of the threshold. */
 static double event_floor(const tt_sim *S, double thr)
 {
-    double s = S->s0 + S->sdot * S->step_tau;
+    double s = S->sys.s0 + S->sys.sdot * S->step_tau;
     return 16 * DBL_EPSILON * (fabs(S->y[Y_D]) + fabs(s) + fabs(thr));
 }
 
@@ -50,16 +50,16 @@ static double event_from_threshold(const tt_sim *S, double thr, double sgn)
  * between step ends is not missed. */
 static double event_at(const tt_sim *S)
 {
-    if (!S->contact)
+    if (!S->sys.contact)
         return 2;
     int in = S->contact_state;
-    double thr = in ? S->jumpout : S->jumpin;
+    double thr = in ? S->sys.jumpout : S->sys.jumpin;
     if (!isfinite(thr))
         return 2;
     /* sign convention: event when sgn * g crosses from > 0 to <= 0 */
     double sgn = in ? 1.0 : -1.0;
     double g0 = sgn * tt_event_delta(S, 0, thr);
-    if (g0 <= -S->margin)
+    if (g0 <= -S->sys.margin)
         return 0; /* already past by more than the margin: switch now */
     double g1 = sgn * tt_event_delta(S, 1, thr);
     if (g0 > 0 && g1 <= 0) {
@@ -88,7 +88,7 @@ static double event_at(const tt_sim *S)
      * touch at a turning point on the threshold, in and out at one instant. Should the
      * tip be switched there a third time, the branches send it back and forth: that
      * step is taken whole and the switch made at its end. */
-    if (g1 <= -S->margin)
+    if (g1 <= -S->sys.margin)
         return S->tau == S->switched_at && S->switches_there >= 2 ? 1 : 0;
     return 2;
 }
@@ -100,7 +100,7 @@ double tt_event_find(const tt_sim *S)
      * on: after 16 switches within one instant, one more at that instant is made only
      * at the end of a step that ends past the threshold. */
     if (th * S->step_h <= 1e-12 * S->c.T && S->switches_near >= 16 && same_instant(S)) {
-        double thr = S->contact_state ? S->jumpout : S->jumpin;
+        double thr = S->contact_state ? S->sys.jumpout : S->sys.jumpin;
         double sgn = S->contact_state ? 1.0 : -1.0;
         return sgn * tt_event_delta(S, 1, thr) <= 0 ? 1 : 2;
     }

@@ -92,7 +92,7 @@ static void flight_setup(void *state, const tt_sim *S)
     const tt_cantilever *c = &S->c;
     double zeta = 0.5 * c->c / (c->m * c->w0);
     /* the flight's steps are exact for the noiseless oscillator only */
-    fl->ok = S->solver.method == TT_METHOD_DOPRI5 && zeta < 0.8 && !S->track_extremes && !S->nz_f;
+    fl->ok = S->solver.method == TT_METHOD_DOPRI5 && zeta < 0.8 && !S->track_extremes && !S->sys.nz_f;
     fl->sig = 0.5 * c->c / c->m;
     fl->w02 = c->k / c->m;
     fl->wdm = sqrt(fmax(fl->w02 - fl->sig * fl->sig, 0.0));
@@ -148,7 +148,7 @@ static void fl_fill(const tt_flight *fl, const tt_sim *S, fl_cache *F, double h)
 /* The flight's force term -P(d - s) / m on the out-of-contact branch. */
 static inline double fl_force(const tt_sim *S, double delta)
 {
-    return S->contact ? -S->force(S->contact, S->ci, delta, 0.0, 0, NULL).conservative * S->inv_m : 0.0;
+    return S->sys.contact ? -S->sys.force(S->sys.contact, S->sys.ci, delta, 0.0, 0, NULL).conservative * S->sys.inv_m[0] : 0.0;
 }
 
 /* The polynomial particular solution of x_thth + 2 sig h x_th + w0^2 h^2 x = h^2 p(theta)
@@ -209,7 +209,7 @@ static inline void flight_quadrature(tt_sim *S, double h, const double *cw, cons
         double y = d - z, spring = c->k * y, damp = c->c * (v - zd), W = FL_W[j];
         q[Y_WDRIVE] += W * (Fd * v - (spring + damp) * zd);
         q[Y_WDAMP] += W * damp * (v - zd);
-        q[Y_WS] += W * (-N[j] * c->m) * S->sdot;
+        q[Y_WS] += W * (-N[j] * c->m) * S->sys.sdot;
         q[Y_IC] += W * y * cw[j];
         q[Y_IS] += W * y * sw[j];
         q[Y_IY] += W * y;
@@ -224,14 +224,14 @@ static inline void flight_keep(tt_flight *fl, tt_sim *S, double h, const double 
                                const double *sj, const double *xj, const double *xdj)
 {
     const double t0 = S->tau, *y0 = S->y, *y1 = S->y1;
-    fl->pen[0] = y0[Y_D] - (S->s0 + S->sdot * t0);
-    fl->vel[0] = y0[Y_V] - S->sdot;
+    fl->pen[0] = y0[Y_D] - (S->sys.s0 + S->sys.sdot * t0);
+    fl->vel[0] = y0[Y_V] - S->sys.sdot;
     for (int j = 0; j < FL_N; j++) {
         fl->pen[j + 1] = dp[j] + xj[j] - sj[j];
-        fl->vel[j + 1] = dpd[j] + xdj[j] - S->sdot;
+        fl->vel[j + 1] = dpd[j] + xdj[j] - S->sys.sdot;
     }
     fl->pen[FL_N + 1] = y1[Y_D] - sj[FL_N];
-    fl->vel[FL_N + 1] = y1[Y_V] - S->sdot;
+    fl->vel[FL_N + 1] = y1[Y_V] - S->sys.sdot;
     memcpy(S->y0, y0, sizeof S->y0);
     S->step_tau = t0;
     S->step_h = h;
@@ -254,7 +254,7 @@ static inline void flight_nodes(const tt_flight *fl, const tt_sim *S, double h, 
         sw[j] = s0w * F->cw[j] + c0w * F->sw[j];
         dp[j] = Dr * cw[j] - Di * sw[j];
         dpd[j] = -w * (Dr * sw[j] + Di * cw[j]);
-        sj[j] = S->s0 + S->sdot * (t0 + (j < FL_N ? FL_C[j] : 1.0) * h);
+        sj[j] = S->sys.s0 + S->sys.sdot * (t0 + (j < FL_N ? FL_C[j] : 1.0) * h);
     }
     *x0 = y0[Y_D] - (Dr * c0w - Di * s0w);
     *x0d = y0[Y_V] + w * (Dr * s0w + Di * c0w);
@@ -276,7 +276,7 @@ static double flight_step(tt_flight *fl, tt_sim *S, double h, const fl_cache *F)
     double cw[FL_N + 1], sw[FL_N + 1], dp[FL_N + 1], dpd[FL_N + 1], sj[FL_N + 1], x0, x0d;
     flight_nodes(fl, S, h, F, cw, sw, dp, dpd, sj, &x0, &x0d);
     double N[FL_N], a[FL_N], xj[FL_N], xdj[FL_N];
-    double N0 = fl_force(S, y0[Y_D] - (S->s0 + S->sdot * S->tau));
+    double N0 = fl_force(S, y0[Y_D] - (S->sys.s0 + S->sys.sdot * S->tau));
     for (int j = 0; j < FL_N; j++)
         N[j] = N0;
     /* Picard iteration. After the first round the next change of the forcing is bounded
@@ -321,10 +321,10 @@ static double flight_step(tt_flight *fl, tt_sim *S, double h, const fl_cache *F)
                 jn = j;
         }
         conv = h * chg * sc < 0.01;
-        if (!conv && it == 0 && S->contact) {
+        if (!conv && it == 0 && S->sys.contact) {
             double dPdd = 0;
-            (void)tt_contact_load(S->contact, dp[jn] + xj[jn] - sj[jn], 0, &dPdd, NULL);
-            L = fabs(dPdd) * S->inv_m;
+            (void)tt_contact_load(S->sys.contact, dp[jn] + xj[jn] - sj[jn], 0, &dPdd, NULL);
+            L = fabs(dPdd) * S->sys.inv_m[0];
         }
     }
     if (!conv)
@@ -370,9 +370,9 @@ void tt_flight_dense(const tt_flight *fl, const tt_sim *S, double th, double *d,
  * output), so that a brief approach between the step's points is not missed. */
 static int flight_near(const tt_flight *fl, const tt_sim *S)
 {
-    if (!S->contact || !isfinite(S->jumpin))
+    if (!S->sys.contact || !isfinite(S->sys.jumpin))
         return 0;
-    double thr = S->jumpin - fl->margin;
+    double thr = S->sys.jumpin - fl->margin;
     for (int j = 0; j < FL_N + 2; j++)
         if (fl->pen[j] >= thr)
             return 1;
@@ -417,10 +417,10 @@ static int flight_next_rung(const tt_flight *fl, int r, double err, int lastf)
 int tt_flight_advance(tt_flight *fl, tt_sim *S, double T)
 {
     const double hmin = T * 1e-13;
-    if (fl->wait && S->y[Y_V] - S->sdot < 0)
+    if (fl->wait && S->y[Y_V] - S->sys.sdot < 0)
         fl->wait = 0;
     if (fl->ok && !S->contact_state && fl->skip == 0 && !fl->wait &&
-        S->y[Y_D] - (S->s0 + S->sdot * S->tau) < S->jumpin - fl->margin) {
+        S->y[Y_D] - (S->sys.s0 + S->sys.sdot * S->tau) < S->sys.jumpin - fl->margin) {
         int r = fl->rung;
         double hf = fl->hr[r];
         int lastf = 0;

@@ -7,11 +7,11 @@
 /* Tip-sample force on the current branch at a state. */
 static double ts_force(const tt_sim *S, double tau, double d, double v, int contact, double *delta)
 {
-    double dl = d - (S->s0 + S->sdot * tau);
+    double dl = d - (S->sys.s0 + S->sys.sdot * tau);
     *delta = dl;
-    if (!S->contact)
+    if (!S->sys.contact)
         return 0;
-    tt_contact_forces f = S->force(S->contact, S->ci, dl, v - S->sdot, contact, NULL);
+    tt_contact_forces f = S->sys.force(S->sys.contact, S->sys.ci, dl, v - S->sys.sdot, contact, NULL);
     return f.conservative + f.dissipative;
 }
 
@@ -27,7 +27,7 @@ static void observe_at(tt_sim *S, double ts, tt_sample *smp)
     tt_step_dense(S, f, &smp->d, &smp->v);
     smp->t = sim_time(S, ts);
     smp->z = z;
-    smp->s = S->s0 + S->sdot * ts;
+    smp->s = S->sys.s0 + S->sys.sdot * ts;
     smp->contact = S->contact_state;
 }
 
@@ -53,7 +53,7 @@ static void observe_samples(tt_sim *S, double th)
         tt_step_dense(S, f < 0 ? 0 : f, &smp->d, &smp->v);
         smp->t = sim_time(S, ts);
         smp->z = NAN;
-        smp->s = S->s0 + S->sdot * ts;
+        smp->s = S->sys.s0 + S->sys.sdot * ts;
         smp->contact = S->contact_state;
     }
 }

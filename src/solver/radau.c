@@ -105,12 +105,12 @@ static double accel(const tt_sim *S, double tau, const drive_val *dv, double d, 
                     int contact)
 {
     const tt_cantilever *c = &S->c;
-    double s = S->s0 + S->sdot * tau;
+    double s = S->sys.s0 + S->sys.sdot * tau;
     tt_contact_forces f = {0.0, 0.0};
-    if (S->contact)
-        f = S->force(S->contact, S->ci, d - s, v - S->sdot, contact, NULL);
+    if (S->sys.contact)
+        f = S->sys.force(S->sys.contact, S->sys.ci, d - s, v - S->sys.sdot, contact, NULL);
     return (-c->c * (v - dv->zd) - c->k * (d - dv->z) - f.conservative - f.dissipative + dv->F) *
-           S->inv_m;
+           S->sys.inv_m[0];
 }
 
 /* The step's fixed data. Jacobian of (d' = v, v' = f) at the step start: df/dd = -(k +
@@ -130,11 +130,11 @@ static void radau_setup(const radau_state *st, const tt_sim *S, double h, radau_
     R->scv = R->scd * S->c.wd;
     const double t = R->t;
     tt_contact_detail law = {{0.0, 0.0}, 0.0, 0.0, 0.0};
-    if (S->contact)
-        tt_contact_evaluate(S->contact, S->ci, R->d0 - (S->s0 + S->sdot * t), R->v0 - S->sdot,
+    if (S->sys.contact)
+        tt_contact_evaluate(S->sys.contact, S->sys.ci, R->d0 - (S->sys.s0 + S->sys.sdot * t), R->v0 - S->sys.sdot,
                             R->cs, NULL, &law);
-    R->Jd = -(S->c.k + law.stiffness) * S->inv_m;
-    R->Jv = -(S->c.c + law.damping) * S->inv_m;
+    R->Jd = -(S->c.k + law.stiffness) * S->sys.inv_m[0];
+    R->Jv = -(S->c.c + law.damping) * S->sys.inv_m[0];
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {
             double a2 = RA[i][0] * RA[0][j] + RA[i][1] * RA[1][j] + RA[i][2] * RA[2][j];
@@ -144,7 +144,7 @@ static void radau_setup(const radau_state *st, const tt_sim *S, double h, radau_
     for (int i = 0; i < 3; i++) {
         drive_at(S, t + RC[i] * h, &R->dv[i].z, &R->dv[i].zd, &R->dv[i].F, &R->dv[i].cw,
                  &R->dv[i].sw);
-        if (S->nz_f)
+        if (S->sys.nz_f)
             R->dv[i].F += noise_force(S, t + RC[i] * h);
     }
 }
@@ -254,7 +254,7 @@ static double radau_error(const radau_state *st, const tt_sim *S, const radau_ct
          * inflating the first estimate after a discontinuity */
         drive_val d0v;
         drive_at(S, R->t, &d0v.z, &d0v.zd, &d0v.F, &d0v.cw, &d0v.sw);
-        if (S->nz_f)
+        if (S->sys.nz_f)
             d0v.F += noise_force(S, R->t);
         double a1 = accel(S, R->t, &d0v, R->d0 + ed, R->v0 + ev, R->cs);
         rd = hg * (R->v0 + ev) + RG0 * (RE[0] * zd[0] + RE[1] * zd[1] + RE[2] * zd[2]);

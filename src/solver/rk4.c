@@ -26,7 +26,7 @@ static void rk4_step(rk4_state *st, tt_sim *S, double h)
     ensure_fsal(S);
     memcpy(k0, S->fsal, sizeof S->dydt_in);
     memcpy(yt, y0, sizeof yt); /* the stages read only (d, v) */
-    double smid = S->s0 + S->sdot * (t + 0.5 * h), send = S->s0 + S->sdot * (t + h);
+    double smid = S->sys.s0 + S->sys.sdot * (t + 0.5 * h), send = S->sys.s0 + S->sys.sdot * (t + h);
     for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + 0.5 * h * k0[i];
     double dmax = yt[Y_D] - smid;
@@ -59,10 +59,10 @@ static void rk4_step(rk4_state *st, tt_sim *S, double h)
  * (Hertz without adhesion has one force law for both states). */
 static int rk4_check_stiffness(tt_sim *S, double h, double delta)
 {
-    if (!S->contact)
+    if (!S->sys.contact)
         return TT_OK;
     tt_contact_detail law;
-    tt_contact_evaluate(S->contact, S->ci, delta, 0.0, S->contact_state, NULL, &law);
+    tt_contact_evaluate(S->sys.contact, S->sys.ci, delta, 0.0, S->contact_state, NULL, &law);
     double dPdd = law.stiffness;
     double keff = S->c.k + (dPdd > 0 ? dPdd : 0);
     double wc = sqrt(keff / S->c.m), wi = law.damping / S->c.m; /* the damping's rate, 1/s */
@@ -96,7 +96,7 @@ static int rk4_advance(void *state, tt_sim *S, double T, int *outcome)
         }
         return TT_OK;
     }
-    int rc = rk4_check_stiffness(S, h, S->y[Y_D] - (S->s0 + S->sdot * S->tau));
+    int rc = rk4_check_stiffness(S, h, S->y[Y_D] - (S->sys.s0 + S->sys.sdot * S->tau));
     if (rc)
         return rc;
     rk4_step(st, S, h);

@@ -35,7 +35,6 @@ int tt_sim_alloc(tt_sim **out, const tt_cantilever *c, const tt_solver *solver)
     if (!S)
         return tt_error_nomem("the solver's state");
     S->c = *c;
-    S->inv_m = 1.0 / c->m;
     S->solver = *solver;
     tt_system_plan(S, 0);
     S->type = tt_step_types[solver->method];
@@ -53,7 +52,7 @@ int tt_sim_alloc(tt_sim **out, const tt_cantilever *c, const tt_solver *solver)
 void tt_sim_free(tt_sim *sim)
 {
     if (sim) {
-        free(sim->nz_f);
+        free(sim->sys.nz_f);
         sim->type->free(sim->step);
     }
     free(sim);
@@ -61,28 +60,28 @@ void tt_sim_free(tt_sim *sim)
 
 void tt_sim_set_contact(tt_sim *S, const tt_contact *contact, double Qi)
 {
-    S->contact = contact;
-    S->ci = (isfinite(Qi) && Qi > 0) ? S->c.m * S->c.w0 / Qi : 0.0;
-    S->force = contact ? tt_contact_law_of(contact)->force : NULL;
+    S->sys.contact = contact;
+    S->sys.ci = (isfinite(Qi) && Qi > 0) ? S->c.m * S->c.w0 / Qi : 0.0;
+    S->sys.force = contact ? tt_contact_law_of(contact)->force : NULL;
     if (contact) {
-        S->jumpin = tt_contact_jumpin(contact);
-        S->jumpout = tt_contact_jumpout(contact);
+        S->sys.jumpin = tt_contact_jumpin(contact);
+        S->sys.jumpout = tt_contact_jumpout(contact);
     } else {
-        S->jumpin = INFINITY;
-        S->jumpout = -INFINITY;
+        S->sys.jumpin = INFINITY;
+        S->sys.jumpout = -INFINITY;
         S->contact_state = 0;
     }
     /* A re-stepped event lands a hair (the local error) on either side of its
      * threshold, and a grazing tip may end a step just past one without a sign change;
      * only past this margin is a switch forced (tiny next to any force-law length). */
-    S->margin = 1e-6 * S->c.A0;
+    S->sys.margin = 1e-6 * S->c.A0;
     tt_sim_invalidate(S);
 }
 
 void tt_sim_set_sample(tt_sim *S, double s, double sdot)
 {
-    S->s0 = s;
-    S->sdot = sdot;
+    S->sys.s0 = s;
+    S->sys.sdot = sdot;
     tt_sim_invalidate(S);
 }
 
@@ -116,10 +115,9 @@ void tt_sim_set_cantilever(tt_sim *S, const tt_cantilever *c)
 {
     /* Same drive period required: the cycle bookkeeping assumes it. */
     S->c = *c;
-    S->inv_m = 1.0 / c->m;
     tt_system_plan(S, S->sys.rhs == tt_system_rhs_n);
     tt_step_setup(S);
-    tt_sim_set_contact(S, S->contact, S->ci > 0 ? S->c.m * S->c.w0 / S->ci : NAN);
+    tt_sim_set_contact(S, S->sys.contact, S->sys.ci > 0 ? S->c.m * S->c.w0 / S->sys.ci : NAN);
 }
 
 const tt_cantilever *tt_sim_cantilever(const tt_sim *S) { return &S->c; }
@@ -138,7 +136,7 @@ void tt_sim_set_state(tt_sim *S, double d, double v, int contact)
 {
     S->y[Y_D] = d;
     S->y[Y_V] = v;
-    S->contact_state = S->contact ? contact : 0;
+    S->contact_state = S->sys.contact ? contact : 0;
     tt_sim_invalidate(S);
 }
 
@@ -163,13 +161,13 @@ void tt_sim_reset_free(tt_sim *S)
 
 double tt_sim_force(const tt_sim *S, const tt_sample *smp, double *a)
 {
-    if (!S->contact) {
+    if (!S->sys.contact) {
         if (a)
             *a = 0;
         return 0;
     }
     tt_contact_detail law;
-    tt_contact_evaluate(S->contact, S->ci, smp->d - smp->s, smp->v - S->sdot, smp->contact, NULL,
+    tt_contact_evaluate(S->sys.contact, S->sys.ci, smp->d - smp->s, smp->v - S->sys.sdot, smp->contact, NULL,
                         &law);
     if (a)
         *a = law.radius;

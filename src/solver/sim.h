@@ -30,7 +30,8 @@ typedef struct tt_step_type tt_step_type;
 
 /* The system the steps integrate, planned when the sim is made (system.c): its dimension
  * (position and velocity of each mode, the quadratures after them) and its kernels, the
- * right-hand side and the energy. The one-mode elastic system (n = 2) has specialised
+ * right-hand side and the energy, and what they read: the modes, the contact, the sample's
+ * motion and the thermal force. The one-mode elastic system (n = 2) has specialised
  * kernels (sim.h's rhs_with and energy); the generic ones loop over the modes and equal
  * them bit for bit at n = 2 (tests/test_system.c). Mode 0 is the tip's position, each
  * further mode i a deflection q_i (m_i q_i'' + c_i q_i' + k_i q_i = the force on the
@@ -39,7 +40,24 @@ enum { TT_MODES_MAX = 4 };
 typedef struct {
     int n;         /* motion components, 2 per mode; the quadratures start at index n */
     int modes;
-    double m[TT_MODES_MAX], k[TT_MODES_MAX], c[TT_MODES_MAX], inv_m[TT_MODES_MAX];
+    double m[TT_MODES_MAX], k[TT_MODES_MAX], c[TT_MODES_MAX];
+    double inv_m[TT_MODES_MAX]; /* 1 / m: the right-hand side multiplies rather than divides */
+    const tt_contact *contact;
+    /* the law's time-loop kernel, chosen when the contact is set (tt_sim_set_contact):
+     * one indirect call, no dispatch among the laws per evaluation */
+    tt_contact_forces (*force)(const tt_contact *c, double ci, double delta, double rate,
+                               int in_contact, const double *state);
+    double ci;           /* the law's interaction damping coefficient c_i = m* w0 / Q_i, kg/s */
+    double jumpin, jumpout, margin;
+    /* sample: s(tau) = s0 + sdot tau within the current cycle */
+    double s0, sdot;
+    /* the thermal force (noise.c): the Langevin force at the cycle's nz_n + 1 equally spaced
+     * points, linear between them; NULL when off */
+    double *nz_f;
+    int nz_n;
+    double nz_dt, nz_sigma;
+    uint64_t nz_key;
+    long nz_cycle;       /* cycles drawn since the key was set */
     void (*rhs)(const tt_sim *S, double tau, const double *Y, int contact, double *Fo);
     double (*energy)(const tt_sim *S, double tau, const double *Y, int contact);
 } tt_system;
@@ -53,16 +71,6 @@ struct tt_sim {
     tt_system sys;            /* dimension and kernels (system.c) */
     const tt_step_type *type; /* the method's steps (stepper.h) */
     void *step;               /* the step type's own state (type->alloc) */
-    const tt_contact *contact;
-    /* the law's time-loop kernel, chosen when the contact is set (tt_sim_set_contact):
-     * one indirect call, no dispatch among the laws per evaluation */
-    tt_contact_forces (*force)(const tt_contact *c, double ci, double delta, double rate,
-                               int in_contact, const double *state);
-    double ci;           /* the law's interaction damping coefficient c_i = m* w0 / Q_i, kg/s */
-    double inv_m;        /* 1 / m*: the right-hand side multiplies rather than divides */
-    double jumpin, jumpout, margin;
-    /* sample: s(tau) = s0 + sdot tau within the current cycle */
-    double s0, sdot;
     /* state */
     long cycle;          /* completed cycles */
     double tau;          /* time within the cycle, s */
@@ -93,13 +101,6 @@ struct tt_sim {
     int switches_there; /* ... and how many were made at that instant */
     int switches_near;  /* ... and within 1e-12 T of one another (events.c) */
     long steps, rejected, events;
-    /* thermal noise (noise.c): the Langevin force at the cycle's nz_n + 1 equally spaced
-     * points, linear between them; NULL when off */
-    double *nz_f;
-    int nz_n;
-    double nz_dt, nz_sigma;
-    uint64_t nz_key;
-    long nz_cycle;       /* cycles drawn since the key was set */
 };
 
 /* The run's time at tau within the current cycle, s. */
@@ -116,14 +117,14 @@ double tt_noise_next_knot(const tt_sim *S, double hmin);
 /* The thermal force at tau: linear between the cycle's points, so continuous. */
 static inline double noise_force(const tt_sim *S, double tau)
 {
-    double u = tau / S->nz_dt;
+    double u = tau / S->sys.nz_dt;
     int j = (int)u;
-    if (j >= S->nz_n)
-        j = S->nz_n - 1;
+    if (j >= S->sys.nz_n)
+        j = S->sys.nz_n - 1;
     if (j < 0)
         j = 0;
     double f = u - j;
-    return S->nz_f[j] + f * (S->nz_f[j + 1] - S->nz_f[j]);
+    return S->sys.nz_f[j] + f * (S->sys.nz_f[j + 1] - S->sys.nz_f[j]);
 }
 
 
@@ -185,12 +186,12 @@ typedef struct {
 static inline tt_contact_forces tip_forces(const tt_sim *S, double tau, double d, double v,
                                            int contact, double *deltad)
 {
-    double s = S->s0 + S->sdot * tau;
+    double s = S->sys.s0 + S->sys.sdot * tau;
     double delta = d - s;
-    *deltad = v - S->sdot;
+    *deltad = v - S->sys.sdot;
     tt_contact_forces f = {0.0, 0.0};
-    if (S->contact)
-        f = S->force(S->contact, S->ci, delta, *deltad, contact, NULL);
+    if (S->sys.contact)
+        f = S->sys.force(S->sys.contact, S->sys.ci, delta, *deltad, contact, NULL);
     return f;
 }
 
@@ -209,11 +210,11 @@ static inline void rhs_with(const tt_sim *S, double tau, const drive_val *dv, co
     double spring = c->k * (d - z), damp = c->c * (v - zd);
     double y = d - z;
     Fo[Y_D] = v;
-    Fo[Y_V] = (-damp - spring - P - Fi + Fd) * S->inv_m;
+    Fo[Y_V] = (-damp - spring - P - Fi + Fd) * S->sys.inv_m[0];
     Fo[Y_WDRIVE] = Fd * v - (spring + damp) * zd;
     Fo[Y_WDAMP] = damp * (v - zd);
     Fo[Y_WCI] = Fi * deltad;
-    Fo[Y_WS] = (P + Fi) * S->sdot;
+    Fo[Y_WS] = (P + Fi) * S->sys.sdot;
     Fo[Y_IC] = y * cw;
     Fo[Y_IS] = y * sw;
     Fo[Y_IY] = y;

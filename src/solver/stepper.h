@@ -83,14 +83,14 @@ static inline double tt_event_delta(const tt_sim *S, double th, double thr)
 {
     double d, v;
     tt_step_dense(S, th, &d, &v);
-    return d - (S->s0 + S->sdot * (S->step_tau + th * S->step_h)) - thr;
+    return d - (S->sys.s0 + S->sys.sdot * (S->step_tau + th * S->step_h)) - thr;
 }
 
 static inline double tt_event_vel(const tt_sim *S, double th)
 {
     double d, v;
     tt_step_dense(S, th, &d, &v);
-    return v - S->sdot;
+    return v - S->sys.sdot;
 }
 
 /* A dense-output polynomial of d and v (five coefficients, dopri5's or radau's) that is

@@ -8,7 +8,7 @@ void tt_sim_rhs(const tt_sim *S, double tau, const double *Y, int contact, doubl
     drive_val dv;
     drive_at(S, tau, &dv.z, &dv.zd, &dv.F, &dv.cw, &dv.sw);
     /* the thermal force acts as a force on the tip: its work is booked with the drive's */
-    if (S->nz_f)
+    if (S->sys.nz_f)
         dv.F += noise_force(S, tau);
     rhs_with(S, tau, &dv, Y, contact, Fo);
 }
@@ -20,7 +20,7 @@ double tt_sim_energy(const tt_sim *S, double tau, const double *Y, int contact)
     double z, zd, Fd, cw, sw;
     drive_at(S, tau, &z, &zd, &Fd, &cw, &sw);
     double d = Y[Y_D], v = Y[Y_V];
-    double U = S->contact ? tt_contact_energy(S->contact, d - (S->s0 + S->sdot * tau), contact) : 0;
+    double U = S->sys.contact ? tt_contact_energy(S->sys.contact, d - (S->sys.s0 + S->sys.sdot * tau), contact) : 0;
     return 0.5 * S->c.m * v * v + 0.5 * S->c.k * (d - z) * (d - z) + U;
 }
 
@@ -44,7 +44,7 @@ void tt_system_rhs_n(const tt_sim *S, double tau, const double *Y, int contact, 
     const tt_system *sys = &S->sys;
     drive_val dv;
     drive_at(S, tau, &dv.z, &dv.zd, &dv.F, &dv.cw, &dv.sw);
-    if (S->nz_f)
+    if (S->sys.nz_f)
         dv.F += noise_force(S, tau);
     double d, v;
     system_tip(sys, Y, &d, &v);
@@ -68,7 +68,7 @@ void tt_system_rhs_n(const tt_sim *S, double tau, const double *Y, int contact, 
     Q[Y_WDRIVE] = wdrive;
     Q[Y_WDAMP] = wdamp;
     Q[Y_WCI] = Fi * deltad;
-    Q[Y_WS] = (P + Fi) * S->sdot;
+    Q[Y_WS] = (P + Fi) * S->sys.sdot;
     Q[Y_IC] = y * dv.cw;
     Q[Y_IS] = y * dv.sw;
     Q[Y_IY] = y;
@@ -90,7 +90,7 @@ double tt_system_energy_n(const tt_sim *S, double tau, const double *Y, int cont
     }
     double d, v;
     system_tip(sys, Y, &d, &v);
-    double U = S->contact ? tt_contact_energy(S->contact, d - (S->s0 + S->sdot * tau), contact) : 0;
+    double U = S->sys.contact ? tt_contact_energy(S->sys.contact, d - (S->sys.s0 + S->sys.sdot * tau), contact) : 0;
     return E + U;
 }
 
@@ -102,7 +102,7 @@ void tt_system_plan(tt_sim *S, int generic)
     sys->m[0] = S->c.m;
     sys->k[0] = S->c.k;
     sys->c[0] = S->c.c;
-    sys->inv_m[0] = S->inv_m;
+    sys->inv_m[0] = 1.0 / S->c.m;
     /* the one-mode elastic system's specialised kernels (FFTW's codelets' idea) */
     sys->rhs = generic ? tt_system_rhs_n : tt_sim_rhs;
     sys->energy = generic ? tt_system_energy_n : tt_sim_energy;
