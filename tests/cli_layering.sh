@@ -33,4 +33,35 @@ for i in "${!layers[@]}"; do
 done
 hits=$(printf '%s' "$hits" | sed '/^$/d')
 [ -z "$hits" ] && ok "no layer includes a header of a layer above it" || { bad "includes of a higher layer:"; echo "$hits"; }
+# ... and no include or call circle among one layer's files (issue 29: src/solver's files
+# called one another in circles, sim -> flight -> events -> observe -> events). Includes
+# from the sources; calls, inline ones too, from the library's object files beside the
+# binary: an edge A -> B where A's object needs a symbol that B's defines.
+objroot=$(dirname "$1")/CMakeFiles/tiptap_objects.dir
+for dir in solver; do
+  ( cd "$src/src/$dir" && for f in *.c *.h; do
+      sed -n 's/^#include "\([^"/]*\)".*/\1/p' "$f" | while read -r h; do [ -e "$h" ] && echo "$f $h"; done
+    done ) >"$tmp/inc.txt"
+  if tsort "$tmp/inc.txt" >/dev/null 2>"$tmp/inc.err"; then
+    ok "no include circle among src/$dir's files"
+  else
+    bad "include circle among src/$dir's files: $(grep -v 'input contains' "$tmp/inc.err" | sed 's/^tsort: //' | tr '\n' ' ')"
+  fi
+  objs=("$objroot/src/$dir"/*.o)
+  if [ ! -e "${objs[0]}" ]; then
+    bad "no object files of src/$dir under $objroot to read the calls from"
+    continue
+  fi
+  for o in "${objs[@]}"; do nm -g --defined-only "$o" | awk -v f="$(basename "$o" .o)" '{print $3, f}'; done |
+    sort >"$tmp/defs.txt"
+  for o in "${objs[@]}"; do nm -u "$o" | awk -v f="$(basename "$o" .o)" '{print $2, f}'; done | sort >"$tmp/uses.txt"
+  join "$tmp/uses.txt" "$tmp/defs.txt" | awk '$2 != $3 {print $2, $3}' | sort -u >"$tmp/calls.txt"
+  if [ ! -s "$tmp/calls.txt" ]; then
+    bad "no calls among src/$dir's objects read (nm missing?)"
+  elif tsort "$tmp/calls.txt" >/dev/null 2>"$tmp/calls.err"; then
+    ok "no call circle among src/$dir's files ($(wc -l <"$tmp/calls.txt") edges)"
+  else
+    bad "call circle among src/$dir's files: $(grep -v 'input contains' "$tmp/calls.err" | sed 's/^tsort: //' | tr '\n' ' ')"
+  fi
+done
 exit $fail

@@ -7,14 +7,15 @@
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 
-void tt_step_accept(tt_sim *S)
+/* Take the current step (already computed into y1) in full. */
+static void step_accept(tt_sim *S)
 {
     tt_observe(S, 1);
     memcpy(S->y, S->y1, sizeof S->y);
-    memcpy(S->fsal, S->k[6], sizeof S->fsal);
-    S->fsal_ok = !S->step_flight; /* a flight step computes no derivative at its end */
+    memcpy(S->fsal, S->dydt_out, sizeof S->fsal);
+    S->fsal_ok = !S->step_long; /* a long step computes no derivative at its end */
     if (S->type->accept)
-        S->type->accept(S);
+        S->type->accept(S->step, S);
     S->tau = S->step_tau + S->step_h;
     S->steps++;
 }
@@ -25,7 +26,7 @@ static int check_finite(tt_sim *S)
         return tt_error(TT_ENUM,
                         "the solution became NaN or infinite at t = %.9g s (cycle %ld); "
                         "tighten [solver] tolerance or raise steps_per_cycle",
-                        tt_sim_time(S) + S->tau, S->cycle);
+                        sim_time(S, S->tau), S->cycle);
     return TT_OK;
 }
 
@@ -46,9 +47,10 @@ static void cycle_begin(tt_sim *S)
     S->steps = S->rejected = S->events = 0;
     S->next_sample = 0;
     S->next_probe = 0;
-    S->rk4_j = 1;
-    S->step_flight = 0;
-    if (S->nz_f)
+    S->step_long = 0;
+    if (S->type->cycle)
+        S->type->cycle(S->step, S->c.T);
+    if (S->sys.nz_f)
         tt_noise_cycle(S);
 }
 
@@ -60,7 +62,7 @@ static int cycle_take(tt_sim *S, int outcome)
         if (th <= 1)
             return tt_event_take(S, th);
     }
-    tt_step_accept(S);
+    step_accept(S);
     return TT_OK;
 }
 
@@ -70,7 +72,7 @@ static void cycle_result(const tt_sim *S, double E_start, tt_cycle *out)
 {
     const tt_cantilever *c = &S->c;
     const double T = c->T;
-    double E_end = energy(S, T, S->y, S->contact_state);
+    double E_end = S->sys.energy(S, T, S->y, S->contact_state);
     double X = 2.0 / T * S->y[Y_IC], Yq = 2.0 / T * S->y[Y_IS];
     out->amplitude = hypot(X, Yq);
     double ph = atan2(Yq, X);
@@ -104,7 +106,7 @@ int tt_sim_cycle(tt_sim *S, tt_cycle *out)
     const double T = S->c.T;
     memset(out, 0, sizeof *out);
     cycle_begin(S);
-    double E_start = energy(S, 0, S->y, S->contact_state);
+    double E_start = S->sys.energy(S, 0, S->y, S->contact_state);
     tt_observe_start(S);
     long guard = 0;
     while (S->tau < T) {
@@ -116,7 +118,7 @@ int tt_sim_cycle(tt_sim *S, tt_cycle *out)
         if (++guard > 50000000L)
             return tt_error(TT_ENUM, "no progress within cycle %ld", S->cycle);
         int outcome, rc;
-        if ((rc = S->type->advance(S, T, &outcome)))
+        if ((rc = S->type->advance(S->step, S, T, &outcome)))
             return rc;
         if (outcome == TT_STEP_RETRY)
             continue;
@@ -130,8 +132,7 @@ int tt_sim_cycle(tt_sim *S, tt_cycle *out)
     cycle_result(S, E_start, out);
     /* the next cycle starts at tau = 0 with the sample carried on */
     S->cycle++;
-    S->s0 += S->sdot * T;
+    S->sys.s0 += S->sys.sdot * T;
     S->tau = 0;
-    S->ext_tau -= T; /* radau's last polynomial, in the new cycle's time */
     return TT_OK;
 }

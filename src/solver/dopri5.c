@@ -1,10 +1,21 @@
 /* The Dormand-Prince 5(4) step type with its dense output and step-size factor; out of
  * contact it lets the free flight (flight.c) take the steps it can. */
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
-#include "stepper.h"
+#include "control.h"
+#include "flight.h"
 #include "tiptap/util/error.h"
+
+/* dopri5's own state: its step-size control, the free flight it hands steps to, the
+ * stages and the dense output's coefficients of d and v. */
+typedef struct {
+    tt_step_control ctl;
+    tt_flight *fl;
+    double k[6][NY]; /* stages 1 to 5 (stage 0 and the end are the record's dydt_in, dydt_out) */
+    double rcont[5][2];
+} dopri5_state;
 
 /* Dormand & Prince 1980; dense output of Hairer's dopri5. */
 static const double C2 = 0.2, C3 = 0.3, C4 = 0.8, C5 = 8.0 / 9.0;
@@ -28,9 +39,9 @@ static const double D1 = -12715105075.0 / 11282082432.0, D3 = 87487479700.0 / 32
  * a table gives 0.9 2^(-e/5) and a degree-5 polynomial (Chebyshev nodes, Estrin form)
  * m^(-1/5) to 3.3e-6, far finer than a step-size factor needs. Inside the clamps err
  * lies in [(0.9/5)^5, (0.9/0.2)^5], so e runs from -13 to 10. */
-static double dopri5_factor(const tt_sim *S, double err)
+static double dopri5_factor(const void *state, double err)
 {
-    (void)S;
+    (void)state;
     static const double p2[24] = {
         5.456579639437433,  4.750228478782419,  4.135314077989326,  3.6,
         3.133982027866047,  2.7282898197187166, 2.3751142393912095, 2.0676570389946627,
@@ -57,113 +68,161 @@ static double dopri5_factor(const tt_sim *S, double err)
 }
 
 /* Hairer's dense output coefficients of d and v for the step just computed. */
-static void dopri5_dense_fill(tt_sim *S, const double *y0, double h)
+static void dopri5_dense_fill(dopri5_state *st, const tt_sim *S, const double *y0, double h)
 {
-    double (*k)[NY] = S->k;
+    double (*k)[NY] = st->k;
+    const double *k0 = S->dydt_in, *k6 = S->dydt_out;
     for (int i = 0; i < 2; i++) {
         double ydiff = S->y1[i] - y0[i];
-        double bspl = h * k[0][i] - ydiff;
-        S->rcont[0][i] = y0[i];
-        S->rcont[1][i] = ydiff;
-        S->rcont[2][i] = bspl;
-        S->rcont[3][i] = ydiff - h * k[6][i] - bspl;
-        S->rcont[4][i] = h * (D1 * k[0][i] + D3 * k[2][i] + D4 * k[3][i] + D5 * k[4][i] +
-                              D6 * k[5][i] + D7 * k[6][i]);
+        double bspl = h * k0[i] - ydiff;
+        st->rcont[0][i] = y0[i];
+        st->rcont[1][i] = ydiff;
+        st->rcont[2][i] = bspl;
+        st->rcont[3][i] = ydiff - h * k6[i] - bspl;
+        st->rcont[4][i] = h * (D1 * k0[i] + D3 * k[2][i] + D4 * k[3][i] + D5 * k[4][i] +
+                              D6 * k[5][i] + D7 * k6[i]);
     }
 }
 
 /* One Dormand-Prince 5(4) step. Returns the scaled error norm (<= 1 accepts). */
-static double dopri5_step(tt_sim *S, double h)
+static double dopri5_step(void *state, tt_sim *S, double h)
 {
-    double (*k)[NY] = S->k, yt[NY];
+    dopri5_state *st = state;
+    double (*k)[NY] = st->k, yt[NY];
+    double *k0 = S->dydt_in, *k6 = S->dydt_out;
     const double *y0 = S->y;
     double t = S->tau;
     int cs = S->contact_state;
     ensure_fsal(S);
-    memcpy(k[0], S->fsal, sizeof k[0]);
+    memcpy(k0, S->fsal, sizeof S->dydt_in);
     /* The stages read only the motion (d, v): the integrals do not feed back, so only
      * the step's end carries them. */
     memcpy(yt, y0, sizeof yt);
     for (int i = 0; i < 2; i++)
-        yt[i] = y0[i] + h * A21 * k[0][i];
-    tt_sim_rhs(S, t + C2 * h, yt, cs, k[1]);
+        yt[i] = y0[i] + h * A21 * k0[i];
+    S->sys.rhs(S, t + C2 * h, yt, cs, k[1]);
     for (int i = 0; i < 2; i++)
-        yt[i] = y0[i] + h * (A31 * k[0][i] + A32 * k[1][i]);
-    tt_sim_rhs(S, t + C3 * h, yt, cs, k[2]);
+        yt[i] = y0[i] + h * (A31 * k0[i] + A32 * k[1][i]);
+    S->sys.rhs(S, t + C3 * h, yt, cs, k[2]);
     for (int i = 0; i < 2; i++)
-        yt[i] = y0[i] + h * (A41 * k[0][i] + A42 * k[1][i] + A43 * k[2][i]);
-    tt_sim_rhs(S, t + C4 * h, yt, cs, k[3]);
+        yt[i] = y0[i] + h * (A41 * k0[i] + A42 * k[1][i] + A43 * k[2][i]);
+    S->sys.rhs(S, t + C4 * h, yt, cs, k[3]);
     for (int i = 0; i < 2; i++)
-        yt[i] = y0[i] + h * (A51 * k[0][i] + A52 * k[1][i] + A53 * k[2][i] + A54 * k[3][i]);
-    tt_sim_rhs(S, t + C5 * h, yt, cs, k[4]);
+        yt[i] = y0[i] + h * (A51 * k0[i] + A52 * k[1][i] + A53 * k[2][i] + A54 * k[3][i]);
+    S->sys.rhs(S, t + C5 * h, yt, cs, k[4]);
     for (int i = 0; i < 2; i++)
-        yt[i] = y0[i] + h * (A61 * k[0][i] + A62 * k[1][i] + A63 * k[2][i] + A64 * k[3][i] +
+        yt[i] = y0[i] + h * (A61 * k0[i] + A62 * k[1][i] + A63 * k[2][i] + A64 * k[3][i] +
                              A65 * k[4][i]);
-    tt_sim_rhs(S, t + h, yt, cs, k[5]);
+    S->sys.rhs(S, t + h, yt, cs, k[5]);
     for (int i = 0; i < NY; i++)
-        S->y1[i] = y0[i] + h * (A71 * k[0][i] + A73 * k[2][i] + A74 * k[3][i] + A75 * k[4][i] +
+        S->y1[i] = y0[i] + h * (A71 * k0[i] + A73 * k[2][i] + A74 * k[3][i] + A75 * k[4][i] +
                                 A76 * k[5][i]);
-    tt_sim_rhs(S, t + h, S->y1, cs, k[6]);
+    S->sys.rhs(S, t + h, S->y1, cs, k6);
     /* Error on the motion only, relative to the free amplitude (and its velocity). */
     double sc[2] = {S->solver.tolerance * S->c.A0, S->solver.tolerance * S->c.A0 * S->c.wd};
     double err = 0;
     for (int i = 0; i < 2; i++) {
-        double e = h * (E1 * k[0][i] + E3 * k[2][i] + E4 * k[3][i] + E5 * k[4][i] + E6 * k[5][i] +
-                        E7 * k[6][i]);
+        double e = h * (E1 * k0[i] + E3 * k[2][i] + E4 * k[3][i] + E5 * k[4][i] + E6 * k[5][i] +
+                        E7 * k6[i]);
         double r = fabs(e) / sc[i];
         if (r > err)
             err = r;
     }
     if (!isfinite(err))
         err = INFINITY;
-    dopri5_dense_fill(S, y0, h);
+    dopri5_dense_fill(st, S, y0, h);
     memcpy(S->y0, y0, sizeof S->y0);
     S->step_tau = t;
     S->step_h = h;
-    S->step_flight = 0;
+    S->step_long = 0;
     return err;
 }
 
-static void dopri5_dense(const tt_sim *S, double th, double *d, double *v)
+static void dopri5_dense(const void *state, const tt_sim *S, double th, double *d, double *v)
 {
+    const dopri5_state *st = state;
+    if (S->step_long) {
+        tt_flight_dense(st->fl, S, th, d, v);
+        return;
+    }
     double th1 = 1 - th;
     double out[2];
     for (int i = 0; i < 2; i++)
-        out[i] = S->rcont[0][i] +
-                 th * (S->rcont[1][i] +
-                       th1 * (S->rcont[2][i] + th * (S->rcont[3][i] + th1 * S->rcont[4][i])));
+        out[i] = st->rcont[0][i] +
+                 th * (st->rcont[1][i] +
+                       th1 * (st->rcont[2][i] + th * (st->rcont[3][i] + th1 * st->rcont[4][i])));
     *d = out[0];
     *v = out[1];
 }
 
 /* Out of contact and away from the surface, the free flight's exponential steps; they
  * hand over to dopri5 near jump-in and when they would be short. */
-static int dopri5_advance(tt_sim *S, double T, int *outcome)
+static int dopri5_advance(void *state, tt_sim *S, double T, int *outcome)
 {
-    if (S->fl_ok) {
-        int flown = tt_flight_advance(S, T);
-        if (flown >= 0) {
-            *outcome = flown;
-            return TT_OK;
-        }
+    dopri5_state *st = state;
+    int flown = tt_flight_advance(st->fl, S, T);
+    if (flown != TT_STEP_PASS) {
+        *outcome = flown;
+        return TT_OK;
     }
-    return tt_step_adaptive(S, T, &tt_step_dopri5, outcome);
+    return tt_control_advance(&st->ctl, st, S, T, dopri5_step, dopri5_factor, outcome);
 }
 
-static void dopri5_reset(tt_sim *S)
+static int dopri5_redo(void *state, tt_sim *S, double h)
 {
-    S->h = S->c.T / 64;
-    S->last_rejected = 0;
-    tt_flight_reset(S);
+    (void)dopri5_step(state, S, h);
+    return TT_OK;
+}
+
+/* The step of length 0 at (tau, y): its polynomial is the constant y. */
+static void dopri5_point(void *state, const tt_sim *S)
+{
+    tt_poly_point(((dopri5_state *)state)->rcont, S->y);
+}
+
+static void dopri5_reset(void *state, const tt_sim *S)
+{
+    dopri5_state *st = state;
+    tt_control_reset(&st->ctl, S->c.T);
+    tt_step_flight.reset(st->fl, S);
+}
+
+static void dopri5_setup(void *state, const tt_sim *S)
+{
+    tt_step_flight.setup(((dopri5_state *)state)->fl, S);
+}
+
+static void dopri5_free(void *state)
+{
+    dopri5_state *st = state;
+    if (st)
+        tt_step_flight.free(st->fl);
+    free(st);
+}
+
+static void *dopri5_alloc(const tt_sim *S)
+{
+    dopri5_state *st = calloc(1, sizeof *st);
+    if (!st)
+        return NULL;
+    st->fl = tt_step_flight.alloc(S);
+    if (!st->fl) {
+        free(st);
+        return NULL;
+    }
+    tt_control_reset(&st->ctl, S->c.T);
+    st->ctl.hmax = INFINITY;
+    return st;
 }
 
 const tt_step_type tt_step_dopri5 = {
     .name = "dopri5",
-    .advance = dopri5_advance,
-    .apply = dopri5_step,
-    .factor = dopri5_factor,
-    .redo = NULL,
-    .dense = dopri5_dense,
-    .accept = NULL,
+    .alloc = dopri5_alloc,
+    .free = dopri5_free,
     .reset = dopri5_reset,
+    .setup = dopri5_setup,
+    .advance = dopri5_advance,
+    .redo = dopri5_redo,
+    .dense = dopri5_dense,
+    .point = dopri5_point,
 };

@@ -6,32 +6,6 @@
 
 #include "stepper.h"
 #include "tiptap/util/error.h"
-#include "util/root.h"
-
-/* What tt_event_root() seeks the zero of: which = 0 the penetration minus thr, 1 the
- * relative velocity, on the step's dense output. */
-typedef struct {
-    const tt_sim *S;
-    int which;
-    double thr;
-} event_fn;
-
-static double event_value(double th, void *data)
-{
-    const event_fn *e = data;
-    return e->which ? tt_event_vel(e->S, th) : tt_event_delta(e->S, th, e->thr);
-}
-
-/* The root on [a, b] (fa, fb of opposite signs) to 1e-14 of the step; the end of the
- * final bracket on b's side, so that the switch happens just past the root. */
-double tt_event_root(const tt_sim *S, int which, double thr, double a, double b, double fa,
-                     double fb)
-{
-    event_fn e = {S, which, thr};
-    tt_root_bracket br = {a, b, fa, fb};
-    double m;
-    return tt_root_illinois(event_value, &e, &br, 1e-14, 0, 100, &m) ? m : br.b;
-}
 
 /* Switches closer together than this (a millionth of a millionth of the cycle) are made
  * "within one instant": the root search resolves 1e-14 of a step, and no touch that
@@ -46,7 +20,7 @@ static int same_instant(const tt_sim *S)
  * 1e-23 m), and a sign inside that floor says nothing about the side of the threshold. */
 static double event_floor(const tt_sim *S, double thr)
 {
-    double s = S->s0 + S->sdot * S->step_tau;
+    double s = S->sys.s0 + S->sys.sdot * S->step_tau;
     return 16 * DBL_EPSILON * (fabs(S->y[Y_D]) + fabs(s) + fabs(thr));
 }
 
@@ -76,16 +50,16 @@ static double event_from_threshold(const tt_sim *S, double thr, double sgn)
  * between step ends is not missed. */
 static double event_at(const tt_sim *S)
 {
-    if (!S->contact)
+    if (!S->sys.contact)
         return 2;
     int in = S->contact_state;
-    double thr = in ? S->jumpout : S->jumpin;
+    double thr = in ? S->sys.jumpout : S->sys.jumpin;
     if (!isfinite(thr))
         return 2;
     /* sign convention: event when sgn * g crosses from > 0 to <= 0 */
     double sgn = in ? 1.0 : -1.0;
     double g0 = sgn * tt_event_delta(S, 0, thr);
-    if (g0 <= -S->margin)
+    if (g0 <= -S->sys.margin)
         return 0; /* already past by more than the margin: switch now */
     double g1 = sgn * tt_event_delta(S, 1, thr);
     if (g0 > 0 && g1 <= 0) {
@@ -114,7 +88,7 @@ static double event_at(const tt_sim *S)
      * touch at a turning point on the threshold, in and out at one instant. Should the
      * tip be switched there a third time, the branches send it back and forth: that
      * step is taken whole and the switch made at its end. */
-    if (g1 <= -S->margin)
+    if (g1 <= -S->sys.margin)
         return S->tau == S->switched_at && S->switches_there >= 2 ? 1 : 0;
     return 2;
 }
@@ -126,7 +100,7 @@ double tt_event_find(const tt_sim *S)
      * on: after 16 switches within one instant, one more at that instant is made only
      * at the end of a step that ends past the threshold. */
     if (th * S->step_h <= 1e-12 * S->c.T && S->switches_near >= 16 && same_instant(S)) {
-        double thr = S->contact_state ? S->jumpout : S->jumpin;
+        double thr = S->contact_state ? S->sys.jumpout : S->sys.jumpin;
         double sgn = S->contact_state ? 1.0 : -1.0;
         return sgn * tt_event_delta(S, 1, thr) <= 0 ? 1 : 2;
     }
@@ -139,22 +113,18 @@ int tt_event_take(tt_sim *S, double th)
     double h = S->step_h;
     tt_observe(S, th);
     if (th > 0) {
-        if (S->type->redo) {
-            int rc = S->type->redo(S, th * h);
-            if (rc)
-                return rc;
-        } else {
-            (void)S->type->apply(S, th * h);
-        }
+        int rc = S->type->redo(S->step, S, th * h);
+        if (rc)
+            return rc;
         memcpy(S->y, S->y1, sizeof S->y);
         S->tau = S->step_tau + S->step_h;
         S->steps++;
     }
     /* Energy jumps by U_old - U_new at the switch: the hysteresis loss (Burnham et al.;
      * docs/physics.md). */
-    double U_old = energy(S, S->tau, S->y, S->contact_state);
+    double U_old = S->sys.energy(S, S->tau, S->y, S->contact_state);
     S->contact_state = !S->contact_state;
-    double U_new = energy(S, S->tau, S->y, S->contact_state);
+    double U_new = S->sys.energy(S, S->tau, S->y, S->contact_state);
     S->e_jumps += U_old - U_new;
     S->switches_near = same_instant(S) ? S->switches_near + 1 : 1;
     S->switches_there = S->tau == S->switched_at ? S->switches_there + 1 : 1;

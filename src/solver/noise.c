@@ -51,11 +51,11 @@ double tt_noise_ou_next(const tt_noise_ou *p, uint64_t key, uint64_t index, doub
 
 int tt_sim_set_thermal(tt_sim *S, double temperature, int points)
 {
-    free(S->nz_f);
-    S->nz_f = NULL;
-    S->nz_n = 0;
+    free(S->sys.nz_f);
+    S->sys.nz_f = NULL;
+    S->sys.nz_n = 0;
     if (!(temperature > 0)) {
-        tt_flight_setup(S);
+        tt_step_setup(S);
         return TT_OK;
     }
     if (points < 4)
@@ -64,22 +64,22 @@ int tt_sim_set_thermal(tt_sim *S, double temperature, int points)
         return tt_error(TT_EINVAL,
                         "[noise] points: rk4's steps_per_cycle (%d) must be a multiple of it (%d)",
                         S->solver.steps_per_cycle, points);
-    S->nz_f = calloc((size_t)points + 1, sizeof *S->nz_f);
-    if (!S->nz_f)
+    S->sys.nz_f = calloc((size_t)points + 1, sizeof *S->sys.nz_f);
+    if (!S->sys.nz_f)
         return tt_error_nomem("the thermal force, [noise] points = %d", points);
-    S->nz_n = points;
-    S->nz_dt = S->c.T / points;
+    S->sys.nz_n = points;
+    S->sys.nz_dt = S->c.T / points;
     /* white noise of two-sided density 2 c kB T drawn every dt: variance 2 c kB T / dt */
-    S->nz_sigma = sqrt(2.0 * S->c.c * TT_BOLTZMANN * temperature / S->nz_dt);
-    S->nz_cycle = 0;
-    tt_flight_setup(S);
+    S->sys.nz_sigma = sqrt(2.0 * S->c.c * TT_BOLTZMANN * temperature / S->sys.nz_dt);
+    S->sys.nz_cycle = 0;
+    tt_step_setup(S);
     return TT_OK;
 }
 
 void tt_sim_noise_key(tt_sim *S, uint64_t key)
 {
-    S->nz_key = key;
-    S->nz_cycle = 0;
+    S->sys.nz_key = key;
+    S->sys.nz_cycle = 0;
 }
 
 void tt_noise_pair(uint64_t key, uint64_t index, double g[2])
@@ -91,17 +91,17 @@ void tt_noise_pair(uint64_t key, uint64_t index, double g[2])
 void tt_noise_cycle(tt_sim *S)
 {
     /* the cycle's points 0..n; point n is the next cycle's point 0, drawn again there */
-    uint64_t base = (uint64_t)S->nz_cycle * (uint64_t)S->nz_n;
-    for (int j = 0; j <= S->nz_n; j++)
-        S->nz_f[j] = S->nz_sigma * tt_noise_gauss(S->nz_key, base + (uint64_t)j);
-    S->nz_cycle++;
+    uint64_t base = (uint64_t)S->sys.nz_cycle * (uint64_t)S->sys.nz_n;
+    for (int j = 0; j <= S->sys.nz_n; j++)
+        S->sys.nz_f[j] = S->sys.nz_sigma * tt_noise_gauss(S->sys.nz_key, base + (uint64_t)j);
+    S->sys.nz_cycle++;
 }
 
 double tt_noise_next_knot(const tt_sim *S, double hmin)
 {
-    long j = (long)(S->tau / S->nz_dt) + 1;
-    double t = (double)j * S->c.T / S->nz_n;
+    long j = (long)(S->tau / S->sys.nz_dt) + 1;
+    double t = (double)j * S->c.T / S->sys.nz_n;
     if (t - S->tau < hmin)
-        t = (double)(j + 1) * S->c.T / S->nz_n;
+        t = (double)(j + 1) * S->c.T / S->sys.nz_n;
     return t;
 }

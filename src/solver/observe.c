@@ -7,11 +7,11 @@
 /* Tip-sample force on the current branch at a state. */
 static double ts_force(const tt_sim *S, double tau, double d, double v, int contact, double *delta)
 {
-    double dl = d - (S->s0 + S->sdot * tau);
+    double dl = d - (S->sys.s0 + S->sys.sdot * tau);
     *delta = dl;
-    if (!S->contact)
+    if (!S->sys.contact)
         return 0;
-    tt_contact_forces f = S->force(S->contact, S->ci, dl, v - S->sdot, contact, NULL);
+    tt_contact_forces f = S->sys.force(S->sys.contact, S->sys.ci, dl, v - S->sys.sdot, contact, NULL);
     return f.conservative + f.dissipative;
 }
 
@@ -25,9 +25,9 @@ static void observe_at(tt_sim *S, double ts, tt_sample *smp)
     double z, zd, Fd, cw, sw;
     drive_at(S, ts, &z, &zd, &Fd, &cw, &sw);
     tt_step_dense(S, f, &smp->d, &smp->v);
-    smp->t = tt_sim_time(S) + ts;
+    smp->t = sim_time(S, ts);
     smp->z = z;
-    smp->s = S->s0 + S->sdot * ts;
+    smp->s = S->sys.s0 + S->sys.sdot * ts;
     smp->contact = S->contact_state;
 }
 
@@ -51,9 +51,9 @@ static void observe_samples(tt_sim *S, double th)
         tt_sample *smp = &S->probes[S->next_probe++];
         double f = S->step_h > 0 ? (ts - S->step_tau) / S->step_h : 0;
         tt_step_dense(S, f < 0 ? 0 : f, &smp->d, &smp->v);
-        smp->t = tt_sim_time(S) + ts;
+        smp->t = sim_time(S, ts);
         smp->z = NAN;
-        smp->s = S->s0 + S->sdot * ts;
+        smp->s = S->sys.s0 + S->sys.sdot * ts;
         smp->contact = S->contact_state;
     }
 }
@@ -139,7 +139,7 @@ static void observe_peaks(tt_sim *S, double th, double d, double v)
     }
     /* A flight step's ends are too far apart to stand for the far turning point, where an
      * attraction is weakest and the force greatest: locate a minimum of the penetration. */
-    if (S->step_flight && v0 < 0 && v1 > 0) {
+    if (S->step_long && v0 < 0 && v1 > 0) {
         double tm = tt_event_root(S, 1, 0, 0, th, v0, v1);
         tt_step_dense(S, tm, &d, &v);
         F = ts_force(S, t0 + tm * h, d, v, S->contact_state, &delta);
@@ -161,11 +161,9 @@ void tt_observe_start(tt_sim *S)
     memcpy(S->y0, S->y, sizeof S->y0);
     memcpy(S->y1, S->y, sizeof S->y1);
     ensure_fsal(S);
-    memcpy(S->k[0], S->fsal, sizeof S->k[0]);
-    memcpy(S->k[6], S->fsal, sizeof S->k[6]);
-    for (int i = 0; i < 2; i++) {
-        S->rcont[0][i] = S->y[i];
-        S->rcont[1][i] = S->rcont[2][i] = S->rcont[3][i] = S->rcont[4][i] = 0;
-    }
+    memcpy(S->dydt_in, S->fsal, sizeof S->dydt_in);
+    memcpy(S->dydt_out, S->fsal, sizeof S->dydt_out);
+    if (S->type->point)
+        S->type->point(S->step, S);
     tt_observe(S, 0);
 }

@@ -2,9 +2,10 @@
  * contacts: simplified Newton with a 3x3 LU, RADAU5's error estimate and the
  * collocation polynomial as dense output. */
 #include <float.h>
+#include <stdlib.h>
 #include <string.h>
 
-#include "stepper.h"
+#include "control.h"
 #include "tiptap/util/error.h"
 
 /* Hairer & Wanner, Solving ODEs II, IV.5 and IV.8. */
@@ -19,6 +20,20 @@ static const double RA[3][3] = {
 static const double RG0 = 0.2748888295956773677478286;
 static const double RE[3] = {-(13.0 + 7.0 * RS6) / 3.0, (-13.0 + 7.0 * RS6) / 3.0, -1.0 / 3.0};
 enum { NEWTON_MAX = 7 };
+
+/* radau's own state: its step-size control, the stages' derivatives, the dense output's
+ * polynomial, the last accepted step's polynomial extrapolated for the Newton starting
+ * values (valid while ext_ok), and the Newton iteration's memory. */
+typedef struct {
+    tt_step_control ctl;
+    double k[4][NY];     /* the derivatives at stages 1 to 3 */
+    double rcont[5][2];  /* the collocation polynomial of d and v in Newton form */
+    double ext[4][2], ext_tau, ext_h;
+    int ext_ok;
+    double tol;          /* the tolerance radau's O(h^4) estimate is held to */
+    double newton_eta;   /* contraction estimate theta / (1 - theta) of the last step */
+    int newton_it;       /* Newton iterations of the last step (0: it failed) */
+} radau_state;
 
 /* One step's fixed data: its start, the Jacobian there, the error scales, the drive at
  * the stage times, and the Newton matrix's LU factors (ok = 0: singular). */
@@ -90,19 +105,19 @@ static double accel(const tt_sim *S, double tau, const drive_val *dv, double d, 
                     int contact)
 {
     const tt_cantilever *c = &S->c;
-    double s = S->s0 + S->sdot * tau;
+    double s = S->sys.s0 + S->sys.sdot * tau;
     tt_contact_forces f = {0.0, 0.0, 0.0};
-    if (S->contact)
-        f = S->force(S->contact, S->ci, d - s, v - S->sdot, contact, NULL);
+    if (S->sys.contact)
+        f = S->sys.force(S->sys.contact, S->sys.ci, d - s, v - S->sys.sdot, contact, NULL);
     return (-c->c * (v - dv->zd) - c->k * (d - dv->z) - f.conservative - f.dissipative + dv->F) *
-           S->inv_m;
+           S->sys.inv_m[0];
 }
 
 /* The step's fixed data. Jacobian of (d' = v, v' = f) at the step start: df/dd = -(k +
  * dP/ddelta) / m, df/dv = -(c + c_i) / m. Position increments follow linearly from the
  * velocity ones (d' = v), so Newton needs only M = I - h Jv A - h^2 Jd A^2 for the three
  * velocity increments. */
-static void radau_setup(const tt_sim *S, double h, radau_ctx *R)
+static void radau_setup(const radau_state *st, const tt_sim *S, double h, radau_ctx *R)
 {
     const double *y0 = S->y;
     R->t = S->tau;
@@ -110,16 +125,16 @@ static void radau_setup(const tt_sim *S, double h, radau_ctx *R)
     R->d0 = y0[Y_D];
     R->v0 = y0[Y_V];
     R->cs = S->contact_state;
-    R->tol = S->radau_tol;
+    R->tol = st->tol;
     R->scd = R->tol * S->c.A0;
     R->scv = R->scd * S->c.wd;
     const double t = R->t;
     tt_contact_detail law = {{0.0, 0.0, 0.0}, 0.0, 0.0, 0.0};
-    if (S->contact)
-        tt_contact_evaluate(S->contact, S->ci, R->d0 - (S->s0 + S->sdot * t), R->v0 - S->sdot,
+    if (S->sys.contact)
+        tt_contact_evaluate(S->sys.contact, S->sys.ci, R->d0 - (S->sys.s0 + S->sys.sdot * t), R->v0 - S->sys.sdot,
                             R->cs, NULL, &law);
-    R->Jd = -(S->c.k + law.stiffness) * S->inv_m;
-    R->Jv = -(S->c.c + law.damping) * S->inv_m;
+    R->Jd = -(S->c.k + law.stiffness) * S->sys.inv_m[0];
+    R->Jv = -(S->c.c + law.damping) * S->sys.inv_m[0];
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {
             double a2 = RA[i][0] * RA[0][j] + RA[i][1] * RA[1][j] + RA[i][2] * RA[2][j];
@@ -129,7 +144,7 @@ static void radau_setup(const tt_sim *S, double h, radau_ctx *R)
     for (int i = 0; i < 3; i++) {
         drive_at(S, t + RC[i] * h, &R->dv[i].z, &R->dv[i].zd, &R->dv[i].F, &R->dv[i].cw,
                  &R->dv[i].sw);
-        if (S->nz_f)
+        if (S->sys.nz_f)
             R->dv[i].F += noise_force(S, t + RC[i] * h);
     }
 }
@@ -137,20 +152,20 @@ static void radau_setup(const tt_sim *S, double h, radau_ctx *R)
 /* Simplified Newton on the velocity increments zv, from the last accepted step's
  * polynomial extrapolated; stops when the estimated remaining error, eta |dz|, is a
  * small fraction of the tolerance (Hairer's fnewt). Sets newton_it (0: failed). */
-static int radau_newton(tt_sim *S, const radau_ctx *R, double zv[3])
+static int radau_newton(radau_state *st, const tt_sim *S, const radau_ctx *R, double zv[3])
 {
     const double t = R->t, h = R->h, d0 = R->d0, v0 = R->v0, tol = R->tol;
     const double scd = R->scd, scv = R->scv;
     const int cs = R->cs;
     double zd[3];
-    if (S->ext_ok)
+    if (st->ext_ok)
         for (int i = 0; i < 3; i++) {
             double de, ve;
-            radau_poly((const double (*)[2])S->ext, (t + RC[i] * h - S->ext_tau) / S->ext_h, &de, &ve);
+            radau_poly((const double (*)[2])st->ext, (t + RC[i] * h - st->ext_tau) / st->ext_h, &de, &ve);
             zv[i] = ve - v0;
         }
     const double fnewt = fmax(10 * DBL_EPSILON / tol, fmin(0.03, sqrt(tol)));
-    double eta = pow(fmax(S->newton_eta, DBL_EPSILON), 0.8), prev = 1;
+    double eta = pow(fmax(st->newton_eta, DBL_EPSILON), 0.8), prev = 1;
     int conv = 0, it;
     for (it = 1; R->ok && it <= NEWTON_MAX; it++) {
         double a[3], g[3];
@@ -184,19 +199,19 @@ static int radau_newton(tt_sim *S, const radau_ctx *R, double zv[3])
             break;
         }
     }
-    S->newton_it = conv ? it : 0;
+    st->newton_it = conv ? it : 0;
     if (conv)
-        S->newton_eta = eta;
+        st->newton_eta = eta;
     return conv;
 }
 
 /* The step's end and dense data from the stages' increments zd (position), zv
  * (velocity): the full right-hand side at the stages (quadrature integrands included),
  * and the collocation polynomial through y0 and the three stages. */
-static void radau_finish(tt_sim *S, const radau_ctx *R, const double *y0, const double zd[3],
+static void radau_finish(radau_state *st, tt_sim *S, const radau_ctx *R, const double *y0, const double zd[3],
                          const double zv[3])
 {
-    double (*k)[NY] = S->k;
+    double (*k)[NY] = st->k;
     const double h = R->h;
     double Yst[NY];
     memcpy(Yst, y0, sizeof Yst);
@@ -211,35 +226,35 @@ static void radau_finish(tt_sim *S, const radau_ctx *R, const double *y0, const 
     S->y1[Y_V] = R->v0 + zv[2];
     for (int q = Y_WDRIVE; q < NY; q++)
         S->y1[q] = y0[q] + h * (RA[2][0] * k[1][q] + RA[2][1] * k[2][q] + RA[2][2] * k[3][q]);
-    memcpy(k[6], k[3], sizeof k[6]);
+    memcpy(S->dydt_out, k[3], sizeof S->dydt_out);
     for (int i = 0; i < 2; i++) {
         double z1 = i ? zv[0] : zd[0], z2 = i ? zv[1] : zd[1], z3 = i ? zv[2] : zd[2];
         double f01 = z1 / RC[0], f12 = (z2 - z1) / (RC[1] - RC[0]), f23 = (z3 - z2) / (1 - RC[1]);
         double f012 = (f12 - f01) / RC[1], f123 = (f23 - f12) / (1 - RC[0]);
-        S->rcont[0][i] = y0[i];
-        S->rcont[1][i] = f01;
-        S->rcont[2][i] = f012;
-        S->rcont[3][i] = f123 - f012;
-        S->rcont[4][i] = 0;
+        st->rcont[0][i] = y0[i];
+        st->rcont[1][i] = f01;
+        st->rcont[2][i] = f012;
+        st->rcont[3][i] = f123 - f012;
+        st->rcont[4][i] = 0;
     }
 }
 
 /* RADAU5's error estimate (I - h g0 J)^-1 (g0 h f0 + g0 sum e_i Z_i) on d and v. */
-static double radau_error(const tt_sim *S, const radau_ctx *R, const double zd[3],
+static double radau_error(const radau_state *st, const tt_sim *S, const radau_ctx *R, const double zd[3],
                           const double zv[3], int first)
 {
     const double h = R->h, Jd = R->Jd, Jv = R->Jv, scd = R->scd, scv = R->scv;
     const double hg = h * RG0, det = (1 - hg * Jv) - hg * hg * Jd;
-    double rd = hg * S->k[0][Y_D] + RG0 * (RE[0] * zd[0] + RE[1] * zd[1] + RE[2] * zd[2]);
-    double rv = hg * S->k[0][Y_V] + RG0 * (RE[0] * zv[0] + RE[1] * zv[1] + RE[2] * zv[2]);
+    double rd = hg * S->dydt_in[Y_D] + RG0 * (RE[0] * zd[0] + RE[1] * zd[1] + RE[2] * zd[2]);
+    double rv = hg * S->dydt_in[Y_V] + RG0 * (RE[0] * zv[0] + RE[1] * zv[1] + RE[2] * zv[2]);
     double ed = ((1 - hg * Jv) * rd + hg * rv) / det, ev = (hg * Jd * rd + rv) / det;
     double err = fmax(fabs(ed) / scd, fabs(ev) / scv);
-    if (err >= 1 && (first || S->last_rejected)) {
+    if (err >= 1 && (first || st->ctl.last_rejected)) {
         /* Hairer's second estimate, with f at y0 + err: keeps stiff components from
          * inflating the first estimate after a discontinuity */
         drive_val d0v;
         drive_at(S, R->t, &d0v.z, &d0v.zd, &d0v.F, &d0v.cw, &d0v.sw);
-        if (S->nz_f)
+        if (S->sys.nz_f)
             d0v.F += noise_force(S, R->t);
         double a1 = accel(S, R->t, &d0v, R->d0 + ed, R->v0 + ev, R->cs);
         rd = hg * (R->v0 + ev) + RG0 * (RE[0] * zd[0] + RE[1] * zd[1] + RE[2] * zd[2]);
@@ -256,84 +271,131 @@ static double radau_error(const tt_sim *S, const radau_ctx *R, const double zd[3
  * the step start's Jacobian; the quadrature components do not feed back, so they follow
  * from the converged stages with the weights b (the last row of A). Returns the scaled
  * error (RADAU5's embedded estimate; <= 1 accepts), or INFINITY with newton_it = 0. */
-static double radau_step(tt_sim *S, double h)
+static double radau_step(void *state, tt_sim *S, double h)
 {
+    radau_state *st = state;
     const double *y0 = S->y;
-    const int first = !S->ext_ok;
+    const int first = !st->ext_ok;
     ensure_fsal(S);
-    memcpy(S->k[0], S->fsal, sizeof S->k[0]);
+    memcpy(S->dydt_in, S->fsal, sizeof S->dydt_in);
     memcpy(S->y0, y0, sizeof S->y0);
     S->step_tau = S->tau;
     S->step_h = h;
-    S->step_flight = 0;
+    S->step_long = 0;
     radau_ctx R;
-    radau_setup(S, h, &R);
+    radau_setup(st, S, h, &R);
     double zv[3] = {0, 0, 0}, zd[3];
-    int conv = radau_newton(S, &R, zv);
+    int conv = radau_newton(st, S, &R, zv);
     /* the converged stages */
     for (int i = 0; i < 3; i++)
         zd[i] = h * (RA[i][0] * (R.v0 + zv[0]) + RA[i][1] * (R.v0 + zv[1]) + RA[i][2] * (R.v0 + zv[2]));
-    radau_finish(S, &R, y0, zd, zv);
+    radau_finish(st, S, &R, y0, zd, zv);
     if (!conv)
         return INFINITY;
-    return radau_error(S, &R, zd, zv, first);
+    return radau_error(st, S, &R, zd, zv, first);
 }
 
 /* Hairer's safety factor, smaller after a slow Newton iteration; the estimate is
  * O(h^4). */
-static double radau_factor(const tt_sim *S, double err)
+static double radau_factor(const void *state, double err)
 {
-    if (!S->newton_it)
+    const radau_state *st = state;
+    if (!st->newton_it)
         return 0.5; /* Newton failed: the step was too long for the Jacobian */
-    double safe = fmin(0.9, 0.9 * (1 + 2 * NEWTON_MAX) / (S->newton_it + 2 * NEWTON_MAX));
+    double safe = fmin(0.9, 0.9 * (1 + 2 * NEWTON_MAX) / (st->newton_it + 2 * NEWTON_MAX));
     return err > 0 ? safe * pow(err, -0.25) : 5.0;
 }
 
-static int radau_advance(tt_sim *S, double T, int *outcome)
+static int radau_advance(void *state, tt_sim *S, double T, int *outcome)
 {
-    return tt_step_adaptive(S, T, &tt_step_radau, outcome);
+    radau_state *st = state;
+    return tt_control_advance(&st->ctl, st, S, T, radau_step, radau_factor, outcome);
 }
 
 /* The step's polynomial: the next step's Newton start. */
-static void radau_accept(tt_sim *S)
+static void radau_accept(void *state, const tt_sim *S)
 {
-    memcpy(S->ext, S->rcont, sizeof S->ext);
-    S->ext_tau = S->step_tau;
-    S->ext_h = S->step_h;
-    S->ext_ok = 1;
+    radau_state *st = state;
+    memcpy(st->ext, st->rcont, sizeof st->ext);
+    st->ext_tau = S->step_tau;
+    st->ext_h = S->step_h;
+    st->ext_ok = 1;
 }
 
-static int radau_redo(tt_sim *S, double h)
+static int radau_redo(void *state, tt_sim *S, double h)
 {
+    radau_state *st = state;
     /* the step's own polynomial gives the redo's Newton iteration its start */
-    radau_accept(S);
-    (void)radau_step(S, h);
-    if (!S->newton_it)
+    radau_accept(st, S);
+    (void)radau_step(st, S, h);
+    if (!st->newton_it)
         return tt_error(TT_ENUM,
                         "radau: Newton iteration failed at a contact event at t = %.9g s "
                         "(cycle %ld); tighten [solver] tolerance",
-                        tt_sim_time(S) + S->step_tau, S->cycle);
+                        sim_time(S, S->step_tau), S->cycle);
     return TT_OK;
 }
 
-static void radau_dense(const tt_sim *S, double th, double *d, double *v)
+static void radau_dense(const void *state, const tt_sim *S, double th, double *d, double *v)
 {
-    radau_poly(S->rcont, th, d, v);
+    (void)S;
+    radau_poly(((const radau_state *)state)->rcont, th, d, v);
 }
 
-static void radau_reset(tt_sim *S)
+/* The step of length 0 at (tau, y): its polynomial is the constant y. */
+static void radau_point(void *state, const tt_sim *S)
 {
-    S->h = S->c.T / 64;
-    S->last_rejected = 0;
+    tt_poly_point(((radau_state *)state)->rcont, S->y);
+}
+
+static void radau_reset(void *state, const tt_sim *S)
+{
+    tt_control_reset(&((radau_state *)state)->ctl, S->c.T);
+}
+
+/* The last step's polynomial no longer starts the next Newton iteration, nor does the
+ * last contraction rate: without it one Newton step could pass for converged on a new
+ * branch. */
+static void radau_invalidate(void *state)
+{
+    radau_state *st = state;
+    st->ext_ok = 0;
+    st->newton_eta = 1.0;
+}
+
+/* The last step's polynomial, in the new cycle's time. */
+static void radau_cycle(void *state, double T)
+{
+    ((radau_state *)state)->ext_tau -= T;
+}
+
+static void *radau_alloc(const tt_sim *S)
+{
+    radau_state *st = calloc(1, sizeof *st);
+    if (!st)
+        return NULL;
+    const double tol = S->solver.tolerance;
+    tt_control_reset(&st->ctl, S->c.T);
+    /* Radau's estimate is of an order-3 solution while the order-5 one is kept, so as in
+     * Hairer's RADAU5 it is held to 0.1 tol^(2/3): about dopri5's accuracy at equal tol. */
+    st->tol = 0.1 * pow(tol, 2.0 / 3.0);
+    /* The per-cycle integrals are quadratures over the steps, off by about 1e-5 (w h)^6
+     * of the amplitude (measured), which the motion's estimate does not see. */
+    st->ctl.hmax = pow(1e5 * tol, 1.0 / 6.0) / S->c.wd;
+    st->newton_eta = 1.0;
+    return st;
 }
 
 const tt_step_type tt_step_radau = {
     .name = "radau",
+    .alloc = radau_alloc,
+    .free = free,
+    .reset = radau_reset,
+    .invalidate = radau_invalidate,
+    .cycle = radau_cycle,
     .advance = radau_advance,
-    .apply = radau_step,
-    .factor = radau_factor,
     .redo = radau_redo,
     .dense = radau_dense,
+    .point = radau_point,
     .accept = radau_accept,
-    .reset = radau_reset,
 };

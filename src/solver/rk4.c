@@ -1,46 +1,56 @@
 /* The classic fixed-step RK4 step type on a grid of steps_per_cycle steps per drive
  * cycle, with cubic Hermite dense output and a refusal of steps too coarse for the
  * contact's stiffness. */
+#include <stdlib.h>
 #include <string.h>
 
 #include "stepper.h"
 #include "tiptap/util/error.h"
 
+/* rk4's own state: the grid point it steps to, its stages, and the deepest penetration
+ * of the last step. */
+typedef struct {
+    int j;          /* index of the next grid point in the cycle */
+    double dmax;    /* deepest penetration among the step's stages and end */
+    double k[4][NY]; /* stages 1 to 3 (stage 0 and the end are the record's dydt_in, dydt_out) */
+} rk4_state;
+
 /* One classic RK4 step. */
-static void rk4_step(tt_sim *S, double h)
+static void rk4_step(rk4_state *st, tt_sim *S, double h)
 {
-    double (*k)[NY] = S->k, yt[NY];
+    double (*k)[NY] = st->k, yt[NY];
+    double *k0 = S->dydt_in, *k6 = S->dydt_out;
     const double *y0 = S->y;
     double t = S->tau;
     int cs = S->contact_state;
     ensure_fsal(S);
-    memcpy(k[0], S->fsal, sizeof k[0]);
+    memcpy(k0, S->fsal, sizeof S->dydt_in);
     memcpy(yt, y0, sizeof yt); /* the stages read only (d, v) */
-    double smid = S->s0 + S->sdot * (t + 0.5 * h), send = S->s0 + S->sdot * (t + h);
+    double smid = S->sys.s0 + S->sys.sdot * (t + 0.5 * h), send = S->sys.s0 + S->sys.sdot * (t + h);
     for (int i = 0; i < 2; i++)
-        yt[i] = y0[i] + 0.5 * h * k[0][i];
+        yt[i] = y0[i] + 0.5 * h * k0[i];
     double dmax = yt[Y_D] - smid;
-    tt_sim_rhs(S, t + 0.5 * h, yt, cs, k[1]);
+    S->sys.rhs(S, t + 0.5 * h, yt, cs, k[1]);
     for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + 0.5 * h * k[1][i];
     dmax = fmax(dmax, yt[Y_D] - smid);
-    tt_sim_rhs(S, t + 0.5 * h, yt, cs, k[2]);
+    S->sys.rhs(S, t + 0.5 * h, yt, cs, k[2]);
     for (int i = 0; i < 2; i++)
         yt[i] = y0[i] + h * k[2][i];
     dmax = fmax(dmax, yt[Y_D] - send);
-    tt_sim_rhs(S, t + h, yt, cs, k[3]);
+    S->sys.rhs(S, t + h, yt, cs, k[3]);
     for (int i = 0; i < NY; i++)
-        S->y1[i] = y0[i] + h / 6.0 * (k[0][i] + 2 * k[1][i] + 2 * k[2][i] + k[3][i]);
+        S->y1[i] = y0[i] + h / 6.0 * (k0[i] + 2 * k[1][i] + 2 * k[2][i] + k[3][i]);
     /* A step that enters a stiff contact (from its soft onset, where the stiffness at the
      * start says nothing) shows it in its stages: they overshoot deep into it. */
-    S->rk4_dmax = fmax(dmax, S->y1[Y_D] - send);
+    st->dmax = fmax(dmax, S->y1[Y_D] - send);
     /* The derivative at the end serves the cubic Hermite dense output and, unless the
      * state changes there, the next step's first stage. */
-    tt_sim_rhs(S, t + h, S->y1, cs, k[6]);
+    S->sys.rhs(S, t + h, S->y1, cs, k6);
     memcpy(S->y0, y0, sizeof S->y0);
     S->step_tau = t;
     S->step_h = h;
-    S->step_flight = 0;
+    S->step_long = 0;
 }
 
 /* rk4 is stable for oscillation only while h * sqrt(k_contact / m) < 2.8; past that it
@@ -49,10 +59,10 @@ static void rk4_step(tt_sim *S, double h)
  * (Hertz without adhesion has one force law for both states). */
 static int rk4_check_stiffness(tt_sim *S, double h, double delta)
 {
-    if (!S->contact)
+    if (!S->sys.contact)
         return TT_OK;
     tt_contact_detail law;
-    tt_contact_evaluate(S->contact, S->ci, delta, 0.0, S->contact_state, NULL, &law);
+    tt_contact_evaluate(S->sys.contact, S->sys.ci, delta, 0.0, S->contact_state, NULL, &law);
     double dPdd = law.stiffness;
     double keff = S->c.k + (dPdd > 0 ? dPdd : 0);
     double wc = sqrt(keff / S->c.m), wi = law.damping / S->c.m; /* the damping's rate, 1/s */
@@ -69,14 +79,15 @@ static int rk4_check_stiffness(tt_sim *S, double h, double delta)
 
 /* The step to the next grid time j T / N, computed from the index, never accumulated;
  * an event may have left the tip a hair short of it, or on it. */
-static int rk4_advance(tt_sim *S, double T, int *outcome)
+static int rk4_advance(void *state, tt_sim *S, double T, int *outcome)
 {
+    rk4_state *st = state;
     const double hgrid = T / S->solver.steps_per_cycle;
     const double hmin = T * 1e-13;
-    double tnext = S->rk4_j >= S->solver.steps_per_cycle ? T : S->rk4_j * hgrid;
+    double tnext = st->j >= S->solver.steps_per_cycle ? T : st->j * hgrid;
     double h = tnext - S->tau;
     if (h <= hmin) {
-        S->rk4_j++;
+        st->j++;
         if (tnext >= T) {
             S->tau = T;
             *outcome = TT_STEP_END;
@@ -85,43 +96,64 @@ static int rk4_advance(tt_sim *S, double T, int *outcome)
         }
         return TT_OK;
     }
-    int rc = rk4_check_stiffness(S, h, S->y[Y_D] - (S->s0 + S->sdot * S->tau));
+    int rc = rk4_check_stiffness(S, h, S->y[Y_D] - (S->sys.s0 + S->sys.sdot * S->tau));
     if (rc)
         return rc;
-    rk4_step(S, h);
+    rk4_step(st, S, h);
     /* ... and at the deepest stage, before an unstable step is taken */
-    if ((rc = rk4_check_stiffness(S, h, S->rk4_dmax)))
+    if ((rc = rk4_check_stiffness(S, h, st->dmax)))
         return rc;
     *outcome = TT_STEP_TRIAL;
     return TT_OK;
 }
 
-static double rk4_apply(tt_sim *S, double h)
+static int rk4_redo(void *state, tt_sim *S, double h)
 {
-    rk4_step(S, h);
-    return 0;
+    rk4_step(state, S, h);
+    return TT_OK;
 }
 
 /* Cubic Hermite: d from (d, v) at both ends, v from (v, a) at both ends. */
-static void rk4_dense(const tt_sim *S, double th, double *d, double *v)
+static void rk4_dense(const void *state, const tt_sim *S, double th, double *d, double *v)
 {
+    (void)state;
     double h = S->step_h;
     double t2 = th * th, t3 = t2 * th;
     double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + th, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
     *d = h00 * S->y0[Y_D] + h10 * h * S->y0[Y_V] + h01 * S->y1[Y_D] + h11 * h * S->y1[Y_V];
-    *v = h00 * S->y0[Y_V] + h10 * h * S->k[0][Y_V] + h01 * S->y1[Y_V] + h11 * h * S->k[6][Y_V];
+    *v = h00 * S->y0[Y_V] + h10 * h * S->dydt_in[Y_V] + h01 * S->y1[Y_V] + h11 * h * S->dydt_out[Y_V];
 }
 
 /* A step taken in full reaches its grid point. */
-static void rk4_accept(tt_sim *S) { S->rk4_j++; }
+static void rk4_accept(void *state, const tt_sim *S)
+{
+    (void)S;
+    ((rk4_state *)state)->j++;
+}
+
+/* A cycle starts at its first grid point's step. */
+static void rk4_cycle(void *state, double T)
+{
+    (void)T;
+    ((rk4_state *)state)->j = 1;
+}
+
+static void *rk4_alloc(const tt_sim *S)
+{
+    (void)S;
+    rk4_state *st = calloc(1, sizeof *st);
+    if (st)
+        st->j = 1;
+    return st;
+}
 
 const tt_step_type tt_step_rk4 = {
     .name = "rk4",
+    .alloc = rk4_alloc,
+    .free = free,
+    .cycle = rk4_cycle,
     .advance = rk4_advance,
-    .apply = rk4_apply,
-    .factor = NULL,
-    .redo = NULL,
+    .redo = rk4_redo,
     .dense = rk4_dense,
     .accept = rk4_accept,
-    .reset = NULL,
 };

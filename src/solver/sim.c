@@ -1,26 +1,11 @@
 /* The sim's life cycle and settings: allocation with its step type from the method
- * table, the force law and sample, the state and the free steady oscillation. */
+ * table (steps.c) and the type's own state, the force law and sample, the state and the
+ * free steady oscillation. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "stepper.h"
 #include "tiptap/util/error.h"
-
-const tt_step_type *const tt_step_types[3] = {
-    [TT_METHOD_DOPRI5] = &tt_step_dopri5,
-    [TT_METHOD_RK4] = &tt_step_rk4,
-    [TT_METHOD_RADAU] = &tt_step_radau,
-};
-
-void tt_sim_rhs(const tt_sim *S, double tau, const double *Y, int contact, double *Fo)
-{
-    drive_val dv;
-    drive_at(S, tau, &dv.z, &dv.zd, &dv.F, &dv.cw, &dv.sw);
-    /* the thermal force acts as a force on the tip: its work is booked with the drive's */
-    if (S->nz_f)
-        dv.F += noise_force(S, tau);
-    rhs_with(S, tau, &dv, Y, contact, Fo);
-}
 
 void tt_solver_default(tt_solver *s)
 {
@@ -50,18 +35,14 @@ int tt_sim_alloc(tt_sim **out, const tt_cantilever *c, const tt_solver *solver)
     if (!S)
         return tt_error_nomem("the solver's state");
     S->c = *c;
-    S->inv_m = 1.0 / c->m;
     S->solver = *solver;
+    tt_system_plan(S, 0);
     S->type = tt_step_types[solver->method];
-    S->h = c->T / 64;
-    /* Radau's estimate is of an order-3 solution while the order-5 one is kept, so as in
-     * Hairer's RADAU5 it is held to 0.1 tol^(2/3): about dopri5's accuracy at equal tol. */
-    S->radau_tol = 0.1 * pow(solver->tolerance, 2.0 / 3.0);
-    /* The per-cycle integrals are quadratures over the steps, off by about 1e-5 (w h)^6
-     * of the amplitude (measured), which the motion's estimate does not see. */
-    S->radau_hmax = solver->method == TT_METHOD_RADAU ? pow(1e5 * solver->tolerance, 1.0 / 6.0) / c->wd
-                                                      : INFINITY;
-    tt_flight_setup(S);
+    S->step = S->type->alloc(S);
+    if (!S->step) {
+        free(S);
+        return tt_error_nomem("the %s solver's state", tt_step_types[solver->method]->name);
+    }
     tt_sim_set_contact(S, NULL, NAN);
     tt_sim_reset_free(S);
     *out = S;
@@ -70,49 +51,37 @@ int tt_sim_alloc(tt_sim **out, const tt_cantilever *c, const tt_solver *solver)
 
 void tt_sim_free(tt_sim *sim)
 {
-    if (sim)
-        free(sim->nz_f);
+    if (sim) {
+        free(sim->sys.nz_f);
+        sim->type->free(sim->step);
+    }
     free(sim);
-}
-
-/* The state was changed from outside the steps: the derivative at it and the last
- * step's polynomial no longer describe it. */
-void tt_sim_invalidate(tt_sim *S)
-{
-    S->fsal_ok = 0;
-    S->ext_ok = 0;
-    /* nor does the last contraction rate: without it one Newton step could pass for
-     * converged on a new branch */
-    S->newton_eta = 1.0;
 }
 
 void tt_sim_set_contact(tt_sim *S, const tt_contact *contact, double Qi)
 {
-    S->contact = contact;
-    S->ci = (isfinite(Qi) && Qi > 0) ? S->c.m * S->c.w0 / Qi : 0.0;
-    S->force = contact ? tt_contact_law_of(contact)->force : NULL;
+    S->sys.contact = contact;
+    S->sys.ci = (isfinite(Qi) && Qi > 0) ? S->c.m * S->c.w0 / Qi : 0.0;
+    S->sys.force = contact ? tt_contact_law_of(contact)->force : NULL;
     if (contact) {
-        S->jumpin = tt_contact_jumpin(contact);
-        S->jumpout = tt_contact_jumpout(contact);
+        S->sys.jumpin = tt_contact_jumpin(contact);
+        S->sys.jumpout = tt_contact_jumpout(contact);
     } else {
-        S->jumpin = INFINITY;
-        S->jumpout = -INFINITY;
+        S->sys.jumpin = INFINITY;
+        S->sys.jumpout = -INFINITY;
         S->contact_state = 0;
     }
     /* A re-stepped event lands a hair (the local error) on either side of its
      * threshold, and a grazing tip may end a step just past one without a sign change;
      * only past this margin is a switch forced (tiny next to any force-law length). */
-    S->margin = 1e-6 * S->c.A0;
-    /* within this of jump-in the flight hands over to dopri5, so that contact events are
-     * always located on dopri5 steps exactly as without it */
-    S->fl_margin = 0.05 * S->c.A0;
+    S->sys.margin = 1e-6 * S->c.A0;
     tt_sim_invalidate(S);
 }
 
 void tt_sim_set_sample(tt_sim *S, double s, double sdot)
 {
-    S->s0 = s;
-    S->sdot = sdot;
+    S->sys.s0 = s;
+    S->sys.sdot = sdot;
     tt_sim_invalidate(S);
 }
 
@@ -137,7 +106,7 @@ void tt_sim_track_extremes(tt_sim *S, int on)
 {
     S->track_extremes = on;
     /* the extremes are taken at step ends, which the flight's long steps would coarsen */
-    tt_flight_setup(S);
+    tt_step_setup(S);
 }
 
 void tt_sim_track_peaks(tt_sim *S, int on) { S->skip_peaks = !on; }
@@ -146,14 +115,14 @@ void tt_sim_set_cantilever(tt_sim *S, const tt_cantilever *c)
 {
     /* Same drive period required: the cycle bookkeeping assumes it. */
     S->c = *c;
-    S->inv_m = 1.0 / c->m;
-    tt_flight_setup(S);
-    tt_sim_set_contact(S, S->contact, S->ci > 0 ? S->c.m * S->c.w0 / S->ci : NAN);
+    tt_system_plan(S, S->sys.rhs == tt_system_rhs_n);
+    tt_step_setup(S);
+    tt_sim_set_contact(S, S->sys.contact, S->sys.ci > 0 ? S->c.m * S->c.w0 / S->sys.ci : NAN);
 }
 
 const tt_cantilever *tt_sim_cantilever(const tt_sim *S) { return &S->c; }
 
-double tt_sim_time(const tt_sim *S) { return (double)S->cycle * S->c.T; }
+double tt_sim_time(const tt_sim *S) { return sim_time(S, 0.0); }
 long tt_sim_cycles(const tt_sim *S) { return S->cycle; }
 
 void tt_sim_get_state(const tt_sim *S, double *d, double *v, int *contact)
@@ -167,7 +136,7 @@ void tt_sim_set_state(tt_sim *S, double d, double v, int contact)
 {
     S->y[Y_D] = d;
     S->y[Y_V] = v;
-    S->contact_state = S->contact ? contact : 0;
+    S->contact_state = S->sys.contact ? contact : 0;
     tt_sim_invalidate(S);
 }
 
@@ -186,19 +155,19 @@ void tt_sim_reset_free(tt_sim *S)
     /* the step controllers' memory too: a run from the free state must not depend on
      * what the sim did before (scan lines give the same images on any thread) */
     if (S->type->reset)
-        S->type->reset(S);
+        S->type->reset(S->step, S);
     tt_sim_invalidate(S);
 }
 
 double tt_sim_force(const tt_sim *S, const tt_sample *smp, double *a)
 {
-    if (!S->contact) {
+    if (!S->sys.contact) {
         if (a)
             *a = 0;
         return 0;
     }
     tt_contact_detail law;
-    tt_contact_evaluate(S->contact, S->ci, smp->d - smp->s, smp->v - S->sdot, smp->contact, NULL,
+    tt_contact_evaluate(S->sys.contact, S->sys.ci, smp->d - smp->s, smp->v - S->sys.sdot, smp->contact, NULL,
                         &law);
     if (a)
         *a = law.radius;

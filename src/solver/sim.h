@@ -27,59 +27,65 @@ enum {
     NY
 };
 
-/* Free flight (flight.c): Gauss-Legendre nodes per step and rungs of the step ladder. */
-enum { FL_N = 6, FL_RUNGS = 12 };
-
-/* The free oscillator's propagator and the drive's rotation at the nodes and the end
- * (index FL_N) of a flight step of length h. */
-typedef struct {
-    double h;
-    double e[FL_N + 1], cd[FL_N + 1], sd[FL_N + 1]; /* exp(-sig tau), cos, sin(wdm tau) */
-    double cw[FL_N + 1], sw[FL_N + 1];              /* cos, sin(w tau) */
-    int ok;
-} fl_cache;
-
 typedef struct tt_step_type tt_step_type;
 
-struct tt_sim {
-    tt_cantilever c;
-    tt_solver solver;
-    const tt_step_type *type; /* the method's steps (stepper.h) */
+/* The system the steps integrate, planned when the sim is made (system.c): its dimension
+ * (position and velocity of each mode, the quadratures after them) and its kernels, the
+ * right-hand side and the energy, and what they read: the modes, the contact, the sample's
+ * motion and the thermal force. The one-mode elastic system (n = 2) has specialised
+ * kernels (sim.h's rhs_with and energy); the generic ones loop over the modes and equal
+ * them bit for bit at n = 2 (tests/test_system.c). Mode 0 is the tip's position, each
+ * further mode i a deflection q_i (m_i q_i'' + c_i q_i' + k_i q_i = the force on the
+ * tip) added to it. The state arrays of tt_sim hold one mode (NY) so far. */
+enum { TT_MODES_MAX = 4 };
+typedef struct {
+    int n;         /* motion components, 2 per mode; the quadratures start at index n */
+    int modes;
+    double m[TT_MODES_MAX], k[TT_MODES_MAX], c[TT_MODES_MAX];
+    double inv_m[TT_MODES_MAX]; /* 1 / m: the right-hand side multiplies rather than divides */
     const tt_contact *contact;
     /* the law's time-loop kernel, chosen when the contact is set (tt_sim_set_contact):
      * one indirect call, no dispatch among the laws per evaluation */
     tt_contact_forces (*force)(const tt_contact *c, double ci, double delta, double rate,
                                int in_contact, const double *state);
     double ci;           /* the law's interaction damping coefficient c_i = m* w0 / Q_i, kg/s */
-    double inv_m;        /* 1 / m*: the right-hand side multiplies rather than divides */
     double jumpin, jumpout, margin;
     /* sample: s(tau) = s0 + sdot tau within the current cycle */
     double s0, sdot;
+    /* the thermal force (noise.c): the Langevin force at the cycle's nz_n + 1 equally spaced
+     * points, linear between them; NULL when off */
+    double *nz_f;
+    int nz_n;
+    double nz_dt, nz_sigma;
+    uint64_t nz_key;
+    long nz_cycle;       /* cycles drawn since the key was set */
+    void (*rhs)(const tt_sim *S, double tau, const double *Y, int contact, double *Fo);
+    double (*energy)(const tt_sim *S, double tau, const double *Y, int contact);
+} tt_system;
+
+/* The evolve loop's own state: the system (cantilever, contact, sample, thermal force),
+ * the state vector and the cycle's bookkeeping. The step types keep their own state
+ * behind `step` (stepper.h); they write only the current step's record below. */
+struct tt_sim {
+    tt_cantilever c;
+    tt_solver solver;
+    tt_system sys;            /* dimension and kernels (system.c) */
+    const tt_step_type *type; /* the method's steps (stepper.h) */
+    void *step;               /* the step type's own state (type->alloc) */
     /* state */
     long cycle;          /* completed cycles */
     double tau;          /* time within the cycle, s */
     double y[NY];
     int contact_state;
-    double h;            /* dopri5, radau: next step size */
-    int rk4_j;           /* rk4: index of the next grid point in the cycle */
     /* first-same-as-last derivative at (tau, y), valid while fsal_ok */
     double fsal[NY];
     int fsal_ok;
-    /* the current step, for dense output */
+    /* the current step, written by the step type: its start and length, the state and
+     * the derivative at both ends (dydt_out unset after a long step) */
     double step_tau, step_h;
-    double y0[NY], y1[NY], k[7][NY];
-    double rcont[5][2];  /* dense output of d and v: dopri5's, or radau's collocation
-                          * polynomial in Newton form */
-    /* radau: the last accepted step's collocation polynomial, extrapolated for the
-     * Newton starting values (valid while ext_ok), and the Newton iteration's memory */
-    double ext[4][2], ext_tau, ext_h;
-    int ext_ok;
-    double radau_tol;    /* the tolerance radau's O(h^4) estimate is held to */
-    double radau_hmax;   /* radau's longest step, for the quadratures (INFINITY otherwise) */
-    double newton_eta;   /* contraction estimate theta / (1 - theta) of the last step */
-    int newton_it;       /* Newton iterations of the last step (0: it failed) */
-    int last_rejected;
-    double rk4_dmax;     /* rk4: deepest penetration among the step's stages and end */
+    double y0[NY], y1[NY], dydt_in[NY], dydt_out[NY];
+    int step_long;       /* a long exact step (flight): no derivative at its end, and its
+                          * ends too far apart to stand for the turning points between */
     /* sampling */
     int nsamp;
     tt_sample *samples;
@@ -96,33 +102,13 @@ struct tt_sim {
     int switches_there; /* ... and how many were made at that instant */
     int switches_near;  /* ... and within 1e-12 T of one another (events.c) */
     long steps, rejected, events;
-    /* free flight: exponential steps out of contact (dopri5 only; see flight.c) */
-    int fl_ok;           /* this sim may fly: dopri5, underdamped, no extremes tracked */
-    int step_flight;     /* the current step is a flight step: dense output from fl_* */
-    int fl_rung;         /* ladder rung of the flight's next step */
-    int fl_nrung;        /* rungs usable (w0 h >= 0.1; see flight_particular) */
-    int fl_skip;         /* dopri5 steps to take before the flight is tried again */
-    int fl_wait;         /* handed over near the surface: dopri5 until the tip recedes */
-    int fl_rej;          /* the last flight attempt was rejected: do not lengthen the next */
-    double fl_h0;        /* the ladder's longest step, min(T, 2 pi / w0) / 8 */
-    double fl_sig, fl_wdm, fl_w02; /* decay rate c / 2m, damped frequency, k / m */
-    double fl_hr[FL_RUNGS]; /* the rungs' step lengths, fl_h0 2^(-r/4) */
-    double fl_Dr, fl_Di; /* steady drive response d_p = Dr cos(w t) - Di sin(w t) */
-    double fl_margin;    /* hand over to dopri5 within this penetration of jump-in */
-    double fl_vinv[FL_N][FL_N]; /* node values to monomial coefficients in theta */
-    fl_cache fl_lad[FL_RUNGS], fl_scr; /* propagators per ladder rung, and a scratch one */
-    /* the current flight step: q(theta) = sum b_k theta^k and the homogeneous part's
-     * initial offset r0 and its time derivative */
-    double fl_b[FL_N], fl_r0, fl_r0d;
-    double fl_pen[FL_N + 2], fl_vel[FL_N + 2]; /* penetration and its rate at 0, nodes, 1 */
-    /* thermal noise (noise.c): the Langevin force at the cycle's nz_n + 1 equally spaced
-     * points, linear between them; NULL when off */
-    double *nz_f;
-    int nz_n;
-    double nz_dt, nz_sigma;
-    uint64_t nz_key;
-    long nz_cycle;       /* cycles drawn since the key was set */
 };
+
+/* The run's time at tau within the current cycle, s. */
+static inline double sim_time(const tt_sim *S, double tau)
+{
+    return (double)S->cycle * S->c.T + tau;
+}
 
 /* Draw the thermal force's points of the cycle about to start (noise.c). */
 void tt_noise_cycle(tt_sim *S);
@@ -132,18 +118,16 @@ double tt_noise_next_knot(const tt_sim *S, double hmin);
 /* The thermal force at tau: linear between the cycle's points, so continuous. */
 static inline double noise_force(const tt_sim *S, double tau)
 {
-    double u = tau / S->nz_dt;
+    double u = tau / S->sys.nz_dt;
     int j = (int)u;
-    if (j >= S->nz_n)
-        j = S->nz_n - 1;
+    if (j >= S->sys.nz_n)
+        j = S->sys.nz_n - 1;
     if (j < 0)
         j = 0;
     double f = u - j;
-    return S->nz_f[j] + f * (S->nz_f[j + 1] - S->nz_f[j]);
+    return S->sys.nz_f[j] + f * (S->sys.nz_f[j + 1] - S->sys.nz_f[j]);
 }
 
-/* The state was changed from outside the steps (sim.c). */
-void tt_sim_invalidate(tt_sim *S);
 
 /* sin and cos of a drive phase in [0, 2 pi] and a little beyond, to within 2 ulp:
  * quadrant reduction with a two-part pi/2 and Taylor polynomials on [-pi/4, pi/4].
@@ -198,6 +182,20 @@ typedef struct {
     double z, zd, F, cw, sw;
 } drive_val;
 
+/* The tip-sample force on the contact branch at the tip's (d, v) at tau, and the
+ * penetration's rate in *deltad. */
+static inline tt_contact_forces tip_forces(const tt_sim *S, double tau, double d, double v,
+                                           int contact, double *deltad)
+{
+    double s = S->sys.s0 + S->sys.sdot * tau;
+    double delta = d - s;
+    *deltad = v - S->sys.sdot;
+    tt_contact_forces f = {0.0, 0.0, 0.0};
+    if (S->sys.contact)
+        f = S->sys.force(S->sys.contact, S->sys.ci, delta, *deltad, contact, NULL);
+    return f;
+}
+
 /* The right-hand side: Burnham et al. eq. 2 plus the per-cycle integrals. The contact
  * state is fixed for the whole step (docs/physics.md: never flip it inside the
  * right-hand side; events flip it). */
@@ -207,50 +205,43 @@ static inline void rhs_with(const tt_sim *S, double tau, const drive_val *dv, co
     const tt_cantilever *c = &S->c;
     double z = dv->z, zd = dv->zd, Fd = dv->F, cw = dv->cw, sw = dv->sw;
     double d = Y[Y_D], v = Y[Y_V];
-    double s = S->s0 + S->sdot * tau;
-    double delta = d - s, deltad = v - S->sdot;
-    tt_contact_forces f = {0.0, 0.0, 0.0};
-    if (S->contact)
-        f = S->force(S->contact, S->ci, delta, deltad, contact, NULL);
+    double deltad;
+    tt_contact_forces f = tip_forces(S, tau, d, v, contact, &deltad);
     double P = f.conservative, Fi = f.dissipative;
     double spring = c->k * (d - z), damp = c->c * (v - zd);
     double y = d - z;
     Fo[Y_D] = v;
-    Fo[Y_V] = (-damp - spring - P - Fi + Fd) * S->inv_m;
+    Fo[Y_V] = (-damp - spring - P - Fi + Fd) * S->sys.inv_m[0];
     Fo[Y_WDRIVE] = Fd * v - (spring + damp) * zd;
     Fo[Y_WDAMP] = damp * (v - zd);
     Fo[Y_WCI] = (Fi - f.viscous) * deltad;
     Fo[Y_WVISC] = f.viscous * deltad;
-    Fo[Y_WS] = (P + Fi) * S->sdot;
+    Fo[Y_WS] = (P + Fi) * S->sys.sdot;
     Fo[Y_IC] = y * cw;
     Fo[Y_IS] = y * sw;
     Fo[Y_IY] = y;
     Fo[Y_TC] = contact ? 1.0 : 0.0;
 }
 
-/* The right-hand side with the drive evaluated at tau (sim.c; out of line: the explicit
- * steps call it several times each). */
+/* The right-hand side with the drive evaluated at tau (system.c): the system's kernel,
+ * specialised (tt_sim_rhs) or generic (tt_system_rhs_n), chosen when it is planned. */
 void tt_sim_rhs(const tt_sim *S, double tau, const double *Y, int contact, double *Fo);
+void tt_system_rhs_n(const tt_sim *S, double tau, const double *Y, int contact, double *Fo);
+/* The energy (system.c), specialised (tt_sim_energy) or generic. */
+double tt_sim_energy(const tt_sim *S, double tau, const double *Y, int contact);
+double tt_system_energy_n(const tt_sim *S, double tau, const double *Y, int contact);
+/* Plan the system of the sim's cantilever (one mode): the specialised kernels, or the
+ * generic ones when generic is set (for the test of their equality). */
+void tt_system_plan(tt_sim *S, int generic);
 
 /* The derivative at the current state, for a step's first stage: kept from the last
  * step's end (first same as last) unless the state changed since. */
 static inline void ensure_fsal(tt_sim *S)
 {
     if (!S->fsal_ok) {
-        tt_sim_rhs(S, S->tau, S->y, S->contact_state, S->fsal);
+        S->sys.rhs(S, S->tau, S->y, S->contact_state, S->fsal);
         S->fsal_ok = 1;
     }
-}
-
-/* Mechanical energy of the tip system on the current branch: kinetic + spring +
- * tip-sample potential. */
-static inline double energy(const tt_sim *S, double tau, const double *Y, int contact)
-{
-    double z, zd, Fd, cw, sw;
-    drive_at(S, tau, &z, &zd, &Fd, &cw, &sw);
-    double d = Y[Y_D], v = Y[Y_V];
-    double U = S->contact ? tt_contact_energy(S->contact, d - (S->s0 + S->sdot * tau), contact) : 0;
-    return 0.5 * S->c.m * v * v + 0.5 * S->c.k * (d - z) * (d - z) + U;
 }
 
 #endif

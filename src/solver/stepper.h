@@ -1,10 +1,12 @@
-/* The stepper interface (after GSL's gsl_odeiv2_step_type): one table of functions per
- * method, indexed by tt_method, and the internal functions the solver's files share.
+/* The step-type interface (after GSL's gsl_odeiv2_step_type): one table of functions per
+ * method, indexed by tt_method, each type keeping its own state (alloc, reset, free), and
+ * the functions the evolve loop (cycle.c, events.c, observe.c) calls on the current step.
  * Private to libtiptap.
  *
  * A step runs from (tau, y) into y1 and fills the data of its continuous extension
  * (dense output); the cycle loop (cycle.c) locates contact events on that extension and
- * takes the step in full or redoes it up to the event (events.c). */
+ * takes the step in full or redoes it up to the event (events.c). The evolve loop never
+ * reads a type's state: it calls the type's functions with it. */
 #ifndef TIPTAP_SOLVER_STEPPER_H
 #define TIPTAP_SOLVER_STEPPER_H
 
@@ -16,116 +18,97 @@ enum {
     TT_STEP_TRIAL, /* a step is in y1: locate events on it, then take it */
     TT_STEP_TAKEN, /* a step is in y1 that meets no event: take it in full */
     TT_STEP_RETRY, /* nothing to take (a rejected step): advance again */
-    TT_STEP_END    /* the cycle's end is reached */
+    TT_STEP_END,   /* the cycle's end is reached */
+    TT_STEP_PASS   /* not this type's step here: its holder's turn (flight) */
 };
 
 struct tt_step_type {
     const char *name;
-    /* Try the next step of the cycle [0, T): sets *outcome (TT_STEP_*); a status. */
-    int (*advance)(tt_sim *S, double T, int *outcome);
-    /* One step of length h from (tau, y): the scaled error (<= 1 accepts; 0 for fixed
-     * steps). */
-    double (*apply)(tt_sim *S, double h);
-    /* The next step's length over this one's, from apply's error (adaptive types). */
-    double (*factor)(const tt_sim *S, double err);
-    /* Redo the current step up to length h, where an event lies; a status (NULL: apply
-     * does). */
-    int (*redo)(tt_sim *S, double h);
-    /* d and v at fraction th of the current step. */
-    void (*dense)(const tt_sim *S, double th, double *d, double *v);
-    /* The current step was taken in full (NULL: nothing to keep). */
-    void (*accept)(tt_sim *S);
+    /* The type's state for the sim S (its cantilever and solver set); NULL when out of
+     * memory. */
+    void *(*alloc)(const tt_sim *S);
+    void (*free)(void *state);
     /* Forget the step-size controller's memory (a run from the free state). */
-    void (*reset)(tt_sim *S);
+    void (*reset)(void *state, const tt_sim *S);
+    /* The system changed (cantilever, observations, thermal force): re-plan (NULL:
+     * nothing to plan). */
+    void (*setup)(void *state, const tt_sim *S);
+    /* The state was changed from outside the steps (NULL: nothing kept of it). */
+    void (*invalidate)(void *state);
+    /* A cycle starts: the time within the cycle runs from 0 again, the last cycle having
+     * lasted T (NULL: nothing kept in time). */
+    void (*cycle)(void *state, double T);
+    /* Try the next step of the cycle [0, T): sets *outcome (TT_STEP_*); a status. */
+    int (*advance)(void *state, tt_sim *S, double T, int *outcome);
+    /* Redo the current step up to length h, where an event lies; a status. */
+    int (*redo)(void *state, tt_sim *S, double h);
+    /* d and v at fraction th of the current step. */
+    void (*dense)(const void *state, const tt_sim *S, double th, double *d, double *v);
+    /* Make the current step the point (tau, y), of length 0 (its dense output is that
+     * state at every fraction; NULL: the record's y0, y1 and derivatives suffice). */
+    void (*point)(void *state, const tt_sim *S);
+    /* The current step was taken in full (NULL: nothing to keep). */
+    void (*accept)(void *state, const tt_sim *S);
 };
 
 extern const tt_step_type tt_step_dopri5, tt_step_rk4, tt_step_radau;
-/* The method dispatch: tt_step_types[solver.method]. */
+/* The method dispatch: tt_step_types[solver.method] (steps.c). */
 extern const tt_step_type *const tt_step_types[3];
 
-/* The step-size control of the adaptive step types (dopri5, radau): a step of the
- * length the controller chose, rejected and retried shorter while its error exceeds 1.
- * Inline, with the caller's own type, so that its step and factor are direct calls. */
-static inline int tt_step_adaptive(tt_sim *S, double T, const tt_step_type *type, int *outcome)
+/* The state was changed from outside the steps: the derivative at it and what the step
+ * type kept of the last step no longer describe it. */
+static inline void tt_sim_invalidate(tt_sim *S)
 {
-    const double hmin = T * 1e-13;
-    double h = S->h;
-    if (h > T / 8)
-        h = T / 8; /* keeps turning points of a cycle within reach of the checks */
-    if (h > S->radau_hmax)
-        h = S->radau_hmax;
-    int last = 0;
-    if (S->nz_f) {
-        /* steps end on the thermal force's points, where its slope changes */
-        double tk = tt_noise_next_knot(S, hmin);
-        if (S->tau + h > tk - hmin) {
-            h = tk - S->tau;
-            last = 1; /* a step cut short does not shorten the next */
-        }
-    }
-    if (S->tau + h >= T - hmin) {
-        h = T - S->tau;
-        last = 1;
-    }
-    double err = type->apply(S, h);
-    double fac = type->factor(S, err);
-    if (fac > 5)
-        fac = 5;
-    if (fac < 0.2)
-        fac = 0.2;
-    S->last_rejected = err > 1;
-    if (err > 1) {
-        S->rejected++;
-        S->h = h * fac;
-        if (S->h < hmin)
-            return tt_error(TT_ENUM,
-                            "step size underflow at t = %.9g s (cycle %ld): the force law is "
-                            "too abrupt for tolerance %g",
-                            tt_sim_time(S) + S->tau, S->cycle, S->solver.tolerance);
-        *outcome = TT_STEP_RETRY;
-        return TT_OK;
-    }
-    if (!last || fac < 1)
-        S->h = h * fac;
-    *outcome = TT_STEP_TRIAL;
-    return TT_OK;
+    S->fsal_ok = 0;
+    if (S->type->invalidate)
+        S->type->invalidate(S->step);
 }
 
-/* The free flight (flight.c): exact steps out of contact, for dopri5. */
-void tt_flight_setup(tt_sim *S);
-void tt_flight_reset(tt_sim *S);
-/* A flight step if the tip is far enough from the surface: TT_STEP_TAKEN or
- * TT_STEP_RETRY, or -1 when it is dopri5's turn. */
-int tt_flight_advance(tt_sim *S, double T);
-void tt_flight_dense(const tt_sim *S, double th, double *d, double *v);
+/* The system changed: the step type re-plans. */
+static inline void tt_step_setup(tt_sim *S)
+{
+    if (S->type->setup)
+        S->type->setup(S->step, S);
+}
 
 /* Dense output of d and v at fraction th of the current step. */
 static inline void tt_step_dense(const tt_sim *S, double th, double *d, double *v)
 {
-    if (S->step_flight)
-        tt_flight_dense(S, th, d, v);
-    else
-        S->type->dense(S, th, d, v);
+    S->type->dense(S->step, S, th, d, v);
 }
 
-/* Event functions on the dense output (events.c): penetration past a threshold, and
+/* Event functions on the dense output (dense.c): penetration past a threshold, and
  * the relative velocity (for turning points). */
 static inline double tt_event_delta(const tt_sim *S, double th, double thr)
 {
     double d, v;
     tt_step_dense(S, th, &d, &v);
-    return d - (S->s0 + S->sdot * (S->step_tau + th * S->step_h)) - thr;
+    return d - (S->sys.s0 + S->sys.sdot * (S->step_tau + th * S->step_h)) - thr;
 }
 
 static inline double tt_event_vel(const tt_sim *S, double th)
 {
     double d, v;
     tt_step_dense(S, th, &d, &v);
-    return v - S->sdot;
+    return v - S->sys.sdot;
 }
 
+/* A dense-output polynomial of d and v (five coefficients, dopri5's or radau's) that is
+ * the constant y: a step of length 0. */
+static inline void tt_poly_point(double p[5][2], const double *y)
+{
+    for (int i = 0; i < 2; i++) {
+        p[0][i] = y[i];
+        p[1][i] = p[2][i] = p[3][i] = p[4][i] = 0;
+    }
+}
+
+/* The zero of an event function (which = 0: penetration minus thr, 1: relative
+ * velocity) on [a, b] of the current step (dense.c). */
 double tt_event_root(const tt_sim *S, int which, double thr, double a, double b, double fa,
                      double fb);
+
+/* Contact events (events.c). */
 double tt_event_find(const tt_sim *S);
 int tt_event_take(tt_sim *S, double th);
 
@@ -133,8 +116,5 @@ int tt_event_take(tt_sim *S, double th);
 void tt_observe(tt_sim *S, double th);
 /* The sample at the cycle start (k = 0), before any step. */
 void tt_observe_start(tt_sim *S);
-
-/* Take the current step (already computed into y1) in full (cycle.c). */
-void tt_step_accept(tt_sim *S);
 
 #endif
