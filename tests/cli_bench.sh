@@ -117,7 +117,7 @@ awk '/^noise +h_sd_ratio/ { t = 1; next } /^#/ || /^$/ { t = 0; next }
 # The lesson figure (--quick: the 40 Hz lines' setting, two lines): its row with finite
 # figures, the every-cycle tier integrating every cycle and the default tier fewer, and
 # the counts of why, per line, the model having run cycles.
-awk '/^setting +tier +rt\/cpu_s/ { t = 1; next } /^#/ || /^$/ || /^ / { t = 0; next }
+awk '/^setting +tier +rt\/cpu_s/ { t = 1; next } /^ / { next } /^#/ || /^$/ { t = 0; next }
   t { split($(NF - 2), h, "/"); split($(NF - 1), p, "/")
       if (!($1 == "40" && $(NF - 6) == "envelope" && $(NF - 5) > 0 && $(NF - 4) > 0 && $(NF - 4) < 100 &&
             $(NF - 3) > 0 && $NF == 100.0 && h[1] >= h[2] && h[2] >= 0 && p[1] >= p[2] && p[2] >= 0 && h[1] < 1e3)) {
