@@ -14,7 +14,9 @@
  * height edge (a cycle whose end's surface differs from its start's), when a cycle's
  * contact (touching or not, the flag at its start and end) differs from its
  * neighbours', at the start of each phase (settling, trace, retrace), and after a
- * failed check on the shortest stretch. */
+ * failed check on the shortest stretch. Where the tip grazes, scan_envelope_graze.c
+ * runs a model per branch; the controller's decisions are counted per thread
+ * (tiptap/instrument/scan_envelope_stops.h). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
