@@ -114,4 +114,21 @@ awk '/^noise +h_sd_ratio/ { t = 1; next } /^#/ || /^$/ { t = 0; next }
   END { if (rows != 3) { print rows " rows"; b = 1 } exit b }' "$out" >"$tmp/ratio.bad" &&
   ok "noise: the default tier's sds those of every cycle within sampling error" || bad "noise ratios: $(cat "$tmp/ratio.bad")"
 
+# The lesson figure (--quick: the 40 Hz lines' setting, two lines): its row with finite
+# figures, the every-cycle tier integrating every cycle and the default tier fewer, and
+# the counts of why, per line, the model having run cycles.
+awk '/^setting +tier +rt\/cpu_s/ { t = 1; next } /^ / { next } /^#/ || /^$/ { t = 0; next }
+  t { split($(NF - 2), h, "/"); split($(NF - 1), p, "/")
+      if (!($1 == "40" && $(NF - 6) == "envelope" && $(NF - 5) > 0 && $(NF - 4) > 0 && $(NF - 4) < 100 &&
+            $(NF - 3) > 0 && $NF == 100.0 && h[1] >= h[2] && h[2] >= 0 && p[1] >= p[2] && p[2] >= 0 && h[1] < 1e3)) {
+        print $0; b = 1 }
+      rows++ }
+  /^setting +model +check_pass/ { w = 1; next }
+  w && /^40 Hz lines/ { if (!($(NF - 15) > 0 && $(NF - 8) > 0)) { print "why: " $0; b = 1 } whys++ }
+  END { if (rows != 1 || whys != 1) { print rows " rows, " whys " why rows"; b = 1 } exit b }' "$out" >"$tmp/lesson.bad" &&
+  ok "lesson: the 40 Hz lines' row and its counts" || bad "lesson: $(cat "$tmp/lesson.bad")"
+err=$("$tiptap" bench --lesson-lines 1 2>&1 >/dev/null)
+[ "$err" = "tiptap bench: --lesson-lines: '1' is not a whole number from 2 to 64" ] && ok "--lesson-lines 1 refused" ||
+  bad "--lesson-lines 1: '$err'"
+
 exit $fail

@@ -91,4 +91,10 @@ const char *bench_blend_scene(void);
  * scene's default tier, seeds 1 to seeds, against the noise-free reference ref. */
 int bench_noise_figure(const bench_sample *s, const bench_run *ref, int seeds);
 
+/* The lesson figure: the teaching scene (bench_lesson_scene) at each of the lesson's
+ * settings, lines 0 to lines - 1 stepped one at a time on the default tier and on the
+ * every-cycle tier (quick: the last, 40 Hz lines, only). */
+const char *bench_lesson_scene(void);
+int bench_lesson_figure(long lines, int quick);
+
 #endif

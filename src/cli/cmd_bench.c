@@ -16,7 +16,8 @@
 static void help(void)
 {
     printf("Usage: tiptap bench [--cycles N] [--seeds N] [--quick] [--no-steady] [--no-imaging]\n"
-           "                    [--no-noise] [--no-scenes] [--print-scene] [--print-blend-scene]\n"
+           "                    [--no-noise] [--no-scenes] [--no-lesson] [--lesson-only]\n"
+           "                    [--lesson-lines N] [--print-scene] [--print-blend-scene]\n"
            "Benchmark on the standard tapping scene (300 kHz, Q 400, 40 N/m, 20 nm free\n"
            "amplitude, polymer with adhesion, 16 nm rest separation).\n\n"
            "Prints, for each solver setting: simulated cantilever cycles per wall-clock\n"
@@ -41,6 +42,15 @@ static void help(void)
            "Q 1e4 (examples/extreme/vacuum-q1e4.ini; 0.5 nm steps, 256 pixels at 1 Hz),\n"
            "every cycle at tolerance 1e-8 and the default tier against the every-cycle\n"
            "reference.\n\n"
+           "The lesson figure: the teaching scene of examples/feedback-tuning (scans/standard.ini,\n"
+           "surfaces/grating.ini, common.ini: 64 pixels at 2 Hz, thermal and detector noise)\n"
+           "at each lesson setting (ki 100 Hz, 1.18, 4, 10 and 30 kHz; P 5; 40 Hz lines), its\n"
+           "lines stepped one at a time on one thread as tiptap live's engine steps them\n"
+           "(tt_scan_step; tiptap scan runs the same line code): per setting the default\n"
+           "tier's real time per CPU second (median over the lines after the first), its share\n"
+           "of cycles integrated, the every-cycle tier's real time on the same lines, and the\n"
+           "height and phase difference between the two; then why the envelope tier\n"
+           "integrated its cycles (its controller's counts per line).\n\n"
            "  --cycles N      cycles timed per setting of the steady figure (10 to 1e9;\n"
            "                  default 5000, 200 with --quick)\n"
            "  --seeds N       noise seeds of the noise figure (1 to 100; default 3)\n"
@@ -52,6 +62,11 @@ static void help(void)
            "                  figure needs it)\n"
            "  --no-noise      skip the noise figure\n"
            "  --no-scenes     skip the scene figures (README main job, Q 1e4)\n"
+           "  --no-lesson     skip the lesson figure\n"
+           "  --lesson-only   the lesson figure alone\n"
+           "  --lesson-lines N\n"
+           "                  lines per lesson setting (2 to 64; default 7, 2 with --quick,\n"
+           "                  which runs only the 40 Hz lines' setting)\n"
            "  --print-scene   print the standard scene and exit\n"
            "  --print-blend-scene\n"
            "                  print the README main job's scene and exit\n");
@@ -211,11 +226,14 @@ int cmd_bench(int argc, char **argv)
                                          {"no-imaging", no_argument, NULL, 'i'},
                                          {"no-noise", no_argument, NULL, 'N'},
                                          {"no-scenes", no_argument, NULL, 'e'},
+                                         {"no-lesson", no_argument, NULL, 'l'},
+                                         {"lesson-only", no_argument, NULL, 'L'},
+                                         {"lesson-lines", required_argument, NULL, 'm'},
                                          {NULL, 0, NULL, 0}};
     static const cli_spec spec = {"bench", 0, opts, "", help};
     cli_args args = {0}; /* no --set: nothing to free */
-    long n = -1, seeds = -1;
-    int steady = 1, imaging = 1, noise = 1, scenes = 1, quick = 0, print_scene = 0;
+    long n = -1, seeds = -1, lesson_lines = -1;
+    int steady = 1, imaging = 1, noise = 1, scenes = 1, lesson = 1, quick = 0, print_scene = 0;
     int c;
     while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) {
         switch (c) {
@@ -232,6 +250,12 @@ int cmd_bench(int argc, char **argv)
         case 'i': imaging = 0; break;
         case 'N': noise = 0; break;
         case 'e': scenes = 0; break;
+        case 'l': lesson = 0; break;
+        case 'L': steady = imaging = noise = scenes = 0; break;
+        case 'm':
+            if (cli_whole("bench", "--lesson-lines", optarg, 2, 64, NULL, &lesson_lines))
+                return CLI_USAGE;
+            break;
         case 'p': print_scene = 1; break;
         case 'b': print_scene = 2; break;
         }
@@ -265,6 +289,9 @@ int cmd_bench(int argc, char **argv)
         rc = bench_steady(st, &ap, n);
     if (!rc && (imaging || noise || scenes))
         rc = bench_images(scene, &lines, imaging, noise, scenes, (int)seeds);
+    /* seven lines: the first engages and settles, six are the figures' median */
+    if (!rc && lesson)
+        rc = bench_lesson_figure(lesson_lines > 0 ? lesson_lines : quick ? 2 : 7, quick);
     tt_setup_free(st);
     tt_scene_free(scene);
     return rc ? cli_fail(rc, NULL) : CLI_OK;

@@ -14,22 +14,37 @@
  * height edge (a cycle whose end's surface differs from its start's), when a cycle's
  * contact (touching or not, the flag at its start and end) differs from its
  * neighbours', at the start of each phase (settling, trace, retrace), and after a
- * failed check on the shortest stretch. */
+ * failed check on the shortest stretch. Where the tip grazes, scan_envelope_graze.c
+ * runs a model per branch; the controller's decisions are counted per thread
+ * (tiptap/instrument/scan_envelope_stops.h). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "scan_private.h"
-#include "tiptap/physics/contact.h"
+#include "scan_envelope_private.h"
+#include "tiptap/instrument/scan_envelope_stops.h"
 #include "tiptap/solver/noise.h"
 #include "tiptap/util/error.h"
 
-enum {
-    M_MIN = 4,       /* a stretch's first length, and the least after a failure */
-    M_MAX = 1024,    /* its longest: the checks then cost about a thousandth of the cycles */
-    WAIT_MIN = 16,   /* quiet integrated cycles before the model is tried */
-    WAIT_MAX = 128  /* the same after repeated failures (doubling) */
-};
+/* The controller's decisions, counted per thread (tiptap/instrument/scan_envelope_stops.h). */
+static _Thread_local long stops[TT_ENV_STOPS];
+
+void tt_scan_envelope_stops(long counts[TT_ENV_STOPS])
+{
+    memcpy(counts, stops, sizeof stops);
+}
+
+void tt_scan_envelope_stops_reset(void) { memset(stops, 0, sizeof stops); }
+
+const char *tt_scan_envelope_stop_name(int i)
+{
+    static const char *const names[TT_ENV_STOPS] = {
+        "model", "check_pass", "check_error", "check_contact", "check_touch", "check_cycle",
+        "shortest", "full", "full_edge", "full_change", "full_redo", "full_wait", "full_graze",
+        "end_sample", "end_reach", "build"};
+    return i >= 0 && i < TT_ENV_STOPS ? names[i] : "?";
+}
+
 
 /* The surface at the cycle's end differs from its start's: the cycle crosses an edge,
  * and is integrated.
@@ -92,14 +107,6 @@ static int record(const line_ctx *L, line_state *st, const cycle_in *in, const d
     return tt_scan_cycle_end(L, st, in, x[TT_ENV_PEAK], x[TT_ENV_INDENT], x[TT_ENV_ETS]);
 }
 
-/* A point the line can return to: its state after a cycle, the lock-in's filter, the
- * block's samples so far and the sums of the pixels the next stretch can touch. */
-typedef struct {
-    line_state st;
-    int contact;
-    long p0, p1; /* saved pixels, p0 <= p1 (none: p0 > p1) */
-    pixel_acc *pix;
-} snapshot;
 
 static void snap_take(const line_ctx *L, const line_state *st, int contact, long stretch,
                       snapshot *sn)
@@ -138,80 +145,8 @@ static void snap_restore(const line_ctx *L, const snapshot *sn, line_state *st)
     tt_sim_set_state(W->sim, st->x[0], st->x[1], sn->contact);
 }
 
-/* The last branch called in the grazing mode and its inputs (valid while the models
- * are unchanged). */
-typedef struct {
-    double x[2], s0, sdot, tc, reach;
-    int b, ok, valid;
-} lookahead;
 
-/* The tier's controller within a phase. */
-typedef struct {
-    int model;       /* the model runs; else every cycle is integrated */
-    long left;       /* model cycles before the stretch's check */
-    long ran;        /* model cycles run in the stretch so far */
-    long m;          /* the next stretch's length */
-    long quiet, wait; /* integrated cycles without a change of contact or surface; needed */
-    long redo;       /* integrate every cycle up to this one (a rolled-back stretch) */
-    int prev_touch;
-    int rebuild;     /* the Jacobians must be taken anew before the model runs */
-    int fails;       /* failed shortest stretches since a check passed (noise on) */
-    int graze;       /* the tip grazes: a model per branch (graze.h), the free one built
-                      * with probes (free_ok) and the touch one fitted */
-    int free_ok;
-    int prev_branch; /* the last integrated cycle could be on a branch of the grazing model */
-    int exact;       /* the tip's state is an integrated cycle's end (no model cycle since) */
-    long same;       /* integrated cycles in a row on the last one's branch (grazing) */
-    lookahead la;
-    double *red, *pred; /* a check's reduced observables and their prediction */
-    double smooth;   /* the sample's smooth course (its position mid-cycle less the z
-                      * piezo's noise) where the model was last anchored on a cycle */
-    snapshot sn;
-    long integrated; /* cycles of the run integrated, each once */
-    char *seen;      /* the phase's cycles integrated so far: a cycle integrated again
-                      * (rolled back, a failed check) or a Jacobian's is not counted */
-    long nseen;
-} controller;
 
-/* The sample's position mid-cycle, the envelope model's input. */
-static double sample_mid(const cycle_in *in)
-{
-    return 0.5 * (in->sa + in->sb);
-}
-
-/* Integrate cycle k from the sim's state: its observables and end state (st->x). */
-static int integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_cycle *cy,
-                     double *obs, int *c1, controller *c)
-{
-    tt_sim *sim = L->W->sim;
-    int rc = tt_scan_integrate(L, st, in, cy);
-    if (rc)
-        return rc;
-    c->la.valid = 0; /* the models may change on this cycle */
-    if (in->k >= 0 && in->k < c->nseen && !c->seen[in->k]) {
-        c->seen[in->k] = 1;
-        c->integrated++;
-    }
-    tt_envelope_observe(L->W->env, tt_sim_samples(sim), cy, obs);
-    tt_envelope_observe_probes(L->W->env, tt_sim_probes(sim), obs);
-    tt_sim_get_state(sim, &st->x[0], &st->x[1], c1);
-    st->x2[0] = st->x2[1] = 0;
-    return TT_OK;
-}
-
-/* How much more than its last cycle's a stretch of m model cycles can drift, past what
- * the checks were measured to hold (docs/dynamics.md, "Any Q"): each cycle's local
- * error is carried on, damped over Q / pi cycles, so a stretch's drift is its check's
- * error times min(m, Q / pi). The tier's control was measured up to Q 3000 with the
- * check alone; above it (a vacuum cantilever's Q 1e4 and more, whose transients last
- * the whole line) the check is tightened to the drift of the standard cantilever's
- * stretches (Q 400: 127 cycles), so that no stretch drifts further than those do. */
-static double drift(const line_ctx *L, long m)
-{
-    const double Q = L->S->cantilever.Q, held = 400 / M_PI;
-    const double n = fmin((double)m, Q / M_PI);
-    return Q > 3000 && n > held ? n / held : 1;
-}
 
 /* The model is too far from where its derivatives were taken for a cycle from x0 that
  * touched (or began in contact): a nearer kept one is looked for. A free cycle's map is
@@ -270,7 +205,7 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
     tt_sim_set_state(L->W->sim, x0[0], x0[1], c0);
     tt_cycle cy;
     int c1;
-    int irc = integrate(L, st, in, &cy, obs, &c1, c);
+    int irc = tt_scan_env_integrate(L, st, in, &cy, obs, &c1, c);
     if (irc == TT_EINTR) {
         *rc = irc;
         return 0;
@@ -279,11 +214,17 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
         /* a model state the cycle cannot be integrated from is a failed check: the
          * stretch is run again from its start, and at last every cycle */
         tt_error_clear();
+        stops[TT_ENV_CHECK_CYCLE]++;
         return 0;
     }
-    double err = tt_envelope_error(env, xp, pred, st->x, obs) * drift(L, c->m);
-    if (!(err <= L->tol + L->rel * tt_envelope_reach(env, x0, in->sa, sdot)) || c1 != c0 || tt_envelope_touched(&cy) != tt_envelope_anchor_touched(env))
+    double err = tt_envelope_error(env, xp, pred, st->x, obs) * tt_scan_env_drift(L, c->m);
+    if (!(err <= L->tol + L->rel * tt_envelope_reach(env, x0, in->sa, sdot)) || c1 != c0 || tt_envelope_touched(&cy) != tt_envelope_anchor_touched(env)) {
+        stops[c1 != c0 ? TT_ENV_CHECK_CONTACT
+              : tt_envelope_touched(&cy) != tt_envelope_anchor_touched(env) ? TT_ENV_CHECK_TOUCH
+                                                                           : TT_ENV_CHECK_ERROR]++;
         return 0;
+    }
+    stops[TT_ENV_CHECK_PASS]++;
     c->smooth = sample_mid(in) - in->zn;
     if (far_off(L, x0, in, tt_envelope_touched(&cy), c0) && !recall(L, st, c, in, x0, c0, &cy) &&
         worth_a_model(L, st, in, x0)) {
@@ -302,285 +243,6 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
     return 1;
 }
 
-/* Grazing touches (tiptap/solver/graze.h): where the tip touches in some cycles and
- * not in others, the free branch's model (its probes of the gap near the closest
- * approach among its observables) predicts whether a cycle reaches jump-in and when,
- * and the touch branch's model, fitted to the touch cycles integrated lately, gives a
- * touch cycle from its start, the sample and that time. Not with noise on: the thermal
- * and detector noise's linear response is that of one branch; the z piezo's moves the
- * sample by tens of picometres from cycle to cycle, enough to change a grazing cycle's
- * branch, and the branch models (first order, the touch fit linear in d, d', s) lack the
- * travel input and the second order the noisy model needs. There the cycles that
- * change contact are integrated, each one. */
-static int graze_possible(const line_ctx *L, const line_state *st)
-{
-    return L->W->graze && !tt_envelope_noise_size(L->W->env) && !(L->S->zn.sd > 0) &&
-           isfinite(tt_contact_jumpin(L->S->contacts[st->current]));
-}
-
-/* A cycle on a branch of the grazing model: out of contact at its start and end, and
- * touching once (a jump-in and a pull-off) or not at all. */
-static int on_branch(const tt_cycle *cy, int c0, int c1)
-{
-    return c0 == 0 && c1 == 0 && cy->events == (tt_envelope_touched(cy) ? 2 : 0);
-}
-
-static void graze_enter(const line_ctx *L, const line_state *st, controller *c)
-{
-    c->graze = 1;
-    c->free_ok = 0;
-    c->quiet = 0;
-    c->fails = 0;
-    tt_graze_reset(L->W->graze, tt_contact_jumpin(L->S->contacts[st->current]));
-}
-
-static void graze_leave(const line_ctx *L, controller *c)
-{
-    c->graze = 0;
-    c->free_ok = 0;
-    c->rebuild = 1;
-    tt_graze_disarm(L->W->graze, L->W->sim);
-}
-
-/* A free cycle just integrated from x0 (the sim at its end): the probes aimed at its
- * closest approach, the cycle run again to read them, and the free model built on it.
- * 1: built. */
-static int graze_build_free(const line_ctx *L, const cycle_in *in, const double x0[2], double *obs)
-{
-    worker *W = L->W;
-    tt_sim *sim = W->sim;
-    const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
-    if (!tt_graze_aim(W->graze, sim, tt_sim_samples(sim), L->N))
-        return 0;
-    double x1[2];
-    int c1;
-    tt_sim_get_state(sim, &x1[0], &x1[1], &c1);
-    tt_cycle cy;
-    tt_sim_set_state(sim, x0[0], x0[1], 0);
-    tt_sim_set_sample(sim, in->sa, sdot);
-    if (tt_sim_cycle(sim, &cy) != TT_OK) {
-        tt_error_clear();
-        tt_sim_set_state(sim, x1[0], x1[1], c1);
-        return 0;
-    }
-    tt_envelope_observe(W->env, tt_sim_samples(sim), &cy, obs);
-    tt_envelope_observe_probes(W->env, tt_sim_probes(sim), obs);
-    long jacobian = 0; /* its cycles are not the run's */
-    return tt_envelope_build(W->env, sim, x0, 0, in->sa, sdot, &cy, obs, &jacobian);
-}
-
-/* The star of touch cycles about the deepest held (tt_graze_deepest), run from the
- * sim's state and put back. 1: all touched once. */
-static int graze_pair(const line_ctx *L, const cycle_in *in, double *obs, double *red)
-{
-    worker *W = L->W;
-    tt_sim *sim = W->sim;
-    const double T = L->S->cantilever.T, sdot = (in->sb - in->sa) / T, A0 = L->S->A0;
-    const double h[3] = {1e-4 * A0, 1e-4 * A0 * L->S->cantilever.wd, 1e-4 * A0};
-    double x0[2], smid, xs[2], x1[2];
-    int cs, c1, ok = tt_graze_deepest(W->graze, x0, &smid);
-    tt_sim_get_state(sim, &xs[0], &xs[1], &cs);
-    for (int i = 0; i < 6 && ok; i++) {
-        double u[3] = {0, 0, 0};
-        u[i / 2] = i % 2 ? h[i / 2] : -h[i / 2];
-        const double xp[2] = {x0[0] + u[0], x0[1] + u[1]}, ds = u[2];
-        tt_cycle cy;
-        tt_sim_set_state(sim, xp[0], xp[1], 0);
-        tt_sim_set_sample(sim, smid + ds - 0.5 * sdot * T, sdot);
-        if (tt_sim_cycle(sim, &cy) != TT_OK) {
-            tt_error_clear();
-            ok = 0;
-            break;
-        }
-        tt_sim_get_state(sim, &x1[0], &x1[1], &c1);
-        ok = on_branch(&cy, 0, c1) && tt_envelope_touched(&cy);
-        if (!ok)
-            break;
-        tt_envelope_observe(W->env, tt_sim_samples(sim), &cy, obs);
-        tt_envelope_reduce_obs(W->env, obs, red);
-        tt_graze_add_pair(W->graze, i, xp, smid + ds, cy.t_contact, x1, red);
-    }
-    tt_sim_set_state(sim, xs[0], xs[1], cs);
-    return ok;
-}
-
-/* A touch integrated from x0 to x1 (its reduced observables in c->red) joins the touch
- * model's cycles, the star about the deepest is run anew when the sample has moved from
- * it, and the model is fitted again (c->red and c->pred are overwritten). */
-static void graze_learn(const line_ctx *L, controller *c, const cycle_in *in, const double x0[2],
-                        const tt_cycle *cy, const double x1[2])
-{
-    tt_graze *g = L->W->graze;
-    tt_graze_add(g, x0, sample_mid(in), cy->t_contact, x1, c->red);
-    /* no fit while the sample moves too fast for 8 touches within its reach (a
-     * transient), and the star run anew only where it is missing, or stale and the fit
-     * fails without it */
-    if (!c->free_ok || tt_graze_near(g) < 8)
-        return;
-    if (tt_graze_star_due(g, 0))
-        graze_pair(L, in, c->pred, c->red);
-    if (!tt_graze_fit(g, 2 * L->tol) && tt_graze_star_due(g, 1)) {
-        graze_pair(L, in, c->pred, c->red);
-        tt_graze_fit(g, 2 * L->tol);
-    }
-}
-
-/* A cycle integrated in the grazing mode while the model is off, from x0 to st->x: a
- * free one anchors the free model (or builds it, once the cycles have been quiet long
- * enough), a touch one joins the touch model's fit. 1: both models are ready. */
-static int graze_full(const line_ctx *L, line_state *st, controller *c, const cycle_in *in,
-                      const double x0[2], const tt_cycle *cy, double *obs, int branch)
-{
-    worker *W = L->W;
-    if (!c->graze)
-        graze_enter(L, st, c);
-    /* a tip that keeps to one branch while the model is off taps (or flies) as the one
-     * model of a smooth map follows it */
-    if (!branch || c->same >= WAIT_MIN * 4) {
-        graze_leave(L, c);
-        c->quiet = 0;
-        return 0;
-    }
-    const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
-    c->quiet = st->k >= c->redo ? c->quiet + 1 : 0;
-    if (tt_envelope_touched(cy)) {
-        tt_envelope_reduce_obs(W->env, obs, c->red);
-        graze_learn(L, c, in, x0, cy, st->x);
-    } else if (c->free_ok) {
-        tt_envelope_anchor(W->env, x0, in->sa, sdot, st->x, cy, obs);
-    } else if (c->quiet >= c->wait) {
-        c->free_ok = graze_build_free(L, in, x0, c->pred);
-    }
-    if (st->k + 1 >= L->ncyc)
-        return 0;
-    return c->free_ok && tt_graze_fitted(W->graze) && c->quiet >= c->wait;
-}
-
-/* A free cycle's greatest indentation, where tracked, from its probes. */
-static void free_indent(const line_ctx *L, double *red, double reach)
-{
-    double *x = red + tt_lockin_components(L->W->lockin);
-    if (!isnan(x[TT_ENV_INDENT]))
-        x[TT_ENV_INDENT] = reach;
-}
-
-/* The branch of a cycle from the tip's state x with the sample at s0 at its start
- * moving at sdot, and whether the model can follow it: a free cycle, or a touch the
- * fit covers. */
-static int graze_call(const line_ctx *L, lookahead *la, const double x[2], double s0,
-                      double sdot, double *tc, double *reach, int *b)
-{
-    worker *W = L->W;
-    /* a model cycle calls its successor's branch as it ends: the next cycle's call is
-     * the same when its inputs are */
-    if (!(la->valid && la->x[0] == x[0] && la->x[1] == x[1] && la->s0 == s0 && la->sdot == sdot)) {
-        double d[TT_GRAZE_PROBES];
-        tt_envelope_predict_probes(W->env, x, s0, sdot, d);
-        la->b = tt_graze_branch(W->graze, d, s0, sdot, &la->tc, &la->reach);
-        la->ok = la->b == TT_GRAZE_FREE ||
-                 (la->b == TT_GRAZE_TOUCH &&
-                  tt_graze_covers(W->graze, x, s0 + 0.5 * sdot * L->S->cantilever.T, la->tc));
-        la->x[0] = x[0];
-        la->x[1] = x[1];
-        la->s0 = s0;
-        la->sdot = sdot;
-        la->valid = 1;
-    }
-    *b = la->b;
-    *tc = la->tc;
-    *reach = la->reach;
-    return la->ok;
-}
-
-/* A model cycle in the grazing mode. 0 when the model cannot follow this cycle or the
- * next (too close to call, or a touch outside the fit): the stretch then ends with a
- * check on this cycle, so that the next starts from an integrated state and is
- * integrated as it is (c->exact). */
-static int graze_step(const line_ctx *L, line_state *st, controller *c, const cycle_in *in,
-                      double *obs)
-{
-    worker *W = L->W;
-    const double T = L->S->cantilever.T, sdot = (in->sb - in->sa) / T;
-    double tc, reach, x1[2];
-    int b;
-    if (!graze_call(L, &c->la, st->x, in->sa, sdot, &tc, &reach, &b))
-        return 0;
-    if (b == TT_GRAZE_FREE) {
-        tt_envelope_predict_reduced(W->env, st->x, in->sa, sdot, x1, obs);
-        free_indent(L, obs, reach);
-    } else {
-        tt_graze_predict(W->graze, st->x, sample_mid(in), tc, x1, obs);
-    }
-    if (!graze_call(L, &c->la, x1, in->sb, sdot, &tc, &reach, &b))
-        return 0;
-    st->x[0] = x1[0];
-    st->x[1] = x1[1];
-    return 1;
-}
-
-/* The check closing a stretch in the grazing mode: cycle k integrated from the model's
- * state against the model of the branch it took (a branch the probes called otherwise
- * fails it). Touch cycles join the touch model's fit, passed or not. As check. */
-static int graze_check(const line_ctx *L, line_state *st, const cycle_in *in, double *obs,
-                       controller *c, int *rc)
-{
-    worker *W = L->W;
-    tt_envelope *env = W->env;
-    const double sdot = (in->sb - in->sa) / L->S->cantilever.T, smid = sample_mid(in);
-    const double x0[2] = {st->x[0], st->x[1]};
-    const int exact = c->exact;
-    double gaps[TT_GRAZE_PROBES], tc, reach, xp[2];
-    tt_envelope_predict_probes(env, x0, in->sa, sdot, gaps);
-    const int b = tt_graze_branch(W->graze, gaps, in->sa, sdot, &tc, &reach);
-    tt_sim_set_state(W->sim, x0[0], x0[1], 0);
-    tt_cycle cy;
-    int c1, irc = integrate(L, st, in, &cy, obs, &c1, c);
-    if (irc == TT_EINTR) {
-        *rc = irc;
-        return 0;
-    }
-    if (irc != TT_OK) {
-        tt_error_clear();
-        return 0;
-    }
-    const int touch = tt_envelope_touched(&cy);
-    if (!on_branch(&cy, 0, c1))
-        return 0;
-    tt_envelope_reduce_obs(env, obs, c->red);
-    if (exact) { /* from an integrated state: nothing to check, all to learn */
-        if (touch) {
-            graze_learn(L, c, in, x0, &cy, st->x);
-        } else {
-            tt_envelope_anchor(env, x0, in->sa, sdot, st->x, &cy, obs);
-        }
-        return 2;
-    }
-    const int nr = tt_graze_outputs(W->graze) - 2;
-    if (touch) {
-        if (b == TT_GRAZE_FREE || !isfinite(tc) || !tt_graze_fitted(W->graze)) {
-            graze_learn(L, c, in, x0, &cy, st->x);
-            return 0;
-        }
-        tt_graze_predict(W->graze, x0, smid, tc, xp, c->pred);
-    } else {
-        if (b == TT_GRAZE_TOUCH)
-            return 0;
-        tt_envelope_predict_reduced(env, x0, in->sa, sdot, xp, c->pred);
-        free_indent(L, c->pred, reach);
-        tt_envelope_predict_probes(env, x0, in->sa, sdot, c->pred + nr);
-    }
-    /* a touch's peak force and indentation to their floors (tt_graze_alloc) */
-    double gerr = drift(L, c->m) * (touch ? tt_graze_error(W->graze, xp, c->pred, st->x, c->red, L->tol)
-                        : tt_envelope_error_reduced(env, xp, c->pred, st->x, c->red) / L->tol);
-    if (touch) /* learnt from, passed or not */
-        graze_learn(L, c, in, x0, &cy, st->x);
-    if (!(gerr <= 1))
-        return 0;
-    if (!touch)
-        tt_envelope_anchor(env, x0, in->sa, sdot, st->x, &cy, obs);
-    return 1;
-}
-
 /* A cycle integrated while the model is off. The model comes back on it at once when
  * only a check failed (re-anchored, its Jacobians kept), and is built anew after an
  * edge, a change of contact or a failure on the shortest stretch, once the cycles have
@@ -594,20 +256,24 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
     int c0, c1;
     tt_sim_get_state(sim, &x0[0], &x0[1], &c0);
     tt_cycle cy;
-    if ((*rc = integrate(L, st, in, &cy, obs, &c1, c)))
+    stops[TT_ENV_FULL]++;
+    if ((*rc = tt_scan_env_integrate(L, st, in, &cy, obs, &c1, c)))
         return 0;
     int touch = tt_envelope_touched(&cy);
     /* a tip that touches in one cycle and not in the next, both on a branch, grazes */
     const int calm = !edge && !in->edge_next;
-    const int branch = calm && graze_possible(L, st) && on_branch(&cy, c0, c1);
+    const int branch = calm && tt_scan_graze_possible(L, st) && tt_scan_on_branch(&cy, c0, c1);
     const int alternates = branch && c->prev_branch && touch != c->prev_touch;
     c->prev_branch = branch;
     if (c->graze || alternates) {
         c->same = touch == c->prev_touch ? c->same + 1 : 0;
         c->prev_touch = touch;
-        return graze_full(L, st, c, in, x0, &cy, obs, branch);
+        stops[TT_ENV_FULL_GRAZE]++;
+        return tt_scan_graze_full(L, st, c, in, x0, &cy, obs, branch);
     }
     int quiet = calm && touch == c->prev_touch && c1 == c0;
+    if (!quiet || st->k < c->redo)
+        stops[!calm ? TT_ENV_FULL_EDGE : !quiet ? TT_ENV_FULL_CHANGE : TT_ENV_FULL_REDO]++;
     if (!quiet)
         c->rebuild = 1;
     quiet = quiet && st->k >= c->redo;
@@ -630,8 +296,11 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
         c->rebuild = 0;
         return 1;
     }
-    if (!far && c->quiet < c->wait)
+    if (!far && c->quiet < c->wait) {
+        stops[TT_ENV_FULL_WAIT]++;
         return 0;
+    }
+    stops[TT_ENV_BUILD]++;
     long jacobian = 0; /* its cycles are not the run's */
     c->smooth = sample_mid(in) - in->zn;
     if (tt_envelope_build(env, sim, x0, c0, in->sa, sdot, &cy, obs, &jacobian)) {
@@ -661,6 +330,7 @@ static void fail(const line_ctx *L, line_state *st, controller *c, long k)
         return;
     }
     c->model = 0;
+    stops[TT_ENV_SHORTEST]++;
     c->quiet = 0;
     c->redo = k + 1;
     if (c->graze) {
@@ -698,11 +368,15 @@ static int model_step2(const line_ctx *L, line_state *st, const controller *c,
                        const cycle_in *in, double sdot, double *obs)
 {
     tt_envelope *env = L->W->env;
-    if (!(fabs(sample_mid(in) - in->zn - c->smooth) <= L->edge))
+    if (!(fabs(sample_mid(in) - in->zn - c->smooth) <= L->edge)) {
+        stops[TT_ENV_END_SAMPLE]++;
         return 0;
+    }
     if (!(tt_envelope_reach(env, st->x, in->sa, sdot) <= L->reach)) {
-        if (!tt_envelope_switch(env, st->x, in->sa, sdot, (int)st->current, L->reach))
+        if (!tt_envelope_switch(env, st->x, in->sa, sdot, (int)st->current, L->reach)) {
+            stops[TT_ENV_END_REACH]++;
             return 0;
+        }
         st->x2[0] = st->x2[1] = 0;
     }
     double x1[2], x21[2];
@@ -727,10 +401,12 @@ static int model_step(const line_ctx *L, line_state *st, controller *c,
         return 0;
     if (L->reach > 0)
         return model_step2(L, st, c, in, sdot, obs);
-    if (!(fabs(tt_envelope_sample_offset(L->W->env, in->sa, sdot)) <= L->edge))
+    if (!(fabs(tt_envelope_sample_offset(L->W->env, in->sa, sdot)) <= L->edge)) {
+        stops[TT_ENV_END_SAMPLE]++;
         return 0;
+    }
     if (c->graze)
-        return graze_step(L, st, c, in, obs);
+        return tt_scan_graze_step(L, st, c, in, obs);
     double x1[2];
     tt_envelope_predict_reduced(L->W->env, st->x, in->sa, sdot, x1, obs);
     st->x[0] = x1[0];
@@ -744,7 +420,7 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c)
     double *obs = L->W->obs;
     int rc = TT_OK;
     if (c->graze)
-        graze_leave(L, c);
+        tt_scan_graze_leave(L, c);
     c->model = 0;
     c->quiet = 0;
     c->prev_touch = -1;
@@ -758,10 +434,11 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c)
         const int edge = edge_ahead(L, &in);
         int snap = 0, reduced = model_step(L, st, c, &in, edge, obs), pass = 0;
         if (reduced) {
+            stops[TT_ENV_MODEL]++;
             c->left--;
             c->ran++;
         } else if (c->model) {
-            pass = c->graze ? graze_check(L, st, &in, obs, c, &rc) : check(L, st, &in, obs, c, &rc);
+            pass = c->graze ? tt_scan_graze_check(L, st, &in, obs, c, &rc) : check(L, st, &in, obs, c, &rc);
             if (!pass) {
                 if (rc)
                     return rc;

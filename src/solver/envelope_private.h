@@ -88,6 +88,13 @@ static inline void tt_envelope_own_views(tt_envelope *e)
     e->Ljv = e->Lj;
 }
 
+/* The noise's covariance (envelope_noise.c), for a build: the flow's Jacobian at the
+ * cycle's samples from the cycles perturbed by h in d and d' (e->trk), and the thermal
+ * force's and detector's joint covariance factored into e->Lj (0: out of memory, or a
+ * singular flow). */
+void tt_envelope_flow_measured(tt_envelope *e, const double h[NIN]);
+int tt_envelope_thermal_covariance(tt_envelope *e);
+
 /* The kept models' storage freed (tt_envelope_free). */
 void tt_envelope_models_free(tt_envelope *e);
 
