@@ -335,6 +335,7 @@ static const struct {
     {"tilt_y", "a slope, no unit, such as '0.01', or a percentage such as '1 %'"},
     {"piezo_damping", "a number, no unit, such as '0.7'"},
     {"creep", "a fraction such as '0.02' or a percentage such as '2 %'"},
+    {"z_scale", "a number, no unit, such as '1.5'"},
 };
 
 const char *tt_scene_key_describe(const tt_scene_key *k)
