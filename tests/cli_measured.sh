@@ -42,7 +42,7 @@ grep -q "^type = measured$" "$tmp/again/scene.ini" && grep -q "^image = $tmp/fir
 
 # the same image from the first scan's .gwy, by its channel title
 "$tiptap" scan "$tmp/s.ini" "$tmp/m.ini" --set "surface.image=$tmp/first/scan.gwy" \
-  --set "surface.channel=height (trace)" -o "$tmp/gwy" -q || bad "re-imaged from the .gwy"
+  --set "surface.channel=Height" -o "$tmp/gwy" -q || bad "re-imaged from the .gwy"
 cmp -s "$tmp/again/topography_trace.gsf" "$tmp/gwy/topography_trace.gsf" &&
   bad "the .gwy's doubles gave the GSF's floats" || ok "the .gwy read (doubles, not the GSF's floats)"
 
@@ -50,7 +50,7 @@ cmp -s "$tmp/again/topography_trace.gsf" "$tmp/gwy/topography_trace.gsf" &&
 head -c $(($(stat -c %s "$tmp/first/height_trace.gsf") - 100)) "$tmp/first/height_trace.gsf" >"$tmp/cut.gsf"
 expect_error "truncated GSF" "[surface] image: $tmp/cut.gsf: truncated" \
   "$tiptap" scan "$tmp/s.ini" "$tmp/m.ini" --set "surface.image=$tmp/cut.gsf" -o "$tmp/no1"
-expect_error "missing channel" "no channel 'height'; expected a title or number of those it holds: 0 'height (trace)'" \
+expect_error "missing channel" "no channel 'height'; expected a title or number of those it holds: 0 'Height'" \
   "$tiptap" scan "$tmp/s.ini" "$tmp/m.ini" --set "surface.image=$tmp/first/scan.gwy" \
   --set "surface.channel=height" -o "$tmp/no2"
 expect_error "image smaller than the scan" "[surface] edges: $tmp/first/height_trace.gsf: the image covers 300 x 300 nm" \
