@@ -53,7 +53,8 @@ static void reconstruction(void **st)
     assert_int_equal(tip.rx, 8);
     tt_erosion_dilate(s, W, H, &tip, im);
     tt_erosion_erode(im, W, H, &tip, r);
-    size_t n = tt_erosion_certainty(im, r, W, H, &tip, 1e-13, c), counted = 0, tighter = 0;
+    size_t n = tt_erosion_certainty(im, r, W, H, &tip, 1e-13, c), counted = 0, tighter = 0, above = 0, broad = 0;
+    double worst = 0, worst_im = 0;
     for (size_t k = 0; k < W * H; k++) {
         if (!(im[k] >= s[k]))
             fail_msg("image below the surface at %zu", k);
@@ -67,11 +68,16 @@ static void reconstruction(void **st)
             assert_close(r[k] * 1e9, s[k] * 1e9, 1e-6);
         }
         tighter += im[k] - r[k] > 1e-9;
+        above += r[k] - s[k] > 1e-12;
+        broad += im[k] - s[k] > 1e-12;
+        worst = fmax(worst, r[k] - s[k]);
+        worst_im = fmax(worst_im, im[k] - s[k]);
     }
     assert_int_equal(counted, n);
     /* the tip touched most of the terraces (the share is quoted in docs/surfaces.md) */
-    print_message("certain: %zu of %d pixels (%.1f %%); %zu pixels > 1 nm below the image\n", n, W * H,
-                  100.0 * (double)n / (W * H), tighter);
+    print_message("certain: %zu of %d pixels (%.1f %%); %zu pixels > 1 nm below the image; %zu "
+                  "above the surface, by up to %.2f nm (the image: %zu, by up to %.2f nm)\n",
+                  n, W * H, 100.0 * (double)n / (W * H), tighter, above, worst * 1e9, broad, worst_im * 1e9);
     assert_true(n > W * H / 4);
     assert_true(tighter > 0);
     /* the pillar's top and the step's upper edge: the tip touched them */
