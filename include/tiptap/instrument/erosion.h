@@ -8,8 +8,8 @@
  *   dilation  I(x) = max over u of s(x + u) - t(u),
  *   erosion   r(y) = min over u of I(y - u) + t(u),
  * both over the pixels inside the image (nothing is assumed beyond its edges). The
- * erosion of a dilation is the opening of s: r <= s everywhere, r = s where the tip
- * touched (docs/surfaces.md, "The tip already in a measured image").
+ * erosion of a dilation is a closing of s: an upper bound, s <= r <= I everywhere,
+ * r = s where the tip touched (docs/surfaces.md, "The tip already in a measured image").
  *
  * Ownership: tt_tip_image_make fills a tip image the caller frees with
  * tt_tip_image_free; the other functions write into arrays the caller provides.
