@@ -216,6 +216,11 @@ static void scene_keys(void **st)
     assert_non_null(strstr(tt_error_message(), "measured_tip_radius"));
     assert_int_not_equal(load(&S, p, "measured_tip_shape = cone\nmeasured_tip_half_angle = 0 deg\n"), TT_OK);
     assert_non_null(strstr(tt_error_message(), "measured_tip_half_angle"));
+    /* a size without the shape that uses it */
+    assert_int_not_equal(load(&S, p, "measured_tip_radius = 8 nm\n"), TT_OK);
+    assert_non_null(strstr(tt_error_message(), "measured_tip_radius"));
+    assert_int_not_equal(load(&S, p, "measured_tip_shape = sphere\nmeasured_tip_half_angle = 20 deg\n"), TT_OK);
+    assert_non_null(strstr(tt_error_message(), "measured_tip_half_angle"));
     unlink(p);
 }
 
