@@ -43,3 +43,13 @@ $t profiles -q --title "re-imaged at 1 Hz: trace, retrace and the input (the 4 H
    -o examples/measured-reimage/profiles.png examples/measured-reimage/out
 find examples/measured-reimage/out -type f ! -name 'profile.csv' ! -name 'artefact_*.png' \
    ! -name 'height_trace.png' ! -name 'topography_trace.png' -delete
+# a grating imaged by a blunt tip, re-imaged sharp as it is and with the blunt tip eroded
+# out; only the profile lines and the blunt image (the others' input) are committed
+e=examples/eroded-reimage
+$t scan scans/quick.ini surfaces/grating.ini $e/blunt.ini -q -o $e/blunt
+$t scan scans/quick.ini $e/raw.ini -q -o $e/raw
+$t scan scans/quick.ini $e/eroded.ini -q -o $e/eroded
+$t profiles -q --title "100 nm lines and trenches: a blunt tip's image, re-imaged sharp as it is (raw) and eroded first" \
+   -o $e/profiles.png $e/blunt $e/raw $e/eroded
+find $e/blunt -type f ! -name profile.csv ! -name height_trace.gsf -delete
+find $e/raw $e/eroded -type f ! -name profile.csv -delete

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "scene_private.h"
+#include "tiptap/instrument/tip.h"
 #include "tiptap/io/files.h"
 #include "tiptap/util/error.h"
 
@@ -92,6 +93,19 @@ static int read_measured(const tt_scene *s, tt_surface_params *p)
     p->level = (tt_surface_level)enum_of(s, "level", levels, 3);
     p->line_level = (tt_surface_lines)enum_of(s, "line_level", lines, 5);
     p->edges = (tt_surface_edges)enum_of(s, "edges", edges, 3);
+    static const char *const tips[] = {"none", "sphere", "cone"};
+    /* the enum's order is tt_tip_kind's: none is the point tip, which erodes nothing */
+    p->measured_tip = enum_of(s, "measured_tip_shape", tips, 3);
+    /* a tip's size without the shape that uses it would be ignored silently */
+    if (p->measured_tip != TT_TIP_CONE && tt_scene_has(s, "surface", NULL, "measured_tip_half_angle"))
+        return tt_scene_fail(s, "surface", NULL, "measured_tip_half_angle",
+                             "given for a tip that is no cone; expected measured_tip_shape = cone with it");
+    if (p->measured_tip == TT_TIP_POINT && tt_scene_has(s, "surface", NULL, "measured_tip_radius"))
+        return tt_scene_fail(s, "surface", NULL, "measured_tip_radius",
+                             "given without a tip; expected measured_tip_shape = sphere or cone with it");
+    if ((rc = get_d(s, "measured_tip_radius", &p->measured_tip_radius)) ||
+        (rc = get_d(s, "measured_tip_half_angle", &p->measured_tip_half_angle)))
+        return rc;
     const char *interp = tt_scene_get_string(s, "surface", NULL, "interpolation");
     p->bicubic = interp && strcmp(interp, "bicubic") == 0;
     const char *c = tt_scene_get_string(s, "surface", NULL, "crop");

@@ -195,6 +195,13 @@ static const tt_scene_key surface_keys[] = {
      "(clamp) or repeat it (periodic)"},
     {"z_scale", Q(TT_DIM_NONE), "1", -1e6, 1e6, 0, NULL, "measured: factor on the levelled heights"},
     {"z_offset", Q(TT_DIM_LENGTH), "0 nm", -1e-3, 1e-3, 0, NULL, "measured: added after z_scale"},
+    {"measured_tip_shape", TT_KEY_ENUM, 0, "none", 0, 0, 0, "none|sphere|cone",
+     "measured: the tip that took the image, eroded out of it after levelling and z_scale "
+     "(Villarrubia's reconstruction, docs/surfaces.md): none keeps the image as it is"},
+    {"measured_tip_radius", Q(TT_DIM_LENGTH), "10 nm", 0, INF, POS, NULL,
+     "measured_tip_shape sphere or cone: that tip's apex radius"},
+    {"measured_tip_half_angle", Q(TT_DIM_ANGLE), "20 deg", 0, M_PI / 2, TT_KEY_MIN_EXCL | TT_KEY_MAX_EXCL,
+     NULL, "measured_tip_shape cone: that tip's cone half-angle"},
     {"map", TT_KEY_ENUM, 0, "uniform", 0, 0, 0, "uniform|stripes|disks|checkerboard|islands|png",
      "material map"},
     {"map_materials", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,

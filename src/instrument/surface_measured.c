@@ -5,9 +5,11 @@
 
 #include <gsl/gsl_interp2d.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "tiptap/instrument/erosion.h"
 #include "tiptap/io/height_image.h"
 #include "tiptap/util/error.h"
 
@@ -175,7 +177,38 @@ static int check_cover(const tt_surface_params *p, const tt_height_image *im, do
                     sx * 1e9, sy * 1e9);
 }
 
-/* The image read and prepared: cropped, levelled, scaled. */
+/* The tip that took the image eroded out of it (Villarrubia's reconstruction): the
+ * greatest surface that tip could have imaged so. */
+static int erode_tip(const tt_surface_params *p, tt_height_image *im)
+{
+    if (p->measured_tip == TT_TIP_POINT)
+        return TT_OK;
+    tt_tip_shape t = {(tt_tip_kind)p->measured_tip, p->measured_tip_radius, p->measured_tip_half_angle};
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t k = 0; k < im->xres * im->yres; k++) {
+        lo = fmin(lo, im->z[k]);
+        hi = fmax(hi, im->z[k]);
+    }
+    tt_tip_image tip;
+    int rc = tt_tip_image_make(&tip, &t, im->dx, im->dy, hi - lo);
+    if (rc) {
+        char why[512];
+        snprintf(why, sizeof why, "%s", tt_error_message());
+        return tt_error(rc, "[surface] measured_tip_radius: %s: %s", p->image, why);
+    }
+    double *r = malloc(im->xres * im->yres * sizeof *r);
+    if (!r) {
+        tt_tip_image_free(&tip);
+        return tt_error_nomem("the eroded height image (%zu x %zu pixels)", im->xres, im->yres);
+    }
+    tt_erosion_erode(im->z, im->xres, im->yres, &tip, r);
+    tt_tip_image_free(&tip);
+    free(im->z);
+    im->z = r;
+    return TT_OK;
+}
+
+/* The image read and prepared: cropped, levelled, scaled, the measuring tip eroded out. */
 static int prepare(const tt_surface_params *p, tt_height_image *im, double sx, double sy)
 {
     int rc;
@@ -187,7 +220,7 @@ static int prepare(const tt_surface_params *p, tt_height_image *im, double sx, d
         return rc;
     for (size_t k = 0; k < im->xres * im->yres; k++)
         im->z[k] = p->z_scale * im->z[k] + p->z_offset;
-    return TT_OK;
+    return erode_tip(p, im);
 }
 
 int tt_surface_check_measured(const tt_surface_params *p, double sx, double sy)

@@ -58,6 +58,9 @@ typedef struct {
     int bicubic;                                /* measured: 1 bicubic, 0 bilinear */
     tt_surface_edges edges;                     /* measured: past the image's edges */
     double z_scale, z_offset;                   /* measured: z = z_scale * levelled + z_offset */
+    int measured_tip;                           /* measured: the tt_tip_kind that took the image
+                                                 * (point: none), eroded out (erosion.h) */
+    double measured_tip_radius, measured_tip_half_angle; /* measured: that tip's R, theta */
     tt_surface_map map;
     int materials[2];                           /* two-material maps: background, other */
     double map_period, map_duty, map_radius;
