@@ -10,17 +10,6 @@
 #include "tiptap/instrument/tip.h"
 #include "tiptap/util/error.h"
 
-static tt_surface *make(const char *text, double size)
-{
-    tt_scene *s = tt_scene_alloc();
-    assert_int_equal(tt_scene_load_string(s, text, "s.ini"), TT_OK);
-    tt_surface *S = NULL;
-    if (tt_config_surface_alloc(&S, s, size, size) != TT_OK)
-        fail_msg("%s", tt_error_message());
-    tt_scene_free(s);
-    return S;
-}
-
 /* The profile of a sphere of radius R on a cone of half-angle th, written out here
  * apart from the library's: R - sqrt(R^2 - d^2) up to the tangent at d = R cos th,
  * then a straight flank of slope 1 / tan th. */
@@ -59,7 +48,7 @@ static void tip_profile_is_smooth(void **st)
 static void step_images_as_tip_profile(void **st)
 {
     (void)st;
-    tt_surface *S = make("[surface]\ntype = steps\nstep_height = 20 nm\nstep_width = 500 nm\n", 1e-6);
+    tt_surface *S = tt_make_surface("[surface]\ntype = steps\nstep_height = 20 nm\nstep_width = 500 nm\n", 1e-6);
     const double R = 10e-9, H = 20e-9;
     for (int k = 0; k < 2; k++) {
         double th = k ? 20 * M_PI / 180 : 0;
@@ -93,7 +82,7 @@ static void step_images_as_tip_profile(void **st)
 static void sloped_edges_match_brute_force(void **st)
 {
     (void)st;
-    tt_surface *S = make("[surface]\ntype = grating\nperiod = 400 nm\nduty = 50 %\nheight = 20 nm\n"
+    tt_surface *S = tt_make_surface("[surface]\ntype = grating\nperiod = 400 nm\nduty = 50 %\nheight = 20 nm\n"
                          "edge_width = 30 nm\n", 1e-6);
     tt_tip_shape t = {TT_TIP_CONE, 10e-9, 30 * M_PI / 180};
     tt_dilation *D;
@@ -140,7 +129,7 @@ static void sphere_images_wide_not_tall(void **st)
 {
     (void)st;
     const double r = 5e-9, R = 10e-9, size = 100e-9, dx = 0.25e-9;
-    tt_surface *S = make("[surface]\ntype = particles\nparticle_radius = 5 nm\nparticle_count = 1\n"
+    tt_surface *S = tt_make_surface("[surface]\ntype = particles\nparticle_radius = 5 nm\nparticle_count = 1\n"
                          "seed = 3\n", size);
     double cx, cy;
     particle_centre(S, size, r, &cx, &cy);

@@ -60,6 +60,18 @@ static inline void tt_scan_assert_identical(const tt_scan *a, const tt_scan *b, 
                                 (size_t)n * sizeof(double));
 }
 
+/* The surface of a scene's text over a square of side size (the caller frees it). */
+static inline tt_surface *tt_make_surface(const char *text, double size)
+{
+    tt_scene *s = tt_scene_alloc();
+    assert_int_equal(tt_scene_load_string(s, text, "s.ini"), TT_OK);
+    tt_surface *S = NULL;
+    if (tt_config_surface_alloc(&S, s, size, size) != TT_OK)
+        fail_msg("%s", tt_error_message());
+    tt_scene_free(s);
+    return S;
+}
+
 /* The scene base plus text must be refused, by the loader or by tt_scan_alloc, with a
  * message containing fragment. */
 static inline void tt_expect_scan_refused(const char *base, const char *text, const char *fragment)

@@ -113,12 +113,15 @@ typedef struct {
 
 enum { MAX_STRETCHES = 8 };
 
-/* The material under the trace's pixel px of a line (at its centre, without drift). */
+/* The material where the tip touches at the trace's pixel px of a line (at its centre,
+ * without drift). */
 static int material_at(const tt_scan *S, long line, long px, long nc)
 {
     double x, y;
     long k = (2 * px + 1) * nc / (2 * S->raster.pixels);
     tt_raster_position(&S->raster, line, 0, nc, k, &x, &y);
+    if (S->dilation)
+        tt_dilation_contact(S->dilation, x, y, &x, &y);
     return tt_surface_material(S->surface, x, y);
 }
 

@@ -14,16 +14,18 @@ double tt_scan_clock_at(const tt_scan *S, long line, int phase, long nc, long k)
 }
 
 /* The sample under raster position (x, y) at time t: *x, *y become the surface's point
- * there (drift); returns the height the apex meets (dilated, tilted, drifted in z) and
- * the true height in *topo. */
+ * the tip touches there (drift, then the dilation's contact point, where the material
+ * is read); returns the height the apex meets (dilated, tilted, drifted in z) and the
+ * true height under the axis in *topo. */
 double tt_scan_sample_at(const tt_scan *S, double *x, double *y, double t, double *topo)
 {
     const tt_instrument_params *in = &S->inst;
     *x -= in->drift_x * t;
     *y -= in->drift_y * t;
-    *topo = S->flat ? 0 : tt_surface_height(S->surface, *x, *y);
-    double h = S->dilation ? tt_dilation_height(S->dilation, *x, *y) : *topo;
-    return h + in->tilt_x * *x + in->tilt_y * *y + in->drift_z * t;
+    const double ax = *x, ay = *y;
+    *topo = S->flat ? 0 : tt_surface_height(S->surface, ax, ay);
+    double h = S->dilation ? tt_dilation_contact(S->dilation, ax, ay, x, y) : *topo;
+    return h + in->tilt_x * ax + in->tilt_y * ay + in->drift_z * t;
 }
 
 /* The surface at the start of cycle k (settling: the line's first pixel). */

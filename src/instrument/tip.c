@@ -3,6 +3,7 @@
 #include "tiptap/instrument/tip.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 
 #include "tiptap/util/cancel.h"
@@ -62,6 +63,8 @@ struct tt_dilation {
     double x0, y0, dx;
     long nx, ny;
     double *grid; /* nx * ny apex heights, row j at y0 + j dx */
+    int16_t *touch; /* nx * ny pairs: the node offset (a, b) where the tip touches;
+                     * NULL for a surface of one material (no material is read) */
 };
 
 /* ---- exact: profiles along x made of straight pieces ---- */
@@ -70,6 +73,7 @@ typedef struct {
     const tt_tip_shape *tip;
     double x, best;
     double lo, hi; /* range of the heights met */
+    double xc;     /* where the best apex touches */
 } piece_ctx;
 
 /* The highest apex over one straight piece: h - t along the piece is concave (the tip
@@ -83,8 +87,13 @@ static void apex_over_piece(void *user, double xa, double ha, double xb, double 
     double lo = xa - c->x, hi = xb - c->x;
     u = u < lo ? lo : u > hi ? hi : u;
     double v = ha + s * (c->x + u - xa) - tt_tip_shape_height(c->tip, u);
-    if (v > c->best)
+    if (v > c->best) {
         c->best = v;
+        /* an end of the piece is taken just inside it, so that at a wall's top corner
+         * the material read is the top's, not the one across the wall */
+        double in = 1e-9 * (xb - xa);
+        c->xc = u == lo ? xa + in : u == hi ? xb - in : c->x + u;
+    }
 }
 
 static void height_range(void *user, double xa, double ha, double xb, double hb)
@@ -103,7 +112,7 @@ static void exact_reach(tt_dilation *D, double x0, double x1)
 {
     double m = 0;
     for (int pass = 0; pass < 3; pass++) {
-        piece_ctx c = {&D->tip, 0, 0, INFINITY, -INFINITY};
+        piece_ctx c = {&D->tip, 0, 0, INFINITY, -INFINITY, 0};
         tt_surface_pieces(D->surface, x0 - m, x1 + m, height_range, &c);
         m = fmin(tt_tip_shape_reach(&D->tip, c.hi - c.lo), 2 * (x1 - x0) + D->tip.radius);
     }
@@ -298,16 +307,24 @@ static int search_nodes(tt_dilation *D, const double *g, const double *M, const 
             const double *c = g + (j + m) * w + (i + m);
             const double *cg = G + (j + m) * w + (i + m);
             double best = -INFINITY, top = M[j * D->nx + i];
+            long ba = 0, bb = 0;
             for (long k = 0; k < nt && top - T[k].t > best; k++) {
                 if (cg[T[k].b * w + T[k].a] - T[k].t <= best)
                     continue;
                 for (const offset *q = o + T[k].start; q < o + T[k].start + T[k].n; q++) {
                     double v = c[q->b * w + q->a] - q->t;
-                    if (v > best)
+                    if (v > best) {
                         best = v;
+                        ba = q->a;
+                        bb = q->b;
+                    }
                 }
             }
             D->grid[j * D->nx + i] = best;
+            if (D->touch) { /* |a|, |b| <= m <= TT_DILATION_MAX_SIDE: an int16 holds them */
+                D->touch[2 * (j * D->nx + i)] = (int16_t)ba;
+                D->touch[2 * (j * D->nx + i) + 1] = (int16_t)bb;
+            }
         }
     }
     return stop ? tt_error(TT_EINTR, "interrupted while making the tip's dilation grid") : TT_OK;
@@ -333,6 +350,13 @@ static int build_grid(tt_dilation *D)
     double *M = o ? local_max(D, g, m) : NULL;
     double *G = M ? tile_max(g, D->nx + 2 * m, D->ny + 2 * m) : NULL;
     D->grid = G ? malloc((size_t)D->nx * (size_t)D->ny * sizeof *D->grid) : NULL;
+    if (D->grid && !tt_surface_uniform(D->surface)) {
+        D->touch = malloc((size_t)D->nx * (size_t)D->ny * 2 * sizeof *D->touch);
+        if (!D->touch) {
+            free(D->grid);
+            D->grid = NULL;
+        }
+    }
     int rc = D->grid ? search_nodes(D, g, M, G, m, o, T, nt)
                      : tt_error(TT_ENOMEM, "out of memory for the tip's dilation grid");
     free(g);
@@ -356,7 +380,7 @@ int tt_dilation_alloc(tt_dilation **out, const tt_surface *s, const tt_tip_shape
     D->tip = *t;
     D->x0 = x0;
     D->y0 = y0;
-    piece_ctx probe = {t, 0, 0, 0, 0};
+    piece_ctx probe = {t, 0, 0, 0, 0, 0};
     D->exact = tt_surface_pieces(s, x0, x0, height_range, &probe);
     if (D->exact) {
         exact_reach(D, x0, x1);
@@ -381,13 +405,35 @@ void tt_dilation_free(tt_dilation *D)
     if (!D)
         return;
     free(D->grid);
+    free(D->touch);
     free(D);
+}
+
+double tt_dilation_contact(const tt_dilation *D, double x, double y, double *xc, double *yc)
+{
+    *xc = x;
+    *yc = y;
+    if (D->exact) {
+        piece_ctx c = {&D->tip, x, -INFINITY, 0, 0, x};
+        tt_surface_pieces(D->surface, x - D->reach, x + D->reach, apex_over_piece, &c);
+        *xc = c.xc;
+        return c.best;
+    }
+    if (D->touch) { /* the nearest node's offset, clamped to the region as the heights are */
+        double u = (x - D->x0) / D->dx, v = (y - D->y0) / D->dx;
+        u = u < 0 ? 0 : u > (double)(D->nx - 1) ? (double)(D->nx - 1) : u;
+        v = v < 0 ? 0 : v > (double)(D->ny - 1) ? (double)(D->ny - 1) : v;
+        const int16_t *o = D->touch + 2 * ((long)(v + 0.5) * D->nx + (long)(u + 0.5));
+        *xc = x + (double)o[0] * D->dx;
+        *yc = y + (double)o[1] * D->dx;
+    }
+    return tt_dilation_height(D, x, y);
 }
 
 double tt_dilation_height(const tt_dilation *D, double x, double y)
 {
     if (D->exact) {
-        piece_ctx c = {&D->tip, x, -INFINITY, 0, 0};
+        piece_ctx c = {&D->tip, x, -INFINITY, 0, 0, x};
         tt_surface_pieces(D->surface, x - D->reach, x + D->reach, apex_over_piece, &c);
         return c.best;
     }

@@ -323,8 +323,8 @@ static void image_stats(const double *img, const int *mat, size_t n, int m, doub
     *count = k;
 }
 
-/* The scan's summary rows: every material (the one at each pixel's centre), and its
- * height and phase contrast against the first material. */
+/* The scan's summary rows: every material (the one the tip touches at each pixel's
+ * centre), and its height and phase contrast against the first material. */
 int tt_run_sweep_scan_rows(const tt_sweep *grid, size_t i, const tt_scene *scene,
                            const tt_scan *scan, const tt_scan_error *est, tt_table *t)
 {
@@ -340,10 +340,15 @@ int tt_run_sweep_scan_rows(const tt_sweep *grid, size_t i, const tt_scene *scene
     int rc = mat ? TT_OK : tt_error(TT_ENOMEM, "out of memory");
     if (!rc && !(rc = tt_config_materials(scene, &mats, &nm)))
         rc = tt_config_surface_alloc(&surf, scene, tt_scan_size_x(scan), tt_scan_size_y(scan));
+    const tt_dilation *dil = tt_scan_dilation(scan);
     for (long y = 0; y < yr && !rc; y++)
-        for (long x = 0; x < xr; x++)
-            mat[y * xr + x] = tt_surface_material(surf, ((double)x + 0.5) * tt_scan_size_x(scan) / (double)xr,
-                                                  ((double)y + 0.5) * tt_scan_size_y(scan) / (double)yr);
+        for (long x = 0; x < xr; x++) {
+            double px = ((double)x + 0.5) * tt_scan_size_x(scan) / (double)xr;
+            double py = ((double)y + 0.5) * tt_scan_size_y(scan) / (double)yr;
+            if (dil) /* where the tip touches, as the scan read it */
+                tt_dilation_contact(dil, px, py, &px, &py);
+            mat[y * xr + x] = tt_surface_material(surf, px, py);
+        }
     double h0 = NAN, p0 = NAN;
     for (int m = -1; m < (int)nm && !rc; m++) {
         double hm, hs, pm = NAN, ps = NAN;

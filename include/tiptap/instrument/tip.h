@@ -63,6 +63,15 @@ void tt_dilation_free(tt_dilation *d);
 /* The apex height h_app(x, y) (m). */
 double tt_dilation_height(const tt_dilation *d, double x, double y);
 
+/* The apex height h_app(x, y) as tt_dilation_height, and in *xc, *yc the point of the
+ * surface the tip touches there (the argmax above), where the material is read. Exact
+ * dilations give the analytic point (at a wall's top corner, just inside the top, so a
+ * material map aligned with the wall reads the top's); grids the offset to it found at
+ * the nearest node, added to (x, y), so within half a step of the true point, and
+ * (x, y) itself for a surface of one material (no offsets kept) or where the apex
+ * touches. */
+double tt_dilation_contact(const tt_dilation *d, double x, double y, double *xc, double *yc);
+
 /* The grid: its step (m) and nodes; 0 and 0 when the dilation is exact (steps, grating). */
 double tt_dilation_spacing(const tt_dilation *d);
 long tt_dilation_nodes(const tt_dilation *d);
