@@ -42,6 +42,7 @@
 
 #include "tiptap/instrument/accuracy.h"
 #include "tiptap/instrument/approach.h"
+#include "tiptap/instrument/erosion.h"
 #include "tiptap/instrument/feedback.h"
 #include "tiptap/instrument/lockin.h"
 #include "tiptap/instrument/piezo.h"
