@@ -195,8 +195,8 @@ static const tt_scene_key surface_keys[] = {
      "(clamp) or repeat it (periodic)"},
     {"z_scale", Q(TT_DIM_NONE), "1", -1e6, 1e6, 0, NULL, "measured: factor on the levelled heights"},
     {"z_offset", Q(TT_DIM_LENGTH), "0 nm", -1e-3, 1e-3, 0, NULL, "measured: added after z_scale"},
-    {"map", TT_KEY_ENUM, 0, "uniform", 0, 0, 0, "uniform|stripes|disks|checkerboard|islands|png",
-     "material map"},
+    {"map", TT_KEY_ENUM, 0, "uniform", 0, 0, 0, "uniform|stripes|disks|checkerboard|islands|png|labels|threshold",
+     "material map (labels, threshold: from map_image, docs/surfaces.md)"},
     {"map_materials", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
      "materials of the map, background first: \"matrix, disk\" (default: the scene's first two)"},
     {"map_period", Q(TT_DIM_LENGTH), "250 nm", 0, INF, POS, NULL,
@@ -206,6 +206,17 @@ static const tt_scene_key surface_keys[] = {
     {"map_radius", Q(TT_DIM_LENGTH), "60 nm", 0, INF, POS, NULL, "disks: disk radius"},
     {"map_png", TT_KEY_STRING, 0, NULL, 0, 0, TT_KEY_PATH, NULL,
      "png map: each pixel's grey level or colour names a material through its map_value"},
+    {"map_image", TT_KEY_STRING, 0, NULL, 0, 0, TT_KEY_PATH, NULL,
+     "labels, threshold: .gsf, .gwy or grey .png image, taken pixel by pixel (nearest), top row "
+     "at y = 0; labels: each whole number is the material whose map_value it is"},
+    {"map_channel", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
+     "labels, threshold, .gwy map_image: the channel's title or number (default: the first)"},
+    {"map_pixel_size", Q(TT_DIM_LENGTH), NULL, 0, INF, POS, NULL,
+     "labels, threshold, .png map_image: its pixel (square; default: the scan area over its "
+     "pixels, refused when that is not square)"},
+    {"map_threshold", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
+     "threshold: value and the image's unit (e.g. 60 deg); map_materials' first below it, "
+     "second at or above"},
 };
 
 static const tt_scene_key lockin_keys[] = {

@@ -206,6 +206,12 @@ int tt_surface_read_png16(const char *key, const char *path, unsigned short **pi
     return rc;
 }
 
+int tt_surface_read_png_grey(const char *key, const char *path, unsigned short **pix, int *w, int *h,
+                             int *maxval)
+{
+    return read_png(key, path, 0, pix, w, h, maxval);
+}
+
 /* ---- material map ---- */
 
 /* A material's map_value as the pixel it names in a map of maxval (255 or 65535),
