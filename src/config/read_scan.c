@@ -469,6 +469,7 @@ size_t tt_config_scan_unused(const tt_scan_params *p, size_t *idx, size_t max)
         switch (p->surface.map) {
         case TT_MAP_UNIFORM: used = i == 0; break;
         case TT_MAP_PNG: used = m->map_grey >= 0 || m->map_rgb >= 0; break;
+        case TT_MAP_LABELS: used = m->map_grey >= 0; break;
         default: used = (int)i == p->surface.materials[0] || (int)i == p->surface.materials[1];
         }
         if (!used && k++ < max)
