@@ -54,23 +54,12 @@ static int read_png_values(const tt_surface_params *p, tt_height_image *im, doub
     return TT_OK;
 }
 
-/* The image as stored and its unit, from the file or from memory (Python). */
+/* The image as stored and its unit. */
 static int read_values(const tt_surface_params *p, tt_height_image *im, char *unit, size_t nu,
                        double sx, double sy)
 {
     memset(im, 0, sizeof *im);
     unit[0] = 0;
-    if (p->map_values) {
-        im->xres = p->map_w;
-        im->yres = p->map_h;
-        im->dx = im->dy = p->map_pixel_size;
-        size_t n = im->xres * im->yres;
-        im->z = malloc((n > 0 ? n : 1) * sizeof *im->z);
-        if (!im->z)
-            return tt_error_nomem("the map image (%zu x %zu pixels)", im->xres, im->yres);
-        memcpy(im->z, p->map_values, im->xres * im->yres * sizeof *im->z);
-        return TT_OK;
-    }
     if (ends_with(p->map_image, ".gsf"))
         return tt_gsf_read_values(KEY, p->map_image, im, unit, nu);
     if (ends_with(p->map_image, ".gwy"))
@@ -84,7 +73,7 @@ static int read_values(const tt_surface_params *p, tt_height_image *im, char *un
  * unless its edges continue (clamp, periodic). */
 static int check_image(const tt_surface_params *p, const tt_height_image *im, double sx, double sy)
 {
-    const char *name = p->map_values ? "(array)" : p->map_image;
+    const char *name = p->map_image;
     if (im->xres < 1 || im->yres < 1 || !(im->dx >= 1e-12 && im->dx <= 1e-3 && im->dy >= 1e-12 && im->dy <= 1e-3))
         return tt_error(TT_EINVAL, KEY ": %s: %zu x %zu pixels of %g x %g m; expected pixels of 1 pm to 1 mm",
                         name, im->xres, im->yres, im->dx, im->dy);
@@ -109,7 +98,7 @@ static int label_material(double v, const tt_material *mat, size_t nm)
 static int build_labels(tt_surface *S, const tt_surface_params *p, const tt_height_image *im,
                         const tt_material *mat, size_t nm)
 {
-    const char *name = p->map_values ? "(array)" : p->map_image;
+    const char *name = p->map_image;
     for (size_t i = 0; i < nm; i++)
         for (size_t j = i + 1; j < nm; j++)
             if (mat[i].map_grey >= 0 && mat[i].map_grey == mat[j].map_grey)
@@ -133,12 +122,12 @@ static int build_labels(tt_surface *S, const tt_surface_params *p, const tt_heig
 static int build_threshold(tt_surface *S, const tt_surface_params *p, tt_height_image *im,
                            const char *unit)
 {
-    const char *name = p->map_values ? "(array)" : p->map_image, *tu = p->map_threshold_unit;
+    const char *name = p->map_image, *tu = p->map_threshold_unit;
     double t = p->map_threshold, fu = tt_length_unit(unit), ft = tt_length_unit(tu);
     /* lengths compare across prefixes; any other unit must be the image's as written */
     if (fu > 0 && ft > 0) {
         t *= ft / fu;
-    } else if (strcmp(unit, tu) != 0 && !p->map_values)
+    } else if (strcmp(unit, tu) != 0)
         return tt_error(TT_EINVAL, "[surface] map_threshold: %g %s, but %s is in '%s'; expected a "
                                    "threshold in the image's unit",
                         p->map_threshold, *tu ? tu : "(no unit)", name, *unit ? unit : "(no unit)");

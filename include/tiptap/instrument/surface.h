@@ -72,9 +72,6 @@ typedef struct {
     double map_pixel_size;                      /* .png: m (0: the image spans the scan area) */
     double map_threshold;                       /* in map_threshold_unit */
     char map_threshold_unit[32];                /* as written: "deg", "nm", "" */
-    const double *map_values;                   /* from memory instead of map_image (Python):
-                                                 * map_w * map_h values, row 0 at y = 0 */
-    size_t map_w, map_h;
 } tt_surface_params;
 
 typedef struct tt_surface tt_surface;
