@@ -224,6 +224,21 @@ class Scene:
                 check(lib.tt_scene_set(self._p, line))
         return self
 
+    def _gsf(self, prefix, name, z, dx, dy, keys):
+        """z (2-D float32) as a Gwyddion Simple Field file with the header keys given, in a
+        temporary folder that lives as long as this scene and its copies; its path."""
+        import tempfile
+
+        ny, nx = z.shape
+        folder = tempfile.TemporaryDirectory(prefix=prefix)
+        path = os.path.join(folder.name, name)
+        head = (f"Gwyddion Simple Field 1.0\nXRes = {nx}\nYRes = {ny}\nXReal = {nx * dx!r}\n"
+                f"YReal = {ny * dy!r}\nXYUnits = m\n{keys}").encode()
+        with open(path, "wb") as f:
+            f.write(head + b"\0" * (4 - len(head) % 4) + z.tobytes())
+        self.__dict__.setdefault("_folders", []).append(folder)
+        return path
+
     def set_surface_image(self, heights, pixel_size):
         """A measured topography from a numpy array: heights (2-D, metres, row 0 at y = 0)
         with pixel_size (metres, a number or (dx, dy)) become [surface] type = measured,
@@ -233,21 +248,13 @@ class Scene:
         a file (docs/surfaces.md). The library's checks apply: a NaN pixel or an absurd
         pixel size raises SceneError when the scene is run."""
         import numpy as np
-        import tempfile
 
         z = np.asarray(heights, dtype="<f4")
         if z.ndim != 2:
             raise ValueError(f"set_surface_image: heights must be a 2-D array, not {z.ndim}-D")
         dx, dy = (pixel_size, pixel_size) if np.ndim(pixel_size) == 0 else pixel_size
         dx, dy = float(dx), float(dy)
-        ny, nx = z.shape
-        folder = tempfile.TemporaryDirectory(prefix="tiptap-surface-")
-        path = os.path.join(folder.name, "heights.gsf")
-        head = (f"Gwyddion Simple Field 1.0\nXRes = {nx}\nYRes = {ny}\nXReal = {nx * dx!r}\n"
-                f"YReal = {ny * dy!r}\nXYUnits = m\nZUnits = m\nTitle = numpy\n").encode()
-        with open(path, "wb") as f:
-            f.write(head + b"\0" * (4 - len(head) % 4) + z.tobytes())
-        self.__dict__.setdefault("_folders", []).append(folder)
+        path = self._gsf("tiptap-surface-", "heights.gsf", z, dx, dy, "ZUnits = m\nTitle = numpy\n")
         return self.set({"surface.type": "measured", "surface.image": path})
 
     def set_material_labels(self, labels, pixel_size, materials):
@@ -260,7 +267,6 @@ class Scene:
         for raises ValueError here; a label in the array that no material has raises
         SceneError when the scene is run."""
         import numpy as np
-        import tempfile
 
         a = np.asarray(labels)
         if a.ndim != 2:
@@ -281,15 +287,8 @@ class Scene:
             changes[f"material.{name}.map_value"] = str(int(label))
         dx, dy = (pixel_size, pixel_size) if np.ndim(pixel_size) == 0 else pixel_size
         dx, dy = float(dx), float(dy)
-        ny, nx = a.shape
-        folder = tempfile.TemporaryDirectory(prefix="tiptap-labels-")
-        path = os.path.join(folder.name, "labels.gsf")
         # float32 holds every label 0-65535 exactly
-        head = (f"Gwyddion Simple Field 1.0\nXRes = {nx}\nYRes = {ny}\nXReal = {nx * dx!r}\n"
-                f"YReal = {ny * dy!r}\nXYUnits = m\nTitle = labels\n").encode()
-        with open(path, "wb") as f:
-            f.write(head + b"\0" * (4 - len(head) % 4) + a.astype("<f4").tobytes())
-        self.__dict__.setdefault("_folders", []).append(folder)
+        path = self._gsf("tiptap-labels-", "labels.gsf", a.astype("<f4"), dx, dy, "Title = labels\n")
         changes.update({"surface.map": "labels", "surface.map_image": path})
         return self.set(changes)
 
