@@ -207,6 +207,65 @@ static void refusals(void **st)
     refused(keys, 40e-9, 40e-9, "[surface] edges", "covers 40 x 20 nm");
 }
 
+/* A 4 x 1 RGB PNG map: red, an anti-aliased red, a purple midway to blue, blue. */
+static const char *rgb_png(void)
+{
+    static char path[128];
+    snprintf(path, sizeof path, "%s/aa.png", dir);
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_infop info = png_create_info_struct(png);
+    assert_false(setjmp(png_jmpbuf(png)));
+    png_init_io(png, f);
+    png_set_IHDR(png, info, 4, 1, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+                 PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    unsigned char row[12] = {255, 0, 0, 240, 10, 10, 128, 0, 128, 0, 0, 255};
+    png_write_row(png, row);
+    png_write_end(png, NULL);
+    png_destroy_write_struct(&png, &info);
+    fclose(f);
+    return path;
+}
+
+/* map = png with map_tolerance: an anti-aliased pixel takes the nearest named colour
+ * within it (8-bit levels, Euclidean), ties the first material; beyond it, refused. */
+static void nearest_colour(void **st)
+{
+    (void)st;
+    const char *path = rgb_png();
+    for (int t = 0; t < 4; t++) {
+        static const char *const tol[] = {"0", "20", "25", "200"};
+        char text[1024];
+        snprintf(text, sizeof text, "[material a]\nmap_value = #ff0000\n[material b]\nmap_value = #0000ff\n"
+                                    "[surface]\nmap = png\nmap_png = %s\nmap_tolerance = %s\n", path, tol[t]);
+        tt_scene *s = tt_scene_alloc();
+        assert_int_equal(tt_scene_load_string(s, text, "s.ini"), TT_OK);
+        tt_surface *S = NULL;
+        int rc = tt_config_surface_alloc(&S, s, 4e-9, 1e-9);
+        tt_scene_free(s);
+        if (t < 2) {
+            /* (240, 10, 10) is 20.6 levels from red */
+            assert_int_not_equal(rc, TT_OK);
+            assert_non_null(strstr(tt_error_message(), "pixel (1, 0) has colour #f00a0a, which no [material] map_value names"));
+            assert_true(t == 0 || strstr(tt_error_message(), "within [surface] map_tolerance = 20 levels"));
+            continue;
+        }
+        if (t == 2) {
+            /* the purple is 180.3 levels from both */
+            assert_int_not_equal(rc, TT_OK);
+            assert_non_null(strstr(tt_error_message(), "pixel (2, 0) has colour #800080"));
+            continue;
+        }
+        assert_int_equal(rc, TT_OK);
+        const int want[4] = {0, 0, 0, 1};
+        for (int i = 0; i < 4; i++)
+            assert_int_equal(mat(S, i + 0.5, 0.5), want[i]);
+        tt_surface_free(S);
+    }
+}
+
 int main(void)
 {
     snprintf(dir, sizeof dir, "/tmp/tt-labels-XXXXXX");
@@ -217,6 +276,7 @@ int main(void)
         cmocka_unit_test(thresholds),
         cmocka_unit_test(edges),
         cmocka_unit_test(refusals),
+        cmocka_unit_test(nearest_colour),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     char cmd[128];

@@ -278,7 +278,7 @@ int tt_config_surface(const tt_scene *s, const tt_material *m, size_t n, tt_surf
     if (rc)
         return rc;
     /* two materials on one pixel value: refused before the run is estimated */
-    if (p->map == TT_MAP_PNG &&
+    if (p->map == TT_MAP_PNG && !(rc = get_d(s, "map_tolerance", &p->map_tolerance)) &&
         !(rc = tt_scene_get_path(s, "surface", NULL, "map_png", p->map_png, sizeof p->map_png)))
         rc = tt_scene_locate(s, tt_surface_check_map_values(p, m, n));
     if (p->map == TT_MAP_PNG)

@@ -206,6 +206,9 @@ static const tt_scene_key surface_keys[] = {
     {"map_radius", Q(TT_DIM_LENGTH), "60 nm", 0, INF, POS, NULL, "disks: disk radius"},
     {"map_png", TT_KEY_STRING, 0, NULL, 0, 0, TT_KEY_PATH, NULL,
      "png map: each pixel's grey level or colour names a material through its map_value"},
+    {"map_tolerance", Q(TT_DIM_NONE), "0", 0, 442, 0, NULL,
+     "png map: a pixel whose colour no map_value names takes the nearest material's within "
+     "this distance in 8-bit levels (Euclidean in RGB; ties: the first material); 0: exact"},
     {"map_image", TT_KEY_STRING, 0, NULL, 0, 0, TT_KEY_PATH, NULL,
      "labels, threshold: .gsf, .gwy or grey .png image, taken pixel by pixel (nearest), top row "
      "at y = 0; labels: each whole number is the material whose map_value it is"},
@@ -347,6 +350,7 @@ static const struct {
     {"piezo_damping", "a number, no unit, such as '0.7'"},
     {"creep", "a fraction such as '0.02' or a percentage such as '2 %'"},
     {"z_scale", "a number, no unit, such as '1.5'"},
+    {"map_tolerance", "a number of 8-bit levels, no unit, such as '40'"},
 };
 
 const char *tt_scene_key_describe(const tt_scene_key *k)

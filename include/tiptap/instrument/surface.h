@@ -63,6 +63,9 @@ typedef struct {
     int materials[2];                           /* two-material maps: background, other */
     double map_period, map_duty, map_radius;
     char map_png[4096];                         /* png map; colours: tt_material map_rgb */
+    double map_tolerance;                       /* png map: a colour no material names takes
+                                                 * the nearest within this distance (8-bit
+                                                 * levels, Euclidean in RGB; 0: exact only) */
     /* labels, threshold maps (docs/surfaces.md, "Material maps from data"): map_image
      * (.gsf, .gwy, grey .png) taken pixel by pixel (nearest neighbour), past its edges
      * as edges says; labels: each whole-number label is the material whose map_grey it
