@@ -148,8 +148,8 @@ static void refused(const char *keys, double sx, double sy, const char *key, con
         fail_msg("refusal '%s' lacks '%s' or '%s', or is not one line", m, key, what);
 }
 
-/* A w x h 8-bit grey PNG of level 0 everywhere. */
-static const char *grey_png(const char *name, int w, int h)
+/* A w x h 8-bit PNG of colour type type, every row the same row. */
+static const char *png_file(const char *name, int w, int h, int type, const unsigned char *row)
 {
     static char path[128];
     snprintf(path, sizeof path, "%s/%s", dir, name);
@@ -159,16 +159,22 @@ static const char *grey_png(const char *name, int w, int h)
     png_infop info = png_create_info_struct(png);
     assert_false(setjmp(png_jmpbuf(png)));
     png_init_io(png, f);
-    png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
+    png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8, type, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
-    unsigned char row[64] = {0};
     for (int j = 0; j < h; j++)
         png_write_row(png, row);
     png_write_end(png, NULL);
     png_destroy_write_struct(&png, &info);
     fclose(f);
     return path;
+}
+
+/* A w x h grey PNG of level 0 everywhere (w at most 64). */
+static const char *grey_png(const char *name, int w, int h)
+{
+    static const unsigned char zeros[64];
+    return png_file(name, w, h, PNG_COLOR_TYPE_GRAY, zeros);
 }
 
 static void refusals(void **st)
@@ -210,23 +216,8 @@ static void refusals(void **st)
 /* A 4 x 1 RGB PNG map: red, an anti-aliased red, a purple midway to blue, blue. */
 static const char *rgb_png(void)
 {
-    static char path[128];
-    snprintf(path, sizeof path, "%s/aa.png", dir);
-    FILE *f = fopen(path, "wb");
-    assert_non_null(f);
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
-    png_infop info = png_create_info_struct(png);
-    assert_false(setjmp(png_jmpbuf(png)));
-    png_init_io(png, f);
-    png_set_IHDR(png, info, 4, 1, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-                 PNG_FILTER_TYPE_DEFAULT);
-    png_write_info(png, info);
-    unsigned char row[12] = {255, 0, 0, 240, 10, 10, 128, 0, 128, 0, 0, 255};
-    png_write_row(png, row);
-    png_write_end(png, NULL);
-    png_destroy_write_struct(&png, &info);
-    fclose(f);
-    return path;
+    static const unsigned char row[12] = {255, 0, 0, 240, 10, 10, 128, 0, 128, 0, 0, 255};
+    return png_file("aa.png", 4, 1, PNG_COLOR_TYPE_RGB, row);
 }
 
 /* map = png with map_tolerance: an anti-aliased pixel takes the nearest named colour
