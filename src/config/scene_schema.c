@@ -191,14 +191,15 @@ static const tt_scene_key surface_keys[] = {
      "measured: between pixel centres (GSL gsl_interp2d); bilinear stays within the pixels' "
      "heights, bicubic has continuous slopes but overshoots at steps"},
     {"edges", TT_KEY_ENUM, 0, "refuse", 0, 0, 0, "refuse|clamp|periodic",
-     "measured: refuse an image smaller than the scan area, or continue its edge pixels "
-     "(clamp) or repeat it (periodic)"},
+     "measured, and labels and threshold maps: refuse an image smaller than the scan area, "
+     "or continue its edge pixels (clamp) or repeat it (periodic)"},
     {"z_scale", Q(TT_DIM_NONE), "1", -1e6, 1e6, 0, NULL, "measured: factor on the levelled heights"},
     {"z_offset", Q(TT_DIM_LENGTH), "0 nm", -1e-3, 1e-3, 0, NULL, "measured: added after z_scale"},
     {"map", TT_KEY_ENUM, 0, "uniform", 0, 0, 0, "uniform|stripes|disks|checkerboard|islands|png|labels|threshold",
      "material map (labels, threshold: from map_image, docs/surfaces.md)"},
     {"map_materials", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
-     "materials of the map, background first: \"matrix, disk\" (default: the scene's first two)"},
+     "materials of the map, background first: \"matrix, disk\" (default: the scene's first two); "
+     "threshold: below, then at or above"},
     {"map_period", Q(TT_DIM_LENGTH), "250 nm", 0, INF, POS, NULL,
      "stripes, disks, checkerboard: period of the pattern"},
     {"map_duty", Q(TT_DIM_FRACTION | TT_DIM_NONE), "50 %", 0, 1, TT_KEY_MIN_EXCL | TT_KEY_MAX_EXCL, NULL,
