@@ -211,6 +211,11 @@ static void refusals(void **st)
     tt_surface_free(S);
     snprintf(keys, sizeof keys, "map = labels\nmap_image = %s\nmap_pixel_size = 10 nm\n", grey_png("g.png", 4, 2));
     refused(keys, 40e-9, 40e-9, "[surface] edges", "covers 40 x 20 nm");
+    static const unsigned char red[6] = {255, 0, 0, 255, 0, 0};
+    snprintf(keys, sizeof keys, "map = labels\nmap_image = %s\n", png_file("red.png", 2, 1, PNG_COLOR_TYPE_RGB, red));
+    make(keys, 20e-9, 10e-9, 0);
+    assert_non_null(strstr(tt_error_message(), "s.ini: [surface] map_image: "));
+    assert_non_null(strstr(tt_error_message(), "pixel (0, 0) has colour (255, 0, 0); a label or threshold image is grey"));
 }
 
 /* A 4 x 1 RGB PNG map: red, an anti-aliased red, a purple midway to blue, blue. */

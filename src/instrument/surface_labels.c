@@ -25,7 +25,7 @@ static int ends_with(const char *s, const char *tail)
 static int read_png_values(const tt_surface_params *p, tt_height_image *im, double sx, double sy)
 {
     unsigned short *pix;
-    int w, h, maxv, rc = tt_surface_read_png_grey(KEY, p->map_image, &pix, &w, &h, &maxv);
+    int w, h, maxv, rc = tt_surface_read_png_grey("map_image", p->map_image, &pix, &w, &h, &maxv);
     if (rc)
         return rc;
     im->xres = (size_t)w;

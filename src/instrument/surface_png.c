@@ -153,8 +153,11 @@ static int read_png(const char *key, const char *path, int want_rgb,
             rc = tt_error(TT_EINVAL, "[surface] %s: %s: pixel (%zu, %zu) is transparent (alpha %u of %u); a map must "
                                "be opaque", key, path, k % W, k / W, s[nch - 1], max);
         else if (!want_rgb && (r != g || g != b))
-            rc = tt_error(TT_EINVAL, "[surface] %s: %s: pixel (%zu, %zu) has colour (%u, %u, %u); a height map is grey",
-                               key, path, k % W, k / W, r, g, b);
+            rc = tt_error(TT_EINVAL, "[surface] %s: %s: pixel (%zu, %zu) has colour (%u, %u, %u); %s",
+                               key, path, k % W, k / W, r, g, b,
+                               strstr(key, "map_image") ? "a label or threshold image is grey (map = png names "
+                                                          "materials by colour)"
+                                                        : "a height map is grey");
         else if (want_rgb) {
             (*pix)[3 * k] = (unsigned short)r;
             (*pix)[3 * k + 1] = (unsigned short)g;
