@@ -216,6 +216,11 @@ static void refusals(void **st)
     make(keys, 20e-9, 10e-9, 0);
     assert_non_null(strstr(tt_error_message(), "s.ini: [surface] map_image: "));
     assert_non_null(strstr(tt_error_message(), "pixel (0, 0) has colour (255, 0, 0); a label or threshold image is grey"));
+    /* and as a measured height image: the section named once */
+    snprintf(keys, sizeof keys, "type = measured\nimage = %s/red.png\npixel_size = 1 nm\npng_height_range = 1 nm\n", dir);
+    make(keys, 2e-9, 1e-9, 0);
+    assert_non_null(strstr(tt_error_message(), "s.ini: [surface] image: "));
+    assert_null(strstr(tt_error_message(), "[surface] [surface]"));
 }
 
 /* A 4 x 1 RGB PNG map: red, an anti-aliased red, a purple midway to blue, blue. */

@@ -199,7 +199,8 @@ int tt_surface_build_png_height(tt_surface *S, const tt_surface_params *p)
 
 int tt_surface_read_png16(const char *key, const char *path, unsigned short **pix, int *w, int *h)
 {
-    int maxv, rc = read_png(key, path, 0, pix, w, h, &maxv);
+    /* read_png names the section itself: "[surface] image" once, not twice */
+    int maxv, rc = read_png(strncmp(key, "[surface] ", 10) == 0 ? key + 10 : key, path, 0, pix, w, h, &maxv);
     if (rc == TT_OK && maxv != 65535) {
         free(*pix);
         *pix = NULL;
