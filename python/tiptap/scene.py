@@ -224,6 +224,21 @@ class Scene:
                 check(lib.tt_scene_set(self._p, line))
         return self
 
+    def _gsf(self, prefix, name, z, dx, dy, keys):
+        """z (2-D float32) as a Gwyddion Simple Field file with the header keys given, in a
+        temporary folder that lives as long as this scene and its copies; its path."""
+        import tempfile
+
+        ny, nx = z.shape
+        folder = tempfile.TemporaryDirectory(prefix=prefix)
+        path = os.path.join(folder.name, name)
+        head = (f"Gwyddion Simple Field 1.0\nXRes = {nx}\nYRes = {ny}\nXReal = {nx * dx!r}\n"
+                f"YReal = {ny * dy!r}\nXYUnits = m\n{keys}").encode()
+        with open(path, "wb") as f:
+            f.write(head + b"\0" * (4 - len(head) % 4) + z.tobytes())
+        self.__dict__.setdefault("_folders", []).append(folder)
+        return path
+
     def set_surface_image(self, heights, pixel_size):
         """A measured topography from a numpy array: heights (2-D, metres, row 0 at y = 0)
         with pixel_size (metres, a number or (dx, dy)) become [surface] type = measured,
@@ -233,22 +248,49 @@ class Scene:
         a file (docs/surfaces.md). The library's checks apply: a NaN pixel or an absurd
         pixel size raises SceneError when the scene is run."""
         import numpy as np
-        import tempfile
 
         z = np.asarray(heights, dtype="<f4")
         if z.ndim != 2:
             raise ValueError(f"set_surface_image: heights must be a 2-D array, not {z.ndim}-D")
         dx, dy = (pixel_size, pixel_size) if np.ndim(pixel_size) == 0 else pixel_size
         dx, dy = float(dx), float(dy)
-        ny, nx = z.shape
-        folder = tempfile.TemporaryDirectory(prefix="tiptap-surface-")
-        path = os.path.join(folder.name, "heights.gsf")
-        head = (f"Gwyddion Simple Field 1.0\nXRes = {nx}\nYRes = {ny}\nXReal = {nx * dx!r}\n"
-                f"YReal = {ny * dy!r}\nXYUnits = m\nZUnits = m\nTitle = numpy\n").encode()
-        with open(path, "wb") as f:
-            f.write(head + b"\0" * (4 - len(head) % 4) + z.tobytes())
-        self.__dict__.setdefault("_folders", []).append(folder)
+        path = self._gsf("tiptap-surface-", "heights.gsf", z, dx, dy, "ZUnits = m\nTitle = numpy\n")
         return self.set({"surface.type": "measured", "surface.image": path})
+
+    def set_material_labels(self, labels, pixel_size, materials):
+        """A material map from a numpy integer array: labels (2-D, row 0 at y = 0) with
+        pixel_size (metres, a number or (dx, dy)) and materials {label: "NAME"} become
+        [surface] map = labels, each [material NAME] map_value its label, through a
+        Gwyddion Simple Field file in a temporary folder that lives as long as this scene
+        and its copies (docs/surfaces.md, "Material maps from data"; edges applies). A
+        non-integer array, a label outside 0-65535 or a material the scene has no section
+        for raises ValueError here; a label in the array that no material has raises
+        SceneError when the scene is run."""
+        import numpy as np
+
+        a = np.asarray(labels)
+        if a.ndim != 2:
+            raise ValueError(f"set_material_labels: labels must be a 2-D array, not {a.ndim}-D")
+        if a.dtype.kind not in "iub":
+            raise ValueError(f"set_material_labels: labels must be integers, not {a.dtype}; "
+                             "threshold a measured channel with [surface] map = threshold")
+        if a.size and (a.min() < 0 or a.max() > 65535):
+            raise ValueError(f"set_material_labels: labels {a.min()} to {a.max()}; expected 0 to 65535")
+        known = {k.split(".")[1] for k in self.items() if k.startswith("material.")}
+        changes = {}
+        for label, name in materials.items():
+            if name not in known:
+                raise ValueError(f"set_material_labels: label {label}: no [material {name}] in the "
+                                 f"scene; expected one of {', '.join(sorted(known)) or '(none)'}")
+            if not 0 <= int(label) <= 65535:
+                raise ValueError(f"set_material_labels: label {label}; expected 0 to 65535")
+            changes[f"material.{name}.map_value"] = str(int(label))
+        dx, dy = (pixel_size, pixel_size) if np.ndim(pixel_size) == 0 else pixel_size
+        dx, dy = float(dx), float(dy)
+        # float32 holds every label 0-65535 exactly
+        path = self._gsf("tiptap-labels-", "labels.gsf", a.astype("<f4"), dx, dy, "Title = labels\n")
+        changes.update({"surface.map": "labels", "surface.map_image": path})
+        return self.set(changes)
 
     def copy(self):
         """A deep copy."""

@@ -13,6 +13,7 @@
 #include "tiptap/instrument/tip.h"
 #include "tiptap/io/files.h"
 #include "tiptap/util/error.h"
+#include "tiptap/util/str.h"
 
 int tt_config_raster(const tt_scene *s, tt_raster *r)
 {
@@ -132,6 +133,13 @@ static int check_measured(const tt_scene *s, tt_scan_params *p)
     return tt_scene_locate(s, tt_surface_check_measured(&p->surface, p->raster.size_x, p->raster.size_y));
 }
 
+/* A labels or threshold map read and built once, before the run is estimated. */
+static int check_map_image(const tt_scene *s, tt_scan_params *p)
+{
+    return tt_scene_locate(s, tt_surface_check_map_image(&p->surface, p->materials, p->nmaterials,
+                                                         p->raster.size_x, p->raster.size_y));
+}
+
 static int read_shape(const tt_scene *s, tt_surface_params *p)
 {
     int rc = TT_OK;
@@ -203,7 +211,41 @@ static int read_map_materials(const tt_scene *s, const char *list, const tt_mate
 }
 
 static const char *const surface_types[] = {"flat", "steps", "grating", "particles", "rough", "png", "measured"};
-static const char *const surface_maps[] = {"uniform", "stripes", "disks", "checkerboard", "islands", "png"};
+static const char *const surface_maps[] = {"uniform", "stripes", "disks", "checkerboard", "islands", "png",
+                                           "labels", "threshold"};
+
+/* A labels or threshold map's keys; the image itself is read by check_map_image, once the
+ * scan area is known. */
+static int read_map_image(const tt_scene *s, tt_surface_params *p)
+{
+    static const char *const edges[] = {"refuse", "clamp", "periodic"};
+    int rc;
+    if (!tt_scene_has(s, "surface", NULL, "map_image"))
+        return tt_scene_fail(s, "surface", NULL, "map", "%s needs [surface] map_image = a .gsf, .gwy or grey .png image",
+                             surface_maps[p->map]);
+    if ((rc = tt_scene_get_path(s, "surface", NULL, "map_image", p->map_image, sizeof p->map_image)))
+        return rc;
+    const char *ch = tt_scene_get_string(s, "surface", NULL, "map_channel");
+    snprintf(p->map_channel, sizeof p->map_channel, "%s", ch ? ch : "");
+    if (tt_scene_has(s, "surface", NULL, "map_pixel_size") && (rc = get_d(s, "map_pixel_size", &p->map_pixel_size)))
+        return rc;
+    p->edges = (tt_surface_edges)enum_of(s, "edges", edges, 3);
+    if (p->map == TT_MAP_LABELS)
+        return TT_OK;
+    const char *t = tt_scene_get_string(s, "surface", NULL, "map_threshold");
+    char *end;
+    if (!t)
+        return tt_scene_fail(s, "surface", NULL, "map", "threshold needs [surface] map_threshold = a value "
+                             "in the image's unit (e.g. 60 deg)");
+    p->map_threshold = tt_strtod(t, &end);
+    while (*end == ' ')
+        end++;
+    if (end == t || !isfinite(p->map_threshold) || strlen(end) >= sizeof p->map_threshold_unit || strchr(end, ' '))
+        return tt_scene_fail(s, "surface", NULL, "map_threshold",
+                             "'%s'; expected a number and the image's unit (e.g. 60 deg)", t);
+    snprintf(p->map_threshold_unit, sizeof p->map_threshold_unit, "%s", end);
+    return TT_OK;
+}
 
 /* A two-material map: which materials, its period, duty and disk radius. */
 static int read_two_material_map(const tt_scene *s, const tt_material *m, size_t n,
@@ -241,18 +283,24 @@ int tt_config_surface(const tt_scene *s, const tt_material *m, size_t n, tt_surf
     for (int i = 0; i < 7; i++) {
         if (t && strcmp(t, surface_types[i]) == 0)
             p->type = (tt_surface_type)i;
-        if (i < 6 && mp && strcmp(mp, surface_maps[i]) == 0)
+        if (mp && strcmp(mp, surface_maps[i]) == 0)
             p->map = (tt_surface_map)i;
     }
+    if (mp && strcmp(mp, surface_maps[7]) == 0)
+        p->map = TT_MAP_THRESHOLD;
     int rc = read_shape(s, p);
     if (rc)
         return rc;
     /* two materials on one pixel value: refused before the run is estimated */
-    if (p->map == TT_MAP_PNG &&
+    if (p->map == TT_MAP_PNG && !(rc = get_d(s, "map_tolerance", &p->map_tolerance)) &&
         !(rc = tt_scene_get_path(s, "surface", NULL, "map_png", p->map_png, sizeof p->map_png)))
         rc = tt_scene_locate(s, tt_surface_check_map_values(p, m, n));
     if (p->map == TT_MAP_PNG)
         return rc;
+    if ((p->map == TT_MAP_LABELS || p->map == TT_MAP_THRESHOLD) && (rc = read_map_image(s, p)))
+        return rc;
+    if (p->map == TT_MAP_LABELS)
+        return TT_OK;
     if (p->map != TT_MAP_UNIFORM)
         return read_two_material_map(s, m, n, p);
     return TT_OK;
@@ -435,6 +483,7 @@ size_t tt_config_scan_unused(const tt_scan_params *p, size_t *idx, size_t max)
         switch (p->surface.map) {
         case TT_MAP_UNIFORM: used = i == 0; break;
         case TT_MAP_PNG: used = m->map_grey >= 0 || m->map_rgb >= 0; break;
+        case TT_MAP_LABELS: used = m->map_grey >= 0; break;
         default: used = (int)i == p->surface.materials[0] || (int)i == p->surface.materials[1];
         }
         if (!used && k++ < max)
@@ -500,7 +549,7 @@ int tt_config_scan(const tt_scene *s, tt_scan_params *p)
         (rc = read_noise(s, p)) ||
         (rc = tt_config_feedback(s, p->cantilever.A0, &p->feedback)) ||
         (rc = tt_config_surface(s, m, n, &p->surface)) || (rc = check_particles(s, p)) ||
-        (rc = check_measured(s, p)) ||
+        (rc = check_measured(s, p)) || (rc = check_map_image(s, p)) ||
         (rc = tt_config_tip_shape(s, &p->tip)) || (rc = tt_config_instrument(s, &p->instrument))) {
         tt_config_scan_free(p);
         return rc;
@@ -548,11 +597,11 @@ void tt_config_note_inputs(const tt_scene *s)
 {
     for (size_t i = 0; i < s->nfiles; i++)
         tt_input_note(s->files[i], "scene file");
-    static const char *const keys[] = {"png", "map_png", "image"};
+    static const char *const keys[] = {"png", "map_png", "image", "map_image"};
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
         char path[4096];
         if (tt_scene_has(s, "surface", NULL, keys[i]) &&
             tt_scene_get_path(s, "surface", NULL, keys[i], path, sizeof path) == TT_OK)
-            tt_input_note(path, i < 2 ? "PNG map" : "height image");
+            tt_input_note(path, i < 2 ? "PNG map" : i == 2 ? "height image" : "map image");
     }
 }

@@ -191,8 +191,8 @@ static const tt_scene_key surface_keys[] = {
      "measured: between pixel centres (GSL gsl_interp2d); bilinear stays within the pixels' "
      "heights, bicubic has continuous slopes but overshoots at steps"},
     {"edges", TT_KEY_ENUM, 0, "refuse", 0, 0, 0, "refuse|clamp|periodic",
-     "measured: refuse an image smaller than the scan area, or continue its edge pixels "
-     "(clamp) or repeat it (periodic)"},
+     "measured, and labels and threshold maps: refuse an image smaller than the scan area, "
+     "or continue its edge pixels (clamp) or repeat it (periodic)"},
     {"z_scale", Q(TT_DIM_NONE), "1", -1e6, 1e6, 0, NULL, "measured: factor on the levelled heights"},
     {"z_offset", Q(TT_DIM_LENGTH), "0 nm", -1e-3, 1e-3, 0, NULL, "measured: added after z_scale"},
     {"measured_tip_shape", TT_KEY_ENUM, 0, "none", 0, 0, 0, "none|sphere|cone",
@@ -202,10 +202,11 @@ static const tt_scene_key surface_keys[] = {
      "measured_tip_shape sphere or cone: that tip's apex radius"},
     {"measured_tip_half_angle", Q(TT_DIM_ANGLE), "20 deg", 0, M_PI / 2, TT_KEY_MIN_EXCL | TT_KEY_MAX_EXCL,
      NULL, "measured_tip_shape cone: that tip's cone half-angle"},
-    {"map", TT_KEY_ENUM, 0, "uniform", 0, 0, 0, "uniform|stripes|disks|checkerboard|islands|png",
-     "material map"},
+    {"map", TT_KEY_ENUM, 0, "uniform", 0, 0, 0, "uniform|stripes|disks|checkerboard|islands|png|labels|threshold",
+     "material map (labels, threshold: from map_image, docs/surfaces.md)"},
     {"map_materials", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
-     "materials of the map, background first: \"matrix, disk\" (default: the scene's first two)"},
+     "materials of the map, background first: \"matrix, disk\" (default: the scene's first two); "
+     "threshold: below, then at or above"},
     {"map_period", Q(TT_DIM_LENGTH), "250 nm", 0, INF, POS, NULL,
      "stripes, disks, checkerboard: period of the pattern"},
     {"map_duty", Q(TT_DIM_FRACTION | TT_DIM_NONE), "50 %", 0, 1, TT_KEY_MIN_EXCL | TT_KEY_MAX_EXCL, NULL,
@@ -213,6 +214,20 @@ static const tt_scene_key surface_keys[] = {
     {"map_radius", Q(TT_DIM_LENGTH), "60 nm", 0, INF, POS, NULL, "disks: disk radius"},
     {"map_png", TT_KEY_STRING, 0, NULL, 0, 0, TT_KEY_PATH, NULL,
      "png map: each pixel's grey level or colour names a material through its map_value"},
+    {"map_tolerance", Q(TT_DIM_NONE), "0", 0, 442, 0, NULL,
+     "png map: a pixel whose colour no map_value names takes the nearest material's within "
+     "this distance in 8-bit levels (Euclidean in RGB; ties: the first material); 0: exact"},
+    {"map_image", TT_KEY_STRING, 0, NULL, 0, 0, TT_KEY_PATH, NULL,
+     "labels, threshold: .gsf, .gwy or grey .png image, taken pixel by pixel (nearest), top row "
+     "at y = 0; labels: each whole number is the material whose map_value it is"},
+    {"map_channel", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
+     "labels, threshold, .gwy map_image: the channel's title or number (default: the first)"},
+    {"map_pixel_size", Q(TT_DIM_LENGTH), NULL, 0, INF, POS, NULL,
+     "labels, threshold, .png map_image: its pixel (square; default: the scan area over its "
+     "pixels, refused when that is not square)"},
+    {"map_threshold", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
+     "threshold: value and the image's unit (e.g. 60 deg); map_materials' first below it, "
+     "second at or above"},
 };
 
 static const tt_scene_key lockin_keys[] = {
@@ -343,6 +358,7 @@ static const struct {
     {"piezo_damping", "a number, no unit, such as '0.7'"},
     {"creep", "a fraction such as '0.02' or a percentage such as '2 %'"},
     {"z_scale", "a number, no unit, such as '1.5'"},
+    {"map_tolerance", "a number of 8-bit levels, no unit, such as '40'"},
 };
 
 const char *tt_scene_key_describe(const tt_scene_key *k)

@@ -291,6 +291,9 @@ int tt_surface_material(const tt_surface *S, double x, double y)
         int j = v < 0 ? 0 : v >= S->mh ? S->mh - 1 : (int)v;
         return S->mgrid[(size_t)j * S->mw + i];
     }
+    case M_LABELS:
+    case M_THRESHOLD:
+        return tt_surface_map_image_at(S, x, y);
     default:
         return S->mat[0];
     }
@@ -362,7 +365,7 @@ int tt_surface_alloc(tt_surface **out, const tt_surface_params *p, const tt_mate
     default:
         break;
     }
-    if (S->map != M_UNIFORM && S->map != M_PNG) {
+    if (S->map != M_UNIFORM && S->map != M_PNG && S->map != M_LABELS) {
         S->mat[0] = p->materials[0];
         S->mat[1] = p->materials[1];
         S->map_period = p->map_period;
@@ -371,6 +374,8 @@ int tt_surface_alloc(tt_surface **out, const tt_surface_params *p, const tt_mate
     }
     if (rc == TT_OK && S->map == M_PNG)
         rc = tt_surface_build_png_map(S, p, materials, nmaterials);
+    if (rc == TT_OK && (S->map == M_LABELS || S->map == M_THRESHOLD))
+        rc = tt_surface_build_map_image(S, p, materials, nmaterials);
     if (rc) {
         tt_surface_free(S);
         return rc;

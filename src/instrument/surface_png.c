@@ -153,8 +153,11 @@ static int read_png(const char *key, const char *path, int want_rgb,
             rc = tt_error(TT_EINVAL, "[surface] %s: %s: pixel (%zu, %zu) is transparent (alpha %u of %u); a map must "
                                "be opaque", key, path, k % W, k / W, s[nch - 1], max);
         else if (!want_rgb && (r != g || g != b))
-            rc = tt_error(TT_EINVAL, "[surface] %s: %s: pixel (%zu, %zu) has colour (%u, %u, %u); a height map is grey",
-                               key, path, k % W, k / W, r, g, b);
+            rc = tt_error(TT_EINVAL, "[surface] %s: %s: pixel (%zu, %zu) has colour (%u, %u, %u); %s",
+                               key, path, k % W, k / W, r, g, b,
+                               strstr(key, "map_image") ? "a label or threshold image is grey (map = png names "
+                                                          "materials by colour)"
+                                                        : "a height map is grey");
         else if (want_rgb) {
             (*pix)[3 * k] = (unsigned short)r;
             (*pix)[3 * k + 1] = (unsigned short)g;
@@ -196,7 +199,8 @@ int tt_surface_build_png_height(tt_surface *S, const tt_surface_params *p)
 
 int tt_surface_read_png16(const char *key, const char *path, unsigned short **pix, int *w, int *h)
 {
-    int maxv, rc = read_png(key, path, 0, pix, w, h, &maxv);
+    /* read_png names the section itself: "[surface] image" once, not twice */
+    int maxv, rc = read_png(strncmp(key, "[surface] ", 10) == 0 ? key + 10 : key, path, 0, pix, w, h, &maxv);
     if (rc == TT_OK && maxv != 65535) {
         free(*pix);
         *pix = NULL;
@@ -204,6 +208,12 @@ int tt_surface_read_png16(const char *key, const char *path, unsigned short **pi
                                    "(or type = png for a drawn map)", key, path);
     }
     return rc;
+}
+
+int tt_surface_read_png_grey(const char *key, const char *path, unsigned short **pix, int *w, int *h,
+                             int *maxval)
+{
+    return read_png(key, path, 0, pix, w, h, maxval);
 }
 
 /* ---- material map ---- */
@@ -308,6 +318,30 @@ int tt_surface_check_map_values(const tt_surface_params *p, const tt_material *m
     return rc;
 }
 
+/* An anti-aliased pixel c (packed as map_key packs): the material whose colour is nearest,
+ * by Euclidean distance in 8-bit levels, when within tol; ties go to the material first
+ * in the scene. -1 when none is within tol. */
+static int nearest_key(const unsigned long long *key, size_t nm, unsigned long long c, int maxv,
+                       double tol)
+{
+    double unit = maxv == 255 ? 1 : 257, best = tol * unit * (tol * unit);
+    int found = -1;
+    for (size_t i = 0; i < nm; i++) {
+        if (key[i] == ~0ULL)
+            continue;
+        double d2 = 0;
+        for (int sh = 0; sh < 48; sh += 16) {
+            double d = (double)(key[i] >> sh & 0xffff) - (double)(c >> sh & 0xffff);
+            d2 += d * d;
+        }
+        if (d2 <= best && (found < 0 || d2 < best)) {
+            best = d2;
+            found = (int)i;
+        }
+    }
+    return found;
+}
+
 int tt_surface_build_png_map(tt_surface *S, const tt_surface_params *p, const tt_material *mat,
                              size_t nm)
 {
@@ -339,6 +373,9 @@ int tt_surface_build_png_map(tt_surface *S, const tt_surface_params *p, const tt
         return rc ? rc : png_nomem("map_png", path, "its material grid", (size_t)S->mw, (size_t)S->mh,
                                    (double)S->mw * S->mh * sizeof *S->mgrid);
     }
+    char tol[80] = "";
+    if (p->map_tolerance > 0)
+        snprintf(tol, sizeof tol, " within [surface] map_tolerance = %g levels", p->map_tolerance);
     for (size_t k = 0; k < (size_t)S->mw * S->mh && rc == TT_OK; k++) {
         unsigned long long c = (unsigned long long)pix[3 * k] << 32 |
                                (unsigned long long)pix[3 * k + 1] << 16 | pix[3 * k + 2];
@@ -346,16 +383,18 @@ int tt_surface_build_png_map(tt_surface *S, const tt_surface_params *p, const tt
         for (size_t i = 0; i < nm; i++)
             if (key[i] == c)
                 found = (int)i;
+        if (found < 0 && p->map_tolerance > 0)
+            found = nearest_key(key, nm, c, maxv, p->map_tolerance);
         if (found < 0 && maxv == 255)
             rc = tt_error(TT_EINVAL, "[surface] map_png: %s: pixel (%zu, %zu) has colour "
-                          "#%02x%02x%02x, which no [material] map_value names", path,
+                          "#%02x%02x%02x, which no [material] map_value names%s", path,
                           k % (size_t)S->mw, k / (size_t)S->mw, pix[3 * k], pix[3 * k + 1],
-                          pix[3 * k + 2]);
+                          pix[3 * k + 2], tol);
         else if (found < 0)
             rc = tt_error(TT_EINVAL, "[surface] map_png: %s: pixel (%zu, %zu) has 16-bit level "
-                          "(%u, %u, %u), which no [material] map_value names", path,
+                          "(%u, %u, %u), which no [material] map_value names%s", path,
                           k % (size_t)S->mw, k / (size_t)S->mw, pix[3 * k], pix[3 * k + 1],
-                          pix[3 * k + 2]);
+                          pix[3 * k + 2], tol);
         S->mgrid[k] = found;
     }
     free(key);

@@ -8,7 +8,7 @@
 #include "tiptap/instrument/surface.h"
 
 typedef enum { S_FLAT, S_STEPS, S_GRATING, S_PARTICLES, S_ROUGH, S_PNG, S_MEASURED } shape;
-typedef enum { M_UNIFORM, M_STRIPES, M_DISKS, M_CHECKER, M_ISLANDS, M_PNG } mapkind;
+typedef enum { M_UNIFORM, M_STRIPES, M_DISKS, M_CHECKER, M_ISLANDS, M_PNG, M_LABELS, M_THRESHOLD } mapkind;
 
 struct tt_surface {
     shape type;
@@ -28,8 +28,10 @@ struct tt_surface {
     /* map */
     int mat[2];             /* background, second material */
     double map_period, map_duty, map_radius;
-    int *mgrid;             /* png material map */
+    int *mgrid;             /* png, labels, threshold material map */
     int mw, mh;
+    double mdx, mdy;        /* labels, threshold: the image's pixel (m) */
+    int medges;             /* labels, threshold: tt_surface_edges past the image */
     /* measured image (surface_measured.c): GSL's interpolation over nodes xa, ya */
     gsl_interp2d *interp;
     double *xa, *ya, *za;
@@ -45,6 +47,15 @@ int tt_surface_build_png_map(tt_surface *S, const tt_surface_params *p, const tt
 /* A 16-bit grey PNG's levels (0 to 65535) into *pix (w * h, caller frees); errors name
  * the key and the file. */
 int tt_surface_read_png16(const char *key, const char *path, unsigned short **pix, int *w, int *h);
+
+/* An 8- or 16-bit grey PNG's levels into *pix (w * h, caller frees), *maxval 255 or 65535. */
+int tt_surface_read_png_grey(const char *key, const char *path, unsigned short **pix, int *w, int *h,
+                             int *maxval);
+
+/* surface_labels.c: a material map from a label image or a thresholded channel. */
+int tt_surface_build_map_image(tt_surface *S, const tt_surface_params *p, const tt_material *mat,
+                               size_t nm);
+int tt_surface_map_image_at(const tt_surface *S, double x, double y);
 
 /* surface_measured.c: a measured height image, read, prepared and interpolated. */
 int tt_surface_build_measured(tt_surface *S, const tt_surface_params *p);

@@ -112,7 +112,9 @@ static int parse_header(const char *key, const char *path, char *buf, size_t n, 
     return TT_OK;
 }
 
-int tt_gsf_read_height(const char *key, const char *path, tt_height_image *out)
+/* The file into out: lateral sizes in metres; the values in ZUnits converted to metres
+ * when zunit is NULL (a height image), else as stored, with ZUnits copied into zunit. */
+static int gsf_read(const char *key, const char *path, tt_height_image *out, char *zunit, size_t nz)
 {
     memset(out, 0, sizeof *out);
     FILE *f;
@@ -138,7 +140,7 @@ int tt_gsf_read_height(const char *key, const char *path, tt_height_image *out)
         (rc = res_of(key, path, "XRes", h.xres, &out->xres)) ||
         (rc = res_of(key, path, "YRes", h.yres, &out->yres)) ||
         (rc = unit_of(key, path, "XYUnits", h.xyunits, &xy)) ||
-        (rc = unit_of(key, path, "ZUnits", h.zunits, &zu)) ||
+        (!zunit && (rc = unit_of(key, path, "ZUnits", h.zunits, &zu))) ||
         (rc = real_of(key, path, "XReal", h.xreal, xy, &out->dx)) ||
         (rc = real_of(key, path, "YReal", h.yreal, xy, &out->dy))) {
         free(buf);
@@ -161,10 +163,23 @@ int tt_gsf_read_height(const char *key, const char *path, tt_height_image *out)
         uint32_t u = (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24;
         float x;
         memcpy(&x, &u, 4);
-        out->z[i] = (double)x * zu;
+        out->z[i] = zunit ? (double)x : (double)x * zu;
     }
     free(buf);
-    if ((rc = tt_height_image_check(key, path, out)))
+    if (zunit)
+        snprintf(zunit, nz, "%s", h.zunits);
+    return TT_OK;
+}
+
+int tt_gsf_read_height(const char *key, const char *path, tt_height_image *out)
+{
+    int rc = gsf_read(key, path, out, NULL, 0);
+    if (!rc && (rc = tt_height_image_check(key, path, out)))
         tt_height_image_free(out);
     return rc;
+}
+
+int tt_gsf_read_values(const char *key, const char *path, tt_height_image *out, char *zunit, size_t n)
+{
+    return gsf_read(key, path, out, zunit, n);
 }

@@ -302,7 +302,10 @@ static void list_channels(const tt_gwy_file *f, char *out, size_t len)
         }
 }
 
-int tt_gwy_read_height(const char *key, const char *path, const char *sel, tt_height_image *out)
+/* A channel into out: lateral sizes in metres; the values converted to metres when zunit
+ * is NULL (a height image, checked), else as stored, with their unit copied into zunit. */
+static int gwy_read_channel(const char *key, const char *path, const char *sel, tt_height_image *out,
+                            char *zunit, size_t nz)
 {
     memset(out, 0, sizeof *out);
     tt_gwy_file *f;
@@ -315,13 +318,13 @@ int tt_gwy_read_height(const char *key, const char *path, const char *sel, tt_he
     int rc = TT_OK;
     char list[512];
     const struct tt_gwy_read_channel *c = i >= 0 ? &f->ch[i] : NULL;
-    double xy = c ? tt_length_unit(c->xyunits) : 0, zu = c ? tt_length_unit(c->zunits) : 0;
+    double xy = c ? tt_length_unit(c->xyunits) : 0, zu = c && !zunit ? tt_length_unit(c->zunits) : 1;
     if (!c) {
         list_channels(f, list, sizeof list);
         rc = tt_error(TT_EINVAL, "%s: %s: no channel '%s'; expected a title or number of those "
                                  "it holds: %s",
                       key, path, sel && *sel ? sel : "(any)", *list ? list : "none");
-    } else if (!c->xyunits || !*c->xyunits || !c->zunits || !*c->zunits)
+    } else if (!c->xyunits || !*c->xyunits || (!zunit && (!c->zunits || !*c->zunits)))
         rc = tt_error(TT_EINVAL, "%s: %s: channel %ld has no %s unit; expected a length unit (m)",
                       key, path, i, !c->xyunits || !*c->xyunits ? "lateral (si_unit_xy)" : "height (si_unit_z)");
     else if (xy < 0 || zu < 0)
@@ -340,9 +343,22 @@ int tt_gwy_read_height(const char *key, const char *path, const char *sel, tt_he
         f->ch[i].data = NULL; /* taken over */
         for (size_t k = 0; k < out->xres * out->yres; k++)
             out->z[k] *= zu;
-        if ((rc = tt_height_image_check(key, path, out)))
+        if (zunit)
+            snprintf(zunit, nz, "%s", c->zunits ? c->zunits : "");
+        else if ((rc = tt_height_image_check(key, path, out)))
             tt_height_image_free(out);
     }
     tt_gwy_file_free(f);
     return rc;
+}
+
+int tt_gwy_read_height(const char *key, const char *path, const char *sel, tt_height_image *out)
+{
+    return gwy_read_channel(key, path, sel, out, NULL, 0);
+}
+
+int tt_gwy_read_values(const char *key, const char *path, const char *sel, tt_height_image *out,
+                       char *zunit, size_t n)
+{
+    return gwy_read_channel(key, path, sel, out, zunit, n);
 }

@@ -144,6 +144,7 @@ int tt_run_scan_warn_inputs(const tt_scene *s, const tt_run_scan_cost *cost)
         tt_warn(TT_WARN_INPUT, "[material %s] is not used: %s", p.materials[idx[i]].name,
                 p.surface.map == TT_MAP_UNIFORM ? "a uniform map scans the first material only"
                 : p.surface.map == TT_MAP_PNG   ? "it has no map_value, so no pixel of map_png names it"
+                : p.surface.map == TT_MAP_LABELS ? "it has no whole-number map_value, so no label of map_image names it"
                                                 : "[surface] map_materials names two others");
     if (unused > 8 && ++n)
         tt_warn(TT_WARN_INPUT, "and %zu more materials are not used", unused - 8);

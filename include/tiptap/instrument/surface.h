@@ -33,7 +33,8 @@ typedef enum {
 typedef enum { TT_EDGES_REFUSE, TT_EDGES_CLAMP, TT_EDGES_PERIODIC } tt_surface_edges;
 
 typedef enum {
-    TT_MAP_UNIFORM, TT_MAP_STRIPES, TT_MAP_DISKS, TT_MAP_CHECKERBOARD, TT_MAP_ISLANDS, TT_MAP_PNG
+    TT_MAP_UNIFORM, TT_MAP_STRIPES, TT_MAP_DISKS, TT_MAP_CHECKERBOARD, TT_MAP_ISLANDS, TT_MAP_PNG,
+    TT_MAP_LABELS, TT_MAP_THRESHOLD
 } tt_surface_map;
 
 /* The [surface] section in SI units; only the fields of the chosen type and map are
@@ -65,6 +66,18 @@ typedef struct {
     int materials[2];                           /* two-material maps: background, other */
     double map_period, map_duty, map_radius;
     char map_png[4096];                         /* png map; colours: tt_material map_rgb */
+    double map_tolerance;                       /* png map: a colour no material names takes
+                                                 * the nearest within this distance (8-bit
+                                                 * levels, Euclidean in RGB; 0: exact only) */
+    /* labels, threshold maps (docs/surfaces.md, "Material maps from data"): map_image
+     * (.gsf, .gwy, grey .png) taken pixel by pixel (nearest neighbour), past its edges
+     * as edges says; labels: each whole-number label is the material whose map_grey it
+     * is; threshold: materials[0] below map_threshold, materials[1] at or above it. */
+    char map_image[4096];
+    char map_channel[256];                      /* .gwy: title or number ("": first) */
+    double map_pixel_size;                      /* .png: m (0: the image spans the scan area) */
+    double map_threshold;                       /* in map_threshold_unit */
+    char map_threshold_unit[32];                /* as written: "deg", "nm", "" */
 } tt_surface_params;
 
 typedef struct tt_surface tt_surface;
@@ -83,6 +96,13 @@ void tt_surface_free(tt_surface *s);
  * cannot make out (tt_surface_alloc then says why). */
 int tt_surface_check_map_values(const tt_surface_params *p, const tt_material *materials,
                                 size_t nmaterials);
+
+/* A labels or threshold map read and built as tt_surface_alloc would, and dropped: a bad
+ * file, a label no material names, a non-integer label, a threshold in another unit than
+ * the image's, an image smaller than the scan area (edges refuse) or a PNG whose aspect
+ * differs from the area's is refused in one line. TT_OK for other maps. */
+int tt_surface_check_map_image(const tt_surface_params *p, const tt_material *materials,
+                               size_t nmaterials, double size_x, double size_y);
 
 /* A measured surface (p->type measured) read and prepared as tt_surface_alloc would, and
  * dropped: so that a bad file, key or crop is refused, in one line naming the key, the

@@ -43,5 +43,14 @@ int tt_gsf_read_height(const char *key, const char *path, tt_height_image *out);
 int tt_gwy_read_height(const char *key, const char *path, const char *channel,
                        tt_height_image *out);
 
+/* The same files read as a channel of any quantity (a label or phase image): the values
+ * as stored, their unit (ZUnits, si_unit_z; "" when the file gives none) copied into
+ * zunit; lateral sizes in metres as above. No checks on the values: the caller makes
+ * its own. */
+int tt_gsf_read_values(const char *key, const char *path, tt_height_image *out, char *zunit,
+                       size_t nzunit);
+int tt_gwy_read_values(const char *key, const char *path, const char *channel,
+                       tt_height_image *out, char *zunit, size_t nzunit);
+
 TT_END_DECLS
 #endif
