@@ -292,6 +292,8 @@ void cli_progress_begin(cli_progress *p, const char *cmd, const char *unit, int 
     p->on = !quiet;
 }
 
+void cli_progress_callback(void *user, long done, long total) { cli_progress_show(user, done, total); }
+
 void cli_progress_show(cli_progress *p, long done, long total)
 {
     if (!p->on || done <= 0)

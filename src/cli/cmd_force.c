@@ -97,8 +97,6 @@ static int plot(const char *path, const tt_table *t, const tt_force_summary *s, 
     return rc;
 }
 
-static void progress(void *user, long done, long total) { cli_progress_show(user, done, total); }
-
 int cmd_force(int argc, char **argv)
 {
     static const cli_spec spec = {"force", CLI_OPT_OUTPUT | CLI_OPT_PLOT | CLI_OPT_SET | CLI_OPT_QUIET,
@@ -114,7 +112,7 @@ int cmd_force(int argc, char **argv)
     double t0 = cli_now();
     cli_progress_begin(&prog, "force", "drive periods", args.quiet);
     cli_catch_interrupt();
-    int rc = tt_run_force(scene, &t, &s, progress, &prog);
+    int rc = tt_run_force(scene, &t, &s, cli_progress_callback, &prog);
     cli_progress_end(&prog);
     /* a curve cut short keeps no file: its jump-in and pull-off would be missing */
     if (rc == TT_OK)

@@ -84,8 +84,6 @@ static int plot(const char *path, const tt_table *t, const tt_tune_result *r, do
     return rc;
 }
 
-static void progress(void *user, long done, long total) { cli_progress_show(user, done, total); }
-
 int cmd_tune(int argc, char **argv)
 {
     static const cli_spec spec = {"tune", CLI_OPT_OUTPUT | CLI_OPT_PLOT | CLI_OPT_SET | CLI_OPT_QUIET,
@@ -104,7 +102,7 @@ int cmd_tune(int argc, char **argv)
         k_scene = lever.k;
     cli_progress_begin(&prog, "tune", "drive periods", args.quiet);
     cli_catch_interrupt();
-    int rc = tt_run_tune(scene, &t, &r, progress, &prog);
+    int rc = tt_run_tune(scene, &t, &r, cli_progress_callback, &prog);
     cli_progress_end(&prog);
     if (rc == TT_OK)
         rc = write_csv(args.output, t);

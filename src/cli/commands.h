@@ -205,6 +205,8 @@ typedef struct cli_progress {
 } cli_progress;
 void cli_progress_begin(cli_progress *p, const char *cmd, const char *unit, int quiet);
 void cli_progress_show(cli_progress *p, long done, long total);
+/* cli_progress_show as a library progress callback whose user pointer is the cli_progress. */
+void cli_progress_callback(void *user, long done, long total);
 /* Ends the rewritten line on a terminal. */
 void cli_progress_end(const cli_progress *p);
 
