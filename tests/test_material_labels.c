@@ -6,30 +6,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tt_gsf_test.h"
 #include "tt_test.h"
 #include "tiptap/config/config.h"
 #include "tiptap/io/gwy.h"
 #include "tiptap/instrument/surface.h"
 #include "tiptap/util/error.h"
-
-static char dir[64];
-
-/* A GSF file with the header keys given and n floats; returns its path (one of a few). */
-static const char *gsf(const char *name, const char *keys, const float *z, size_t n)
-{
-    static char paths[4][128];
-    static int next;
-    char *path = paths[next++ % 4];
-    snprintf(path, sizeof paths[0], "%s/%s", dir, name);
-    FILE *f = fopen(path, "wb");
-    assert_non_null(f);
-    int len = fprintf(f, "Gwyddion Simple Field 1.0\n%s", keys);
-    for (int i = 0; i < 4 - len % 4; i++)
-        fputc(0, f);
-    fwrite(z, sizeof *z, n, f); /* little-endian machines (x86, arm64) */
-    fclose(f);
-    return path;
-}
 
 /* Materials a (map_value 0), b (1), c (7), then the [surface] keys given. */
 static tt_surface *make(const char *keys, double sx, double sy, int expect_ok)

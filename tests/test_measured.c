@@ -7,31 +7,12 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "tt_gsf_test.h"
 #include "tt_test.h"
 #include "tiptap/config/config.h"
 #include "tiptap/io/gwy.h"
 #include "tiptap/instrument/surface.h"
 #include "tiptap/util/error.h"
-
-static char dir[64];
-
-/* A GSF file: header keys as given (the magic first), then n floats of z (heights in the
- * header's ZUnits); returns its path (one of a few kept in turn). */
-static const char *gsf(const char *name, const char *keys, const float *z, size_t n)
-{
-    static char paths[4][128];
-    static int next;
-    char *path = paths[next++ % 4];
-    snprintf(path, sizeof paths[0], "%s/%s", dir, name);
-    FILE *f = fopen(path, "wb");
-    assert_non_null(f);
-    int len = fprintf(f, "Gwyddion Simple Field 1.0\n%s", keys);
-    for (int i = 0; i < 4 - len % 4; i++)
-        fputc(0, f);
-    fwrite(z, sizeof *z, n, f); /* little-endian machines (x86, arm64) */
-    fclose(f);
-    return path;
-}
 
 /* 4 x 3 pixels of 1 nm, heights in nm */
 #define KEYS43 "XRes = 4\nYRes = 3\nXReal = 4\nYReal = 3\nXYUnits = nm\nZUnits = nm\n"
