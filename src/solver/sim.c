@@ -140,6 +140,26 @@ void tt_sim_set_state(tt_sim *S, double d, double v, int contact)
     tt_sim_invalidate(S);
 }
 
+int tt_sim_dim(const tt_sim *S)
+{
+    return S->sys.n;
+}
+
+void tt_sim_get_x(const tt_sim *S, double *x, int *contact)
+{
+    for (int i = 0; i < S->sys.n; i++)
+        x[i] = S->y[i];
+    *contact = S->contact_state;
+}
+
+void tt_sim_set_x(tt_sim *S, const double *x, int contact)
+{
+    for (int i = 0; i < S->sys.n; i++)
+        S->y[i] = x[i];
+    S->contact_state = S->sys.contact ? contact : 0;
+    tt_sim_invalidate(S);
+}
+
 void tt_sim_reset_free(tt_sim *S)
 {
     /* y = A0 cos(w t - phi0) at t = 0, and d = z + y. */

@@ -197,6 +197,14 @@ double tt_sim_time(const tt_sim *sim);
 long tt_sim_cycles(const tt_sim *sim);
 void tt_sim_get_state(const tt_sim *sim, double *d, double *v, int *contact);
 void tt_sim_set_state(tt_sim *sim, double d, double v, int contact);
+/* The state of the cycle map in any dimension: the system's n components (position and
+ * velocity of each mode, then the sample's internal states; tt_sim_dim gives n, at most
+ * TT_SIM_DIM_MAX) and the contact branch. x holds n doubles, owned by the caller.
+ * tt_sim_get_state/set_state are its first two components (mode 0). */
+enum { TT_SIM_DIM_MAX = 16 };
+int tt_sim_dim(const tt_sim *sim);
+void tt_sim_get_x(const tt_sim *sim, double *x, int *contact);
+void tt_sim_set_x(tt_sim *sim, const double *x, int contact);
 /* Tip-sample force (N) for a recorded sample, on the sim's current material. */
 double tt_sim_force(const tt_sim *sim, const tt_sample *smp, double *a);
 
