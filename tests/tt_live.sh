@@ -2,6 +2,9 @@
 # `tiptap live --port 0 ARGS...` in the background with its stdout and stderr in
 # $tmp/out and $tmp/err, and sets pid and port (port empty: it did not start).
 live_start() {
+  # emptied here, not by the background job's redirection, which may come after the
+  # first read below and leave the previous server's port to be read (seen under load)
+  : >"$tmp/out"
   "$tiptap" live --port 0 "$@" >"$tmp/out" 2>"$tmp/err" &
   pid=$!
   port=""
