@@ -2,8 +2,8 @@
 # Viscous samples in every command (docs/physics.md, Viscoelastic samples): a zero
 # viscosity writes the elastic scene's files byte for byte; approach and sweep book the
 # loss per mechanism; trace ramps the viscosity; a scan of examples/viscoelastic-blend
-# shows the viscous disks' dissipation; a film stiffens the contact; the console serves
-# the blend; bad keys are refused with one line.
+# shows the viscous disks' dissipation, all of it in its viscous channel; a film
+# stiffens the contact; the console serves the blend; bad keys are refused with one line.
 # usage: cli_visco.sh path/to/tiptap source_dir
 set -u
 tiptap=$(realpath "$1")
@@ -68,6 +68,19 @@ if "$tiptap" scan "${blend[@]}" -o "$tmp/blend" 2>"$tmp/blend.err" >/dev/null &&
 else
   bad "blend scan: $(cat "$tmp/blend.err")"
 fi
+
+# its loss per mechanism: all of it viscous, the channel's files written
+if [ -f "$tmp/blend/dissipation_viscous_trace.gsf" ] && [ -f "$tmp/blend/dissipation_viscous_trace.png" ] &&
+   awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+            { if ($c["dissipation_hysteresis_trace_J"] != 0 || $c["dissipation_damping_trace_J"] != 0 ||
+                  $c["dissipation_viscous_trace_J"] != $c["dissipation_trace_J"]) bad = 1 }
+            END { exit bad || NR < 17 }' "$tmp/blend/profile.csv"; then
+  ok "blend scan: dissipation_viscous holds the whole loss, hysteresis and damping none"
+else
+  bad "blend scan's loss channels: $(head -2 "$tmp/blend/profile.csv")"
+fi
+expect_error "the loss per mechanism on the averaged tier" "[scan] channels: the averaged tier books" \
+  "$tiptap" scan "${blend[@]}" --set solver.tier=averaged -o "$tmp/avg"
 
 # a thin film on a rigid substrate is stiffer: less indentation at the same separation
 ap --set "material.soft.film_thickness=5 nm" -o "$tmp/f.csv"

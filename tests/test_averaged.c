@@ -108,9 +108,7 @@ static const char *base =
 
 static tt_scan *scan_with(const char *extra, const char *tier, tt_scene **sc)
 {
-    char text[1024];
-    snprintf(text, sizeof text, "%s\n[solver]\ntier = %s\n", extra, tier);
-    return tt_run_scan(base, text, sc);
+    return tt_run_scan_on(base, extra, tier, sc);
 }
 
 /* The mean of channel c (height in nm, phase in deg) over the pixels of trace and

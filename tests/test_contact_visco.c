@@ -102,6 +102,9 @@ static void film_tends_to_bulk_and_follows_garcia(void **st)
 {
     (void)st;
     const double R = 10e-9, K = 2e9, delta = 2e-9, eta = 4.0;
+    /* Garcia & Garcia's paraboloid on a bonded film, as an independent implementation
+     * citing the paper has them (docs/physics.md names it): not Dimitriadis et al.'s
+     * bonded series, 1.133, 1.283, 0.769, 0.0975, which shares the first term only */
     const double gc[5] = {1.0, 1.133, 1.497, 1.469, 0.755};
     tt_contact *bulk = law(TT_CONTACT_HERTZ, 0, eta, 0);
     tt_contact_detail db;

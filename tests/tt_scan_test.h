@@ -3,6 +3,7 @@
 #define TT_SCAN_TEST_H
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "tiptap/config/config.h"
@@ -31,6 +32,14 @@ static inline tt_scan *tt_run_scan(const char *base, const char *extra, tt_scene
     if (tt_scan_run(s, 2, NULL, NULL) != TT_OK)
         fail_msg("%s", tt_error_message());
     return s;
+}
+
+/* The scan of base plus extra on [solver] tier, run on two threads. */
+static inline tt_scan *tt_run_scan_on(const char *base, const char *extra, const char *tier, tt_scene **sc)
+{
+    char text[4096];
+    snprintf(text, sizeof text, "%s\n[solver]\ntier = %s\n", extra, tier);
+    return tt_run_scan(base, text, sc);
 }
 
 /* Largest and rms difference of channel c between two scans, trace and retrace. */

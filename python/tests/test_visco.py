@@ -1,6 +1,7 @@
 """Viscous samples from Python (docs/physics.md, Viscoelastic samples): the approach and
 the sweep carry the loss per mechanism, the same numbers as the program's CSV; a zero
-viscosity leaves the elastic table as it was; trace and scan run the blend example."""
+viscosity leaves the elastic table as it was; trace and scan run the blend example, the
+scan's loss all in its dissipation_viscous channel."""
 
 import numpy as np
 
@@ -45,3 +46,7 @@ def test_sweep_and_trace_and_scan_run_the_blend():
     r = tiptap.scan(BLEND, set=dict(QUICK_SET, **{"scan.profile_line": "0"}), progress=False)
     d = r["dissipation"]
     assert d.max() > 5e-18 and d.min() == 0
+    # the loss per mechanism: all of it viscous (no adhesion, no interaction damping)
+    assert r.units["dissipation_viscous"] == "J"
+    assert np.all(r["dissipation_hysteresis"] == 0) and np.all(r["dissipation_damping"] == 0)
+    np.testing.assert_array_equal(r["dissipation_viscous"], d)

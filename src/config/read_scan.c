@@ -351,6 +351,23 @@ int tt_config_feedback(const tt_scene *s, double A0, tt_feedback_params *p)
     return TT_OK;
 }
 
+/* The loss per mechanism: recorded by default where a material is viscous (a scene
+ * that chose its channels gets what it named); the averaged tier books the loss as a
+ * whole, so asking it for them is refused. */
+static int loss_channels(const tt_scene *s, tt_scan_params *p, int chosen)
+{
+    const int averaged = tt_scan_averaged_tier(p);
+    if (chosen && averaged && (p->channels & TT_CH_LOSSES))
+        return tt_scene_fail(s, "scan", NULL, "channels",
+                             "the averaged tier books the tip-sample loss as a whole; expected "
+                             "[solver] tier = every or envelope for dissipation_hysteresis, "
+                             "dissipation_damping and dissipation_viscous");
+    for (size_t i = 0; i < p->nmaterials && !chosen && !averaged; i++)
+        if (tt_material_viscous(&p->materials[i]))
+            p->channels |= TT_CH_LOSSES;
+    return TT_OK;
+}
+
 /* [scan] channels, settle_cycles, profile_line, and what the channels need of the
  * raster and the lock-in. */
 static int read_scan_keys(const tt_scene *s, tt_scan_params *p)
@@ -360,6 +377,8 @@ static int read_scan_keys(const tt_scene *s, tt_scan_params *p)
     const char *ch = tt_scene_get_string(s, "scan", NULL, "channels");
     if (tt_scan_channels_parse(ch ? ch : "height", &p->channels, why, sizeof why) != 0)
         return tt_scene_fail(s, "scan", NULL, "channels", "%s", why);
+    if ((rc = loss_channels(s, p, tt_scene_has(s, "scan", NULL, "channels"))))
+        return rc;
     if ((rc = tt_scene_get_int(s, "scan", NULL, "settle_cycles", &p->settle_cycles)) ||
         (rc = tt_scene_get_int(s, "scan", NULL, "profile_line", &p->profile_line)))
         return rc;

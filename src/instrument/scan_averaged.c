@@ -19,6 +19,14 @@ typedef struct {
     double *s;  /* the sample's position in each cycle of a block */
 } avg_line;
 
+/* The averaged tier books the loss as a whole (its force's first harmonic): the
+ * channels per mechanism are NaN on it. */
+static void no_losses(pixel_acc *a)
+{
+    for (int i = 0; i < 3; i++)
+        a->sum[TT_CH_LOSS_INDEX + i] = NAN;
+}
+
 /* The per-cycle channels of cycles k0 .. k0 + n - 1 into their pixels' sums: za0 and
  * dz the height command's first value and step, t0 and dt the topography's. */
 static void cycle_sums(const line_ctx *L, long k0, int n, double za0, double dz, double t0,
@@ -36,6 +44,7 @@ static void cycle_sums(const line_ctx *L, long k0, int n, double za0, double dz,
         a->sum[5] += n * o->ets;
         a->sum[6] += n * t0 + dt * tri;
         a->n += n;
+        no_losses(a);
         return;
     }
     for (int j = 0; j < n; j++) {
@@ -46,6 +55,7 @@ static void cycle_sums(const line_ctx *L, long k0, int n, double za0, double dz,
         a->sum[5] += o->ets;
         a->sum[6] += t0 + dt * j;
         a->n++;
+        no_losses(a);
     }
 }
 

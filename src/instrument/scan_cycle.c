@@ -79,7 +79,27 @@ int tt_scan_integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_
         return rc;
     if (cy->residual_rel > st->worst)
         st->worst = cy->residual_rel;
+    st->loss[0] = cy->e_hyst;
+    st->loss[1] = cy->e_ci;
+    st->loss[2] = cy->e_visc;
+    st->loss_fresh = 1;
     return TT_OK;
+}
+
+/* A cycle's loss per mechanism into its pixel's sums: an integrated cycle's own; a
+ * model cycle (the envelope tier's model predicts the total alone) its total split as
+ * the last integrated cycle's was, so that the three still add up to it. */
+static void loss_sums(line_state *st, double ets, pixel_acc *a)
+{
+    double *sum = a->sum + TT_CH_LOSS_INDEX;
+    if (st->loss_fresh) {
+        for (int i = 0; i < 3; i++)
+            sum[i] += st->loss[i];
+        return;
+    }
+    const double total = st->loss[0] + st->loss[1] + st->loss[2];
+    for (int i = 0; i < 3; i++)
+        sum[i] += total != 0 ? ets * (st->loss[i] / total) : 0.0;
 }
 
 /* The sums of the pixel that cycle k of this direction falls in. */
@@ -141,7 +161,9 @@ int tt_scan_cycle_end(const line_ctx *L, line_state *st, const cycle_in *in, dou
         a->n++;
         if (indent > L->W->indent[in->mat]) /* NaN when not tracked: left out */
             L->W->indent[in->mat] = indent;
+        loss_sums(st, ets, a);
     }
+    st->loss_fresh = 0;
     st->cycles++;
     st->k = in->k + 1;
     if (in->j == L->P - 1 || in->k == L->ncyc - 1)

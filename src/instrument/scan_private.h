@@ -46,6 +46,10 @@ typedef struct {
     long cycles;      /* the line's cycles so far (the noise's cycle count) */
     double worst;
     int clamped;
+    /* the loss per mechanism (hysteresis, damping, viscous, J) of the last integrated
+     * cycle; fresh: it is the cycle now ending's own (tt_scan_integrate) */
+    double loss[3];
+    int loss_fresh;
 } line_state;
 
 /* One cycle's inputs: the surface at its start and end, the z piezo's command at its

@@ -13,7 +13,8 @@
 
 #include "contact_private.h"
 
-/* Garcia & Garcia, Biophys. J. 114 (2018) 2923: the paraboloid on a bonded film. */
+/* Garcia & Garcia, Biophys. J. 114 (2018) 2923: the paraboloid on a bonded film (checked
+ * against an implementation citing the paper: docs/physics.md). */
 static const double garcia[5] = {1.0, 1.133, 1.497, 1.469, 0.755};
 
 /* The film's load, dP/ddelta and potential at delta > 0 (x = sqrt(delta)). */

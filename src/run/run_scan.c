@@ -26,6 +26,11 @@ static double display_scale(int ch, const char **unit, tt_colormap *cmap)
         *cmap = TT_CMAP_DIVERGING;
         return 1e9;
     }
+    if (ch >= TT_CH_LOSS_INDEX && ch < TT_CH_LOSS_INDEX + 3) { /* the loss per mechanism */
+        *unit = "aJ";
+        *cmap = TT_CMAP_VIRIDIS;
+        return 1e18;
+    }
     /* higher harmonics are tens of picometres where the fundamental is nanometres */
     if (ch >= TT_CH_HARMONIC_PHASE_INDEX) {
         *unit = "deg";

@@ -64,7 +64,15 @@ enum {
      * sample (with the standing offset of the tip's rest at the setpoint) */
     TT_CH_ARTEFACT_INDEX = 22,
     TT_CH_ARTEFACT = 1 << 22,
-    TT_CH_COUNT = 23
+    /* the dissipation per mechanism, J per cycle, adding up to dissipation: adhesion
+     * hysteresis (the jumps' energy), interaction damping (c_i) and the sample's
+     * viscosity; NaN on the averaged tier, which books the loss as a whole */
+    TT_CH_LOSS_INDEX = 23,
+    TT_CH_DISSIPATION_HYSTERESIS = 1 << 23,
+    TT_CH_DISSIPATION_DAMPING = 1 << 24,
+    TT_CH_DISSIPATION_VISCOUS = 1 << 25,
+    TT_CH_LOSSES = TT_CH_DISSIPATION_HYSTERESIS | TT_CH_DISSIPATION_DAMPING | TT_CH_DISSIPATION_VISCOUS,
+    TT_CH_COUNT = 26
 };
 
 /* Name ("height"), unit ("m", "deg", "N", "J") and title of channel index i. */
