@@ -116,6 +116,13 @@ int sweep_plot_check(const sweep_job *job, long contrast)
     return TT_OK;
 }
 
+/* A series' colour: one per contrast level after the first within each series, or one
+ * per series without a contrast key (the first form gave them all the first colour). */
+static unsigned series_style(size_t s, size_t c, size_t nc, long contrast)
+{
+    return (unsigned)(contrast >= 0 ? s * (nc - 1) + c : s) % 8 + 1;
+}
+
 /* Steady and setpoint points: three panels against the x key, one line per series
  * (and per contrast level, as differences to the first). */
 static int plot_points(const sweep_job *job, const sweep_results *r, tt_figure *f, long contrast)
@@ -167,7 +174,7 @@ static int plot_points(const sweep_job *job, const sweep_results *r, tt_figure *
                     if (!ok)
                         rc = mark(&u, p, xs[j], ys[j]);
                 }
-                tt_figure_line(f, p, xs, ys, m, p == 0 ? label : NULL, (unsigned)(s * (nc - 1) + c) % 8 + 1);
+                tt_figure_line(f, p, xs, ys, m, p == 0 ? label : NULL, series_style(s, c, nc, contrast));
             }
         }
     const char *xl = tt_sweep_key(g, x);
