@@ -28,8 +28,8 @@ static void help(void)
            "contact, the pull-off (where the tip first leaves, the force just before), the\n"
            "largest adhesion on the retract, the largest force, and the contact part's slope:\n"
            "-dF/dz (N/m) and d(deflection)/dz, a straight line through the points above half\n"
-           "the largest force. [noise] temperature adds the thermal force\n"
-           "(docs/force-and-tune.md).\n");
+           "the largest force, and the largest indentation. [noise] temperature adds the\n"
+           "thermal force (docs/force-and-tune.md).\n");
 }
 
 static int write_csv(const char *path, const tt_table *t)
@@ -130,10 +130,10 @@ int cmd_force(int argc, char **argv)
                "jumpin_z_nm = %.6g\njumpin_force_nN = %.6g\njumpin_gap_nm = %.6g\n"
                "contact_z_nm = %.6g\npulloff_z_nm = %.6g\npulloff_force_nN = %.6g\n"
                "adhesion_nN = %.6g\nmax_force_nN = %.6g\nslope_N_per_m = %.6g\n"
-               "slope_deflection = %.6g\nslope_retract_N_per_m = %.6g\n",
+               "slope_deflection = %.6g\nslope_retract_N_per_m = %.6g\nindentation_nm = %.6g\n",
                s.k, s.speed, s.cycles, s.jumpin_z * 1e9, s.jumpin_force * 1e9, s.jumpin_gap * 1e9,
                s.contact_z * 1e9, s.pulloff_z * 1e9, s.pulloff_force * 1e9, s.adhesion * 1e9,
-               s.max_force * 1e9, s.slope, s.slope_deflection, s.slope_retract);
+               s.max_force * 1e9, s.slope, s.slope_deflection, s.slope_retract, s.indentation * 1e9);
         if (!args.quiet)
             fprintf(stderr, "run_time_s = %.3f\noutput = %s%s%s\n", cli_now() - t0, args.output,
                     args.plot ? ", plot " : "", args.plot ? args.plot : "");
