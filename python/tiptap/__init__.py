@@ -15,7 +15,7 @@ from ._lib import lib as _clib, text as _text
 from .scan import ScanResult, channel_table, scan
 from .scene import Key, Scene, keys
 from .sweep import sweep
-from .tables import Table, accuracy, approach, contact, trace
+from .tables import Table, accuracy, approach, contact, force, trace, tune
 from ._warnings import (EstimateWarning, InputWarning, OscillationWarning, RunWarning,
                         SettleWarning, SetpointWarning, TiptapWarning, ValidityWarning)
 
@@ -27,5 +27,5 @@ __all__ = [
     "OscillationWarning", "RunWarning", "ScanResult", "Scene", "SceneError", "SettleWarning",
     "SetpointWarning", "Table", "TiptapError", "TiptapIOError", "TiptapMemoryError",
     "TiptapWarning", "ValidityWarning", "accuracy", "approach", "channel_table", "contact",
-    "keys", "scan", "sweep", "trace", "version",
+    "force", "keys", "scan", "sweep", "trace", "tune", "version",
 ]

@@ -1,4 +1,4 @@
-"""Runs that give tables: approach(), trace(), contact(), accuracy() (and sweep(), in
+"""Runs that give tables: approach(), trace(), force(), tune(), contact(), accuracy() (and sweep(), in
 sweep.py). Each returns a Table: a dict of numpy arrays, one per column, in SI units
 (the phase in degrees), with .units and .meta."""
 
@@ -99,6 +99,31 @@ def trace(scene, *, set=None, progress=None, **keys):
     s = Scene.of(scene, set, caller="trace", **keys)
     return _run_table(lambda out, c: lib.tt_run_trace(s._p, out, c, ffi.NULL), "trace", "cycles",
                       progress)
+
+
+def force(scene, *, set=None, progress=None, **keys):
+    """The force-distance curve of the scene's [force] (`tiptap force`): a row per sample;
+    t, z (rest separation), deflection, separation (negative: indentation), force
+    (tip-sample, repulsive positive), lever_force (-k deflection), contact, leg
+    (approach, dwell, retract). .meta holds what the command prints, in SI units: k,
+    speed, cycles, jumpin_z, jumpin_force, jumpin_gap, contact_z, pulloff_z,
+    pulloff_force, adhesion, max_force, slope, slope_deflection, slope_retract,
+    indentation (docs/force-and-tune.md)."""
+    s = Scene.of(scene, set, caller="force", **keys)
+    return _run_table(lambda out, c: lib.tt_run_force(s._p, out, ffi.NULL, c, ffi.NULL), "force",
+                      "periods", progress)
+
+
+def tune(scene, *, set=None, progress=None, **keys):
+    """The thermal tune of the scene's [tune] and [noise] (`tiptap tune`): a row per bin of
+    the spectrum; f, psd (one-sided, m^2/Hz), fit (NAN outside the fit's window). .meta
+    holds the fit and its statistical errors, in SI units: f0, f0_err, Q, Q_err, k, k_err,
+    chi, white, white_err, chi2_dof, variance, variance_err, noise_factor and the
+    record's temperature, sample_rate, bin_width, segments, averages, fit_low, fit_high,
+    cycles (docs/force-and-tune.md)."""
+    s = Scene.of(scene, set, caller="tune", **keys)
+    return _run_table(lambda out, c: lib.tt_run_tune(s._p, out, ffi.NULL, c, ffi.NULL), "tune",
+                      "periods", progress)
 
 
 def contact(scene=None, *, material=None, model=None, lam=None, xi0=0.3, points=600, amax=3.0,
