@@ -172,6 +172,49 @@ static int take_sample(force_scan *a, tt_table *t, const force_lever *L, const t
     return tt_table_set_text(t, LEG, leg_names[leg]);
 }
 
+/* The analysis at a curve's start: nothing found yet, the ramp's speed u. */
+static force_scan scan_start(const force_lever *L, double u)
+{
+    force_scan a = {.s = {.speed = u, .k = L->c.k, .jumpin_z = NAN, .jumpin_force = NAN, .jumpin_gap = NAN,
+                          .contact_z = NAN, .pulloff_z = NAN, .pulloff_force = NAN, .adhesion = NAN,
+                          .max_force = NAN, .slope = NAN, .slope_deflection = NAN, .slope_retract = NAN,
+                          .indentation = NAN},
+                    .last_calm_z = NAN, .last_calm_f = NAN, .last_calm_gap = NAN,
+                    .last_contact_z = NAN, .last_contact_f = NAN};
+    /* the snap's start: the tip faster than ten times the ramp, or five times the thermal
+     * rms speed sqrt(kB T / m) when the lever is warm */
+    a.vth = fmax(10 * u, 5 * sqrt(TT_BOLTZMANN * L->temperature / L->c.m));
+    return a;
+}
+
+/* One leg (0 approach, 1 dwell, 2 retract) of n periods at the sample's speed sdot from
+ * s0; every stride-th sample a row, and the leg's last. */
+static int run_leg(force_lever *L, force_scan *a, tt_table *t, int leg, long n, double s0, double sdot,
+                   long stride, tt_progress_fn progress, void *user, long *done, long total)
+{
+    tt_sim *sim = tt_setup_sim(L->st);
+    const double T = L->c.T;
+    int rc = TT_OK;
+    for (long i = 0; i < n && rc == TT_OK; i++) {
+        tt_cycle cy;
+        if (tt_cancel_requested())
+            return tt_error(TT_EINTR, "interrupted: %ld of %ld drive periods finished", *done, total);
+        tt_sim_set_sample(sim, s0 + sdot * (double)i * T, sdot);
+        if ((rc = tt_sim_cycle(sim, &cy)))
+            break;
+        for (int k = 0; k < POINTS_PER_PERIOD && rc == TT_OK; k++) {
+            long idx = i * POINTS_PER_PERIOD + k;
+            int last = i == n - 1 && k == POINTS_PER_PERIOD - 1;
+            rc = take_sample(a, t, L, &L->buf[k], leg, idx % stride == 0 || last);
+        }
+        a->s.cycles++;
+        ++*done;
+        if (progress && (*done % 256 == 0 || *done == total))
+            progress(user, *done, total);
+    }
+    return rc;
+}
+
 int force_curve(force_lever *L, size_t mat, uint64_t key, tt_table *t, tt_force_summary *sum,
                 tt_progress_fn progress, void *user, long *done, long total)
 {
@@ -183,48 +226,16 @@ int force_curve(force_lever *L, size_t mat, uint64_t key, tt_table *t, tt_force_
     tt_sim_noise_key(sim, key);
     tt_sim_reset_free(sim);
     tt_sim_set_state(sim, 0, 0, 0);
-    const double T = L->c.T, travel = p->from - p->to;
     const long nleg = p->leg_periods, ndwell = p->dwell_periods;
-    const double u = travel / ((double)nleg * T);
-    const int n = POINTS_PER_PERIOD;
-    force_scan a = {.s = {.speed = u, .k = L->c.k, .jumpin_z = NAN, .jumpin_force = NAN, .jumpin_gap = NAN,
-                          .contact_z = NAN, .pulloff_z = NAN, .pulloff_force = NAN, .adhesion = NAN,
-                          .max_force = NAN, .slope = NAN, .slope_deflection = NAN, .slope_retract = NAN,
-                          .indentation = NAN},
-                    .last_calm_z = NAN, .last_calm_f = NAN, .last_calm_gap = NAN,
-                    .last_contact_z = NAN, .last_contact_f = NAN};
-    /* the snap's start: the tip faster than ten times the ramp, or five times the thermal
-     * rms speed sqrt(kB T / m) when the lever is warm */
-    a.vth = fmax(10 * u, 5 * sqrt(TT_BOLTZMANN * L->temperature / L->c.m));
+    const double u = (p->from - p->to) / ((double)nleg * L->c.T), n = POINTS_PER_PERIOD;
+    force_scan a = scan_start(L, u);
     const long legs[3] = {nleg, ndwell, nleg};
-    long periods = 0;
     /* rows: every stride-th sample of a leg, and its last */
     const long stride_leg = (long)fmax(1, floor((double)nleg * n / (double)p->samples));
     const long stride_dwell = (long)fmax(1, floor((double)ndwell * n / (double)p->samples));
-    for (int leg = 0; leg < 3 && rc == TT_OK; leg++) {
-        const double sdot = leg == 0 ? -u : leg == 2 ? u : 0, s0 = leg == 0 ? p->from : p->to;
-        const long stride = leg == 1 ? stride_dwell : stride_leg;
-        for (long i = 0; i < legs[leg] && rc == TT_OK; i++) {
-            tt_cycle cy;
-            if (tt_cancel_requested()) {
-                rc = tt_error(TT_EINTR, "interrupted: %ld of %ld drive periods finished", *done, total);
-                break;
-            }
-            tt_sim_set_sample(sim, s0 + sdot * (double)i * T, sdot);
-            if ((rc = tt_sim_cycle(sim, &cy)))
-                break;
-            for (int k = 0; k < n && rc == TT_OK; k++) {
-                long idx = i * n + k;
-                int last = i == legs[leg] - 1 && k == n - 1;
-                rc = take_sample(&a, t, L, &L->buf[k], leg, idx % stride == 0 || last);
-            }
-            periods++;
-            ++*done;
-            if (progress && (*done % 256 == 0 || *done == total))
-                progress(user, *done, total);
-        }
-    }
-    a.s.cycles = periods;
+    for (int leg = 0; leg < 3 && rc == TT_OK; leg++)
+        rc = run_leg(L, &a, t, leg, legs[leg], leg == 0 ? p->from : p->to, leg == 0 ? -u : leg == 2 ? u : 0,
+                     leg == 1 ? stride_dwell : stride_leg, progress, user, done, total);
     if (rc == TT_OK) {
         double dummy;
         contact_slope(t, "approach", &a.s.slope, &a.s.slope_deflection);
