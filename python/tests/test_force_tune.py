@@ -1,7 +1,8 @@
-"""force() and tune(): the same run layer as `tiptap force` and `tiptap tune` (the
-program's CSV and figures from the same calls), and their physics: the largest adhesion
-on a slow ramp is each material's Maugis-Dugdale least load (tiptap.contact's), and the
-tune recovers the lever's k, f0 and Q within three of its own stated errors."""
+"""force(), tune() and force_volume(): the same run layer as `tiptap force` (and its
+--volume) and `tiptap tune` (the program's CSV, figures and maps from the same calls),
+and their physics: the largest adhesion on a slow ramp is each material's
+Maugis-Dugdale least load (tiptap.contact's), on a curve and over a map, and the tune
+recovers the lever's k, f0 and Q within three of its own stated errors."""
 
 import csv
 
@@ -81,3 +82,26 @@ def test_refusals_name_the_key():
         tiptap.force(BLEND, set={"force.from": "-5 nm"})
     with pytest.raises(tiptap.SceneError, match=r"\[noise\] temperature"):
         tiptap.tune(BLEND[1], set={"cantilever.spring_constant": "0.1 N/m"})
+
+
+def test_force_volume_is_the_programs_maps(tmp_path):
+    """force_volume(): the program's GSF maps (the float32 of the same doubles), on any
+    number of threads, and the folder it writes is the program's."""
+    from conftest import read_gsf
+
+    over = {"scan.size": "500 nm", "scan.pixels": "6", "scan.lines": "3", "noise.temperature": "300 K"}
+    cli("force", *BLEND, *sets(over), "--volume", "-o", tmp_path / "cli", "-j", "2", "-q")
+    v = tiptap.force_volume(BLEND, set=over, threads=1, output=tmp_path / "py", progress=False)
+    assert v.meta["lines_finished"] == v.meta["lines_total"] == 3
+    assert v["adhesion"].shape == (3, 6) and v.units["stiffness"] == "N/m" and v.x[0] == pytest.approx(500e-9 / 12)
+    for name in v:
+        header, data = read_gsf(tmp_path / "cli" / f"{name}.gsf")
+        assert header["ZUnits"] == v.units[name] or not v.units[name]
+        assert np.array_equal(data, v[name].astype("<f4")), name
+        assert (tmp_path / "py" / f"{name}.gsf").read_bytes() == (tmp_path / "cli" / f"{name}.gsf").read_bytes()
+    # on the blend's disks the adhesion is the disk's least load, elsewhere the matrix's
+    for m, material in enumerate(["matrix", "disk"]):
+        least = -tiptap.contact(BLEND, material=material).meta["pulloff_load_N"]
+        here = v["material"] == m
+        assert here.any()
+        assert np.allclose(v["adhesion"][here], least, rtol=3e-3)

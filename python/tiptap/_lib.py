@@ -250,6 +250,37 @@ typedef struct {
     long cycles;
 } tt_tune_result;
 int tt_run_tune(const tt_scene *s, tt_table **out, tt_tune_result *r, tt_progress_fn progress, void *user);
+
+/* run/force_volume.h */
+typedef enum {
+    TT_FV_HEIGHT, TT_FV_ADHESION, TT_FV_STIFFNESS, TT_FV_PULLOFF_DISTANCE, TT_FV_PULLOFF_FORCE,
+    TT_FV_INDENTATION, TT_FV_MAX_FORCE, TT_FV_MATERIAL, TT_FV_COUNT
+} tt_force_volume_channel;
+typedef struct tt_force_volume tt_force_volume;
+const char *tt_force_volume_channel_name(int ch);
+const char *tt_force_volume_channel_unit(int ch);
+typedef struct {
+    int threads;
+    const char *folder;
+    int hdf5;
+    tt_progress_fn progress;
+    void *user;
+} tt_force_volume_job;
+int tt_run_force_volume(const tt_scene *s, const tt_force_volume_job *job, tt_force_volume **out,
+                        int *written);
+void tt_force_volume_free(tt_force_volume *v);
+long tt_force_volume_xres(const tt_force_volume *v);
+long tt_force_volume_yres(const tt_force_volume *v);
+double tt_force_volume_size_x(const tt_force_volume *v);
+double tt_force_volume_size_y(const tt_force_volume *v);
+long tt_force_volume_lines(const tt_force_volume *v);
+long tt_force_volume_lines_done(const tt_force_volume *v);
+long tt_force_volume_cycles(const tt_force_volume *v);
+const double *tt_force_volume_map(const tt_force_volume *v, int ch);
+const tt_force_summary *tt_force_volume_pixel(const tt_force_volume *v, long line, long pixel);
+int tt_force_volume_check_outputs(const char *dir, int hdf5);
+int tt_force_volume_write(const tt_force_volume *v, const tt_scene *s, const char *dir, int hdf5,
+                          int *written);
 typedef struct {
     long pixels, lines;
     int threads;
