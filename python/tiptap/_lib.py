@@ -277,10 +277,6 @@ long tt_force_volume_lines(const tt_force_volume *v);
 long tt_force_volume_lines_done(const tt_force_volume *v);
 long tt_force_volume_cycles(const tt_force_volume *v);
 const double *tt_force_volume_map(const tt_force_volume *v, int ch);
-const tt_force_summary *tt_force_volume_pixel(const tt_force_volume *v, long line, long pixel);
-int tt_force_volume_check_outputs(const char *dir, int hdf5);
-int tt_force_volume_write(const tt_force_volume *v, const tt_scene *s, const char *dir, int hdf5,
-                          int *written);
 typedef struct {
     long pixels, lines;
     int threads;
