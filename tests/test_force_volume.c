@@ -2,7 +2,8 @@
  * map is each material's Maugis-Dugdale least load on either side of the edge, and the
  * stiffness map the slope a quasi-static curve of that material's law gives, computed
  * here by hand from the law; the maps are the same bytes on one thread and two with the
- * thermal force on, and a run cut short keeps the lines it finished, in its files too. */
+ * thermal force on, pixel 0 is tiptap force's curve, and a run cut short keeps the lines
+ * it finished, in its files too. */
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -12,6 +13,7 @@
 #include "tiptap/config/scene.h"
 #include "tiptap/io/gsf.h"
 #include "tiptap/physics/contact.h"
+#include "tiptap/run/force.h"
 #include "tiptap/run/force_volume.h"
 #include "tiptap/run/run.h"
 #include "tiptap/util/cancel.h"
@@ -150,6 +152,18 @@ static void same_bytes_on_any_thread_count(void **state)
     /* and the noise is the pixel's own: two pixels of one material differ */
     const double *adh = tt_force_volume_map(a, TT_FV_ADHESION);
     assert_true(adh[5] != adh[6] && adh[13] != adh[5]);
+    /* pixel 0's stream is tiptap force's own: its curve is that of the one curve on its
+     * material (the disk), figure for figure */
+    if (tt_scene_load_string(s, "[force]\nmaterial = disk\n", "one"))
+        fail_msg("%s", tt_error_message());
+    tt_table *t = NULL;
+    tt_force_summary one;
+    if (tt_run_force(s, &t, &one, NULL, NULL) != TT_OK)
+        fail_msg("%s", tt_error_message());
+    const tt_force_summary *p0 = tt_force_volume_pixel(a, 0, 0);
+    assert_true(p0->adhesion == one.adhesion && p0->slope == one.slope && p0->jumpin_z == one.jumpin_z &&
+                p0->pulloff_force == one.pulloff_force && p0->cycles == one.cycles);
+    tt_table_free(t);
     tt_force_volume_free(a);
     tt_force_volume_free(b);
     tt_scene_free(s);
