@@ -87,5 +87,21 @@ expect_error "force: --hdf5 without --volume" "--hdf5 goes with --volume" \
 expect_error "force --volume: bad [force] key" "[force] from: the ramp must start farther" \
   "$tiptap" force "$blend" "$scene" --volume --set "force.from=-5 nm" -o "$tmp/novol2"
 ls -d "$tmp"/novol* >/dev/null 2>&1 && bad "a refused volume left a folder" || ok "refused volumes leave no folder"
+# SIGINT during a long volume: exit 130, the lines finished written (their count in the
+# maps' metadata), the others NaN
+"$tiptap" force "$blend" "$scene" --volume --set scan.pixels=2 --set scan.lines=5000 -o "$tmp/volint" -j 1 \
+  -q >"$tmp/volint.txt" 2>"$tmp/volint.err" &
+pid=$!
+sleep 3
+kill -INT $pid
+wait $pid
+rc=$?
+n=$(awk -F' = ' '$1 == "lines_finished" {print $2}' "$tmp/volint.txt")
+if [ "$rc" -eq 130 ] && [ -n "$n" ] && [ "$n" -gt 0 ] && [ "$n" -lt 5000 ] &&
+  grep -aq "^lines_finished = $n$" "$tmp/volint/adhesion.gsf"; then
+  ok "force --volume interrupted: exit 130, $n lines written"
+else
+  bad "force --volume interrupted: exit $rc, lines '$n': $(cat "$tmp/volint.err")"
+fi
 ls "$tmp"/no*.csv >/dev/null 2>&1 && bad "a refused run left a file" || ok "refused runs leave no file"
 exit $fail
