@@ -69,6 +69,7 @@
 #include "tiptap/config/units.h"
 
 #include "tiptap/run/force.h"
+#include "tiptap/run/force_volume.h"
 #include "tiptap/run/run.h"
 #include "tiptap/run/sweep.h"
 #include "tiptap/run/tune.h"

@@ -64,5 +64,44 @@ expect_error "tune at 0 K" "cold.ini: [noise] temperature: tiptap tune needs the
   "$tiptap" tune "$tmp/cold.ini" -o "$tmp/no4.csv"
 expect_error "tune: record too short" "[tune] duration: the record (0.001 s) holds fewer than 8" \
   "$tiptap" tune "$tmp/soft.ini" --set "tune.duration=1 ms" -o "$tmp/no5.csv"
+# --volume: a folder of maps, the same bytes on one thread and two (noise on), and its
+# refusals before any folder is made
+vol=(--volume --set scan.size=500nm --set scan.pixels=6 --set scan.lines=2 --set "noise.temperature=300 K" -q)
+if "$tiptap" force "$blend" "$scene" "${vol[@]}" -o "$tmp/vol1" -j 1 --hdf5 >"$tmp/vol1.txt" 2>"$tmp/vol.err" &&
+  "$tiptap" force "$blend" "$scene" "${vol[@]}" -o "$tmp/vol2" -j 2 >/dev/null 2>>"$tmp/vol.err"; then
+  ok "force --volume ran"
+else
+  bad "force --volume: $(cat "$tmp/vol.err")"
+fi
+for m in height adhesion stiffness pulloff_distance pulloff_force indentation max_force material; do
+  [ -s "$tmp/vol1/$m.gsf" ] && [ -s "$tmp/vol1/$m.png" ] || bad "force --volume: no $m map"
+  cmp -s "$tmp/vol1/$m.gsf" "$tmp/vol2/$m.gsf" || bad "force --volume: $m.gsf differs on 1 and 2 threads"
+done
+[ -s "$tmp/vol1/force_volume.gwy" ] && [ -s "$tmp/vol1/force_volume.h5" ] && [ -s "$tmp/vol1/scene.ini" ] &&
+  [ ! -e "$tmp/vol2/force_volume.h5" ] && ok "force --volume files" || bad "force --volume: .gwy, .h5 or scene.ini"
+grep -q "^lines_finished = 2$" "$tmp/vol1.txt" && ok "force --volume stdout" || bad "force --volume: $(cat "$tmp/vol1.txt")"
+expect_error "force: --plot with --volume" "--plot draws one curve" \
+  "$tiptap" force "$blend" "$scene" --volume --plot "$tmp/no.png" -o "$tmp/novol1"
+expect_error "force: --hdf5 without --volume" "--hdf5 goes with --volume" \
+  "$tiptap" force "$blend" "$scene" --hdf5 -o "$tmp/no6.csv"
+expect_error "force --volume: bad [force] key" "[force] from: the ramp must start farther" \
+  "$tiptap" force "$blend" "$scene" --volume --set "force.from=-5 nm" -o "$tmp/novol2"
+ls -d "$tmp"/novol* >/dev/null 2>&1 && bad "a refused volume left a folder" || ok "refused volumes leave no folder"
+# SIGINT during a long volume: exit 130, the lines finished written (their count in the
+# maps' metadata), the others NaN
+"$tiptap" force "$blend" "$scene" --volume --set scan.pixels=2 --set scan.lines=5000 -o "$tmp/volint" -j 1 \
+  -q >"$tmp/volint.txt" 2>"$tmp/volint.err" &
+pid=$!
+sleep 3
+kill -INT $pid
+wait $pid
+rc=$?
+n=$(awk -F' = ' '$1 == "lines_finished" {print $2}' "$tmp/volint.txt")
+if [ "$rc" -eq 130 ] && [ -n "$n" ] && [ "$n" -gt 0 ] && [ "$n" -lt 5000 ] &&
+  grep -aq "^lines_finished = $n$" "$tmp/volint/adhesion.gsf"; then
+  ok "force --volume interrupted: exit 130, $n lines written"
+else
+  bad "force --volume interrupted: exit $rc, lines '$n': $(cat "$tmp/volint.err")"
+fi
 ls "$tmp"/no*.csv >/dev/null 2>&1 && bad "a refused run left a file" || ok "refused runs leave no file"
 exit $fail

@@ -5,6 +5,7 @@
  * stiff one (stiffer than any gradient of the attraction) only at the law's contact. */
 #include <stdlib.h>
 
+#include "tt_blend_test.h"
 #include "tt_test.h"
 #include "tiptap/config/scene.h"
 #include "tiptap/physics/contact.h"
@@ -14,11 +15,7 @@
 
 /* The blend's two materials (surfaces/polymer-blend.ini) under the standard tip. */
 static const char *blend =
-    "[tip]\nradius = 10 nm\n"
-    "[material matrix]\nyoungs_modulus = 100 MPa\npoisson_ratio = 0.49\nadhesion_energy = 60 mJ/m^2\n"
-    "interatomic_distance = 0.3 nm\ninteraction_quality_factor = 10\n"
-    "[material disk]\nyoungs_modulus = 3 GPa\npoisson_ratio = 0.35\nadhesion_energy = 40 mJ/m^2\n"
-    "interatomic_distance = 0.3 nm\n"
+    TT_TEST_BLEND_MATERIALS
     "[force]\nfrom = 12 nm\nto = -1 nm\nspeed = 1 um/s\n";
 
 static const char *soft = "[cantilever]\nspring_constant = 0.5 N/m\nresonance_frequency = 20 kHz\n"

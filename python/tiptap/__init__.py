@@ -15,7 +15,7 @@ from ._lib import lib as _clib, text as _text
 from .scan import ScanResult, channel_table, scan
 from .scene import Key, Scene, keys
 from .sweep import sweep
-from .tables import Table, accuracy, approach, contact, trace
+from .tables import ForceVolume, Table, accuracy, approach, contact, force, force_volume, trace, tune
 from ._warnings import (EstimateWarning, InputWarning, OscillationWarning, RunWarning,
                         SettleWarning, SetpointWarning, TiptapWarning, ValidityWarning)
 
@@ -23,9 +23,9 @@ __version__ = _text(_clib.tt_version())
 version = __version__
 
 __all__ = [
-    "CaptureError", "EstimateWarning", "InputWarning", "Interrupted", "Key", "NumericalError",
-    "OscillationWarning", "RunWarning", "ScanResult", "Scene", "SceneError", "SettleWarning",
+    "CaptureError", "EstimateWarning", "ForceVolume", "InputWarning", "Interrupted", "Key",
+    "NumericalError", "OscillationWarning", "RunWarning", "ScanResult", "Scene", "SceneError", "SettleWarning",
     "SetpointWarning", "Table", "TiptapError", "TiptapIOError", "TiptapMemoryError",
     "TiptapWarning", "ValidityWarning", "accuracy", "approach", "channel_table", "contact",
-    "keys", "scan", "sweep", "trace", "version",
+    "force", "force_volume", "keys", "scan", "sweep", "trace", "tune", "version",
 ]

@@ -211,6 +211,72 @@ int tt_run_contact_table(const tt_contact *c, const tt_contact_params *params, d
                          size_t n, double Amax, tt_table **out);
 int tt_run_accuracy(const tt_scene *s, const tt_accuracy_params *p, tt_table **out,
                     tt_progress_fn progress, void *user);
+
+/* run/force.h, run/tune.h */
+typedef struct {
+    double speed;
+    long cycles;
+    double jumpin_z;
+    double jumpin_force;
+    double jumpin_gap;
+    double contact_z;
+    double pulloff_z;
+    double pulloff_force;
+    double adhesion;
+    double max_force;
+    double slope;
+    double slope_deflection;
+    double slope_retract;
+    double k;
+    double indentation;
+} tt_force_summary;
+int tt_run_force(const tt_scene *s, tt_table **out, tt_force_summary *sum, tt_progress_fn progress,
+                 void *user);
+typedef struct {
+    double temperature;
+    double fs, bin_width;
+    long segments;
+    double averages;
+    double f0, f0_err;
+    double Q, Q_err;
+    double k, k_err;
+    double chi;
+    double white, white_err;
+    double chi2_dof;
+    double fit_low, fit_high;
+    double variance;
+    double variance_err;
+    double noise_factor;
+    long cycles;
+} tt_tune_result;
+int tt_run_tune(const tt_scene *s, tt_table **out, tt_tune_result *r, tt_progress_fn progress, void *user);
+
+/* run/force_volume.h */
+typedef enum {
+    TT_FV_HEIGHT, TT_FV_ADHESION, TT_FV_STIFFNESS, TT_FV_PULLOFF_DISTANCE, TT_FV_PULLOFF_FORCE,
+    TT_FV_INDENTATION, TT_FV_MAX_FORCE, TT_FV_MATERIAL, TT_FV_COUNT
+} tt_force_volume_channel;
+typedef struct tt_force_volume tt_force_volume;
+const char *tt_force_volume_channel_name(int ch);
+const char *tt_force_volume_channel_unit(int ch);
+typedef struct {
+    int threads;
+    const char *folder;
+    int hdf5;
+    tt_progress_fn progress;
+    void *user;
+} tt_force_volume_job;
+int tt_run_force_volume(const tt_scene *s, const tt_force_volume_job *job, tt_force_volume **out,
+                        int *written);
+void tt_force_volume_free(tt_force_volume *v);
+long tt_force_volume_xres(const tt_force_volume *v);
+long tt_force_volume_yres(const tt_force_volume *v);
+double tt_force_volume_size_x(const tt_force_volume *v);
+double tt_force_volume_size_y(const tt_force_volume *v);
+long tt_force_volume_lines(const tt_force_volume *v);
+long tt_force_volume_lines_done(const tt_force_volume *v);
+long tt_force_volume_cycles(const tt_force_volume *v);
+const double *tt_force_volume_map(const tt_force_volume *v, int ch);
 typedef struct {
     long pixels, lines;
     int threads;

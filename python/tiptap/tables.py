@@ -1,6 +1,6 @@
-"""Runs that give tables: approach(), trace(), contact(), accuracy() (and sweep(), in
-sweep.py). Each returns a Table: a dict of numpy arrays, one per column, in SI units
-(the phase in degrees), with .units and .meta."""
+"""Runs that give tables: approach(), trace(), force(), tune(), contact(), accuracy() (and
+sweep(), in sweep.py). Each returns a Table: a dict of numpy arrays, one per column, in
+SI units (the phase in degrees), with .units and .meta; force_volume() a Table of maps."""
 
 import math
 
@@ -99,6 +99,73 @@ def trace(scene, *, set=None, progress=None, **keys):
     s = Scene.of(scene, set, caller="trace", **keys)
     return _run_table(lambda out, c: lib.tt_run_trace(s._p, out, c, ffi.NULL), "trace", "cycles",
                       progress)
+
+
+def force(scene, *, set=None, progress=None, **keys):
+    """The force-distance curve of the scene's [force] (`tiptap force`): a row per sample;
+    t, z (rest separation), deflection, separation (negative: indentation), force
+    (tip-sample, repulsive positive), lever_force (-k deflection), contact, leg
+    (approach, dwell, retract). .meta holds what the command prints, in SI units: k,
+    speed, cycles, jumpin_z, jumpin_force, jumpin_gap, contact_z, pulloff_z,
+    pulloff_force, adhesion, max_force, slope, slope_deflection, slope_retract,
+    indentation (docs/force-and-tune.md)."""
+    s = Scene.of(scene, set, caller="force", **keys)
+    return _run_table(lambda out, c: lib.tt_run_force(s._p, out, ffi.NULL, c, ffi.NULL), "force",
+                      "periods", progress)
+
+
+def tune(scene, *, set=None, progress=None, **keys):
+    """The thermal tune of the scene's [tune] and [noise] (`tiptap tune`): a row per bin of
+    the spectrum; f, psd (one-sided, m^2/Hz), fit (NAN outside the fit's window). .meta
+    holds the fit and its statistical errors, in SI units: f0, f0_err, Q, Q_err, k, k_err,
+    chi, white, white_err, chi2_dof, variance, variance_err, noise_factor and the
+    record's temperature, sample_rate, bin_width, segments, averages, fit_low, fit_high,
+    cycles (docs/force-and-tune.md)."""
+    s = Scene.of(scene, set, caller="tune", **keys)
+    return _run_table(lambda out, c: lib.tt_run_tune(s._p, out, ffi.NULL, c, ffi.NULL), "tune",
+                      "periods", progress)
+
+
+class ForceVolume(Table):
+    """A force volume's maps by name (numpy float64 arrays of shape (lines along y,
+    pixels along x), row 0 at y = 0, as a scan's images; NaN where a line did not
+    finish): height, adhesion, stiffness, pulloff_distance, pulloff_force, indentation,
+    max_force, material; .units (SI), .x and .y (pixel centres, m), .meta
+    (lines_finished, lines_total, drive_periods)."""
+
+
+def force_volume(scene, *, threads=0, output=None, hdf5=False, set=None, progress=None, **keys):
+    """A force curve at every pixel of the scene's [scan] raster over its [surface] and
+    materials (`tiptap force --volume`): a ForceVolume of maps. output: a folder written as
+    the program writes it (GSF and PNG per map, force_volume.gwy, scene.ini, and
+    force_volume.h5 with hdf5), also with the lines finished when stopped; threads: 0 for
+    every core (the maps are the same on any number). Ctrl-C raises Interrupted whose
+    .result holds the lines finished."""
+    s = Scene.of(scene, set, caller="force_volume", **keys)
+    folder = ffi.new("char[]", c_bytes(output, "output")) if output is not None else ffi.NULL
+    prog = Progress(progress, "force volume", "lines")
+    job = ffi.new("tt_force_volume_job *")
+    job.threads, job.folder, job.hdf5, job.progress = int(threads), folder, bool(hdf5), prog.c
+    out = ffi.new("tt_force_volume **")
+    col = Collector()
+    status, message, interrupted = run(lambda: lib.tt_run_force_volume(s._p, job, out, ffi.NULL), prog, col)
+    result = None
+    if out[0] != ffi.NULL:
+        v = ffi.gc(out[0], lib.tt_force_volume_free)
+        xres, yres = lib.tt_force_volume_xres(v), lib.tt_force_volume_yres(v)
+        result = ForceVolume(meta={"lines_finished": lib.tt_force_volume_lines_done(v),
+                                   "lines_total": lib.tt_force_volume_lines(v),
+                                   "drive_periods": lib.tt_force_volume_cycles(v)})
+        for ch in range(lib.TT_FV_COUNT):
+            name = text(lib.tt_force_volume_channel_name(ch))
+            buf = ffi.buffer(lib.tt_force_volume_map(v, ch), xres * yres * 8)
+            result[name] = np.frombuffer(buf, dtype=np.float64).reshape(yres, xres).copy()
+            result.units[name] = text(lib.tt_force_volume_channel_unit(ch))
+        result.x = (np.arange(xres) + 0.5) * lib.tt_force_volume_size_x(v) / xres
+        result.y = (np.arange(yres) + 0.5) * lib.tt_force_volume_size_y(v) / yres
+    col.emit(stacklevel=2, result=result)
+    finish(status, message, interrupted, "force_volume", result, prog)
+    return result
 
 
 def contact(scene=None, *, material=None, model=None, lam=None, xi0=0.3, points=600, amax=3.0,

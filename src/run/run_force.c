@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "run_common.h"
+#include "run_force_private.h"
 #include "tiptap/config/config.h"
 #include "tiptap/config/read_force_tune.h"
 #include "tiptap/config/setup.h"
@@ -39,6 +40,8 @@ static void analyse(force_scan *a, int leg, double z, double v, double gap, doub
     tt_force_summary *s = &a->s;
     if (F > s->max_force || isnan(s->max_force))
         s->max_force = F;
+    if (contact && (-gap > s->indentation || isnan(s->indentation)))
+        s->indentation = -gap;
     if (leg == 0 && !a->touched) {
         if (contact) {
             a->touched = 1;
@@ -101,113 +104,171 @@ static int put_meta(tt_table *t, const tt_force_summary *s)
              {"contact_z", s->contact_z},   {"pulloff_z", s->pulloff_z},
              {"pulloff_force", s->pulloff_force}, {"adhesion", s->adhesion},
              {"max_force", s->max_force},   {"slope", s->slope},
-             {"slope_deflection", s->slope_deflection}, {"slope_retract", s->slope_retract}};
+             {"slope_deflection", s->slope_deflection}, {"slope_retract", s->slope_retract},
+             {"indentation", s->indentation}};
     int rc = TT_OK;
     for (size_t i = 0; i < sizeof m / sizeof m[0] && rc == TT_OK; i++)
         rc = run_meta_number(t, m[i].key, m[i].v);
     return rc;
 }
 
-int tt_run_force(const tt_scene *s, tt_table **out, tt_force_summary *sum, tt_progress_fn progress,
-                 void *user)
+tt_table *force_table(void)
 {
-    tt_setup *st = NULL;
-    tt_scene *copy = NULL;
-    tt_force_params p;
+    return run_table(columns, NCOL);
+}
+
+int force_lever_alloc(const tt_scene *s, force_lever *L)
+{
     tt_scan_noise noise;
-    tt_sample *buf = NULL;
-    tt_table *t = NULL;
-    size_t mat;
-    *out = NULL;
+    memset(L, 0, sizeof *L);
     int rc;
-    if ((rc = tt_scene_locate(s, tt_config_force(s, &p))) || (rc = run_setup(s, &copy, &st)) ||
-        (rc = tt_config_noise(copy, tt_setup_solver(st), tt_setup_cantilever(st)->fd, &noise)) ||
-        (rc = tt_scene_locate(copy, tt_setup_find_material(st, p.material, "force", "material", &mat))) ||
-        (rc = tt_setup_use_material(st, mat)))
-        goto done;
-    tt_sim *sim = tt_setup_sim(st);
+    if ((rc = tt_scene_locate(s, tt_config_force(s, &L->p))) || (rc = run_setup(s, &L->copy, &L->st)) ||
+        (rc = tt_config_noise(L->copy, tt_setup_solver(L->st), tt_setup_cantilever(L->st)->fd, &noise)))
+        return rc;
+    tt_sim *sim = tt_setup_sim(L->st);
     /* the lever undriven: no base motion, no drive force; the drive period only sets
      * the length of the solver's cycles */
-    tt_cantilever c = *tt_setup_cantilever(st);
-    c.a_d = 0;
-    c.F0 = 0;
-    tt_sim_set_cantilever(sim, &c);
+    L->c = *tt_setup_cantilever(L->st);
+    L->c.a_d = 0;
+    L->c.F0 = 0;
+    L->temperature = noise.temperature;
+    L->seed = noise.seed;
+    tt_sim_set_cantilever(sim, &L->c);
     if ((rc = tt_sim_set_thermal(sim, noise.temperature, noise.points)))
-        goto done;
-    tt_sim_noise_key(sim, tt_noise_key(noise.seed, TT_NOISE_THERMAL, 0));
-    const double T = c.T, travel = p.from - p.to;
-    const long nleg = p.leg_periods, ndwell = p.dwell_periods;
-    const double u = travel / ((double)nleg * T);
-    const int n = POINTS_PER_PERIOD;
-    if (!(buf = calloc((size_t)n, sizeof *buf)) || !(t = run_table(columns, NCOL))) {
-        rc = t ? tt_error_nomem("the force curve's samples") : TT_ENOMEM;
-        goto done;
+        return rc;
+    if (!(L->buf = calloc(POINTS_PER_PERIOD, sizeof *L->buf)))
+        return tt_error_nomem("the force curve's samples");
+    tt_sim_set_sampling(sim, POINTS_PER_PERIOD, L->buf);
+    return TT_OK;
+}
+
+void force_lever_free(force_lever *L)
+{
+    if (L->st) {
+        tt_sim_set_sampling(tt_setup_sim(L->st), 0, NULL);
+        tt_sim_set_thermal(tt_setup_sim(L->st), 0, 0);
     }
-    *out = t;
-    tt_sim_set_sampling(sim, n, buf);
-    tt_sim_reset_free(sim);
-    tt_sim_set_state(sim, 0, 0, 0);
-    force_scan a = {.s = {.speed = u, .k = c.k, .jumpin_z = NAN, .jumpin_force = NAN, .jumpin_gap = NAN,
+    free(L->buf);
+    tt_setup_free(L->st);
+    tt_scene_free(L->copy);
+    memset(L, 0, sizeof *L);
+}
+
+/* One sample: into the analysis, and a row of t when it is one of the leg's rows. */
+static int take_sample(force_scan *a, tt_table *t, const force_lever *L, const tt_sample *x, int leg,
+                       int row)
+{
+    tt_sim *sim = tt_setup_sim(L->st);
+    const double z = x->s, y = x->d - x->z, F = tt_sim_force(sim, x, NULL);
+    analyse(a, leg, z, x->v, z - y, F, x->contact);
+    if (!row)
+        return TT_OK;
+    int rc = tt_table_row(t);
+    if (rc)
+        return rc;
+    const double v[LEG] = {x->t, z, y, z - y, F, -L->c.k * y, x->contact};
+    for (int col = 0; col < LEG; col++)
+        tt_table_set(t, (size_t)col, v[col]);
+    return tt_table_set_text(t, LEG, leg_names[leg]);
+}
+
+/* The analysis at a curve's start: nothing found yet, the ramp's speed u. */
+static force_scan scan_start(const force_lever *L, double u)
+{
+    force_scan a = {.s = {.speed = u, .k = L->c.k, .jumpin_z = NAN, .jumpin_force = NAN, .jumpin_gap = NAN,
                           .contact_z = NAN, .pulloff_z = NAN, .pulloff_force = NAN, .adhesion = NAN,
-                          .max_force = NAN, .slope = NAN, .slope_deflection = NAN, .slope_retract = NAN},
+                          .max_force = NAN, .slope = NAN, .slope_deflection = NAN, .slope_retract = NAN,
+                          .indentation = NAN},
                     .last_calm_z = NAN, .last_calm_f = NAN, .last_calm_gap = NAN,
                     .last_contact_z = NAN, .last_contact_f = NAN};
     /* the snap's start: the tip faster than ten times the ramp, or five times the thermal
      * rms speed sqrt(kB T / m) when the lever is warm */
-    a.vth = fmax(10 * u, 5 * sqrt(TT_BOLTZMANN * noise.temperature / c.m));
-    const long legs[3] = {nleg, ndwell, nleg}, total = 2 * nleg + ndwell;
-    long done = 0;
-    /* rows: every stride-th sample of a leg, and its last */
-    const long stride_leg = (long)fmax(1, floor((double)nleg * n / (double)p.samples));
-    const long stride_dwell = (long)fmax(1, floor((double)ndwell * n / (double)p.samples));
-    for (int leg = 0; leg < 3 && rc == TT_OK; leg++) {
-        const double sdot = leg == 0 ? -u : leg == 2 ? u : 0, s0 = leg == 2 ? p.to : leg == 0 ? p.from : p.to;
-        const long stride = leg == 1 ? stride_dwell : stride_leg;
-        for (long i = 0; i < legs[leg] && rc == TT_OK; i++) {
-            tt_cycle cy;
-            if (tt_cancel_requested()) {
-                rc = tt_error(TT_EINTR, "interrupted: %ld of %ld drive periods finished", done, total);
-                break;
-            }
-            tt_sim_set_sample(sim, s0 + sdot * (double)i * T, sdot);
-            if ((rc = tt_sim_cycle(sim, &cy)))
-                break;
-            for (int k = 0; k < n && rc == TT_OK; k++) {
-                const tt_sample *x = &buf[k];
-                const double z = x->s, y = x->d - x->z, F = tt_sim_force(sim, x, NULL);
-                analyse(&a, leg, z, x->v, z - y, F, x->contact);
-                long idx = i * n + k;
-                int last = i == legs[leg] - 1 && k == n - 1;
-                if (idx % stride != 0 && !last)
-                    continue;
-                if ((rc = tt_table_row(t)))
-                    break;
-                const double v[LEG] = {x->t, z, y, z - y, F, -c.k * y, x->contact};
-                for (int col = 0; col < LEG; col++)
-                    tt_table_set(t, (size_t)col, v[col]);
-                rc = tt_table_set_text(t, LEG, leg_names[leg]);
-            }
-            done++;
-            if (progress && (done % 256 == 0 || done == total))
-                progress(user, done, total);
+    a.vth = fmax(10 * u, 5 * sqrt(TT_BOLTZMANN * L->temperature / L->c.m));
+    return a;
+}
+
+/* One leg (0 approach, 1 dwell, 2 retract) of n periods at the sample's speed sdot from
+ * s0; every stride-th sample a row, and the leg's last. */
+static int run_leg(force_lever *L, force_scan *a, tt_table *t, int leg, long n, double s0, double sdot,
+                   long stride, tt_progress_fn progress, void *user, long *done, long total)
+{
+    tt_sim *sim = tt_setup_sim(L->st);
+    const double T = L->c.T;
+    int rc = TT_OK;
+    for (long i = 0; i < n && rc == TT_OK; i++) {
+        tt_cycle cy;
+        if (tt_cancel_requested())
+            return tt_error(TT_EINTR, "interrupted: %ld of %ld drive periods finished", *done, total);
+        tt_sim_set_sample(sim, s0 + sdot * (double)i * T, sdot);
+        if ((rc = tt_sim_cycle(sim, &cy)))
+            break;
+        for (int k = 0; k < POINTS_PER_PERIOD && rc == TT_OK; k++) {
+            long idx = i * POINTS_PER_PERIOD + k;
+            int last = i == n - 1 && k == POINTS_PER_PERIOD - 1;
+            rc = take_sample(a, t, L, &L->buf[k], leg, idx % stride == 0 || last);
         }
+        a->s.cycles++;
+        ++*done;
+        if (progress && (*done % 256 == 0 || *done == total))
+            progress(user, *done, total);
     }
-    a.s.cycles = done;
+    return rc;
+}
+
+int force_curve(force_lever *L, size_t mat, uint64_t key, tt_table *t, tt_force_summary *sum,
+                tt_progress_fn progress, void *user, long *done, long total)
+{
+    int rc = tt_setup_use_material(L->st, mat);
+    if (rc)
+        return rc;
+    tt_sim *sim = tt_setup_sim(L->st);
+    const tt_force_params *p = &L->p;
+    tt_sim_noise_key(sim, key);
+    tt_sim_reset_free(sim);
+    tt_sim_set_state(sim, 0, 0, 0);
+    const long nleg = p->leg_periods, ndwell = p->dwell_periods;
+    const double u = (p->from - p->to) / ((double)nleg * L->c.T), n = POINTS_PER_PERIOD;
+    force_scan a = scan_start(L, u);
+    const long legs[3] = {nleg, ndwell, nleg};
+    /* rows: every stride-th sample of a leg, and its last */
+    const long stride_leg = (long)fmax(1, floor((double)nleg * n / (double)p->samples));
+    const long stride_dwell = (long)fmax(1, floor((double)ndwell * n / (double)p->samples));
+    for (int leg = 0; leg < 3 && rc == TT_OK; leg++)
+        rc = run_leg(L, &a, t, leg, legs[leg], leg == 0 ? p->from : p->to, leg == 0 ? -u : leg == 2 ? u : 0,
+                     leg == 1 ? stride_dwell : stride_leg, progress, user, done, total);
     if (rc == TT_OK) {
         double dummy;
         contact_slope(t, "approach", &a.s.slope, &a.s.slope_deflection);
         contact_slope(t, "retract", &a.s.slope_retract, &dummy);
-        rc = put_meta(t, &a.s);
     }
+    *sum = a.s;
+    return rc;
+}
+
+int tt_run_force(const tt_scene *s, tt_table **out, tt_force_summary *sum, tt_progress_fn progress,
+                 void *user)
+{
+    force_lever L;
+    tt_force_summary r;
+    size_t mat;
+    long done = 0;
+    *out = NULL;
+    int rc;
+    if ((rc = force_lever_alloc(s, &L)) ||
+        (rc = tt_scene_locate(L.copy, tt_setup_find_material(L.st, L.p.material, "force", "material", &mat))))
+        goto done;
+    if (!(*out = force_table())) {
+        rc = TT_ENOMEM;
+        goto done;
+    }
+    const long total = 2 * L.p.leg_periods + L.p.dwell_periods;
+    rc = force_curve(&L, mat, tt_noise_key(L.seed, TT_NOISE_THERMAL, 0), *out, &r, progress, user, &done,
+                     total);
+    if (rc == TT_OK)
+        rc = put_meta(*out, &r);
     if (sum)
-        *sum = a.s;
+        *sum = r;
 done:
-    if (st) {
-        tt_sim_set_sampling(tt_setup_sim(st), 0, NULL);
-        tt_sim_set_thermal(tt_setup_sim(st), 0, 0);
-    }
-    free(buf);
-    tt_setup_free(st);
-    tt_scene_free(copy);
+    force_lever_free(&L);
     return rc;
 }

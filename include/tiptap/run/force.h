@@ -42,6 +42,7 @@ typedef struct {
     double slope_deflection;  /* the same in deflection per z, m/m (1: a rigid sample) */
     double slope_retract;     /* as slope on the retract */
     double k;                 /* the lever's spring constant, N/m */
+    double indentation;       /* the largest indentation in contact, -separation, m */
 } tt_force_summary;
 
 /* [force] read by tt_config_force (refusals name the file and key, before anything
