@@ -1,5 +1,5 @@
 /* The envelope tier's kept models (see include/tiptap/solver/envelope.h,
- * tt_envelope_keep_models): the derivatives of the cycle map taken at a few places of the
+ * the plan's kept): the derivatives of the cycle map taken at a few places of the
  * inputs, recalled where the inputs come back near one of them. */
 #include <math.h>
 #include <stdlib.h>
