@@ -11,17 +11,27 @@
 #include "envelope_private.h"
 
 /* The model's end state from x, and the inputs' offsets u in the state and the sample
- * (the travel's offset 0: add_travel). */
+ * (the travel's offset 0: add_travel); one mode's written out (the scan's hot path). */
 static inline void step(const tt_envelope *e, const double *x, double s, double sdot,
                         double *u, double *x1)
 {
     const int nx = e->nx, ni = e->ni;
+    const double *J = e->J;
+    if (nx == 2) {
+        u[0] = x[0] - e->xa[0];
+        u[1] = x[1] - e->xa[1];
+        u[2] = s + 0.5 * sdot * e->T - e->sa;
+        u[3] = 0;
+        x1[0] = e->x1[0] + J[0] * u[0] + J[1] * u[1] + J[2] * u[2];
+        x1[1] = e->x1[1] + J[ni] * u[0] + J[ni + 1] * u[1] + J[ni + 2] * u[2];
+        return;
+    }
     for (int i = 0; i < nx; i++)
         u[i] = x[i] - e->xa[i];
     u[nx] = s + 0.5 * sdot * e->T - e->sa;
     u[nx + 1] = 0;
     for (int i = 0; i < nx; i++) {
-        const double *Ji = e->J + (size_t)i * (size_t)ni;
+        const double *Ji = J + (size_t)i * (size_t)ni;
         double y = e->x1[i];
         for (int j = 0; j <= nx; j++)
             y += Ji[j] * u[j];

@@ -306,10 +306,14 @@ void tt_graze_add_pair(tt_graze *g, int i, const double *x0, double s_mid, doubl
     g->nstar = i + 1;
 }
 
+/* The fit's kernels take the state's size as an argument and are inlined into callers
+ * that pass it as a constant for one mode (nx 2, nf 7), so that one mode's loops unroll
+ * as they did when that size was fixed, and the generic size otherwise. */
+#define KERNEL __attribute__((always_inline)) static inline
+
 /* The scaled features of a cycle's inputs about the fit's centre. */
-static void features(const tt_graze *g, const fit_t *F, const double *f, double *phi)
+KERNEL void features(int nx, const fit_t *F, const double *f, double *phi)
 {
-    const int nx = g->nx;
     phi[0] = 1;
     for (int i = 0; i <= nx; i++)
         phi[1 + i] = (f[1 + i] - F->centre[i]) / F->scale[i];
@@ -322,7 +326,7 @@ static void features(const tt_graze *g, const fit_t *F, const double *f, double 
 /* Least squares by modified Gram-Schmidt (twice, for orthogonality), a column that the
  * ones before it nearly span dropped (its coefficient 0): Q (n x nf, by columns) and R
  * (nf x nf); keep[j] tells the columns kept. */
-static void orthogonalise(int n, int nf, double *Q, double *R, int *keep)
+KERNEL void orthogonalise(int n, int nf, double *Q, double *R, int *keep)
 {
     for (int j = 0; j < nf; j++) {
         double *v = Q + (size_t)j * (size_t)n, norm0 = 0, norm = 0;
@@ -396,10 +400,9 @@ static int select_points(tt_graze *g, const point **pts)
 
 /* Output o's coefficients from Q and R, and whether they reproduce every point within
  * tol of its scale (an output not tracked is NAN throughout and passes). */
-static int solve_output(tt_graze *g, int o, int n, const point **pts, const double *Q,
-                        const double *R, const int *keep, double tol)
+KERNEL int solve_output(tt_graze *g, int nx, int nf, int o, int n, const point **pts,
+                        const double *Q, const double *R, const int *keep, double tol)
 {
-    const int nf = g->nf;
     fit_t *F = &g->trial;
     double b[NF_MAX], *c = F->coef, phi[NF_MAX];
     for (int j = 0; j < nf; j++) {
@@ -419,7 +422,7 @@ static int solve_output(tt_graze *g, int o, int n, const point **pts, const doub
     }
     const double sc = g->oscale[o] * fmax(tol, g->otol[o]);
     for (int r = 0; r < n; r++) {
-        features(g, F, pts[r]->f, phi);
+        features(nx, F, pts[r]->f, phi);
         double y = 0;
         for (int j = 0; j < nf; j++)
             y += phi[j] * c[j * g->no + o];
@@ -429,9 +432,8 @@ static int solve_output(tt_graze *g, int o, int n, const point **pts, const doub
     return 1;
 }
 
-int tt_graze_fit(tt_graze *g, double tol)
+KERNEL int fit_n(tt_graze *g, double tol, int nx, int nf)
 {
-    const int nf = g->nf;
     if (g->nh < NMIN || g->nstar < g->npair)
         return 0;
     const point *pts[HIST + PAIR_MAX];
@@ -442,17 +444,17 @@ int tt_graze_fit(tt_graze *g, double tol)
     int keep[NF_MAX];
     for (int r = 0; r < n; r++) {
         double ph[NF_MAX];
-        features(g, &g->trial, pts[r]->f, ph);
+        features(nx, &g->trial, pts[r]->f, ph);
         for (int j = 0; j < nf; j++)
             Q[(size_t)j * (size_t)n + (size_t)r] = ph[j];
     }
     orthogonalise(n, nf, Q, R, keep);
     /* the state and the sample must be resolved; the cubic in t_c may drop terms */
     int ok = 1;
-    for (int j = 0; j < g->nx + 2; j++)
+    for (int j = 0; j < nx + 2; j++)
         ok = ok && keep[j];
     for (int o = 0; o < g->no && ok; o++)
-        ok = solve_output(g, o, n, pts, Q, R, keep, tol);
+        ok = solve_output(g, nx, nf, o, n, pts, Q, R, keep, tol);
     if (ok) { /* the trial becomes the fit; a failed one leaves the last fit in use */
         fit_t t = g->fit;
         g->fit = g->trial;
@@ -462,17 +464,21 @@ int tt_graze_fit(tt_graze *g, double tol)
     return ok;
 }
 
-void tt_graze_predict(const tt_graze *g, const double *x, double s_mid, double tc, double *x1,
-                      double *red)
+int tt_graze_fit(tt_graze *g, double tol)
 {
-    const int nx = g->nx, nf = g->nf;
+    return g->nx == 2 ? fit_n(g, tol, 2, 7) : fit_n(g, tol, g->nx, g->nf);
+}
+
+KERNEL void predict_n(const tt_graze *g, const double *x, double s_mid, double tc, double *x1,
+                      double *red, int nx, int nf)
+{
     double f[NF_MAX], phi[NF_MAX];
     f[0] = 1;
     for (int i = 0; i < nx; i++)
         f[1 + i] = x[i];
     f[1 + nx] = s_mid;
     f[2 + nx] = tc;
-    features(g, &g->fit, f, phi);
+    features(nx, &g->fit, f, phi);
     const double *c = g->fit.coef;
     for (int o = 0; o < g->no; o++) {
         double y = 0;
@@ -483,6 +489,15 @@ void tt_graze_predict(const tt_graze *g, const double *x, double s_mid, double t
         else
             red[o - nx] = y;
     }
+}
+
+void tt_graze_predict(const tt_graze *g, const double *x, double s_mid, double tc, double *x1,
+                      double *red)
+{
+    if (g->nx == 2)
+        predict_n(g, x, s_mid, tc, x1, red, 2, 7);
+    else
+        predict_n(g, x, s_mid, tc, x1, red, g->nx, g->nf);
 }
 
 double tt_graze_error(const tt_graze *g, const double *xa, const double *ra, const double *xb,
