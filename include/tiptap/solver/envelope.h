@@ -91,7 +91,7 @@ int tt_envelope_size(const tt_envelope *e);
 /* A cycle's observable vector from its samples (deflection d - z), results and the
  * tip's positions at the probes (NULL: not recorded, NAN). */
 void tt_envelope_observe(const tt_envelope *e, const tt_sample *samples,
-                                const tt_sample *probes, const tt_cycle *cy, double *obs);
+                         const tt_sample *probes, const tt_cycle *cy, double *obs);
 /* An observable vector reduced: the m combinations, then TT_ENV_EXTRA and the probes. */
 void tt_envelope_reduce_obs(const tt_envelope *e, const double *obs, double *red);
 
@@ -101,13 +101,13 @@ void tt_envelope_reduce_obs(const tt_envelope *e, const double *obs, double *red
  * sim is put back at the end of the unperturbed cycle (its sampling buffer is
  * overwritten). *cycles counts the cycles run. */
 tt_envelope_outcome tt_envelope_build(tt_envelope *e, tt_sim *sim, const double *x0,
-                                             int c0, double s, double sdot, const tt_cycle *cy,
-                                             const double *obs, long *cycles);
+                                      int c0, double s, double sdot, const tt_cycle *cy,
+                                      const double *obs, long *cycles);
 
 /* Re-anchor on an integrated cycle from x0 ending in x1 (the Jacobians are kept; at
  * second order carried there). */
 void tt_envelope_anchor(tt_envelope *e, const double *x0, double s, double sdot,
-                               const double *x1, const tt_cycle *cy, const double *obs);
+                        const double *x1, const tt_cycle *cy, const double *obs);
 
 /* What a prediction gives: every observable (size), the reduced ones (m + TT_ENV_EXTRA),
  * or the probes alone. */
@@ -118,15 +118,15 @@ typedef enum { TT_ENV_ALL = 0, TT_ENV_REDUCED = 1, TT_ENV_PROBES = 2 } tt_envelo
  * (0 after an integrated cycle), and x21 the end state's; x2 NULL: the first-order
  * model (x21 not written). */
 void tt_envelope_predict(const tt_envelope *e, tt_envelope_view view, const double *x,
-                                const double *x2, double s, double sdot, double *x1,
-                                double *x21, double *out);
+                         const double *x2, double s, double sdot, double *x1,
+                         double *x21, double *out);
 
 /* The largest scaled difference between two versions of one cycle (model and
  * integration): end states and the view's outputs (TT_ENV_ALL or TT_ENV_REDUCED),
  * relative to the free amplitude. At second order with a reduction, TT_ENV_ALL holds
  * the samples as the lock-in's components. */
 double tt_envelope_error(const tt_envelope *e, tt_envelope_view view, const double *xa,
-                                const double *oa, const double *xb, const double *ob);
+                         const double *oa, const double *xb, const double *ob);
 
 /* Noise: standard normal numbers a cycle's draw takes (n + m; 0: no noise), and a
  * cycle's noise from them: the end state's dx (n), the reduced samples' added to dc (m). */
@@ -144,22 +144,22 @@ void tt_envelope_keep(tt_envelope *e, int tag);
 /* The inputs' largest offset from where the present model's derivatives were taken (in
  * tt_envelope_reach's units). */
 double tt_envelope_model_reach(const tt_envelope *e, const double *x, double s,
-                                      double sdot);
+                               double sdot);
 /* Make the kept model nearest to the inputs, within `within` of where its derivatives
  * were taken, with the contact flag, touch and tag given, the present one. 1: recalled;
  * the caller then anchors it on an integrated cycle (tt_envelope_anchor). 0: none. */
 int tt_envelope_recall(tt_envelope *e, const double *x, double s, double sdot,
-                              int contact, int touched, int tag, double within);
+                       int contact, int touched, int tag, double within);
 /* The same with the present anchor's contact flag and touch, anchored where it was
  * built: it predicts on from there with no cycle integrated. 1: switched; 0: none is
  * near enough, and the present model is as it was. */
 int tt_envelope_switch(tt_envelope *e, const double *x, double s, double sdot, int tag,
-                              double within);
+                       double within);
 /* Whether the inputs come back within `within` of a place where the caller found no kept
  * model near (tagged as given) among the last 64 such places: 1, a place worth a model
  * of its own; 0, and this place is noted. */
 int tt_envelope_revisit(tt_envelope *e, const double *x, double s, double sdot, int tag,
-                               double within);
+                        double within);
 
 /* Whether a cycle touched the sample; the anchor's touch and start contact flag. */
 int tt_envelope_touched(const tt_cycle *cy);
