@@ -5,16 +5,20 @@
  * outcome names what it made of the model (usable; off the anchor's branch; a cycle that
  * failed). The library's calls to malloc and calloc go through this file's wrappers
  * (-Wl,--wrap, CMakeLists.txt), which fail the k-th of them once armed. The grazing
- * map's allocation likewise. On the standard cantilever out of contact. */
+ * map's allocation likewise. The generic kernels of the prediction (any n) give one
+ * mode's specialised ones bit for bit. On the standard cantilever out of contact and
+ * tapping. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "tt_test.h"
+#include "tiptap/physics/contact.h"
 #include "tiptap/solver/envelope.h"
 #include "tiptap/solver/graze.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
+#include "solver/envelope_private.h"
 
 void *__real_malloc(size_t n);
 void *__real_calloc(size_t n, size_t size);
@@ -261,6 +265,72 @@ static void build_outcomes(void **st)
     tt_sim_free(f.sim);
 }
 
+/* The prediction's generic kernels (any n) against one mode's written-out ones, bit for
+ * bit, in every view, to first and second order, with and without the travel: on a
+ * tapping cycle's model (second order, thermal noise) from states and samples about it. */
+static void generic_kernels_equal_specialised(void **st)
+{
+    (void)st;
+    fixture f;
+    setup(&f);
+    tt_contact_params cp = {TT_CONTACT_MAUGIS, 3e9, 10e-9, 0.04, 0.265e-9, NAN, 0, 0};
+    tt_contact *ct;
+    assert_int_equal(tt_contact_alloc(&ct, &cp), TT_OK);
+    tt_sim_set_contact(f.sim, ct, 2);
+    const double s = 15e-9;
+    tt_sim_set_sample(f.sim, s, 0);
+    tt_cycle cy;
+    for (int i = 0; i < 600; i++)
+        assert_int_equal(tt_sim_cycle(f.sim, &cy), TT_OK);
+    assert_true(cy.events > 0); /* it taps */
+    for (int travel = 0; travel < 2; travel++) {
+        tt_envelope_params p = full_plan(&f);
+        p.travel = travel;
+        p.probes = 0;
+        tt_envelope *e;
+        assert_int_equal(tt_envelope_alloc(&e, f.sim, &p), TT_OK);
+        const int no = tt_envelope_size(e);
+        double *obs = malloc(4 * (size_t)no * sizeof *obs), *a = obs + no, *b = a + no;
+        assert_non_null(obs);
+        double x0[2], xa[2], xb[2], x21a[2], x21b[2];
+        int c0;
+        tt_sim_get_x(f.sim, x0, &c0);
+        assert_int_equal(tt_sim_cycle(f.sim, &cy), TT_OK);
+        tt_envelope_observe(e, f.smp, NULL, &cy, obs);
+        long jac = 0;
+        assert_int_equal(tt_envelope_build(e, f.sim, x0, c0, s, 0, &cy, obs, &jac),
+                         TT_ENV_USABLE);
+        int compared = 0;
+        /* offsets as large as the terms they are added to (a kernel's order of summation
+         * shows in the last bits), not where the model holds: this compares arithmetic */
+        for (int k = 0; k < 125; k++) {
+            const double w0 = 0.37 * (k % 5 - 2), w1 = 0.29 * (k / 5 % 5 - 2), w2 = 0.23 * (k / 25 - 2);
+            const double x[2] = {x0[0] * (1 + w0) + w1 * f.c.A0, x0[1] * (1 - w1) + w2 * f.c.wd * f.c.A0};
+            const double x2[2] = {1e-2 * w2 * f.c.A0, -3e-2 * w0 * f.c.wd * f.c.A0};
+            const double sk = s * (1 + w2) + w0 * f.c.A0, sdot = 1e-3 * w1;
+            for (int view = TT_ENV_ALL; view <= TT_ENV_REDUCED; view++)
+                for (int order = 1; order <= 2; order++) {
+                    const double *x2p = order == 2 ? x2 : NULL;
+                    memset(a, 0, 2 * (size_t)no * sizeof *a);
+                    e->generic = 0;
+                    tt_envelope_predict(e, (tt_envelope_view)view, x, x2p, sk, sdot, xa, x21a, a);
+                    e->generic = 1;
+                    tt_envelope_predict(e, (tt_envelope_view)view, x, x2p, sk, sdot, xb, x21b, b);
+                    assert_memory_equal(xa, xb, sizeof xa);
+                    assert_memory_equal(a, b, (size_t)no * sizeof *a);
+                    if (x2p)
+                        assert_memory_equal(x21a, x21b, sizeof x21a);
+                    compared++;
+                }
+        }
+        assert_int_equal(compared, 125 * 4);
+        free(obs);
+        tt_envelope_free(e);
+    }
+    tt_contact_free(ct);
+    tt_sim_free(f.sim);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -268,6 +338,7 @@ int main(void)
         cmocka_unit_test(a_plan_out_of_range_is_einval),
         cmocka_unit_test(planned_model_allocates_nothing),
         cmocka_unit_test(build_outcomes),
+        cmocka_unit_test(generic_kernels_equal_specialised),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

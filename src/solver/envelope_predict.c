@@ -17,7 +17,7 @@ static inline void step(const tt_envelope *e, const double *x, double s, double 
 {
     const int nx = e->nx, ni = e->ni;
     const double *J = e->J;
-    if (nx == 2) {
+    if (nx == 2 && !e->generic) {
         u[0] = x[0] - e->xa[0];
         u[1] = x[1] - e->xa[1];
         u[2] = s + 0.5 * sdot * e->T - e->sa;
@@ -40,11 +40,13 @@ static inline void step(const tt_envelope *e, const double *x, double s, double 
 }
 
 /* Outputs o = oa + C u (no of them) in the first nc inputs, C by columns of length ld:
- * three columns (one mode) fused, so that the loop vectorises. */
+ * three columns (one mode) fused, so that the loop vectorises (fused), else column by
+ * column, the terms summed in the same order. */
 static inline void linear(int no, int nc, int ld, const double *restrict oa,
-                          const double *restrict C, const double *u, double *restrict o)
+                          const double *restrict C, const double *u, double *restrict o,
+                          int fused)
 {
-    if (nc == 3) {
+    if (fused && nc == 3) {
         const double *restrict c0 = C, *restrict c1 = c0 + ld, *restrict c2 = c1 + ld;
         for (int i = 0; i < no; i++)
             o[i] = oa[i] + c0[i] * u[0] + c1[i] * u[1] + c2[i] * u[2];
@@ -83,7 +85,7 @@ __attribute__((noinline)) static void predict_travel(const tt_envelope *e, const
 {
     double u[NIN_MAX];
     step(e, x, s, sdot, u, x1);
-    linear(no, e->nx + 1, ld, oa, C, u, o);
+    linear(no, e->nx + 1, ld, oa, C, u, o, !e->generic);
     add_travel(e, sdot, u, x1, no, ld, C, o);
 }
 
@@ -144,13 +146,13 @@ void tt_envelope_predict(const tt_envelope *e, tt_envelope_view view, const doub
             return;
         }
         step(e, x, s, sdot, u, x1);
-        linear(no, nx + 1, ld, oa, C, u, out);
+        linear(no, nx + 1, ld, oa, C, u, out, !e->generic);
         return;
     }
     for (int i = 0; i < nx; i++)
         xl[i] = x[i] - x2[i];
     step(e, xl, s, sdot, u, x1);
-    linear(no, nx + 1, ld, oa, C, u, out);
+    linear(no, nx + 1, ld, oa, C, u, out, !e->generic);
     if (e->nin > nx + 1)
         add_travel(e, sdot, u, x1, no, ld, C, out);
     const double *Ho = view == TT_ENV_ALL ? e->Hv + (size_t)nx * (size_t)e->npair

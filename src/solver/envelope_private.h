@@ -46,6 +46,8 @@ struct tt_envelope {
     double *xa, sa, ta, *x1;
     int contact, touched;
     int nin;              /* inputs in use: nx + 1, or nx + 2 with the travel */
+    int generic;          /* the prediction's generic kernels for one mode too (set by
+                           * tests/test_envelope_plan.c only, which checks they agree) */
     /* second order: the second derivatives of the end state and of the observables, by
      * input pair (npair per output, outputs by rows: the end state's nx, then the
      * observables'), and of the reduced observables; built: they belong to the present
