@@ -90,7 +90,8 @@ int tt_shoot_eigen(int n, const double *J, double *re, double *im, int generic)
     int ok = A && ev && w;
     if (ok) {
         memcpy(A->data, J, (size_t)n * (size_t)n * sizeof *J); /* rows, contiguous */
-        /* its error handler off: a failure is a return code here, not an abort */
+        /* its error handler off: a failure (no convergence) is a return code here, not
+         * an abort; GSL's handler is process-wide, and nothing else in the library sets it */
         gsl_error_handler_t *old = gsl_set_error_handler_off();
         ok = gsl_eigen_nonsymm(A, ev, w) == GSL_SUCCESS;
         gsl_set_error_handler(old);
