@@ -47,13 +47,12 @@ static void fixture_init(fixture *f, int keep)
         assert_int_equal(tt_sim_cycle(f->sim, &cy), TT_OK);
     assert_true(cy.events > 0); /* it taps */
     tt_sim_get_state(f->sim, &f->x0[0], &f->x0[1], &f->c0);
-    assert_int_equal(tt_envelope_alloc(&f->e, &f->c, NS), TT_OK);
     double R[NS];
     for (int q = 0; q < NS; q++)
         R[q] = 1.0 / NS;
-    assert_int_equal(tt_envelope_reduce(f->e, 1, R), TT_OK);
-    assert_int_equal(tt_envelope_use_second_order(f->e), TT_OK);
-    assert_int_equal(tt_envelope_keep_models(f->e, keep), TT_OK);
+    const tt_envelope_params plan = {.samples = NS, .reduced = 1, .reduce = R,
+                                     .second_order = 1, .kept = keep};
+    assert_int_equal(tt_envelope_alloc(&f->e, f->sim, &plan), TT_OK);
     f->obs = malloc(2 * (size_t)tt_envelope_size(f->e) * sizeof *f->obs);
     assert_non_null(f->obs);
 }
@@ -90,9 +89,10 @@ static void build_keep(fixture *f, const double x[2], double s, int tag)
 {
     double x1[2];
     tt_cycle cy = integrate(f, x, s, x1);
-    tt_envelope_observe(f->e, f->smp, &cy, f->obs);
+    tt_envelope_observe(f->e, f->smp, NULL, &cy, f->obs);
     long jac = 0;
-    assert_int_equal(tt_envelope_build(f->e, f->sim, x, f->c0, s, 0, &cy, f->obs, &jac), 1);
+    assert_int_equal(tt_envelope_build(f->e, f->sim, x, f->c0, s, 0, &cy, f->obs, &jac),
+                     TT_ENV_USABLE);
     tt_envelope_keep(f->e, tag);
 }
 
@@ -101,7 +101,7 @@ static double model_error(fixture *f, const double x[2], double s)
 {
     const double x2[2] = {0, 0};
     double xm[2], x21[2], xi[2];
-    tt_envelope_predict2(f->e, x, x2, s, 0, xm, x21, f->obs);
+    tt_envelope_predict(f->e, TT_ENV_ALL, x, x2, s, 0, xm, x21, f->obs);
     integrate(f, x, s, xi);
     return fmax(fabs(xm[0] - xi[0]) / f->c.A0, fabs(xm[1] - xi[1]) / (f->c.wd * f->c.A0));
 }
@@ -197,7 +197,7 @@ static void full_store_replaces_the_oldest(void **st)
         assert_int_equal(tt_envelope_switch(f.e, x, f.s, 0, 0, 5e-4), want[i]);
     }
     /* a new line forgets them all */
-    tt_envelope_forget(f.e);
+    tt_envelope_reset(f.e);
     offset(&f, 0, 0, x);
     assert_int_equal(tt_envelope_switch(f.e, x, f.s, 0, 0, 5e-4), 0);
     fixture_free(&f);
@@ -217,7 +217,7 @@ static void revisit_on_the_second_miss(void **st)
     offset(&f, 5e-4, 5e-4, x);
     assert_int_equal(tt_envelope_revisit(f.e, x, f.s, 0, 0, 1e-3), 1);
     assert_int_equal(tt_envelope_revisit(f.e, x, f.s, 0, 1, 1e-3), 1);
-    tt_envelope_forget(f.e);
+    tt_envelope_reset(f.e);
     assert_int_equal(tt_envelope_revisit(f.e, x, f.s, 0, 0, 1e-3), 0);
     fixture_free(&f);
 }

@@ -33,13 +33,13 @@ static void free_equipartition(double Q)
     tt_sim_reset_free(sim);
     tt_sim_set_sample(sim, 1e-6, 0); /* a micrometre away: no force */
     tt_envelope *e;
-    assert_int_equal(tt_envelope_alloc(&e, &c, NS), TT_OK);
     double R[NS];
     for (int q = 0; q < NS; q++)
         R[q] = 1.0 / NS;
-    assert_int_equal(tt_envelope_reduce(e, 1, R), TT_OK);
     const double T = 300;
-    assert_int_equal(tt_envelope_set_noise(e, 2 * c.c * TT_BOLTZMANN * T, 0), TT_OK);
+    const tt_envelope_params plan = {.samples = NS, .reduced = 1, .reduce = R,
+                                     .psd = 2 * c.c * TT_BOLTZMANN * T};
+    assert_int_equal(tt_envelope_alloc(&e, sim, &plan), TT_OK);
     assert_int_equal(tt_envelope_noise_size(e), 3);
     double x0[2];
     int c0;
@@ -47,19 +47,19 @@ static void free_equipartition(double Q)
     tt_cycle cy;
     assert_int_equal(tt_sim_cycle(sim, &cy), TT_OK);
     double *obs = malloc((size_t)tt_envelope_size(e) * sizeof *obs);
-    tt_envelope_observe(e, smp, &cy, obs);
+    tt_envelope_observe(e, smp, NULL, &cy, obs);
     long jac = 0;
-    assert_int_equal(tt_envelope_build(e, sim, x0, c0, 1e-6, 0, &cy, obs, &jac), 1);
+    assert_int_equal(tt_envelope_build(e, sim, x0, c0, 1e-6, 0, &cy, obs, &jac), TT_ENV_USABLE);
     /* the steady cycle is the model's fixed point; the noise moves the state off it */
     double xs[2], red[1 + TT_ENV_EXTRA], x[2] = {x0[0], x0[1]};
-    tt_envelope_predict_reduced(e, x0, 1e-6, 0, xs, red);
+    tt_envelope_predict(e, TT_ENV_REDUCED, x0, NULL, 1e-6, 0, xs, NULL, red);
     const uint64_t key = tt_noise_key(11, TT_NOISE_ENVELOPE, 0);
     enum { NB = 40 };
     const long burn = (long)(10 * Q), per = (long)(250 * Q);
     double bd[NB] = {0}, bv[NB] = {0};
     for (long n = 0; n < burn + NB * per; n++) {
         double x1[2], g[4], dx[2];
-        tt_envelope_predict_reduced(e, x, 1e-6, 0, x1, red);
+        tt_envelope_predict(e, TT_ENV_REDUCED, x, NULL, 1e-6, 0, x1, NULL, red);
         tt_noise_pair(key, 2 * (uint64_t)n, g);
         tt_noise_pair(key, 2 * (uint64_t)n + 1, g + 2);
         tt_envelope_noise(e, g, dx, red);

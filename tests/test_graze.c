@@ -33,7 +33,7 @@ static void setup(fixture *f)
         scale[i] = f->c.A0;
         floor[i] = 0;
     }
-    assert_int_equal(tt_graze_alloc(&f->g, &f->c, M, scale, floor), TT_OK);
+    assert_int_equal(tt_graze_alloc(&f->g, f->sim, M, scale, floor), TT_OK);
     f->jumpin = -0.8e-9;
     tt_graze_reset(f->g, f->jumpin);
     f->tstar = 0.31 * f->c.T;

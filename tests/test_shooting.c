@@ -1,8 +1,12 @@
 /* Steady points by shooting (tiptap/solver/shooting.h): the fixed point of the
  * one-period map and its Floquet multipliers on the free oscillator against the
- * analytic steady state; agreement with settling on the standard scene; and both
- * branches of the bistable scene (Garcia and San Paulo 1999). */
+ * analytic steady state; agreement with settling on the standard scene; both
+ * branches of the bistable scene (Garcia and San Paulo 1999); and the n x n algebra
+ * (the generic solve, eigenvalues and Lyapunov equation against the one-mode closed
+ * forms at n = 2, and against a known spectrum and the equation's residual at n = 4). */
+#include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "tt_test.h"
 #include "tiptap/config/config.h"
@@ -11,6 +15,7 @@
 #include "tiptap/instrument/approach.h"
 #include "tiptap/solver/shooting.h"
 #include "tiptap/util/error.h"
+#include "solver/shooting_linalg.h"
 
 static tt_sim *free_sim(tt_cantilever *c, double Q, double fd_ratio)
 {
@@ -167,6 +172,115 @@ static void bistable_scene_shows_both_branches(void **st)
     tt_scene_free(s);
 }
 
+/* A damped rotation's monodromy, r R(a) sheared by [1 0.1; 0 1]: its determinant r^2,
+ * its multipliers a complex pair of modulus r. */
+static void monodromy2(double J[4])
+{
+    const double r = 0.93, a = 0.7, c = r * cos(a), s = r * sin(a);
+    J[0] = c;
+    J[1] = 0.1 * c - s;
+    J[2] = s;
+    J[3] = 0.1 * s + c;
+}
+
+static void generic_algebra_equals_closed_forms_at_n2(void **state)
+{
+    (void)state;
+    double J[4], A[4], b[2] = {0.3, -1.1}, s2[2], sg[2];
+    monodromy2(J);
+    memcpy(A, J, sizeof A);
+    assert_int_equal(tt_shoot_solve(2, A, b, s2, 0), 1);
+    memcpy(A, J, sizeof A);
+    assert_int_equal(tt_shoot_solve(2, A, b, sg, 1), 1);
+    for (int i = 0; i < 2; i++)
+        assert_close(sg[i], s2[i], 1e-13 * fabs(s2[i]));
+    double re2[2], im2[2], reg[2], img[2];
+    assert_int_equal(tt_shoot_eigen(2, J, re2, im2, 0), 1);
+    assert_int_equal(tt_shoot_eigen(2, J, reg, img, 1), 1);
+    /* the pair in either order: compare by the imaginary part's sign */
+    for (int i = 0; i < 2; i++) {
+        const int k = (img[i] > 0) == (im2[0] > 0) ? 0 : 1;
+        assert_close(reg[i], re2[k], 1e-13);
+        assert_close(img[i], im2[k], 1e-13);
+    }
+    assert_true(fabs(im2[0]) > 0.1);
+    assert_close(hypot(re2[0], im2[0]), 0.93, 1e-14);
+    double M2[4], Mg[4];
+    assert_int_equal(tt_shoot_lyapunov(2, J, M2, 0), 1);
+    assert_int_equal(tt_shoot_lyapunov(2, J, Mg, 1), 1);
+    for (int i = 0; i < 4; i++)
+        assert_close(Mg[i], M2[i], 1e-12 * fabs(M2[0]));
+    /* a singular matrix is refused by both */
+    double S[4] = {1, 2, 2, 4};
+    memcpy(A, S, sizeof A);
+    assert_int_equal(tt_shoot_solve(2, A, b, s2, 0), 0);
+    memcpy(A, S, sizeof A);
+    assert_int_equal(tt_shoot_solve(2, A, b, sg, 1), 0);
+}
+
+static void algebra_n4_known_spectrum(void **state)
+{
+    (void)state;
+    /* block diagonal: a rotation r e^(+-i a) and two real multipliers, mixed by a
+     * similarity transform T (upper triangular, unit diagonal): J = T D T^-1 */
+    enum { n = 4 };
+    const double r = 0.9, a = 0.4, l2 = 0.5, l3 = -0.2;
+    double D[n * n] = {r * cos(a), -r * sin(a), 0, 0, r * sin(a), r * cos(a), 0, 0,
+                       0, 0, l2, 0, 0, 0, 0, l3};
+    double T[n * n] = {1, 0.3, -0.2, 0.1, 0, 1, 0.5, -0.4, 0, 0, 1, 0.7, 0, 0, 0, 1};
+    double Ti[n * n], TD[n * n], J[n * n];
+    for (int c = 0; c < n; c++) { /* T^-1 column by column, by the solver */
+        double A[n * n], e[n] = {0}, col[n];
+        memcpy(A, T, sizeof A);
+        e[c] = 1;
+        assert_int_equal(tt_shoot_solve(n, A, e, col, 0), 1);
+        for (int i = 0; i < n; i++)
+            Ti[i * n + c] = col[i];
+    }
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            TD[i * n + j] = 0;
+            for (int k = 0; k < n; k++)
+                TD[i * n + j] += T[i * n + k] * D[k * n + j];
+        }
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            J[i * n + j] = 0;
+            for (int k = 0; k < n; k++)
+                J[i * n + j] += TD[i * n + k] * Ti[k * n + j];
+        }
+    double re[n], im[n];
+    assert_int_equal(tt_shoot_eigen(n, J, re, im, 0), 1);
+    int complex = 0, got2 = 0, got3 = 0;
+    for (int i = 0; i < n; i++) {
+        if (fabs(im[i]) > 1e-9) {
+            complex++;
+            assert_close(hypot(re[i], im[i]), r, 1e-12);
+            assert_close(fabs(atan2(im[i], re[i])), a, 1e-12);
+        } else {
+            got2 += fabs(re[i] - l2) < 1e-12;
+            got3 += fabs(re[i] - l3) < 1e-12;
+        }
+    }
+    assert_int_equal(complex, 2);
+    assert_int_equal(got2, 1);
+    assert_int_equal(got3, 1);
+    /* the Lyapunov equation J^T M J - M = -I holds, and M is positive definite (its
+     * quadratic form on the unit vectors and a mixed one is positive) */
+    double M[n * n];
+    assert_int_equal(tt_shoot_lyapunov(n, J, M, 0), 1);
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            double g = -M[i * n + j];
+            for (int k = 0; k < n; k++)
+                for (int l = 0; l < n; l++)
+                    g += J[k * n + i] * M[k * n + l] * J[l * n + j];
+            assert_close(g, i == j ? -1 : 0, 1e-10);
+        }
+    for (int i = 0; i < n; i++)
+        assert_true(M[i * n + i] > 1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -174,6 +288,8 @@ int main(void)
         cmocka_unit_test(free_multipliers_are_analytic),
         cmocka_unit_test(standard_scene_agrees_with_settling),
         cmocka_unit_test(bistable_scene_shows_both_branches),
+        cmocka_unit_test(generic_algebra_equals_closed_forms_at_n2),
+        cmocka_unit_test(algebra_n4_known_spectrum),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

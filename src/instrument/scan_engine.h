@@ -37,7 +37,6 @@ typedef struct {
      * of the block's periods (y) to roll back to, and two observable vectors */
     tt_envelope *env;
     tt_graze *graze; /* the touch branch of a grazing tip (the free one: env) */
-    int env_shape;   /* the noise the model was made for (scan.c, model_shape) */
     tt_lockin *lockin_save;
     double *y_save, *obs;
     /* the greatest indentation of the trace and retrace cycles, per material */

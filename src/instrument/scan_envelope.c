@@ -61,7 +61,7 @@ static int edge_ahead(const line_ctx *L, const cycle_in *in)
  * detector's noise in its components, from normals that are a pure function of (seed,
  * line, cycle): a stretch run again after a rollback, and the error estimate's
  * companion line, draw what the run drew. */
-enum { NOISE_MAX = 2 + 1 + 2 * 16 + 1 };
+enum { NOISE_MAX = TT_SIM_DIM_MAX + 1 + 2 * 16 + 1 };
 
 /* The cycle's noise added to its components and its end state st->x. */
 static void add_noise(const line_ctx *L, line_state *st, double *comp)
@@ -70,13 +70,13 @@ static void add_noise(const line_ctx *L, line_state *st, double *comp)
     const int nn = tt_envelope_noise_size(env);
     if (!nn)
         return;
-    double g[NOISE_MAX + 1], dx[2];
+    double g[NOISE_MAX + 1], dx[TT_SIM_DIM_MAX];
     const uint64_t base = (uint64_t)st->cycles * (uint64_t)((nn + 1) / 2);
     for (int i = 0; i < nn && i < NOISE_MAX; i += 2)
         tt_noise_pair(L->ke, base + (uint64_t)(i / 2), g + i);
     tt_envelope_noise(env, g, dx, comp);
-    st->x[0] += dx[0];
-    st->x[1] += dx[1];
+    for (int i = 0; i < tt_sim_dim(L->W->sim); i++)
+        st->x[i] += dx[i];
 }
 
 /* A cycle's observables into the block's and the pixel's sums, with its noise; the
@@ -98,9 +98,9 @@ static int record(const line_ctx *L, line_state *st, const cycle_in *in, const d
         if (!reduced) {
             tt_sim *sim = L->W->sim;
             int cf;
-            double d, v;
-            tt_sim_get_state(sim, &d, &v, &cf);
-            tt_sim_set_state(sim, st->x[0], st->x[1], cf);
+            double x[TT_SIM_DIM_MAX];
+            tt_sim_get_x(sim, x, &cf);
+            tt_sim_set_x(sim, st->x, cf);
         }
     }
     const double *x = obs + (reduced ? nc : L->N);
@@ -142,7 +142,7 @@ static void snap_restore(const line_ctx *L, const snapshot *sn, line_state *st)
         memcpy(L->pix + (size_t)L->dir * (size_t)S->raster.pixels + sn->p0, sn->pix,
                (size_t)(sn->p1 - sn->p0 + 1) * sizeof *sn->pix);
     tt_sim_set_contact(W->sim, S->contacts[st->current], S->Qi[st->current]);
-    tt_sim_set_state(W->sim, st->x[0], st->x[1], sn->contact);
+    tt_sim_set_x(W->sim, st->x, sn->contact);
 }
 
 
@@ -153,7 +153,7 @@ static void snap_restore(const line_ctx *L, const snapshot *sn, line_state *st)
  * linear in the state and blind to the sample, so its derivatives carry exactly (a
  * parachuting tip's sample moves by 6e-3 of A0 a cycle as the loop reaches for the
  * surface). */
-static int far_off(const line_ctx *L, const double x0[2], const cycle_in *in, int touched,
+static int far_off(const line_ctx *L, const double *x0, const cycle_in *in, int touched,
                    int c0)
 {
     const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
@@ -170,7 +170,7 @@ static int far_off(const line_ctx *L, const double x0[2], const cycle_in *in, in
  * after an edge) a model carried on passes its checks as before; the builds of full()
  * (after a failure, or on a cycle integrated anyway) fill the store. 1: recalled. */
 static int recall(const line_ctx *L, const line_state *st, const controller *c,
-                  const cycle_in *in, const double x0[2], int c0, const tt_cycle *cy)
+                  const cycle_in *in, const double *x0, int c0, const tt_cycle *cy)
 {
     const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
     /* after two failures in a row the model is built anew, not recalled */
@@ -183,46 +183,46 @@ static int recall(const line_ctx *L, const line_state *st, const controller *c,
  * there before (a place it comes back to, worth a model of its own) rather than passing
  * through once, as a transient after an edge does (tt_envelope_revisit). */
 static int worth_a_model(const line_ctx *L, const line_state *st, const cycle_in *in,
-                         const double x0[2])
+                         const double *x0)
 {
     const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
     return tt_envelope_revisit(L->W->env, x0, in->sa, sdot, (int)st->current, L->retake);
 }
 
 /* The check closing a stretch: cycle k integrated from the model's state, against the
- * model's own prediction of it. 1: the stretch stands (the model is re-anchored, or
- * built there); 3: it stands, but the model built there failed (the model is off until
- * one is built anew); 0: it does not, or the run was cancelled (*rc = TT_EINTR). */
-static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *obs,
-                 controller *c, int *rc)
+ * model's own prediction of it (CHECK_FAILED also when the run was cancelled, *rc =
+ * TT_EINTR). */
+static check_outcome check(const line_ctx *L, line_state *st, const cycle_in *in, double *obs,
+                           controller *c, int *rc)
 {
     tt_envelope *env = L->W->env;
     const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
-    const double x0[2] = {st->x[0], st->x[1]};
+    double x0[TT_SIM_DIM_MAX];
+    memcpy(x0, st->x, sizeof x0);
     const int c0 = tt_envelope_anchor_contact(env);
-    double xp[2], xp2[2], *pred = obs + tt_envelope_size(env);
-    tt_envelope_predict2(env, x0, st->x2, in->sa, sdot, xp, xp2, pred);
-    tt_sim_set_state(L->W->sim, x0[0], x0[1], c0);
+    double xp[TT_SIM_DIM_MAX], xp2[TT_SIM_DIM_MAX], *pred = obs + tt_envelope_size(env);
+    tt_envelope_predict(env, TT_ENV_ALL, x0, st->x2, in->sa, sdot, xp, xp2, pred);
+    tt_sim_set_x(L->W->sim, x0, c0);
     tt_cycle cy;
     int c1;
     int irc = tt_scan_env_integrate(L, st, in, &cy, obs, &c1, c);
     if (irc == TT_EINTR) {
         *rc = irc;
-        return 0;
+        return CHECK_FAILED;
     }
     if (irc != TT_OK) {
         /* a model state the cycle cannot be integrated from is a failed check: the
          * stretch is run again from its start, and at last every cycle */
         tt_error_clear();
         stops[TT_ENV_CHECK_CYCLE]++;
-        return 0;
+        return CHECK_FAILED;
     }
-    double err = tt_envelope_error(env, xp, pred, st->x, obs) * tt_scan_env_drift(L, c->m);
+    double err = tt_envelope_error(env, TT_ENV_ALL, xp, pred, st->x, obs) * tt_scan_env_drift(L, c->m);
     if (!(err <= L->tol + L->rel * tt_envelope_reach(env, x0, in->sa, sdot)) || c1 != c0 || tt_envelope_touched(&cy) != tt_envelope_anchor_touched(env)) {
         stops[c1 != c0 ? TT_ENV_CHECK_CONTACT
               : tt_envelope_touched(&cy) != tt_envelope_anchor_touched(env) ? TT_ENV_CHECK_TOUCH
                                                                            : TT_ENV_CHECK_ERROR]++;
-        return 0;
+        return CHECK_FAILED;
     }
     stops[TT_ENV_CHECK_PASS]++;
     c->smooth = sample_mid(in) - in->zn;
@@ -232,15 +232,16 @@ static int check(const line_ctx *L, line_state *st, const cycle_in *in, double *
          * the stretches to switch to (a transient after an edge sweeps through places
          * once, and builds none) */
         long jacobian = 0; /* its cycles are not the run's */
-        if (!tt_envelope_build(env, L->W->sim, x0, c0, in->sa, sdot, &cy, obs, &jacobian)) {
+        if (tt_envelope_build(env, L->W->sim, x0, c0, in->sa, sdot, &cy, obs, &jacobian) !=
+            TT_ENV_USABLE) {
             c->rebuild = 1;
-            return 3;
+            return CHECK_MODEL_OFF;
         }
         tt_envelope_keep(env, (int)st->current);
-        return 1;
+        return CHECK_PASSED;
     }
     tt_envelope_anchor(env, x0, in->sa, sdot, st->x, &cy, obs);
-    return 1;
+    return CHECK_PASSED;
 }
 
 /* A cycle integrated while the model is off. The model comes back on it at once when
@@ -252,9 +253,9 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
 {
     tt_sim *sim = L->W->sim;
     tt_envelope *env = L->W->env;
-    double x0[2];
+    double x0[TT_SIM_DIM_MAX];
     int c0, c1;
-    tt_sim_get_state(sim, &x0[0], &x0[1], &c0);
+    tt_sim_get_x(sim, x0, &c0);
     tt_cycle cy;
     stops[TT_ENV_FULL]++;
     if ((*rc = tt_scan_env_integrate(L, st, in, &cy, obs, &c1, c)))
@@ -303,7 +304,7 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
     stops[TT_ENV_BUILD]++;
     long jacobian = 0; /* its cycles are not the run's */
     c->smooth = sample_mid(in) - in->zn;
-    if (tt_envelope_build(env, sim, x0, c0, in->sa, sdot, &cy, obs, &jacobian)) {
+    if (tt_envelope_build(env, sim, x0, c0, in->sa, sdot, &cy, obs, &jacobian) == TT_ENV_USABLE) {
         tt_envelope_keep(env, (int)st->current);
         c->rebuild = 0;
         return 1;
@@ -377,14 +378,13 @@ static int model_step2(const line_ctx *L, line_state *st, const controller *c,
             stops[TT_ENV_END_REACH]++;
             return 0;
         }
-        st->x2[0] = st->x2[1] = 0;
+        memset(st->x2, 0, sizeof st->x2);
     }
-    double x1[2], x21[2];
-    tt_envelope_predict2_reduced(env, st->x, st->x2, in->sa, sdot, x1, x21, obs);
-    st->x[0] = x1[0];
-    st->x[1] = x1[1];
-    st->x2[0] = x21[0];
-    st->x2[1] = x21[1];
+    double x1[TT_SIM_DIM_MAX], x21[TT_SIM_DIM_MAX];
+    tt_envelope_predict(env, TT_ENV_REDUCED, st->x, st->x2, in->sa, sdot, x1, x21, obs);
+    const int nx = tt_sim_dim(L->W->sim);
+    memcpy(st->x, x1, (size_t)nx * sizeof *x1);
+    memcpy(st->x2, x21, (size_t)nx * sizeof *x21);
     return 1;
 }
 
@@ -407,10 +407,9 @@ static int model_step(const line_ctx *L, line_state *st, controller *c,
     }
     if (c->graze)
         return tt_scan_graze_step(L, st, c, in, obs);
-    double x1[2];
-    tt_envelope_predict_reduced(L->W->env, st->x, in->sa, sdot, x1, obs);
-    st->x[0] = x1[0];
-    st->x[1] = x1[1];
+    double x1[TT_SIM_DIM_MAX];
+    tt_envelope_predict(L->W->env, TT_ENV_REDUCED, st->x, NULL, in->sa, sdot, x1, NULL, obs);
+    memcpy(st->x, x1, (size_t)tt_sim_dim(L->W->sim) * sizeof *x1);
     return 1;
 }
 
@@ -432,27 +431,28 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c)
         if ((rc = tt_scan_cycle_begin(L, st, &in)))
             return rc;
         const int edge = edge_ahead(L, &in);
-        int snap = 0, reduced = model_step(L, st, c, &in, edge, obs), pass = 0;
+        int snap = 0, reduced = model_step(L, st, c, &in, edge, obs);
+        check_outcome pass = CHECK_FAILED;
         if (reduced) {
             stops[TT_ENV_MODEL]++;
             c->left--;
             c->ran++;
         } else if (c->model) {
             pass = c->graze ? tt_scan_graze_check(L, st, &in, obs, c, &rc) : check(L, st, &in, obs, c, &rc);
-            if (!pass) {
+            if (pass == CHECK_FAILED) {
                 if (rc)
                     return rc;
                 fail(L, st, c, in.k);
                 continue;
             }
-            if (pass == 1) /* a check, not a cycle from an integrated state */
+            if (pass == CHECK_PASSED) /* a check, not a cycle from an integrated state */
                 c->m = 2 * c->m < M_MAX ? 2 * c->m : M_MAX;
             /* with the reach bound, a transient's stretches pass a cycle or two before
              * the Jacobians go stale: the wait is reset only by one that held */
             if (!(L->reach > 0) || c->ran >= WAIT_MIN)
                 c->wait = WAIT_MIN;
             c->fails = 0;
-            c->model = pass != 3 && !edge && !in.edge_next;
+            c->model = pass != CHECK_MODEL_OFF && !edge && !in.edge_next;
             c->quiet = 0;
             snap = c->model;
         } else {
@@ -488,8 +488,7 @@ int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out,
                           long *integrated, double *worst, int *clamped)
 {
     controller c = {.m = M_MIN, .wait = WAIT_MIN};
-    tt_envelope_noise_reset(W->env);
-    tt_envelope_forget(W->env); /* a line's cycles depend on no other line's */
+    tt_envelope_reset(W->env); /* a line's cycles depend on no other line's */
     c.sn.pix = calloc((size_t)S->raster.pixels, sizeof *c.sn.pix);
     c.red = malloc(2 * (size_t)tt_envelope_size(W->env) * sizeof *c.red);
     c.pred = c.red ? c.red + tt_envelope_size(W->env) : NULL;

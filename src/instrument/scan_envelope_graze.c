@@ -51,70 +51,77 @@ void tt_scan_graze_leave(const line_ctx *L, controller *c)
 /* A free cycle just integrated from x0 (the sim at its end): the probes aimed at its
  * closest approach, the cycle run again to read them, and the free model built on it.
  * 1: built. */
-static int graze_build_free(const line_ctx *L, const cycle_in *in, const double x0[2], double *obs)
+static int graze_build_free(const line_ctx *L, const cycle_in *in, const double *x0, double *obs)
 {
     worker *W = L->W;
     tt_sim *sim = W->sim;
     const double sdot = (in->sb - in->sa) / L->S->cantilever.T;
     if (!tt_graze_aim(W->graze, sim, tt_sim_samples(sim), L->N))
         return 0;
-    double x1[2];
+    double x1[TT_SIM_DIM_MAX];
     int c1;
-    tt_sim_get_state(sim, &x1[0], &x1[1], &c1);
+    tt_sim_get_x(sim, x1, &c1);
     tt_cycle cy;
-    tt_sim_set_state(sim, x0[0], x0[1], 0);
+    tt_sim_set_x(sim, x0, 0);
     tt_sim_set_sample(sim, in->sa, sdot);
     if (tt_sim_cycle(sim, &cy) != TT_OK) {
         tt_error_clear();
-        tt_sim_set_state(sim, x1[0], x1[1], c1);
+        tt_sim_set_x(sim, x1, c1);
         return 0;
     }
-    tt_envelope_observe(W->env, tt_sim_samples(sim), &cy, obs);
-    tt_envelope_observe_probes(W->env, tt_sim_probes(sim), obs);
+    tt_envelope_observe(W->env, tt_sim_samples(sim), tt_sim_probes(sim), &cy, obs);
     long jacobian = 0; /* its cycles are not the run's */
-    return tt_envelope_build(W->env, sim, x0, 0, in->sa, sdot, &cy, obs, &jacobian);
+    return tt_envelope_build(W->env, sim, x0, 0, in->sa, sdot, &cy, obs, &jacobian) ==
+           TT_ENV_USABLE;
 }
 
 /* The star of touch cycles about the deepest held (tt_graze_deepest), run from the
- * sim's state and put back. 1: all touched once. */
+ * sim's state and put back: each state component (positions by 1e-4 A0, velocities by
+ * 1e-4 w A0) and the sample (1e-4 A0) moved each way. 1: all touched once. */
 static int graze_pair(const line_ctx *L, const cycle_in *in, double *obs, double *red)
 {
     worker *W = L->W;
     tt_sim *sim = W->sim;
+    const int nx = tt_sim_dim(sim);
     const double T = L->S->cantilever.T, sdot = (in->sb - in->sa) / T, A0 = L->S->A0;
-    const double h[3] = {1e-4 * A0, 1e-4 * A0 * L->S->cantilever.wd, 1e-4 * A0};
-    double x0[2], smid, xs[2], x1[2];
+    double h[TT_SIM_DIM_MAX + 1];
+    for (int i = 0; i < nx; i++)
+        h[i] = i % 2 ? 1e-4 * A0 * L->S->cantilever.wd : 1e-4 * A0;
+    h[nx] = 1e-4 * A0;
+    double x0[TT_SIM_DIM_MAX], smid, xs[TT_SIM_DIM_MAX], x1[TT_SIM_DIM_MAX], xp[TT_SIM_DIM_MAX];
     int cs, c1, ok = tt_graze_deepest(W->graze, x0, &smid);
-    tt_sim_get_state(sim, &xs[0], &xs[1], &cs);
-    for (int i = 0; i < 6 && ok; i++) {
-        double u[3] = {0, 0, 0};
+    tt_sim_get_x(sim, xs, &cs);
+    for (int i = 0; i < tt_graze_star_size(W->graze) && ok; i++) {
+        double u[TT_SIM_DIM_MAX + 1] = {0};
         u[i / 2] = i % 2 ? h[i / 2] : -h[i / 2];
-        const double xp[2] = {x0[0] + u[0], x0[1] + u[1]}, ds = u[2];
+        for (int j = 0; j < nx; j++)
+            xp[j] = x0[j] + u[j];
+        const double ds = u[nx];
         tt_cycle cy;
-        tt_sim_set_state(sim, xp[0], xp[1], 0);
+        tt_sim_set_x(sim, xp, 0);
         tt_sim_set_sample(sim, smid + ds - 0.5 * sdot * T, sdot);
         if (tt_sim_cycle(sim, &cy) != TT_OK) {
             tt_error_clear();
             ok = 0;
             break;
         }
-        tt_sim_get_state(sim, &x1[0], &x1[1], &c1);
+        tt_sim_get_x(sim, x1, &c1);
         ok = tt_scan_on_branch(&cy, 0, c1) && tt_envelope_touched(&cy);
         if (!ok)
             break;
-        tt_envelope_observe(W->env, tt_sim_samples(sim), &cy, obs);
+        tt_envelope_observe(W->env, tt_sim_samples(sim), tt_sim_probes(sim), &cy, obs);
         tt_envelope_reduce_obs(W->env, obs, red);
         tt_graze_add_pair(W->graze, i, xp, smid + ds, cy.t_contact, x1, red);
     }
-    tt_sim_set_state(sim, xs[0], xs[1], cs);
+    tt_sim_set_x(sim, xs, cs);
     return ok;
 }
 
 /* A touch integrated from x0 to x1 (its reduced observables in c->red) joins the touch
  * model's cycles, the star about the deepest is run anew when the sample has moved from
  * it, and the model is fitted again (c->red and c->pred are overwritten). */
-static void graze_learn(const line_ctx *L, controller *c, const cycle_in *in, const double x0[2],
-                        const tt_cycle *cy, const double x1[2])
+static void graze_learn(const line_ctx *L, controller *c, const cycle_in *in, const double *x0,
+                        const tt_cycle *cy, const double *x1)
 {
     tt_graze *g = L->W->graze;
     tt_graze_add(g, x0, sample_mid(in), cy->t_contact, x1, c->red);
@@ -135,7 +142,7 @@ static void graze_learn(const line_ctx *L, controller *c, const cycle_in *in, co
  * free one anchors the free model (or builds it, once the cycles have been quiet long
  * enough), a touch one joins the touch model's fit. 1: both models are ready. */
 int tt_scan_graze_full(const line_ctx *L, line_state *st, controller *c, const cycle_in *in,
-                      const double x0[2], const tt_cycle *cy, double *obs, int branch)
+                      const double *x0, const tt_cycle *cy, double *obs, int branch)
 {
     worker *W = L->W;
     if (!c->graze)
@@ -173,21 +180,24 @@ static void free_indent(const line_ctx *L, double *red, double reach)
 /* The branch of a cycle from the tip's state x with the sample at s0 at its start
  * moving at sdot, and whether the model can follow it: a free cycle, or a touch the
  * fit covers. */
-static int graze_call(const line_ctx *L, lookahead *la, const double x[2], double s0,
+static int graze_call(const line_ctx *L, lookahead *la, const double *x, double s0,
                       double sdot, double *tc, double *reach, int *b)
 {
     worker *W = L->W;
+    const int nx = tt_sim_dim(W->sim);
     /* a model cycle calls its successor's branch as it ends: the next cycle's call is
      * the same when its inputs are */
-    if (!(la->valid && la->x[0] == x[0] && la->x[1] == x[1] && la->s0 == s0 && la->sdot == sdot)) {
-        double d[TT_GRAZE_PROBES];
-        tt_envelope_predict_probes(W->env, x, s0, sdot, d);
+    int same = la->valid && la->s0 == s0 && la->sdot == sdot;
+    for (int i = 0; i < nx && same; i++)
+        same = la->x[i] == x[i];
+    if (!same) {
+        double d[TT_GRAZE_PROBES], x1[TT_SIM_DIM_MAX];
+        tt_envelope_predict(W->env, TT_ENV_PROBES, x, NULL, s0, sdot, x1, NULL, d);
         la->b = tt_graze_branch(W->graze, d, s0, sdot, &la->tc, &la->reach);
         la->ok = la->b == TT_GRAZE_FREE ||
                  (la->b == TT_GRAZE_TOUCH &&
                   tt_graze_covers(W->graze, x, s0 + 0.5 * sdot * L->S->cantilever.T, la->tc));
-        la->x[0] = x[0];
-        la->x[1] = x[1];
+        memcpy(la->x, x, (size_t)nx * sizeof *x);
         la->s0 = s0;
         la->sdot = sdot;
         la->valid = 1;
@@ -207,51 +217,51 @@ int tt_scan_graze_step(const line_ctx *L, line_state *st, controller *c, const c
 {
     worker *W = L->W;
     const double T = L->S->cantilever.T, sdot = (in->sb - in->sa) / T;
-    double tc, reach, x1[2];
+    double tc, reach, x1[TT_SIM_DIM_MAX];
     int b;
     if (!graze_call(L, &c->la, st->x, in->sa, sdot, &tc, &reach, &b))
         return 0;
     if (b == TT_GRAZE_FREE) {
-        tt_envelope_predict_reduced(W->env, st->x, in->sa, sdot, x1, obs);
+        tt_envelope_predict(W->env, TT_ENV_REDUCED, st->x, NULL, in->sa, sdot, x1, NULL, obs);
         free_indent(L, obs, reach);
     } else {
         tt_graze_predict(W->graze, st->x, sample_mid(in), tc, x1, obs);
     }
     if (!graze_call(L, &c->la, x1, in->sb, sdot, &tc, &reach, &b))
         return 0;
-    st->x[0] = x1[0];
-    st->x[1] = x1[1];
+    memcpy(st->x, x1, (size_t)tt_sim_dim(W->sim) * sizeof *x1);
     return 1;
 }
 
 /* The check closing a stretch in the grazing mode: cycle k integrated from the model's
  * state against the model of the branch it took (a branch the probes called otherwise
  * fails it). Touch cycles join the touch model's fit, passed or not. As check. */
-int tt_scan_graze_check(const line_ctx *L, line_state *st, const cycle_in *in, double *obs,
-                       controller *c, int *rc)
+check_outcome tt_scan_graze_check(const line_ctx *L, line_state *st, const cycle_in *in,
+                                  double *obs, controller *c, int *rc)
 {
     worker *W = L->W;
     tt_envelope *env = W->env;
     const double sdot = (in->sb - in->sa) / L->S->cantilever.T, smid = sample_mid(in);
-    const double x0[2] = {st->x[0], st->x[1]};
+    double x0[TT_SIM_DIM_MAX];
+    memcpy(x0, st->x, sizeof x0);
     const int exact = c->exact;
-    double gaps[TT_GRAZE_PROBES], tc, reach, xp[2];
-    tt_envelope_predict_probes(env, x0, in->sa, sdot, gaps);
+    double gaps[TT_GRAZE_PROBES], tc, reach, xp[TT_SIM_DIM_MAX];
+    tt_envelope_predict(env, TT_ENV_PROBES, x0, NULL, in->sa, sdot, xp, NULL, gaps);
     const int b = tt_graze_branch(W->graze, gaps, in->sa, sdot, &tc, &reach);
-    tt_sim_set_state(W->sim, x0[0], x0[1], 0);
+    tt_sim_set_x(W->sim, x0, 0);
     tt_cycle cy;
     int c1, irc = tt_scan_env_integrate(L, st, in, &cy, obs, &c1, c);
     if (irc == TT_EINTR) {
         *rc = irc;
-        return 0;
+        return CHECK_FAILED;
     }
     if (irc != TT_OK) {
         tt_error_clear();
-        return 0;
+        return CHECK_FAILED;
     }
     const int touch = tt_envelope_touched(&cy);
     if (!tt_scan_on_branch(&cy, 0, c1))
-        return 0;
+        return CHECK_FAILED;
     tt_envelope_reduce_obs(env, obs, c->red);
     if (exact) { /* from an integrated state: nothing to check, all to learn */
         if (touch) {
@@ -259,30 +269,31 @@ int tt_scan_graze_check(const line_ctx *L, line_state *st, const cycle_in *in, d
         } else {
             tt_envelope_anchor(env, x0, in->sa, sdot, st->x, &cy, obs);
         }
-        return 2;
+        return CHECK_EXACT;
     }
-    const int nr = tt_graze_outputs(W->graze) - 2;
+    const int nr = tt_graze_outputs(W->graze) - tt_sim_dim(W->sim);
     if (touch) {
         if (b == TT_GRAZE_FREE || !isfinite(tc) || !tt_graze_fitted(W->graze)) {
             graze_learn(L, c, in, x0, &cy, st->x);
-            return 0;
+            return CHECK_FAILED;
         }
         tt_graze_predict(W->graze, x0, smid, tc, xp, c->pred);
     } else {
         if (b == TT_GRAZE_TOUCH)
-            return 0;
-        tt_envelope_predict_reduced(env, x0, in->sa, sdot, xp, c->pred);
+            return CHECK_FAILED;
+        double x1[TT_SIM_DIM_MAX];
+        tt_envelope_predict(env, TT_ENV_REDUCED, x0, NULL, in->sa, sdot, xp, NULL, c->pred);
         free_indent(L, c->pred, reach);
-        tt_envelope_predict_probes(env, x0, in->sa, sdot, c->pred + nr);
+        tt_envelope_predict(env, TT_ENV_PROBES, x0, NULL, in->sa, sdot, x1, NULL, c->pred + nr);
     }
     /* a touch's peak force and indentation to their floors (tt_graze_alloc) */
     double gerr = tt_scan_env_drift(L, c->m) * (touch ? tt_graze_error(W->graze, xp, c->pred, st->x, c->red, L->tol)
-                        : tt_envelope_error_reduced(env, xp, c->pred, st->x, c->red) / L->tol);
+                        : tt_envelope_error(env, TT_ENV_REDUCED, xp, c->pred, st->x, c->red) / L->tol);
     if (touch) /* learnt from, passed or not */
         graze_learn(L, c, in, x0, &cy, st->x);
     if (!(gerr <= 1))
-        return 0;
+        return CHECK_FAILED;
     if (!touch)
         tt_envelope_anchor(env, x0, in->sa, sdot, st->x, &cy, obs);
-    return 1;
+    return CHECK_PASSED;
 }

@@ -4,6 +4,7 @@
 #define TIPTAP_SCAN_ENVELOPE_PRIVATE_H
 
 #include <math.h>
+#include <string.h>
 
 #include "scan_private.h"
 #include "tiptap/util/error.h"
@@ -27,9 +28,19 @@ typedef struct {
 /* The last branch called in the grazing mode and its inputs (valid while the models
  * are unchanged). */
 typedef struct {
-    double x[2], s0, sdot, tc, reach;
+    double x[TT_SIM_DIM_MAX], s0, sdot, tc, reach;
     int b, ok, valid;
 } lookahead;
+
+/* How a check closing a stretch came out (scan_envelope.c's check, and the grazing
+ * mode's). */
+typedef enum {
+    CHECK_FAILED = 0,      /* the stretch does not stand, or the run was cancelled */
+    CHECK_PASSED = 1,      /* it stands: the model re-anchored, or built there */
+    CHECK_EXACT = 2,       /* a cycle from an integrated state: nothing to check */
+    CHECK_MODEL_OFF = 3    /* it stands, but the model built there is unusable: the model
+                            * is off until one is built anew */
+} check_outcome;
 
 /* The tier's controller within a phase. */
 typedef struct {
@@ -78,10 +89,9 @@ static inline int tt_scan_env_integrate(const line_ctx *L, line_state *st, const
         c->seen[in->k] = 1;
         c->integrated++;
     }
-    tt_envelope_observe(L->W->env, tt_sim_samples(sim), cy, obs);
-    tt_envelope_observe_probes(L->W->env, tt_sim_probes(sim), obs);
-    tt_sim_get_state(sim, &st->x[0], &st->x[1], c1);
-    st->x2[0] = st->x2[1] = 0;
+    tt_envelope_observe(L->W->env, tt_sim_samples(sim), tt_sim_probes(sim), cy, obs);
+    tt_sim_get_x(sim, st->x, c1);
+    memset(st->x2, 0, sizeof st->x2);
     return TT_OK;
 }
 
@@ -106,10 +116,10 @@ int tt_scan_graze_possible(const line_ctx *L, const line_state *st);
 int tt_scan_on_branch(const tt_cycle *cy, int c0, int c1);
 void tt_scan_graze_leave(const line_ctx *L, controller *c);
 int tt_scan_graze_full(const line_ctx *L, line_state *st, controller *c, const cycle_in *in,
-                       const double x0[2], const tt_cycle *cy, double *obs, int branch);
+                       const double *x0, const tt_cycle *cy, double *obs, int branch);
 int tt_scan_graze_step(const line_ctx *L, line_state *st, controller *c, const cycle_in *in,
                        double *obs);
-int tt_scan_graze_check(const line_ctx *L, line_state *st, const cycle_in *in, double *obs,
-                        controller *c, int *rc);
+check_outcome tt_scan_graze_check(const line_ctx *L, line_state *st, const cycle_in *in,
+                                  double *obs, controller *c, int *rc);
 
 #endif

@@ -144,7 +144,7 @@ int tt_scan_line_run(tt_scan *S, worker *W, long line, const line_out *out, scan
     engage(S, W, line, L.nc, L.kz, &st);
     L.s_ref = W->s_ref;
     int contact;
-    tt_sim_get_state(W->sim, &st.x[0], &st.x[1], &contact);
+    tt_sim_get_x(W->sim, st.x, &contact);
     tt_sim_set_sampling(W->sim, L.N, W->samples);
     tt_sim_track_peaks(W->sim, (S->channels & (TT_CH_PEAK_FORCE | TT_CH_INDENTATION)) != 0);
     tt_sim_noise_key(W->sim, tt_noise_key(S->noise.seed, TT_NOISE_THERMAL, line));

@@ -40,8 +40,10 @@ typedef struct {
     tt_piezo pz;
     double zn;        /* the z piezo's noise at cycle k's start, m (drawn in cycle_begin) */
     size_t current;   /* the material on the sim */
-    double x[2];      /* the tip's state at cycle k's start: the sim's, or the model's */
-    double x2[2];     /* the second-order part of a model's x (0 after an integration) */
+    double x[TT_SIM_DIM_MAX];  /* the tip's state at cycle k's start (tt_sim_dim of it):
+                                * the sim's, or the model's */
+    double x2[TT_SIM_DIM_MAX]; /* the second-order part of a model's x (0 after an
+                                * integration) */
     surf_pt ahead[2]; /* the surface at the next two cycles' starts */
     long cycles;      /* the line's cycles so far (the noise's cycle count) */
     double worst;

@@ -74,22 +74,36 @@ int tt_scan_envelope_usable(const tt_scan *S, const tt_solver *solver)
  * (with 64 kept its lines took 9 % more instructions) */
 enum { KEPT_MODELS = 512 };
 
-/* What the envelope model's shape follows from the noise: 1, the travel as an input (z
- * piezo noise); 2, second order. */
-static int model_shape(const tt_scan *S)
+/* The envelope tier's plan for this scan's lock-in and noise (tiptap/solver/envelope.h):
+ * the model's cycles give the lock-in its per-period components, not samples (a few
+ * dozen multiply-adds a cycle instead of n products and a transform); the gaps around
+ * the closest approach, from which a grazing tip's branch and the time of its jump-in
+ * are predicted (tiptap/solver/graze.h); the z piezo's noise moves the sample within
+ * each cycle by a travel of its own (about pi n fc sqrt(2 T) rms), an input of the
+ * model as the sample's position is; noise that moves the state takes the model to
+ * second order, with models kept for recall, as the noise brings the state back near
+ * the same places; the noise to first order: the thermal force's PSD (2 c kB T) and the
+ * detector's per-sample rms (the sim integrates without the thermal force). */
+static tt_envelope_params envelope_plan(const tt_scan *S, const worker *W)
 {
-    return (S->zn.sd > 0 ? 1 : 0) | (tt_scan_second_order(S) ? 2 : 0);
+    tt_envelope_params p = {0};
+    p.samples = S->lockin.samples_per_period;
+    p.probes = TT_GRAZE_PROBES;
+    p.reduced = tt_lockin_components(W->lockin);
+    p.reduce = tt_lockin_component_matrix(W->lockin);
+    p.travel = S->zn.sd > 0;
+    p.second_order = tt_scan_second_order(S);
+    p.kept = p.second_order ? KEPT_MODELS : 0;
+    p.psd = 2 * S->cantilever.c * TT_BOLTZMANN * S->noise.temperature;
+    p.sd = S->sd;
+    return p;
 }
 
 static int envelope_alloc(tt_scan *S, worker *W)
 {
-    W->env_shape = model_shape(S);
     size_t n = (size_t)S->lockin.samples_per_period * (size_t)S->lockin.periods_per_block;
-    int rc = tt_envelope_alloc(&W->env, &S->cantilever, S->lockin.samples_per_period);
-    /* the gaps around the closest approach, from which a grazing tip's branch and the
-     * time of its jump-in are predicted (tiptap/solver/graze.h) */
-    if (!rc)
-        rc = tt_envelope_set_probes(W->env, TT_GRAZE_PROBES);
+    const tt_envelope_params plan = envelope_plan(S, W);
+    int rc = tt_envelope_alloc(&W->env, W->sim, &plan);
     if (!rc) {
         const int m = tt_lockin_components(W->lockin);
         double *scale = calloc(2 * ((size_t)m + TT_ENV_EXTRA), sizeof *scale);
@@ -108,33 +122,11 @@ static int envelope_alloc(tt_scan *S, worker *W)
          * 0.2 pm on the standard cantilever, which a pixel's hundreds of cycles average */
         floor[m + TT_ENV_PEAK] = 1e-4;
         floor[m + TT_ENV_INDENT] = 1e-5;
-        rc = tt_graze_alloc(&W->graze, &S->cantilever, m + TT_ENV_EXTRA, scale, floor);
+        rc = tt_graze_alloc(&W->graze, W->sim, m + TT_ENV_EXTRA, scale, floor);
         free(scale);
     }
     if (!rc)
         rc = tt_lockin_alloc(&W->lockin_save, &S->lockin);
-    if (rc)
-        return rc;
-    /* the model's cycles give the lock-in its per-period components, not samples: a few
-     * dozen multiply-adds a cycle instead of n products and a transform */
-    rc = tt_envelope_reduce(W->env, tt_lockin_components(W->lockin),
-                            tt_lockin_component_matrix(W->lockin));
-    if (rc)
-        return rc;
-    /* the z piezo's noise moves the sample within each cycle by a travel of its own
-     * (about pi n fc sqrt(2 T) rms): an input of the model, as the sample's position is */
-    if (S->zn.sd > 0)
-        tt_envelope_use_travel(W->env);
-    if (tt_scan_second_order(S) && (rc = tt_envelope_use_second_order(W->env)))
-        return rc;
-    /* noise to first order in the model's cycles: the thermal force's PSD (2 c kB T) and
-     * the detector's per-sample rms; the sim integrates without the thermal force */
-    const tt_cantilever *c = &S->cantilever;
-    rc = tt_envelope_set_noise(W->env, 2 * c->c * TT_BOLTZMANN * S->noise.temperature, S->sd);
-    /* the second-order model holds near where its derivatives were taken, and the noise
-     * brings the state back near the same places: models kept for recall */
-    if (!rc && tt_scan_second_order(S))
-        rc = tt_envelope_keep_models(W->env, KEPT_MODELS);
     if (rc)
         return rc;
     W->y_save = calloc(n, sizeof *W->y_save);
@@ -172,8 +164,9 @@ int tt_scan_worker_retune(tt_scan *S, worker *W)
     const int env = tt_scan_envelope_usable(S, &S->solver);
     if (W->averaged)
         return TT_OK; /* noiseless (docs/dynamics.md, Averaged) */
-    /* the model's inputs and order follow the noise: made anew when they change */
-    if (W->env && (!env || W->env_shape != model_shape(S))) {
+    /* the model's plan follows the noise: made anew for the new noise (a line's model
+     * starts afresh anyway, tt_envelope_reset) */
+    if (W->env) {
         tt_envelope_free(W->env);
         tt_graze_free(W->graze); /* envelope_alloc makes a new one when the tier returns */
         tt_lockin_free(W->lockin_save);
@@ -187,10 +180,7 @@ int tt_scan_worker_retune(tt_scan *S, worker *W)
     int rc = tt_sim_set_thermal(W->sim, env ? 0 : S->noise.temperature, S->noise.points);
     if (rc || !env)
         return rc;
-    if (!W->env)
-        return envelope_alloc(S, W);
-    return tt_envelope_set_noise(W->env, 2 * S->cantilever.c * TT_BOLTZMANN * S->noise.temperature,
-                                 S->sd);
+    return envelope_alloc(S, W);
 }
 
 int tt_scan_worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)

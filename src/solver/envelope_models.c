@@ -1,5 +1,5 @@
 /* The envelope tier's kept models (see include/tiptap/solver/envelope.h,
- * tt_envelope_keep_models): the derivatives of the cycle map taken at a few places of the
+ * the plan's kept): the derivatives of the cycle map taken at a few places of the
  * inputs, recalled where the inputs come back near one of them. */
 #include <math.h>
 #include <stdlib.h>
@@ -8,26 +8,30 @@
 #include "envelope_private.h"
 #include "tiptap/util/error.h"
 
-enum { NBLOCK = 7 };
+enum { NBLOCK = 11 };
 
-/* The sizes of a model's blocks: C, Cr, H, Hr, Lj, oa and ra. */
+/* The sizes of a model's blocks: J, xb, x1, q, C, Cr, H, Hr, Lj, oa and ra. */
 static void block_sizes(const tt_envelope *e, size_t sz[NBLOCK])
 {
-    const size_t nr = (size_t)e->m + TT_ENV_EXTRA + (size_t)e->np;
-    sz[0] = (size_t)e->no * NIN;
-    sz[1] = e->Cr ? nr * NIN : 0;
-    sz[2] = e->H ? (2 + (size_t)e->no) * NPAIR : 0;
-    sz[3] = e->Hr ? nr * NPAIR : 0;
-    sz[4] = e->Lj ? (size_t)e->nn * (size_t)e->nn : 0;
-    sz[5] = (size_t)e->no;
-    sz[6] = e->ra ? nr : 0;
+    const size_t nr = (size_t)e->nr, ni = (size_t)e->ni, nx = (size_t)e->nx;
+    const size_t npair = (size_t)e->npair;
+    sz[0] = nx * ni;
+    sz[1] = sz[2] = nx;
+    sz[3] = ni;
+    sz[4] = (size_t)e->no * ni;
+    sz[5] = e->Cr ? nr * ni : 0;
+    sz[6] = e->H ? (nx + (size_t)e->no) * npair : 0;
+    sz[7] = e->Hr ? nr * npair : 0;
+    sz[8] = e->Lj ? (size_t)e->nn * (size_t)e->nn : 0;
+    sz[9] = (size_t)e->no;
+    sz[10] = e->ra ? nr : 0;
 }
 
 static void free_kept(tt_envelope *e)
 {
     tt_envelope_own_views(e);
     for (int i = 0; i < e->nk; i++)
-        free(e->kept[i].C);
+        free(e->kept[i].J);
     free(e->kept);
     free(e->korder);
     e->kept = NULL;
@@ -35,7 +39,7 @@ static void free_kept(tt_envelope *e)
     e->nk = e->ik = 0;
 }
 
-int tt_envelope_keep_models(tt_envelope *e, int k)
+int tt_envelope_models_alloc(tt_envelope *e, int k)
 {
     free_kept(e);
     if (k <= 0)
@@ -48,28 +52,29 @@ int tt_envelope_keep_models(tt_envelope *e, int k)
     e->korder = calloc((size_t)k, sizeof *e->korder);
     if (!e->kept || !e->korder) {
         free_kept(e);
-        return tt_error_nomem("the envelope tier's %d kept models", k);
+        return TT_ENOMEM;
     }
     for (e->nk = 0; e->nk < k; e->nk++) {
         tt_envelope_kept *m = &e->kept[e->nk];
-        if (!(m->C = malloc(total * sizeof *m->C))) {
+        if (!(m->J = malloc(total * sizeof *m->J))) {
             free_kept(e);
-            return tt_error_nomem("the envelope tier's %d kept models", k);
+            return TT_ENOMEM;
         }
-        m->Cr = m->C + sz[0];
-        m->H = m->Cr + sz[1];
-        m->Hr = m->H + sz[2];
-        m->Lj = m->Hr + sz[3];
-        m->oa = m->Lj + sz[4];
-        m->ra = m->oa + sz[5];
+        double **const to[NBLOCK] = {&m->J, &m->xb, &m->x1, &m->q, &m->C, &m->Cr,
+                                     &m->H, &m->Hr, &m->Lj, &m->oa, &m->ra};
+        for (int i = 1; i < NBLOCK; i++)
+            *to[i] = *to[i - 1] + sz[i - 1];
     }
     return TT_OK;
 }
 
 void tt_envelope_models_free(tt_envelope *e) { free_kept(e); }
 
-void tt_envelope_forget(tt_envelope *e)
+void tt_envelope_reset(tt_envelope *e)
 {
+    /* the noise's covariance back to the free cantilever's */
+    if (e->Lf)
+        memcpy(e->Lj, e->Lf, (size_t)e->nn * (size_t)e->nn * sizeof *e->Lj);
     tt_envelope_own_views(e); /* none points into the store that is reused */
     e->ik = 0;
     e->clock = 0;
@@ -77,7 +82,7 @@ void tt_envelope_forget(tt_envelope *e)
 }
 
 /* Copies of the blocks in the mask (bit i: block i of block_sizes), one way or the other. */
-enum { ALL = (1 << NBLOCK) - 1, JACOBIANS = 1 | 2, ANCHOR = 32 | 64 };
+enum { ALL = (1 << NBLOCK) - 1, JACOBIANS = 1 | 16 | 32, ANCHOR = 4 | 512 | 1024 };
 static void copy_blocks(const tt_envelope *e, int mask, double *const to[NBLOCK],
                         const double *const from[NBLOCK])
 {
@@ -131,32 +136,29 @@ void tt_envelope_keep(tt_envelope *e, int tag)
         e->ik--;
     }
     tt_envelope_kept *m = &e->kept[slot];
-    m->xb[0] = e->xb[0];
-    m->xb[1] = e->xb[1];
     m->sb = e->sb;
     m->tb = e->tb;
     m->contact = e->contact;
     m->touched = e->touched;
     m->tag = tag;
     m->used = ++e->clock;
-    m->q[0] = m->xb[0] / e->L;
-    m->q[1] = m->xb[1] / e->V;
-    m->q[2] = m->sb / e->L;
-    m->q[3] = e->nin > 3 ? m->tb / e->L : 0;
+    for (int i = 0; i < e->nx; i++)
+        m->q[i] = e->xb[i] / e->xs[i];
+    m->q[e->nx] = m->sb / e->L;
+    m->q[e->nx + 1] = e->nin > e->nx + 1 ? m->tb / e->L : 0;
     m->key = key_of(m->contact, m->touched, tag);
     const int at = lower_bound(e, m->q[0]);
     memmove(e->korder + at + 1, e->korder + at, (size_t)(e->ik - at) * sizeof *e->korder);
     e->korder[at] = slot;
     e->ik++;
-    m->x1[0] = e->x1[0];
-    m->x1[1] = e->x1[1];
-    memcpy(m->J, e->J, sizeof m->J);
-    double *const to[NBLOCK] = {m->C, m->Cr, m->H, m->Hr, m->Lj, m->oa, m->ra};
-    const double *const from[NBLOCK] = {e->C, e->Cr, e->Hv, e->Hrv, e->Ljv, e->oa, e->ra};
-    copy_blocks(e, ALL, to, from);
+    double *const to[NBLOCK] = {m->J, m->xb, m->x1, NULL, m->C, m->Cr,
+                                m->H, m->Hr, m->Lj, m->oa, m->ra};
+    const double *const from[NBLOCK] = {e->J, e->xb, e->x1, NULL, e->C, e->Cr,
+                                        e->Hv, e->Hrv, e->Ljv, e->oa, e->ra};
+    copy_blocks(e, ALL & ~8, to, from);
 }
 
-double tt_envelope_model_reach(const tt_envelope *e, const double x[2], double s, double sdot)
+double tt_envelope_model_reach(const tt_envelope *e, const double *x, double s, double sdot)
 {
     return tt_envelope_distance(e, e->xb, e->sb, e->tb, x, s, sdot);
 }
@@ -165,26 +167,29 @@ double tt_envelope_model_reach(const tt_envelope *e, const double x[2], double s
  * taken (tt_envelope_distance, on the inputs scaled beforehand), with the contact flag,
  * touch and tag given; -1: none. Only the models within reach in the first input are
  * looked at, from the order by it. */
-static int nearest(const tt_envelope *e, const double x[2], double s, double sdot, int contact,
+static int nearest(const tt_envelope *e, const double *x, double s, double sdot, int contact,
                    int touched, int tag, double within)
 {
-    const int key = key_of(contact, touched, tag);
-    const double u0 = x[0] / e->L, u1 = x[1] / e->V, u2 = (s + 0.5 * sdot * e->T) / e->L,
-                 u3 = e->nin > 3 ? sdot * e->T / e->L : 0;
+    const int key = key_of(contact, touched, tag), nx = e->nx, nq = e->ni;
+    double u[NIN_MAX];
+    for (int i = 0; i < nx; i++)
+        u[i] = x[i] / e->xs[i];
+    u[nx] = (s + 0.5 * sdot * e->T) / e->L;
+    u[nx + 1] = e->nin > nx + 1 ? sdot * e->T / e->L : 0;
     int best = -1;
     double dbest = within;
-    for (int j = lower_bound(e, u0 - within); j < e->ik; j++) {
+    for (int j = lower_bound(e, u[0] - within); j < e->ik; j++) {
         const int i = e->korder[j];
         const double *q = e->kept[i].q;
-        if (q[0] > u0 + dbest)
+        if (q[0] > u[0] + dbest)
             break;
         if (e->kept[i].key != key)
             continue;
-        double d = fabs(u0 - q[0]);
-        const double d1 = fabs(u1 - q[1]), d2 = fabs(u2 - q[2]), d3 = fabs(u3 - q[3]);
-        d = d1 > d ? d1 : d;
-        d = d2 > d ? d2 : d;
-        d = d3 > d ? d3 : d;
+        double d = fabs(u[0] - q[0]);
+        for (int k = 1; k < nq; k++) {
+            const double dk = fabs(u[k] - q[k]);
+            d = dk > d ? dk : d;
+        }
         if (d <= dbest) {
             dbest = d;
             best = i;
@@ -200,27 +205,24 @@ static void install(tt_envelope *e, int i, int anchor)
 {
     tt_envelope_kept *m = &e->kept[i];
     m->used = ++e->clock;
-    memcpy(e->J, m->J, sizeof e->J);
-    double *const to[NBLOCK] = {e->C, e->Cr, NULL, NULL, NULL, e->oa, e->ra};
-    const double *const from[NBLOCK] = {m->C, m->Cr, NULL, NULL, NULL, m->oa, m->ra};
+    double *const to[NBLOCK] = {e->J, NULL, e->x1, NULL, e->C, e->Cr,
+                                NULL, NULL, NULL, e->oa, e->ra};
+    const double *const from[NBLOCK] = {m->J, NULL, m->x1, NULL, m->C, m->Cr,
+                                        NULL, NULL, NULL, m->oa, m->ra};
     copy_blocks(e, anchor ? JACOBIANS | ANCHOR : JACOBIANS, to, from);
     e->Hv = m->H;
     e->Hrv = m->Hr;
     e->Ljv = m->Lj;
-    e->xa[0] = e->xb[0] = m->xb[0];
-    e->xa[1] = e->xb[1] = m->xb[1];
+    memcpy(e->xa, m->xb, (size_t)e->nx * sizeof *e->xa);
+    memcpy(e->xb, m->xb, (size_t)e->nx * sizeof *e->xb);
     e->sa = e->sb = m->sb;
     e->ta = e->tb = m->tb;
-    if (anchor) {
-        e->x1[0] = m->x1[0];
-        e->x1[1] = m->x1[1];
-    }
     e->contact = m->contact;
     e->touched = m->touched;
     e->built = 1;
 }
 
-int tt_envelope_recall(tt_envelope *e, const double x[2], double s, double sdot, int contact,
+int tt_envelope_recall(tt_envelope *e, const double *x, double s, double sdot, int contact,
                        int touched, int tag, double within)
 {
     const int i = nearest(e, x, s, sdot, contact, touched, tag, within);
@@ -231,7 +233,7 @@ int tt_envelope_recall(tt_envelope *e, const double x[2], double s, double sdot,
     return i >= 0;
 }
 
-int tt_envelope_switch(tt_envelope *e, const double x[2], double s, double sdot, int tag,
+int tt_envelope_switch(tt_envelope *e, const double *x, double s, double sdot, int tag,
                        double within)
 {
     const int i = nearest(e, x, s, sdot, e->contact, e->touched, tag, within);
@@ -240,7 +242,7 @@ int tt_envelope_switch(tt_envelope *e, const double x[2], double s, double sdot,
     return i >= 0;
 }
 
-int tt_envelope_revisit(tt_envelope *e, const double x[2], double s, double sdot, int tag,
+int tt_envelope_revisit(tt_envelope *e, const double *x, double s, double sdot, int tag,
                         double within)
 {
     const int n = e->nmiss < MISSES ? e->nmiss : MISSES;
@@ -250,8 +252,7 @@ int tt_envelope_revisit(tt_envelope *e, const double x[2], double s, double sdot
             return 1;
     }
     tt_envelope_miss *m = &e->miss[e->nmiss++ % MISSES];
-    m->x[0] = x[0];
-    m->x[1] = x[1];
+    memcpy(m->x, x, (size_t)e->nx * sizeof *x);
     m->s = s + 0.5 * sdot * e->T;
     m->t = sdot * e->T;
     m->tag = tag;

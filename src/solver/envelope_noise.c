@@ -1,4 +1,4 @@
-/* The envelope tier's noise (see include/tiptap/solver/envelope.h, tt_envelope_set_noise):
+/* The envelope tier's noise (see include/tiptap/solver/envelope.h, the plan's psd and sd):
  * the thermal force's and the detector's linear response over a model's cycle, as the
  * Cholesky factor of their joint covariance, and a cycle's draw from it. */
 #include "tiptap/solver/envelope.h"
@@ -33,29 +33,29 @@ static void cholesky(int n, const double *A, double *L)
 }
 
 /* The detector's covariance of the reduced samples, sd^2 R R^T, into the lower right
- * m x m block of the nn x nn matrix A (whose first rows are the end state's). */
+ * m x m block of the nn x nn matrix A (whose first nx rows are the end state's). */
 static void detector_block(const tt_envelope *e, double *A)
 {
-    const int n = e->n, m = e->m, nn = e->nn;
+    const int n = e->n, m = e->m, nn = e->nn, nx = e->nx;
     for (int i = 0; i < m; i++)
         for (int k = 0; k < m; k++) {
             double sum = 0;
             for (int q = 0; q < n; q++)
                 sum += e->R[(size_t)i * (size_t)n + (size_t)q] * e->R[(size_t)k * (size_t)n + (size_t)q];
-            A[(2 + i) * nn + 2 + k] += e->sd * e->sd * sum;
+            A[(nx + i) * nn + nx + k] += e->sd * e->sd * sum;
         }
 }
 
 /* The flow's Jacobian Phi(t_q, 0) (2 x 2 by rows, e->phi + 4 q) at the cycle's samples
  * (q < n) from the cycles perturbed by h in d and d', and at its end (q = n) the map's. */
-void tt_envelope_flow_measured(tt_envelope *e, const double h[NIN])
+void tt_envelope_flow_measured(tt_envelope *e, const double *h)
 {
     for (int q = 0; q <= e->n; q++)
         for (int j = 0; j < 2; j++)
             for (int i = 0; i < 2; i++) {
                 const double *tp = e->trk + (size_t)(4 * j) * (size_t)e->n, *tm = tp + 2 * e->n;
                 e->phi[4 * q + 2 * i + j] =
-                    q == e->n ? e->J[i][j] : (tp[2 * q + i] - tm[2 * q + i]) / (2 * h[j]);
+                    q == e->n ? e->J[i * e->ni + j] : (tp[2 * q + i] - tm[2 * q + i]) / (2 * h[j]);
             }
 }
 
@@ -78,22 +78,20 @@ static void flow_free(tt_envelope *e)
  * samples' noise is psd * integral of w w^T, w(t) = (Phi(T, t) b, sum_q R_q [t < t_q]
  * e1 Phi(t_q, t) b), b = (0, 1/m) and Phi(t_q, t) = Phi(t_q, 0) Phi(t, 0)^-1: the
  * trapezoid rule on the samples (the integrand is nearly periodic out of contact, where
- * it is then exact to rounding). Plus the detector's block; factored into e->Lj. */
+ * it is then exact to rounding). Plus the detector's block; factored into e->Lj. One
+ * mode: the plan allows thermal noise on n = 2 only. */
 int tt_envelope_thermal_covariance(tt_envelope *e)
 {
     const int n = e->n, m = e->m, nn = e->nn;
-    double *A = calloc((size_t)nn * (size_t)nn + 2 * (size_t)m + (size_t)nn, sizeof *A);
-    if (!A)
-        return 0;
+    double *A = e->work;
+    memset(A, 0, tt_envelope_noise_work(e) * sizeof *A);
     double *S = A + nn * nn, *w = S + 2 * m; /* suffix sums of R_q e1 Phi(t_q, 0) */
     const double *J = e->phi + 4 * n;
     for (int p = n; p >= 0; p--) {
         const double *P = e->phi + 4 * p;
         const double det = P[0] * P[3] - P[1] * P[2];
-        if (!(fabs(det) > 0)) {
-            free(A);
+        if (!(fabs(det) > 0))
             return 0;
-        }
         /* a = Phi(t_p, 0)^-1 b */
         const double a0 = -P[1] / (e->mass * det), a1 = P[0] / (e->mass * det);
         w[0] = J[0] * a0 + J[1] * a1;
@@ -115,87 +113,44 @@ int tt_envelope_thermal_covariance(tt_envelope *e)
             A[i * nn + k] = A[k * nn + i];
     detector_block(e, A);
     cholesky(nn, A, e->Lj);
-    free(A);
     return 1;
 }
 
-int tt_envelope_set_noise(tt_envelope *e, double psd, double sd)
+size_t tt_envelope_noise_work(const tt_envelope *e)
 {
-    free(e->trk);
-    free(e->Lj);
-    free(e->Ld);
-    free(e->phi);
-    free(e->Lf);
-    e->trk = e->Lj = e->Ld = e->phi = e->Lf = NULL;
-    tt_envelope_own_views(e);
-    e->psd = psd;
-    e->sd = sd;
-    e->nn = 2 + e->m;
-    if (!(psd > 0) && !(sd > 0))
-        return e->nk ? tt_envelope_keep_models(e, e->nk) : TT_OK;
-    const int m = e->m, nn = e->nn;
-    e->Lj = calloc((size_t)nn * (size_t)nn, sizeof *e->Lj);
-    e->Ld = calloc((size_t)m * (size_t)m, sizeof *e->Ld);
-    e->Lf = calloc((size_t)nn * (size_t)nn, sizeof *e->Lf);
-    e->trk = psd > 0 ? malloc(8 * (size_t)e->n * sizeof *e->trk) : NULL;
-    e->phi = psd > 0 ? malloc(4 * ((size_t)e->n + 1) * sizeof *e->phi) : NULL;
-    double *A = calloc((size_t)nn * (size_t)nn, sizeof *A);
-    if (!e->Lj || !e->Ld || !e->Lf || (psd > 0 && (!e->trk || !e->phi)) || !A) {
-        free(A);
-        return tt_error_nomem("the envelope tier's noise");
-    }
-    detector_block(e, A);
-    cholesky(nn, A, e->Lj);
-    /* the detector's own factor: the joint one's lower right block while no thermal
-     * force is on (its first two rows and columns are zero) */
-    for (int i = 0; i < m; i++)
-        for (int k = 0; k < m; k++)
-            e->Ld[i * m + k] = e->Lj[(2 + i) * nn + 2 + k];
-    free(A);
-    /* until a model is built, the free cantilever's response */
-    if (psd > 0) {
-        flow_free(e);
-        if (!tt_envelope_thermal_covariance(e))
-            return tt_error_nomem("the envelope tier's noise");
-    }
-    memcpy(e->Lf, e->Lj, (size_t)nn * (size_t)nn * sizeof *e->Lf);
-    tt_envelope_own_views(e);
-    /* the kept models hold a noise factor now, or of another size */
-    return e->nk ? tt_envelope_keep_models(e, e->nk) : TT_OK;
+    const size_t nn = (size_t)e->nn;
+    return e->psd > 0 || e->sd > 0 ? nn * nn + 2 * (size_t)e->m + nn : 0;
 }
 
-void tt_envelope_noise_reset(tt_envelope *e)
+void tt_envelope_noise_plan(tt_envelope *e)
 {
-    if (e->Lf)
-        memcpy(e->Lj, e->Lf, (size_t)e->nn * (size_t)e->nn * sizeof *e->Lj);
-    e->Ljv = e->Lj;
+    const size_t nn = (size_t)e->nn;
+    double *A = e->work;
+    memset(A, 0, nn * nn * sizeof *A);
+    detector_block(e, A);
+    cholesky(e->nn, A, e->Lj);
+    /* until a model is built, the free cantilever's response (its flow is never
+     * singular: det exp(A t) = exp(-2 sig t)) */
+    if (e->psd > 0) {
+        flow_free(e);
+        tt_envelope_thermal_covariance(e);
+    }
+    memcpy(e->Lf, e->Lj, nn * nn * sizeof *e->Lf);
 }
 
 int tt_envelope_noise_size(const tt_envelope *e) { return e->Lj ? e->nn : 0; }
 
-void tt_envelope_noise(const tt_envelope *e, const double *g, double dx[2], double *dc)
+void tt_envelope_noise(const tt_envelope *e, const double *g, double *dx, double *dc)
 {
-    const int nn = e->nn;
+    const int nn = e->nn, nx = e->nx;
     for (int i = 0; i < nn; i++) {
         const double *row = e->Ljv + (size_t)i * (size_t)nn;
         double sum = 0;
         for (int k = 0; k <= i; k++)
             sum += row[k] * g[k];
-        if (i < 2)
+        if (i < nx)
             dx[i] = sum;
         else
-            dc[i - 2] += sum;
-    }
-}
-
-void tt_envelope_detector_noise(const tt_envelope *e, const double *g, double *dc)
-{
-    const int m = e->m;
-    for (int i = 0; i < m; i++) {
-        const double *row = e->Ld + (size_t)i * (size_t)m;
-        double sum = 0;
-        for (int k = 0; k <= i; k++)
-            sum += row[k] * g[k];
-        dc[i] += sum;
+            dc[i - nx] += sum;
     }
 }

@@ -4,7 +4,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <stdio.h>
 
 #include "tiptap/util/error.h"
 #include "util/root.h"
@@ -12,27 +11,29 @@
 enum {
     NP = TT_GRAZE_PROBES,
     HIST = 32,     /* touch cycles held */
-    PAIR = 6,      /* and the star: the deepest moved in d, d' and the sample */
+    PAIR_MAX = 2 * (TT_SIM_DIM_MAX + 1), /* and the star: the deepest moved in each
+                                          * state component and the sample, 2 (nx + 1) */
     NMIN = 8,      /* held (besides the star) before a fit is tried */
-    NF = 7,        /* fit features: 1, d, d', s, and the cubic in t_c */
+    NF_MAX = TT_SIM_DIM_MAX + 5, /* fit features: 1, the state's nx, s, the cubic in t_c */
     STAR = 5       /* the star's reach in the sample, in the touches' */
 };
 
 /* A fit of the touch branch: outputs = coef^T phi(inputs), phi the features scaled
  * about a centre; the ranges of the samples and the jump-in times of the cycles fitted. */
 typedef struct {
-    double centre[4], scale[4], smin, smax, tmin, tmax;
-    double lo[2], hi[2]; /* and of the states d, d' they started from */
+    double centre[TT_SIM_DIM_MAX + 2], scale[TT_SIM_DIM_MAX + 2], smin, smax, tmin, tmax;
+    double lo[TT_SIM_DIM_MAX], hi[TT_SIM_DIM_MAX]; /* and of the states they started from */
     double *coef; /* NF x no, by feature */
 } fit_t;
 
 typedef struct {
-    double f[NF]; /* inputs: d, d' (at the start), s (mid-cycle), t_c in f[1..4] */
-    double *out;  /* end state, then the m reduced observables */
+    double f[NF_MAX]; /* 1, then the inputs: the state (at the start), s (mid-cycle), t_c */
+    double *out;      /* end state, then the m reduced observables */
 } point;
 
 struct tt_graze {
-    int m, no;           /* reduced observables; outputs 2 + m */
+    int nx, nf, npair;   /* the state's components; fit features (nx + 5); star cycles */
+    int m, no;           /* reduced observables; outputs nx + m */
     double T, L, V;      /* period, free amplitude, w A0 */
     double jumpin;       /* the material's jump-in penetration, m */
     double margin;       /* a reach within this of jump-in is too close to call, m */
@@ -41,21 +42,26 @@ struct tt_graze {
     double *otol;        /* and the least tolerance each is held to (in its scale) */
     double tau[NP];      /* probe times from the cycle's start, s */
     tt_sample buf[NP];
-    point hist[HIST + PAIR];
-    int nh, head, npair;
+    point hist[HIST + PAIR_MAX];
+    double *work;        /* the fit's Q and R */
+    int nh, head, nstar;
     int fitted;          /* fit holds one; trial: the next one, until it proves good */
     fit_t fit, trial;
 };
 
-int tt_graze_alloc(tt_graze **out, const tt_cantilever *c, int m, const double *scale,
+int tt_graze_alloc(tt_graze **out, const tt_sim *sim, int m, const double *scale,
                    const double *floor)
 {
     *out = NULL;
     tt_graze *g = calloc(1, sizeof *g);
     if (!g)
         return tt_error_nomem("the envelope tier's grazing model");
+    const tt_cantilever *c = tt_sim_cantilever(sim);
+    g->nx = tt_sim_dim(sim);
+    g->nf = g->nx + 5;
+    g->npair = 2 * (g->nx + 1);
     g->m = m;
-    g->no = 2 + m;
+    g->no = g->nx + m;
     g->T = c->T;
     g->L = c->A0;
     g->V = c->wd * c->A0;
@@ -64,16 +70,18 @@ int tt_graze_alloc(tt_graze **out, const tt_cantilever *c, int m, const double *
     g->margin = 2e-6 * c->A0;
     g->reach = 1e-3 * c->A0;
     g->jumpin = NAN;
-    g->fit.coef = calloc((size_t)NF * (size_t)g->no, sizeof *g->fit.coef);
-    g->trial.coef = calloc((size_t)NF * (size_t)g->no, sizeof *g->trial.coef);
+    const size_t nf = (size_t)g->nf, npts = HIST + PAIR_MAX;
+    g->fit.coef = calloc(nf * (size_t)g->no, sizeof *g->fit.coef);
+    g->trial.coef = calloc(nf * (size_t)g->no, sizeof *g->trial.coef);
     g->oscale = malloc(2 * (size_t)g->no * sizeof *g->oscale);
     g->otol = g->oscale ? g->oscale + g->no : NULL;
-    int ok = g->fit.coef && g->trial.coef && g->oscale;
+    g->work = malloc((npts * nf + nf * nf) * sizeof *g->work);
+    int ok = g->fit.coef && g->trial.coef && g->oscale && g->work;
     for (int i = 0; i < g->no && ok; i++) {
-        g->oscale[i] = i == 1 ? g->V : i < 2 ? g->L : scale[i - 2];
-        g->otol[i] = i < 2 ? 0 : floor[i - 2];
+        g->oscale[i] = i < g->nx ? (i % 2 ? g->V : g->L) : scale[i - g->nx];
+        g->otol[i] = i < g->nx ? 0 : floor[i - g->nx];
     }
-    for (int i = 0; i < HIST + PAIR && ok; i++)
+    for (int i = 0; i < HIST + g->npair && ok; i++)
         ok = (g->hist[i].out = malloc((size_t)g->no * sizeof *g->hist[i].out)) != NULL;
     if (!ok) {
         tt_graze_free(g);
@@ -87,18 +95,19 @@ void tt_graze_free(tt_graze *g)
 {
     if (!g)
         return;
-    for (int i = 0; i < HIST + PAIR; i++)
+    for (int i = 0; i < HIST + PAIR_MAX; i++)
         free(g->hist[i].out);
     free(g->fit.coef);
     free(g->trial.coef);
     free(g->oscale);
+    free(g->work);
     free(g);
 }
 
 void tt_graze_reset(tt_graze *g, double jumpin)
 {
     g->jumpin = jumpin;
-    g->nh = g->head = g->npair = 0;
+    g->nh = g->head = g->nstar = 0;
     g->fitted = 0;
 }
 
@@ -219,20 +228,20 @@ int tt_graze_branch(const tt_graze *g, const double *d, double s0, double sdot, 
     return gm > g->jumpin + g->margin ? TT_GRAZE_TOUCH : TT_GRAZE_UNSURE;
 }
 
-static void store(tt_graze *g, point *p, const double x0[2], double s_mid, double tc,
-                  const double x1[2], const double *red)
+static void store(tt_graze *g, point *p, const double *x0, double s_mid, double tc,
+                  const double *x1, const double *red)
 {
+    const int nx = g->nx;
     p->f[0] = 1;
-    p->f[1] = x0[0];
-    p->f[2] = x0[1];
-    p->f[3] = s_mid;
-    p->f[4] = tc;
-    p->out[0] = x1[0];
-    p->out[1] = x1[1];
-    memcpy(p->out + 2, red, (size_t)g->m * sizeof *red);
+    for (int i = 0; i < nx; i++)
+        p->f[1 + i] = x0[i];
+    p->f[1 + nx] = s_mid;
+    p->f[2 + nx] = tc;
+    memcpy(p->out, x1, (size_t)nx * sizeof *x1);
+    memcpy(p->out + nx, red, (size_t)g->m * sizeof *red);
 }
 
-void tt_graze_add(tt_graze *g, const double x0[2], double s_mid, double tc, const double x1[2],
+void tt_graze_add(tt_graze *g, const double *x0, double s_mid, double tc, const double *x1,
                   const double *red)
 {
     store(g, &g->hist[g->head], x0, s_mid, tc, x1, red);
@@ -243,20 +252,25 @@ void tt_graze_add(tt_graze *g, const double x0[2], double s_mid, double tc, cons
 
 int tt_graze_count(const tt_graze *g) { return g->nh; }
 int tt_graze_fitted(const tt_graze *g) { return g->fitted; }
+int tt_graze_star_size(const tt_graze *g) { return g->npair; }
+
+/* A point's sample (mid-cycle) and jump-in time. */
+static double s_of(const tt_graze *g, const point *p) { return p->f[1 + g->nx]; }
+static double tc_of(const tt_graze *g, const point *p) { return p->f[2 + g->nx]; }
 
 /* The latest touch's sample (mid-cycle). */
 static double latest_s(const tt_graze *g)
 {
-    return g->hist[(g->head + HIST - 1) % HIST].f[3];
+    return s_of(g, &g->hist[(g->head + HIST - 1) % HIST]);
 }
 
 int tt_graze_star_due(const tt_graze *g, int fresh)
 {
-    if (g->npair < PAIR || g->nh == 0)
+    if (g->nstar < g->npair || g->nh == 0)
         return 1;
     const double s = latest_s(g), far = (fresh ? 0.5 : STAR) * g->reach;
-    for (int i = 0; i < PAIR; i++)
-        if (fabs(g->hist[HIST + i].f[3] - s) > far)
+    for (int i = 0; i < g->npair; i++)
+        if (fabs(s_of(g, &g->hist[HIST + i]) - s) > far)
             return 1;
     return 0;
 }
@@ -266,56 +280,60 @@ int tt_graze_near(const tt_graze *g)
     int n = 0;
     const double s = g->nh ? latest_s(g) : 0;
     for (int i = 0; i < g->nh; i++)
-        n += fabs(g->hist[i].f[3] - s) <= g->reach;
+        n += fabs(s_of(g, &g->hist[i]) - s) <= g->reach;
     return n;
 }
 
 int tt_graze_outputs(const tt_graze *g) { return g->no; }
 
-int tt_graze_deepest(const tt_graze *g, double x0[2], double *s_mid)
+int tt_graze_deepest(const tt_graze *g, double *x0, double *s_mid)
 {
     if (g->nh == 0)
         return 0;
     const point *deep = &g->hist[0];
     for (int i = 1; i < g->nh; i++)
-        if (g->hist[i].f[4] < deep->f[4])
+        if (tc_of(g, &g->hist[i]) < tc_of(g, deep))
             deep = &g->hist[i];
-    x0[0] = deep->f[1];
-    x0[1] = deep->f[2];
-    *s_mid = deep->f[3];
+    memcpy(x0, deep->f + 1, (size_t)g->nx * sizeof *x0);
+    *s_mid = s_of(g, deep);
     return 1;
 }
 
-void tt_graze_add_pair(tt_graze *g, int i, const double x0[2], double s_mid, double tc,
-                       const double x1[2], const double *red)
+void tt_graze_add_pair(tt_graze *g, int i, const double *x0, double s_mid, double tc,
+                       const double *x1, const double *red)
 {
     store(g, &g->hist[HIST + i], x0, s_mid, tc, x1, red);
-    g->npair = i + 1;
+    g->nstar = i + 1;
 }
 
+/* The fit's kernels take the state's size as an argument and are inlined into callers
+ * that pass it as a constant for one mode (nx 2, nf 7), so that one mode's loops unroll
+ * as they did when that size was fixed, and the generic size otherwise. */
+#define KERNEL __attribute__((always_inline)) static inline
+
 /* The scaled features of a cycle's inputs about the fit's centre. */
-static void features(const fit_t *F, const double *f, double *phi)
+KERNEL void features(int nx, const fit_t *F, const double *f, double *phi)
 {
     phi[0] = 1;
-    for (int i = 0; i < 3; i++)
+    for (int i = 0; i <= nx; i++)
         phi[1 + i] = (f[1 + i] - F->centre[i]) / F->scale[i];
-    const double tau = (f[4] - F->centre[3]) / F->scale[3];
-    phi[4] = tau;
-    phi[5] = tau * tau;
-    phi[6] = tau * tau * tau;
+    const double tau = (f[2 + nx] - F->centre[1 + nx]) / F->scale[1 + nx];
+    phi[2 + nx] = tau;
+    phi[3 + nx] = tau * tau;
+    phi[4 + nx] = tau * tau * tau;
 }
 
 /* Least squares by modified Gram-Schmidt (twice, for orthogonality), a column that the
- * ones before it nearly span dropped (its coefficient 0): Q (n x NF, by columns) and R
- * (NF x NF); keep[j] tells the columns kept. */
-static void orthogonalise(int n, double *Q, double *R, int *keep)
+ * ones before it nearly span dropped (its coefficient 0): Q (n x nf, by columns) and R
+ * (nf x nf); keep[j] tells the columns kept. */
+KERNEL void orthogonalise(int n, int nf, double *Q, double *R, int *keep)
 {
-    for (int j = 0; j < NF; j++) {
+    for (int j = 0; j < nf; j++) {
         double *v = Q + (size_t)j * (size_t)n, norm0 = 0, norm = 0;
         for (int r = 0; r < n; r++)
             norm0 += v[r] * v[r];
-        for (int i = 0; i < NF; i++)
-            R[i * NF + j] = 0;
+        for (int i = 0; i < nf; i++)
+            R[i * nf + j] = 0;
         for (int pass = 0; pass < 2; pass++)
             for (int i = 0; i < j; i++) {
                 if (!keep[i])
@@ -324,7 +342,7 @@ static void orthogonalise(int n, double *Q, double *R, int *keep)
                 double dot = 0;
                 for (int r = 0; r < n; r++)
                     dot += q[r] * v[r];
-                R[i * NF + j] += dot;
+                R[i * nf + j] += dot;
                 for (int r = 0; r < n; r++)
                     v[r] -= dot * q[r];
             }
@@ -332,7 +350,7 @@ static void orthogonalise(int n, double *Q, double *R, int *keep)
             norm += v[r] * v[r];
         keep[j] = norm0 > 0 && norm > 1e-18 * norm0;
         norm = sqrt(norm);
-        R[j * NF + j] = keep[j] ? norm : 0;
+        R[j * nf + j] = keep[j] ? norm : 0;
         for (int r = 0; r < n && keep[j]; r++)
             v[r] /= norm;
     }
@@ -345,28 +363,33 @@ static void orthogonalise(int n, double *Q, double *R, int *keep)
  * touches among them span. */
 static int select_points(tt_graze *g, const point **pts)
 {
+    const int nx = g->nx;
     fit_t *F = &g->trial;
     const point *last = &g->hist[(g->head + HIST - 1) % HIST];
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < nx + 2; i++)
         F->centre[i] = last->f[1 + i];
-    F->scale[0] = g->L;
-    F->scale[1] = g->V;
-    F->scale[2] = g->L;
-    F->scale[3] = 0.01 * g->T;
-    F->smin = F->tmin = F->lo[0] = F->lo[1] = INFINITY;
-    F->smax = F->tmax = F->hi[0] = F->hi[1] = -INFINITY;
+    for (int i = 0; i < nx; i++)
+        F->scale[i] = i % 2 ? g->V : g->L;
+    F->scale[nx] = g->L;
+    F->scale[nx + 1] = 0.01 * g->T;
+    F->smin = F->tmin = INFINITY;
+    F->smax = F->tmax = -INFINITY;
+    for (int j = 0; j < nx; j++) {
+        F->lo[j] = INFINITY;
+        F->hi[j] = -INFINITY;
+    }
     int n = 0;
-    for (int i = 0; i < g->nh + g->npair; i++) {
+    for (int i = 0; i < g->nh + g->nstar; i++) {
         const point *p = i < g->nh ? &g->hist[i] : &g->hist[HIST + i - g->nh];
-        if (fabs(p->f[3] - F->centre[2]) > (i < g->nh ? 1 : STAR) * g->reach)
+        if (fabs(s_of(g, p) - F->centre[nx]) > (i < g->nh ? 1 : STAR) * g->reach)
             continue;
         pts[n++] = p;
         if (i < g->nh) { /* the ranges the fit covers are the touches' */
-            F->smin = fmin(F->smin, p->f[3]);
-            F->smax = fmax(F->smax, p->f[3]);
-            F->tmin = fmin(F->tmin, p->f[4]);
-            F->tmax = fmax(F->tmax, p->f[4]);
-            for (int j = 0; j < 2; j++) {
+            F->smin = fmin(F->smin, s_of(g, p));
+            F->smax = fmax(F->smax, s_of(g, p));
+            F->tmin = fmin(F->tmin, tc_of(g, p));
+            F->tmax = fmax(F->tmax, tc_of(g, p));
+            for (int j = 0; j < nx; j++) {
                 F->lo[j] = fmin(F->lo[j], p->f[1 + j]);
                 F->hi[j] = fmax(F->hi[j], p->f[1 + j]);
             }
@@ -377,31 +400,31 @@ static int select_points(tt_graze *g, const point **pts)
 
 /* Output o's coefficients from Q and R, and whether they reproduce every point within
  * tol of its scale (an output not tracked is NAN throughout and passes). */
-static int solve_output(tt_graze *g, int o, int n, const point **pts, const double *Q,
-                        const double *R, const int *keep, double tol)
+KERNEL int solve_output(tt_graze *g, int nx, int nf, int o, int n, const point **pts,
+                        const double *Q, const double *R, const int *keep, double tol)
 {
     fit_t *F = &g->trial;
-    double b[NF], *c = F->coef, phi[NF];
-    for (int j = 0; j < NF; j++) {
+    double b[NF_MAX], *c = F->coef, phi[NF_MAX];
+    for (int j = 0; j < nf; j++) {
         b[j] = 0;
         for (int r = 0; r < n && keep[j]; r++)
             b[j] += Q[(size_t)j * (size_t)n + (size_t)r] * pts[r]->out[o];
     }
-    for (int j = NF - 1; j >= 0; j--) {
+    for (int j = nf - 1; j >= 0; j--) {
         double v = 0;
         if (keep[j]) {
             v = b[j];
-            for (int i = j + 1; i < NF; i++)
-                v -= R[j * NF + i] * c[i * g->no + o];
-            v /= R[j * NF + j];
+            for (int i = j + 1; i < nf; i++)
+                v -= R[j * nf + i] * c[i * g->no + o];
+            v /= R[j * nf + j];
         }
         c[j * g->no + o] = v;
     }
     const double sc = g->oscale[o] * fmax(tol, g->otol[o]);
     for (int r = 0; r < n; r++) {
-        features(F, pts[r]->f, phi);
+        features(nx, F, pts[r]->f, phi);
         double y = 0;
-        for (int j = 0; j < NF; j++)
+        for (int j = 0; j < nf; j++)
             y += phi[j] * c[j * g->no + o];
         if (fabs(y - pts[r]->out[o]) > sc)
             return 0;
@@ -409,31 +432,29 @@ static int solve_output(tt_graze *g, int o, int n, const point **pts, const doub
     return 1;
 }
 
-int tt_graze_fit(tt_graze *g, double tol)
+KERNEL int fit_n(tt_graze *g, double tol, int nx, int nf)
 {
-    if (g->nh < NMIN || g->npair < PAIR)
+    if (g->nh < NMIN || g->nstar < g->npair)
         return 0;
-    const point *pts[HIST + PAIR];
+    const point *pts[HIST + PAIR_MAX];
     const int n = select_points(g, pts);
-    if (n < NMIN + PAIR)
+    if (n < NMIN + g->npair)
         return 0;
-    double *Q = malloc(((size_t)n * NF + NF * NF) * sizeof *Q);
-    if (!Q)
-        return 0;
-    double *R = Q + (size_t)n * NF;
-    int keep[NF];
+    double *Q = g->work, *R = Q + (size_t)n * (size_t)nf;
+    int keep[NF_MAX];
     for (int r = 0; r < n; r++) {
-        double ph[NF];
-        features(&g->trial, pts[r]->f, ph);
-        for (int j = 0; j < NF; j++)
+        double ph[NF_MAX];
+        features(nx, &g->trial, pts[r]->f, ph);
+        for (int j = 0; j < nf; j++)
             Q[(size_t)j * (size_t)n + (size_t)r] = ph[j];
     }
-    orthogonalise(n, Q, R, keep);
+    orthogonalise(n, nf, Q, R, keep);
     /* the state and the sample must be resolved; the cubic in t_c may drop terms */
-    int ok = keep[0] && keep[1] && keep[2] && keep[3];
+    int ok = 1;
+    for (int j = 0; j < nx + 2; j++)
+        ok = ok && keep[j];
     for (int o = 0; o < g->no && ok; o++)
-        ok = solve_output(g, o, n, pts, Q, R, keep, tol);
-    free(Q);
+        ok = solve_output(g, nx, nf, o, n, pts, Q, R, keep, tol);
     if (ok) { /* the trial becomes the fit; a failed one leaves the last fit in use */
         fit_t t = g->fit;
         g->fit = g->trial;
@@ -443,30 +464,50 @@ int tt_graze_fit(tt_graze *g, double tol)
     return ok;
 }
 
-void tt_graze_predict(const tt_graze *g, const double x[2], double s_mid, double tc, double x1[2],
-                      double *red)
+int tt_graze_fit(tt_graze *g, double tol)
 {
-    const double f[5] = {1, x[0], x[1], s_mid, tc};
-    double phi[NF];
-    features(&g->fit, f, phi);
+    return g->nx == 2 ? fit_n(g, tol, 2, 7) : fit_n(g, tol, g->nx, g->nf);
+}
+
+KERNEL void predict_n(const tt_graze *g, const double *x, double s_mid, double tc, double *x1,
+                      double *red, int nx, int nf)
+{
+    double f[NF_MAX], phi[NF_MAX];
+    f[0] = 1;
+    for (int i = 0; i < nx; i++)
+        f[1 + i] = x[i];
+    f[1 + nx] = s_mid;
+    f[2 + nx] = tc;
+    features(nx, &g->fit, f, phi);
     const double *c = g->fit.coef;
     for (int o = 0; o < g->no; o++) {
         double y = 0;
-        for (int j = 0; j < NF; j++)
+        for (int j = 0; j < nf; j++)
             y += phi[j] * c[j * g->no + o];
-        if (o < 2)
+        if (o < nx)
             x1[o] = y;
         else
-            red[o - 2] = y;
+            red[o - nx] = y;
     }
 }
 
-double tt_graze_error(const tt_graze *g, const double xa[2], const double *ra, const double xb[2],
+void tt_graze_predict(const tt_graze *g, const double *x, double s_mid, double tc, double *x1,
+                      double *red)
+{
+    if (g->nx == 2)
+        predict_n(g, x, s_mid, tc, x1, red, 2, 7);
+    else
+        predict_n(g, x, s_mid, tc, x1, red, g->nx, g->nf);
+}
+
+double tt_graze_error(const tt_graze *g, const double *xa, const double *ra, const double *xb,
                       const double *rb, double tol)
 {
-    double err = fmax(fabs(xa[0] - xb[0]) / (g->L * tol), fabs(xa[1] - xb[1]) / (g->V * tol));
-    for (int o = 2; o < g->no; o++) {
-        double d = fabs(ra[o - 2] - rb[o - 2]) / (g->oscale[o] * fmax(tol, g->otol[o]));
+    double err = fabs(xa[0] - xb[0]) / (g->oscale[0] * tol);
+    for (int i = 1; i < g->nx; i++)
+        err = fmax(err, fabs(xa[i] - xb[i]) / (g->oscale[i] * tol));
+    for (int o = g->nx; o < g->no; o++) {
+        double d = fabs(ra[o - g->nx] - rb[o - g->nx]) / (g->oscale[o] * fmax(tol, g->otol[o]));
         if (d > err)
             err = d; /* NAN (not tracked) is skipped */
     }
@@ -480,10 +521,12 @@ static int within(double v, double lo, double hi)
     return v >= lo - w && v <= hi + w;
 }
 
-int tt_graze_covers(const tt_graze *g, const double x[2], double s_mid, double tc)
+int tt_graze_covers(const tt_graze *g, const double *x, double s_mid, double tc)
 {
     const fit_t *F = &g->fit;
-    return g->fitted && s_mid >= F->smin - g->reach && s_mid <= F->smax + g->reach &&
-           within(tc, F->tmin, F->tmax) && within(x[0], F->lo[0], F->hi[0]) &&
-           within(x[1], F->lo[1], F->hi[1]);
+    int in = g->fitted && s_mid >= F->smin - g->reach && s_mid <= F->smax + g->reach &&
+             within(tc, F->tmin, F->tmax);
+    for (int i = 0; i < g->nx && in; i++)
+        in = within(x[i], F->lo[i], F->hi[i]);
+    return in;
 }

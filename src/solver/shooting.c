@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "tiptap/util/error.h"
+#include "shooting_linalg.h"
 
 void tt_shoot_default(tt_shoot_params *p)
 {
@@ -15,48 +16,55 @@ void tt_shoot_default(tt_shoot_params *p)
     p->tol = 1e-9;
 }
 
-/* The one-period map in scaled coordinates: lengths over the free amplitude L,
- * velocities over w_d L, so that both components of the state weigh alike. */
+/* The one-period map in scaled coordinates: positions over the free amplitude L,
+ * velocities over w_d L (the state's even and odd components), so that all components
+ * weigh alike. */
 typedef struct {
     tt_sim *sim;
-    double L, V;
+    int n;       /* the state's components (tt_sim_dim) */
+    double sc[TT_SIM_DIM_MAX];
     int contact; /* the contact flag every evaluation starts with */
     int cancelled; /* a cycle returned TT_EINTR: every later one would too */
     long cycles;
     tt_cycle cy;
 } map_ctx;
 
+enum { N = TT_SIM_DIM_MAX };
+
 static void map_init(map_ctx *m, tt_sim *sim)
 {
     const tt_cantilever *c = tt_sim_cantilever(sim);
-    double d, v;
+    double x[N];
     m->sim = sim;
-    m->L = c->A0;
-    m->V = c->wd * c->A0;
+    m->n = tt_sim_dim(sim);
+    for (int i = 0; i < m->n; i++)
+        m->sc[i] = i % 2 ? c->wd * c->A0 : c->A0;
     m->cycles = 0;
     m->cancelled = 0;
-    tt_sim_get_state(sim, &d, &v, &m->contact);
+    tt_sim_get_x(sim, x, &m->contact);
 }
 
-static void map_get(const map_ctx *m, double x[2], int *contact)
+static void map_get(const map_ctx *m, double *x, int *contact)
 {
-    double d, v;
-    tt_sim_get_state(m->sim, &d, &v, contact);
-    x[0] = d / m->L;
-    x[1] = v / m->V;
+    tt_sim_get_x(m->sim, x, contact);
+    for (int i = 0; i < m->n; i++)
+        x[i] /= m->sc[i];
 }
 
-static void map_set(const map_ctx *m, const double x[2])
+static void map_set(const map_ctx *m, const double *x)
 {
-    tt_sim_set_state(m->sim, x[0] * m->L, x[1] * m->V, m->contact);
+    double y[N];
+    for (int i = 0; i < m->n; i++)
+        y[i] = x[i] * m->sc[i];
+    tt_sim_set_x(m->sim, y, m->contact);
 }
 
 /* F(x) = P(x) - x. A cycle that fails, or ends with another contact flag than it began
  * with (the map's non-smooth edge), gives F = NAN: no fixed point there. A cancelled
  * cycle does too, and keeps its message for the caller. */
-static void residual(map_ctx *m, const double x[2], double F[2])
+static void residual(map_ctx *m, const double *x, double *F)
 {
-    double px[2];
+    double px[N];
     int pc;
     map_set(m, x);
     m->cycles++;
@@ -66,67 +74,93 @@ static void residual(map_ctx *m, const double x[2], double F[2])
             m->cancelled = 1;
         else
             tt_error_clear();
-        F[0] = F[1] = NAN;
+        for (int i = 0; i < m->n; i++)
+            F[i] = NAN;
         return;
     }
     map_get(m, px, &pc);
-    F[0] = pc == m->contact ? px[0] - x[0] : NAN;
-    F[1] = px[1] - x[1];
+    for (int i = 0; i < m->n; i++)
+        F[i] = px[i] - x[i];
+    if (pc != m->contact)
+        F[0] = NAN;
 }
 
-static double norm2(const double a[2]) { return hypot(a[0], a[1]); }
-
-/* Jacobian of F by forward differences around x, where F(x) = F0 is known. */
-static int jacobian_F(map_ctx *m, const double x[2], const double F0[2], double h, double J[2][2])
+/* |a| over n components (hypot for two, as the one-mode map always took it). */
+static double norm(int n, const double *a)
 {
-    for (int j = 0; j < 2; j++) {
-        double xp[2] = {x[0], x[1]}, Fp[2];
+    if (n == 2)
+        return hypot(a[0], a[1]);
+    double s = 0;
+    for (int i = 0; i < n; i++)
+        s += a[i] * a[i];
+    return sqrt(s);
+}
+
+static int all_finite(int n, const double *a)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(a[i]))
+            return 0;
+    return 1;
+}
+
+/* Jacobian of F (n x n by rows) by forward differences around x, where F(x) = F0. */
+static int jacobian_F(map_ctx *m, const double *x, const double *F0, double h, double *J)
+{
+    const int n = m->n;
+    for (int j = 0; j < n; j++) {
+        double xp[N], Fp[N];
+        memcpy(xp, x, (size_t)n * sizeof *x);
         xp[j] += h;
         residual(m, xp, Fp);
-        if (!isfinite(Fp[0]) || !isfinite(Fp[1]))
+        if (!all_finite(n, Fp))
             return 0;
-        J[0][j] = (Fp[0] - F0[0]) / h;
-        J[1][j] = (Fp[1] - F0[1]) / h;
+        for (int i = 0; i < n; i++)
+            J[i * n + j] = (Fp[i] - F0[i]) / h;
     }
     return 1;
 }
 
-/* Solve J s = -F (2 x 2, Cramer); 0 if J is singular at working precision. */
-static int newton_step(double J[2][2], const double F[2], double s[2])
+/* Solve J s = -F; 0 if J is singular at working precision. */
+static int newton_step(int n, const double *J, const double *F, double *s)
 {
-    double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
-    double scale = fabs(J[0][0] * J[1][1]) + fabs(J[0][1] * J[1][0]);
-    if (!(fabs(det) > 1e-14 * scale))
-        return 0;
-    s[0] = (-F[0] * J[1][1] + F[1] * J[0][1]) / det;
-    s[1] = (-F[1] * J[0][0] + F[0] * J[1][0]) / det;
-    return 1;
+    double A[N * N], b[N];
+    memcpy(A, J, (size_t)n * (size_t)n * sizeof *J);
+    for (int i = 0; i < n; i++)
+        b[i] = -F[i];
+    return tt_shoot_solve(n, A, b, s, 0);
 }
 
 /* Broyden's rank-one update of J after the step s changed F by dF. */
-static void broyden(double J[2][2], const double s[2], const double dF[2])
+static void broyden(int n, double *J, const double *s, const double *dF)
 {
-    double ss = s[0] * s[0] + s[1] * s[1];
+    double ss = s[0] * s[0];
+    for (int j = 1; j < n; j++)
+        ss += s[j] * s[j];
     if (!(ss > 0))
         return;
-    for (int i = 0; i < 2; i++) {
-        double r = dF[i] - (J[i][0] * s[0] + J[i][1] * s[1]);
-        J[i][0] += r * s[0] / ss;
-        J[i][1] += r * s[1] / ss;
+    for (int i = 0; i < n; i++) {
+        double *Ji = J + i * n, js = Ji[0] * s[0];
+        for (int j = 1; j < n; j++)
+            js += Ji[j] * s[j];
+        const double r = dF[i] - js;
+        for (int j = 0; j < n; j++)
+            Ji[j] += r * s[j] / ss;
     }
 }
 
 /* Backtracking along s from x: the first x + l s (l = 1, 1/2, ... 1/32) whose residual
  * decreases enough. Returns 1 and the new point and residual, or 0. */
-static int line_search(map_ctx *m, const double x[2], const double F[2], const double s[2],
-                       double xn[2], double Fn[2])
+static int line_search(map_ctx *m, const double *x, const double *F, const double *s,
+                       double *xn, double *Fn)
 {
-    double f0 = norm2(F);
+    const int n = m->n;
+    double f0 = norm(n, F);
     for (double l = 1; l >= 1.0 / 32; l /= 2) {
-        xn[0] = x[0] + l * s[0];
-        xn[1] = x[1] + l * s[1];
+        for (int i = 0; i < n; i++)
+            xn[i] = x[i] + l * s[i];
         residual(m, xn, Fn);
-        if (norm2(Fn) <= (1 - 0.25 * l) * f0)
+        if (norm(n, Fn) <= (1 - 0.25 * l) * f0)
             return 1;
     }
     return 0;
@@ -134,27 +168,27 @@ static int line_search(map_ctx *m, const double x[2], const double F[2], const d
 
 /* Newton from the sim's state; F0 gets the residual there (scaled). TT_EINTR when
  * cancelled, else TT_OK whether it converged or not. */
-static int newton(tt_sim *sim, const tt_shoot_params *p, double F0[2], int *converged,
-                   int *iterations, long *cycles)
+static int newton(tt_sim *sim, const tt_shoot_params *p, double *F0, int *converged,
+                  int *iterations, long *cycles)
 {
     map_ctx m;
     map_init(&m, sim);
-    double x[2], F[2], J[2][2], s[2], xn[2], Fn[2];
+    const int n = m.n;
+    double x[N], F[N], J[N * N], s[N], xn[N], Fn[N];
     int dummy, fresh = 1;
     map_get(&m, x, &dummy);
     *converged = 0;
     *iterations = 0;
     residual(&m, x, F);
-    F0[0] = F[0];
-    F0[1] = F[1];
-    int ok = isfinite(F[0]) && isfinite(F[1]) && jacobian_F(&m, x, F, p->fd_step, J);
+    memcpy(F0, F, (size_t)n * sizeof *F);
+    int ok = all_finite(n, F) && jacobian_F(&m, x, F, p->fd_step, J);
     for (int it = 0; ok && !m.cancelled && it < p->max_iter; it++) {
         *iterations = it + 1;
-        if (!newton_step(J, F, s))
+        if (!newton_step(n, J, F, s))
             break;
-        if (norm2(s) < p->tol) {
-            x[0] += s[0];
-            x[1] += s[1];
+        if (norm(n, s) < p->tol) {
+            for (int i = 0; i < n; i++)
+                x[i] += s[i];
             *converged = 1;
             break;
         }
@@ -165,11 +199,15 @@ static int newton(tt_sim *sim, const tt_shoot_params *p, double F0[2], int *conv
             fresh = 1;
             continue;
         }
-        double step[2] = {xn[0] - x[0], xn[1] - x[1]}, dF[2] = {Fn[0] - F[0], Fn[1] - F[1]};
-        broyden(J, step, dF);
+        double step[N], dF[N];
+        for (int i = 0; i < n; i++) {
+            step[i] = xn[i] - x[i];
+            dF[i] = Fn[i] - F[i];
+        }
+        broyden(n, J, step, dF);
         fresh = 0;
-        memcpy(x, xn, sizeof x);
-        memcpy(F, Fn, sizeof F);
+        memcpy(x, xn, (size_t)n * sizeof *x);
+        memcpy(F, Fn, (size_t)n * sizeof *F);
     }
     map_set(&m, x);
     *cycles = m.cycles;
@@ -183,59 +221,49 @@ static int newton(tt_sim *sim, const tt_shoot_params *p, double F0[2], int *conv
 int tt_shoot_newton(tt_sim *sim, const tt_shoot_params *p, int *converged, int *iterations,
                     long *cycles)
 {
-    double F0[2];
+    double F0[N];
     return newton(sim, p, F0, converged, iterations, cycles);
 }
 
-/* The monodromy matrix dP/dx (scaled) at the sim's state by central differences. */
-static int monodromy(tt_sim *sim, const tt_shoot_params *p, double J[2][2])
+/* The monodromy matrix dP/dx (scaled, n x n by rows) at the sim's state by central
+ * differences. */
+static int monodromy(tt_sim *sim, const tt_shoot_params *p, double *J)
 {
     map_ctx m;
     map_init(&m, sim);
-    double x[2], h = p->fd_step;
+    const int n = m.n;
+    double x[N], h = p->fd_step;
     int dummy;
     map_get(&m, x, &dummy);
-    for (int j = 0; j < 2; j++) {
-        double xp[2] = {x[0], x[1]}, xm[2] = {x[0], x[1]}, Fp[2], Fm[2];
+    for (int j = 0; j < n; j++) {
+        double xp[N], xm[N], Fp[N], Fm[N];
+        memcpy(xp, x, (size_t)n * sizeof *x);
+        memcpy(xm, x, (size_t)n * sizeof *x);
         xp[j] += h;
         xm[j] -= h;
         residual(&m, xp, Fp);
         residual(&m, xm, Fm);
         /* dP/dx = dF/dx + I */
-        J[0][j] = (Fp[0] - Fm[0]) / (2 * h) + (j == 0);
-        J[1][j] = (Fp[1] - Fm[1]) / (2 * h) + (j == 1);
+        for (int i = 0; i < n; i++)
+            J[i * n + j] = (Fp[i] - Fm[i]) / (2 * h) + (i == j);
     }
     map_set(&m, x);
     if (m.cancelled)
         return TT_EINTR;
-    if (!(isfinite(J[0][0]) && isfinite(J[0][1]) && isfinite(J[1][0]) && isfinite(J[1][1])))
+    if (!all_finite(n * n, J))
         return tt_error(TT_ENUM, "Floquet multipliers: the map is not smooth at this orbit");
     return TT_OK;
 }
 
-static void eigenvalues(double J[2][2], double mu_re[2], double mu_im[2])
+int tt_shoot_multipliers(tt_sim *sim, const tt_shoot_params *p, double *mu_re, double *mu_im)
 {
-    double tr = J[0][0] + J[1][1], det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
-    double disc = 0.25 * tr * tr - det;
-    if (disc >= 0) {
-        double r = sqrt(disc);
-        mu_re[0] = 0.5 * tr + r;
-        mu_re[1] = 0.5 * tr - r;
-        mu_im[0] = mu_im[1] = 0;
-    } else {
-        mu_re[0] = mu_re[1] = 0.5 * tr;
-        mu_im[0] = sqrt(-disc);
-        mu_im[1] = -mu_im[0];
-    }
-}
-
-int tt_shoot_multipliers(tt_sim *sim, const tt_shoot_params *p, double mu_re[2], double mu_im[2])
-{
-    double J[2][2];
-    mu_re[0] = mu_re[1] = mu_im[0] = mu_im[1] = NAN;
+    const int n = tt_sim_dim(sim);
+    double J[N * N];
+    for (int i = 0; i < n; i++)
+        mu_re[i] = mu_im[i] = NAN;
     int rc = monodromy(sim, p, J);
     if (rc == TT_OK)
-        eigenvalues(J, mu_re, mu_im);
+        tt_shoot_eigen(n, J, mu_re, mu_im, 0);
     return rc;
 }
 
@@ -247,7 +275,7 @@ static int touched(const tt_cycle *c) { return c->contact_fraction > 0 || c->eve
  * state the motion reached last. */
 #define TRAIL 16
 typedef struct {
-    double x[TRAIL + 2][2];
+    double x[TRAIL + 2][N];
     int n;
 } trail;
 
@@ -273,44 +301,16 @@ static int run_cycles(tt_sim *sim, long n, tt_cycle *out, int *pattern, trail *t
     return TT_OK;
 }
 
-/* M of the discrete Lyapunov equation J^T M J - M = -I: V(e) = e^T M e falls by |e|^2
- * each cycle of the linearised motion near a stable orbit (3 x 3 system for a, b, c of
- * the symmetric M = [a b; b c], by Cramer's rule). 0 if singular. */
-static int lyapunov(double J[2][2], double M[2][2])
+/* e^T M e (M n x n by rows; the one-mode form as it always summed). */
+static double quadratic(int n, const double *M, const double *e)
 {
-    double A[3][3], det3;
-    for (int u = 0; u < 3; u++) {
-        double B[2][2] = {{u == 0, u == 1}, {u == 1, u == 2}}, G[2][2];
-        for (int i = 0; i < 2; i++)
-            for (int j = 0; j < 2; j++) {
-                G[i][j] = -B[i][j];
-                for (int k = 0; k < 2; k++)
-                    for (int l = 0; l < 2; l++)
-                        G[i][j] += J[k][i] * B[k][l] * J[l][j];
-            }
-        A[0][u] = G[0][0];
-        A[1][u] = G[0][1];
-        A[2][u] = G[1][1];
-    }
-    double rhs[3] = {-1, 0, -1}, sol[3];
-#define DET3(m) ((m)[0][0] * ((m)[1][1] * (m)[2][2] - (m)[1][2] * (m)[2][1]) - \
-                 (m)[0][1] * ((m)[1][0] * (m)[2][2] - (m)[1][2] * (m)[2][0]) + \
-                 (m)[0][2] * ((m)[1][0] * (m)[2][1] - (m)[1][1] * (m)[2][0]))
-    det3 = DET3(A);
-    if (!(fabs(det3) > 0))
-        return 0;
-    for (int u = 0; u < 3; u++) {
-        double C[3][3];
-        memcpy(C, A, sizeof C);
-        for (int i = 0; i < 3; i++)
-            C[i][u] = rhs[i];
-        sol[u] = DET3(C) / det3;
-    }
-#undef DET3
-    M[0][0] = sol[0];
-    M[0][1] = M[1][0] = sol[1];
-    M[1][1] = sol[2];
-    return 1;
+    if (n == 2)
+        return M[0] * e[0] * e[0] + 2 * M[1] * e[0] * e[1] + M[3] * e[1] * e[1];
+    double V = 0;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++)
+            V += M[i * n + j] * e[i] * e[j];
+    return V;
 }
 
 /* Whether the real motion runs into the orbit xs: V, the orbit's Lyapunov function,
@@ -318,14 +318,15 @@ static int lyapunov(double J[2][2], double M[2][2])
  * and is still at its least at the end. A stable orbit near a jump between branches has
  * a small basin; a motion that passes by it (and settles on the other branch) shows V
  * rising again, and then settling decides. */
-static int in_basin(const trail *tr, const double xs[2], double J[2][2], double mu_abs)
+static int in_basin(int n, const trail *tr, const double *xs, const double *J, double mu_abs)
 {
-    double M[2][2], first = 0, prev = 0, least = INFINITY;
-    if (!lyapunov(J, M))
+    double M[N * N], first = 0, prev = 0, least = INFINITY, e[N], r[N];
+    if (!tt_shoot_lyapunov(n, J, M, 0))
         return 0;
     for (int k = 0; k < tr->n; k++) {
-        double e0 = tr->x[k][0] - xs[0], e1 = tr->x[k][1] - xs[1];
-        double V = M[0][0] * e0 * e0 + 2 * M[0][1] * e0 * e1 + M[1][1] * e1 * e1;
+        for (int i = 0; i < n; i++)
+            e[i] = tr->x[k][i] - xs[i];
+        double V = quadratic(n, M, e);
         if (k > 0 && V > 1.05 * prev && V > 1e-16)
             return 0;
         if (k == 0)
@@ -336,11 +337,18 @@ static int in_basin(const trail *tr, const double xs[2], double J[2][2], double 
     /* and it must still be closing in at the end, not passing by, and be near: a motion
      * far out (a tenth of the free amplitude) may still swing over to another branch */
     const double *x = tr->x[tr->n - 1], *x0 = tr->x[tr->n - 2];
-    double e[2] = {x0[0] - xs[0], x0[1] - xs[1]}, r[2];
-    for (int i = 0; i < 2; i++) /* what the linearisation misses of the last cycle */
-        r[i] = x[i] - xs[i] - (J[i][0] * e[0] + J[i][1] * e[1]);
-    int linear = hypot(r[0], r[1]) < 0.01 * (1 - mu_abs) * hypot(e[0], e[1]);
-    if (!linear && hypot(x[0] - xs[0], x[1] - xs[1]) > 0.1)
+    double off[N];
+    for (int i = 0; i < n; i++)
+        e[i] = x0[i] - xs[i];
+    for (int i = 0; i < n; i++) { /* what the linearisation misses of the last cycle */
+        double je = J[i * n] * e[0];
+        for (int j = 1; j < n; j++)
+            je += J[i * n + j] * e[j];
+        r[i] = x[i] - xs[i] - je;
+        off[i] = x[i] - xs[i];
+    }
+    int linear = norm(n, r) < 0.01 * (1 - mu_abs) * norm(n, e);
+    if (!linear && norm(n, off) > 0.1)
         return 0;
     return prev < 1e-16 || (prev < first && prev <= 1.01 * least);
 }
@@ -352,27 +360,30 @@ static int try_orbit(tt_sim *sim, const tt_shoot_params *p, int pattern, trail *
                      tt_cycle *out, tt_shoot_result *res, int *rc)
 {
     map_ctx m;
-    double F0[2], J[2][2], xs[2];
-    long n = 0;
+    double F0[N], J[N * N], xs[N];
+    long cyc = 0;
     int dummy;
     map_init(&m, sim);
+    const int n = m.n;
     double *x0 = tr->x[tr->n++];
     map_get(&m, x0, &dummy);
-    *rc = newton(sim, p, F0, &res->converged, &res->iterations, &n);
+    *rc = newton(sim, p, F0, &res->converged, &res->iterations, &cyc);
     /* the motion's next state, P(x0), from Newton's first residual */
-    tr->x[tr->n][0] = x0[0] + F0[0];
-    tr->x[tr->n][1] = x0[1] + F0[1];
+    for (int i = 0; i < n; i++)
+        tr->x[tr->n][i] = x0[i] + F0[i];
     tr->n++;
-    res->cycles += n;
+    res->cycles += cyc;
     if (*rc)
         return 0;
     if (!res->converged) {
         res->why = "Newton did not converge";
         return 0;
     }
-    tt_sim_get_state(sim, &res->d, &res->v, &res->contact);
+    tt_sim_get_x(sim, res->x, &res->contact);
+    res->d = res->x[0];
+    res->v = n > 1 ? res->x[1] : 0;
     int mrc = monodromy(sim, p, J);
-    res->cycles += 4;
+    res->cycles += 2 * n;
     if (mrc == TT_EINTR) {
         *rc = mrc;
         return 0;
@@ -382,14 +393,16 @@ static int try_orbit(tt_sim *sim, const tt_shoot_params *p, int pattern, trail *
         res->why = "the map is not smooth at the orbit";
         return 0;
     }
-    eigenvalues(J, res->mu_re, res->mu_im);
-    res->mu_abs = fmax(hypot(res->mu_re[0], res->mu_im[0]), hypot(res->mu_re[1], res->mu_im[1]));
+    tt_shoot_eigen(n, J, res->mu_re, res->mu_im, 0);
+    res->mu_abs = hypot(res->mu_re[0], res->mu_im[0]);
+    for (int i = 1; i < n; i++)
+        res->mu_abs = fmax(res->mu_abs, hypot(res->mu_re[i], res->mu_im[i]));
     if (!(res->mu_abs < 1)) {
         res->why = "the orbit is unstable";
         return 0;
     }
     map_get(&m, xs, &dummy);
-    if (!in_basin(tr, xs, J, res->mu_abs)) {
+    if (!in_basin(n, tr, xs, J, res->mu_abs)) {
         res->why = "the motion is not in the orbit's basin yet";
         return 0;
     }
@@ -418,7 +431,10 @@ int tt_shoot_steady(tt_sim *sim, const tt_shoot_params *p, long max_cycles, doub
 {
     memset(res, 0, sizeof *res);
     *settled = 0;
-    res->mu_re[0] = res->mu_re[1] = res->mu_im[0] = res->mu_im[1] = res->mu_abs = NAN;
+    res->n = tt_sim_dim(sim);
+    for (int i = 0; i < TT_SIM_DIM_MAX; i++)
+        res->mu_re[i] = res->mu_im[i] = NAN;
+    res->mu_abs = NAN;
     res->why = "";
     long run = 0, k = p->presettle > 0 ? p->presettle : 1;
     /* Attempts stop at half the cycles settling is expected to need (the transient
@@ -437,9 +453,9 @@ int tt_shoot_steady(tt_sim *sim, const tt_shoot_params *p, long max_cycles, doub
             continue;
         /* Newton starts from the real motion and returns to it when refused, so that a
          * fall-back settles the same trajectory as settling alone would. */
-        double d, v;
+        double x[N];
         int c;
-        tt_sim_get_state(sim, &d, &v, &c);
+        tt_sim_get_x(sim, x, &c);
         if (try_orbit(sim, p, pattern, &tr, out, res, &rc)) {
             res->how = TT_SHOOT_NEWTON;
             res->cycles += run;
@@ -450,12 +466,14 @@ int tt_shoot_steady(tt_sim *sim, const tt_shoot_params *p, long max_cycles, doub
             res->cycles += run;
             return rc;
         }
-        tt_sim_set_state(sim, d, v, c);
+        tt_sim_set_x(sim, x, c);
     }
     res->how = TT_SHOOT_SETTLED;
     rc = tt_sim_settle_orbit(sim, max_cycles > run ? max_cycles - run : 1, tol, out, &res->settle);
     *settled = res->settle.settled;
     res->cycles += run + res->settle.cycles;
-    tt_sim_get_state(sim, &res->d, &res->v, &res->contact);
+    tt_sim_get_x(sim, res->x, &res->contact);
+    res->d = res->x[0];
+    res->v = res->n > 1 ? res->x[1] : 0;
     return rc;
 }

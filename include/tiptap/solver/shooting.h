@@ -2,13 +2,15 @@
  * fixed point of the one-period (stroboscopic) map P, instead of by running cycles
  * until the transient has died away.
  *
- * P takes the tip's state (position d, velocity v, contact flag) at a cycle start to
- * its state one drive period later; it is evaluated with tt_sim_cycle. A steady
- * oscillation is a state x with P(x) = x. Newton's method on P(x) - x, with P's 2 x 2
- * Jacobian from finite differences and a backtracking line search, finds it in a few
- * cycles where settling takes several times Q / pi. The eigenvalues of that Jacobian
- * at the fixed point are the orbit's Floquet multipliers: it is stable (an oscillation
- * the instrument can show) when both lie inside the unit circle.
+ * P takes the sim's state (its n components, tt_sim_dim: position d and velocity v for
+ * one mode, and the contact flag) at a cycle start to its state one drive period later;
+ * it is evaluated with tt_sim_cycle. A steady oscillation is a state x with P(x) = x.
+ * Newton's method on P(x) - x, with P's n x n Jacobian from finite differences (then
+ * Broyden's updates) and a backtracking line search, finds it in a few cycles where
+ * settling takes several times Q / pi. The eigenvalues of the monodromy matrix at the
+ * fixed point are the orbit's Floquet multipliers (closed form for n = 2, GSL's
+ * nonsymmetric eigensolver beyond): it is stable (an oscillation the instrument can
+ * show) when all lie inside the unit circle.
  *
  * The map is not smooth where the contact flag flips (jump-in, pull-off): the
  * difference step (1e-5 of the free amplitude, 0.2 pm on the standard scene) is small
@@ -58,19 +60,21 @@ typedef struct {
     int converged;          /* Newton converged (also when the orbit was then refused) */
     int iterations;         /* Newton iterations of the last attempt */
     long cycles;            /* all cycles run, settling, differences and the last one */
-    double d, v;            /* the fixed point (cycle-start state), m, m/s */
+    int n;                  /* the state's components (tt_sim_dim) */
+    double x[TT_SIM_DIM_MAX]; /* the fixed point (cycle-start state, n of it) */
+    double d, v;            /* its first mode's position and velocity, m, m/s */
     int contact;
-    double mu_re[2], mu_im[2]; /* Floquet multipliers at the fixed point (NAN: none) */
+    double mu_re[TT_SIM_DIM_MAX], mu_im[TT_SIM_DIM_MAX]; /* Floquet multipliers at the
+                                                          * fixed point, n (NAN: none) */
     double mu_abs;          /* the largest |mu|: below 1 for a stable orbit */
     const char *why;        /* why Newton's orbit was refused ("" if it was not) */
     tt_settle_result settle; /* how the point settled instead (TT_SHOOT_SETTLED; else zero) */
 } tt_shoot_result;
 
-/* Floquet multipliers of the map at the sim's current cycle-start state, from central
- * differences (4 cycles); the sim is left where it was. TT_EINTR when cancelled
- * (util/cancel.h). */
-int tt_shoot_multipliers(tt_sim *sim, const tt_shoot_params *p, double mu_re[2],
-                         double mu_im[2]);
+/* Floquet multipliers of the map at the sim's current cycle-start state (n of them, a
+ * complex pair adjacent, into arrays of tt_sim_dim(sim)), from central differences (2 n
+ * cycles); the sim is left where it was. TT_EINTR when cancelled (util/cancel.h). */
+int tt_shoot_multipliers(tt_sim *sim, const tt_shoot_params *p, double *mu_re, double *mu_im);
 
 /* Newton on P(x) = x from the sim's current state, at most p->max_iter iterations.
  * The sim is left set to the fixed point (*converged = 1) or to Newton's last iterate,

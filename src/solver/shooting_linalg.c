@@ -1,0 +1,183 @@
+/* Shooting's linear algebra (see shooting_linalg.h). */
+#include "shooting_linalg.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_eigen.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_matrix.h>
+
+/* Gaussian elimination with partial pivoting on A (n x n, overwritten) for A s = b;
+ * a pivot below tiny is singular. */
+static int gauss(int n, double *A, const double *b, double *s, double tiny)
+{
+    double *r = s;
+    memmove(r, b, (size_t)n * sizeof *b);
+    for (int k = 0; k < n; k++) {
+        int p = k;
+        for (int i = k + 1; i < n; i++)
+            if (fabs(A[i * n + k]) > fabs(A[p * n + k]))
+                p = i;
+        if (!(fabs(A[p * n + k]) > tiny))
+            return 0;
+        if (p != k) {
+            for (int j = 0; j < n; j++) {
+                const double t = A[k * n + j];
+                A[k * n + j] = A[p * n + j];
+                A[p * n + j] = t;
+            }
+            const double t = r[k];
+            r[k] = r[p];
+            r[p] = t;
+        }
+        for (int i = k + 1; i < n; i++) {
+            const double f = A[i * n + k] / A[k * n + k];
+            for (int j = k; j < n; j++)
+                A[i * n + j] -= f * A[k * n + j];
+            r[i] -= f * r[k];
+        }
+    }
+    for (int k = n - 1; k >= 0; k--) {
+        double v = r[k];
+        for (int j = k + 1; j < n; j++)
+            v -= A[k * n + j] * r[j];
+        r[k] = v / A[k * n + k];
+    }
+    return 1;
+}
+
+int tt_shoot_solve(int n, double *A, const double *b, double *s, int generic)
+{
+    if (n == 2 && !generic) {
+        const double det = A[0] * A[3] - A[1] * A[2];
+        const double scale = fabs(A[0] * A[3]) + fabs(A[1] * A[2]);
+        if (!(fabs(det) > 1e-14 * scale))
+            return 0;
+        s[0] = (b[0] * A[3] - b[1] * A[1]) / det;
+        s[1] = (b[1] * A[0] - b[0] * A[2]) / det;
+        return 1;
+    }
+    double scale = 0;
+    for (int i = 0; i < n * n; i++)
+        scale = fmax(scale, fabs(A[i]));
+    return gauss(n, A, b, s, 1e-14 * scale);
+}
+
+int tt_shoot_eigen(int n, const double *J, double *re, double *im, int generic)
+{
+    if (n == 2 && !generic) {
+        double tr = J[0] + J[3], det = J[0] * J[3] - J[1] * J[2];
+        double disc = 0.25 * tr * tr - det;
+        if (disc >= 0) {
+            double r = sqrt(disc);
+            re[0] = 0.5 * tr + r;
+            re[1] = 0.5 * tr - r;
+            im[0] = im[1] = 0;
+        } else {
+            re[0] = re[1] = 0.5 * tr;
+            im[0] = sqrt(-disc);
+            im[1] = -im[0];
+        }
+        return 1;
+    }
+    for (int i = 0; i < n; i++)
+        re[i] = im[i] = NAN;
+    gsl_matrix *A = gsl_matrix_alloc((size_t)n, (size_t)n);
+    gsl_vector_complex *ev = gsl_vector_complex_alloc((size_t)n);
+    gsl_eigen_nonsymm_workspace *w = gsl_eigen_nonsymm_alloc((size_t)n);
+    int ok = A && ev && w;
+    if (ok) {
+        memcpy(A->data, J, (size_t)n * (size_t)n * sizeof *J); /* rows, contiguous */
+        /* its error handler off: a failure (no convergence) is a return code here, not
+         * an abort; GSL's handler is process-wide, and nothing else in the library sets it */
+        gsl_error_handler_t *old = gsl_set_error_handler_off();
+        ok = gsl_eigen_nonsymm(A, ev, w) == GSL_SUCCESS;
+        gsl_set_error_handler(old);
+    }
+    for (int i = 0; ok && i < n; i++) {
+        gsl_complex z = gsl_vector_complex_get(ev, (size_t)i);
+        re[i] = GSL_REAL(z);
+        im[i] = GSL_IMAG(z);
+    }
+    gsl_eigen_nonsymm_free(w);
+    gsl_vector_complex_free(ev);
+    gsl_matrix_free(A);
+    return ok;
+}
+
+/* The 3 x 3 determinant of rows m. */
+static double det3(double m[3][3])
+{
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+}
+
+/* n = 2: the 3 x 3 system for a, b, c of M = [a b; b c], by Cramer's rule. */
+static int lyapunov2(const double *J, double *M)
+{
+    double A[3][3];
+    for (int u = 0; u < 3; u++) {
+        double B[2][2] = {{u == 0, u == 1}, {u == 1, u == 2}}, G[2][2];
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 2; j++) {
+                G[i][j] = -B[i][j];
+                for (int k = 0; k < 2; k++)
+                    for (int l = 0; l < 2; l++)
+                        G[i][j] += J[k * 2 + i] * B[k][l] * J[l * 2 + j];
+            }
+        A[0][u] = G[0][0];
+        A[1][u] = G[0][1];
+        A[2][u] = G[1][1];
+    }
+    double rhs[3] = {-1, 0, -1}, sol[3];
+    const double d = det3(A);
+    if (!(fabs(d) > 0))
+        return 0;
+    for (int u = 0; u < 3; u++) {
+        double C[3][3];
+        memcpy(C, A, sizeof C);
+        for (int i = 0; i < 3; i++)
+            C[i][u] = rhs[i];
+        sol[u] = det3(C) / d;
+    }
+    M[0] = sol[0];
+    M[1] = M[2] = sol[1];
+    M[3] = sol[2];
+    return 1;
+}
+
+int tt_shoot_lyapunov(int n, const double *J, double *M, int generic)
+{
+    if (n == 2 && !generic)
+        return lyapunov2(J, M);
+    /* the unknowns: M's upper triangle (a <= b); the equations: G's, G = J^T B J - B
+     * for each unknown's symmetric unit B (the columns of the system) */
+    const int nu = n * (n + 1) / 2;
+    double *A = calloc((size_t)nu * (size_t)nu + 2 * (size_t)nu, sizeof *A);
+    if (!A)
+        return 0;
+    double *rhs = A + (size_t)nu * (size_t)nu, *sol = rhs + nu;
+    for (int a = 0, u = 0; a < n; a++)
+        for (int b = a; b < n; b++, u++)
+            for (int i = 0, e = 0; i < n; i++)
+                for (int j = i; j < n; j++, e++) {
+                    /* (J^T B J)_ij with B = E_ab + E_ba (E_aa once) */
+                    double g = J[a * n + i] * J[b * n + j];
+                    if (a != b)
+                        g += J[b * n + i] * J[a * n + j];
+                    g -= (i == a && j == b) || (i == b && j == a);
+                    A[(size_t)e * (size_t)nu + (size_t)u] = g;
+                }
+    for (int i = 0, e = 0; i < n; i++)
+        for (int j = i; j < n; j++, e++)
+            rhs[e] = i == j ? -1 : 0;
+    int ok = gauss(nu, A, rhs, sol, 0);
+    for (int a = 0, u = 0; ok && a < n; a++)
+        for (int b = a; b < n; b++, u++)
+            M[a * n + b] = M[b * n + a] = sol[u];
+    free(A);
+    return ok;
+}
