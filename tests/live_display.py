@@ -71,6 +71,13 @@ def fields(b, url):
     assert unit == "m/m", unit
     every = b.eval("document.querySelector('[data-name=\"solver.tier\"] option[value=every]').textContent")
     assert "slower than real time" in every, every
+    # the tier menu is the server's table (the controls message), in its order, each with its hint
+    menu = b.eval("[...document.querySelectorAll('[data-name=\"solver.tier\"] option')]"
+                  ".map(o => [o.value, o.textContent])")
+    table = b.eval("tiptapLive.tierTable")
+    assert [t["name"] for t in table] == ["every", "envelope", "averaged"], table
+    assert [v for v, _ in menu] == [t["name"] for t in table], (menu, table)
+    assert all(t["hint"] in text for (_, text), t in zip(menu, table)), (menu, table)
     icon = b.eval("document.querySelector('link[rel=icon]').href")
     code = b.call("Runtime.evaluate", {"expression": "fetch('%s').then(r => r.status)" % icon,
                                        "awaitPromise": True, "returnByValue": True})["result"]["value"]

@@ -5,7 +5,7 @@
 "use strict";
 
 const state = {
-  frame: null, images: {}, tiers: [], scope: null, status: null, controls: [],
+  frame: null, images: {}, tiers: [], tierTable: [], scope: null, status: null, controls: [],
   scopes: 0, rows: 0, replies: 0, lastReply: null, ws: null, sent: 0,
   // the display: what each image shows (per image, kept across frames), the scope shown
   // (the newest, or the one held), the reference, the zoom and the cursor
@@ -57,15 +57,18 @@ function send(text) {
 // A sent value waits for the server's reply; accepted, the controls message brings the
 // value in force (another page's changes come the same way); refused, every field that
 // holds no unsent text returns to the value in force.
-const choices = {
-  "noise": ["on", "off"], "scan.fast_axis": ["x", "y"],
-  "solver.tier": ["averaged", "envelope", "every"],
-};
-const optionText = { "solver.tier": { every: "every (far slower than real time)" } };
-const hints = {
-  "solver.tier": "averaged: the slow flow of amplitude and phase; envelope: cycles integrated " +
-    "only where needed; every: every drive cycle integrated, the reference, far slower than real time",
-};
+// the tier menu is the server's table of tiers (m.tiers: name and hint, the solver's order)
+const choices = { "noise": ["on", "off"], "scan.fast_axis": ["x", "y"] };
+const optionText = {};
+const hints = {};
+function tierTable(tiers) {
+  if (!tiers || !tiers.length) return;
+  state.tierTable = tiers;
+  choices["solver.tier"] = tiers.map((t) => t.name);
+  optionText["solver.tier"] = {};
+  for (const t of tiers) optionText["solver.tier"][t.name] = t.name + " (" + t.hint + ")";
+  hints["solver.tier"] = tiers.map((t) => t.name + ": " + t.hint).join("; ");
+}
 // units the server leaves blank: shown, never sent (a bare number is what the key takes)
 const shownUnit = { "feedback.proportional_gain": "m/m" };
 function inForce(name) {
@@ -81,6 +84,7 @@ function restore(el) {
 }
 function controls(m) {
   state.controls = m.controls;
+  tierTable(m.tiers);
   if (m.instrument && m.instrument !== state.instrument) {
     state.instrument = m.instrument;
     try { sessionStorage.setItem("tiptap-instrument", String(m.instrument)); } catch (e) { /* none kept */ }
