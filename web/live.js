@@ -200,6 +200,7 @@ function status(m) {
       " rms over a relief of " + fmt(m.surface_range * 1e9, "nm") + "; raise the I gain." :
       "The loop is steady" + jl + ".";
   if (state.firstLoopText == null) state.firstLoopText = g.textContent; // for the browser test
+  runWarnings(m);
   $("runstate").textContent = m.idle ? "waiting for a page" : m.paused ? "paused at line " + m.line : "";
   const pb = $("pause");
   pb.textContent = m.paused ? "resume" : "pause";
@@ -245,6 +246,20 @@ function status(m) {
   // auto-tune counts the lines on the scan's own tier (the oscillation check's), not previews
   if (loop.lastScopes !== state.scopes && state.scope && state.scope.tier === m.tier) {
     loop.lastScopes = state.scopes; tuneLine(m);
+  }
+}
+// the run's warnings, as tiptap scan prints them of the same scene (the run layer's):
+// an earlier frame's marked as such
+function runWarnings(m) {
+  const ws = m.warnings || [];
+  $("runwarnings").hidden = !ws.length;
+  const ul = $("runwarninglist");
+  ul.textContent = "";
+  for (const w of ws) {
+    const li = document.createElement("li");
+    li.textContent = (w.frame !== m.frame ? "(frame " + w.frame + ") " : "") + w.text;
+    li.dataset.category = w.category;
+    ul.appendChild(li);
   }
 }
 function fmt(x, unit) {

@@ -322,6 +322,15 @@ void tt_live_msg_status(tt_live_buf *b, const tt_live_view *v, int clients)
         tt_live_buf_printf(b, "%ld", v->judged_line);
     else
         tt_live_buf_printf(b, "null");
+    tt_live_buf_printf(b, ",\"warnings\":[");
+    for (int i = 0; i < v->nwarnings; i++) {
+        tt_live_buf_printf(b, "%s{\"category\":", i ? "," : "");
+        str(b, v->warning_category[i]);
+        tt_live_buf_printf(b, ",\"frame\":%ld,\"text\":", v->warning_frame[i]);
+        str(b, v->warning[i]);
+        tt_live_buf_printf(b, "}");
+    }
+    tt_live_buf_printf(b, "]");
     tt_live_buf_printf(b, ",\"error_rms\":");
     num(b, v->error_rms);
     tt_live_buf_printf(b, ",\"setpoint\":");
