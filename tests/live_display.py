@@ -159,6 +159,33 @@ def fields(b, url):
     print("ok after a change: %s" % b.eval("document.getElementById('status').textContent"))
 
 
+def hidden_tab(b, url):
+    """A tab behind another (the Page Visibility API: document.hidden) idles its instrument:
+    no line runs while hidden; shown, it runs; put behind again, it idles again."""
+    a = b.session
+    other = b.open_page(url, 1024, 768, background=True)
+    # (the line under way when the page said so ends first)
+    wait_for(b, "window.tiptapLive && tiptapLive.status && document.hidden && tiptapLive.status.idle "
+                "&& !tiptapLive.status.running", "the hidden tab's instrument idle")
+    at = lambda: b.eval("tiptapLive.status.frame * 1e6 + tiptapLive.status.line")
+    line0, scopes0 = at(), b.eval("tiptapLive.scopes")
+    time.sleep(3)  # 12 lines' time at 4 Hz
+    assert at() == line0 and b.eval("tiptapLive.scopes") == scopes0, (line0, at())
+    state = b.eval("document.getElementById('runstate').textContent")
+    assert "hidden" in state, state
+    print("ok a hidden tab's instrument idles: no line in 3 s (line %d); '%s'" % (line0 % 1e6, state))
+    b.call("Target.activateTarget", {"targetId": b.targets[other]}, session=False)
+    wait_for(b, "!document.hidden && !tiptapLive.status.idle && "
+                "tiptapLive.status.frame * 1e6 + tiptapLive.status.line > %d" % line0, "a line once shown")
+    print("ok shown, it runs: line %d" % (at() % 1e6))
+    b.call("Target.activateTarget", {"targetId": b.targets[a]}, session=False)
+    wait_for(b, "document.hidden && tiptapLive.status.idle", "idle again once behind the first tab")
+    print("ok behind the first tab again, idle again")
+    b.call("Target.closeTarget", {"targetId": b.targets[other]}, session=False)
+    b.session = a
+    assert not b.eval("document.hidden"), "the first tab hidden"
+
+
 IMG = "height_trace"
 
 
@@ -462,6 +489,7 @@ def slow_axis(b):
 def main(b):
     readable(b)
     fields(b, url)
+    hidden_tab(b, url)
     images(b)
     scope(b)
     ring(b)

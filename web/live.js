@@ -25,6 +25,11 @@ function instrumentNumber() {
 function exportPath(name) {
   return "/export/" + (state.instrument ? state.instrument + "/" : "") + name;
 }
+// the Page Visibility API: a tab put behind another (or minimised, where the browser
+// says so) idles its instrument; shown again, it runs on
+document.addEventListener("visibilitychange", () => {
+  if (state.ws && state.ws.readyState === 1) state.ws.send(document.hidden ? "hidden" : "visible");
+});
 function connect() {
   const n = instrumentNumber();
   const ws = new WebSocket("ws://" + location.host + "/" + (n ? n : ""), "tiptap-live");
@@ -33,6 +38,9 @@ function connect() {
     $("conn").textContent = "connected"; $("conn").className = "ok";
     // a new connection gets the controls afresh; nothing sent before waits for a reply
     for (const el of document.querySelectorAll("#controls [data-name]")) el.dataset.pending = "";
+    // a hidden tab does not look: its instrument idles until it is shown (the server
+    // counts a new connection as looking)
+    if (document.hidden) ws.send("hidden");
   };
   ws.onclose = () => {
     $("conn").textContent = "disconnected: retrying"; $("conn").className = "bad";
@@ -201,7 +209,7 @@ function status(m) {
       "The loop is steady" + jl + ".";
   if (state.firstLoopText == null) state.firstLoopText = g.textContent; // for the browser test
   runWarnings(m);
-  $("runstate").textContent = m.idle ? "waiting for a page" : m.paused ? "paused at line " + m.line : "";
+  $("runstate").textContent = m.idle ? (document.hidden ? "idle: this tab is hidden" : "waiting for a page") : m.paused ? "paused at line " + m.line : "";
   const pb = $("pause");
   pb.textContent = m.paused ? "resume" : "pause";
   pb.setAttribute("aria-pressed", m.paused ? "true" : "false");
