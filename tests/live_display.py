@@ -327,6 +327,31 @@ def scope(b):
     geo = lambda: js(b, "(() => { const r = document.getElementById('scope').getBoundingClientRect(), "
                         "g = tiptapLive.scopeGeom; return {left: r.left, top: r.top, x0: g.x0, x1: g.x1, "
                         "gl: g.g.left, pw: g.g.pw, p0: g.panels[0].y0, ph: g.g.ph}; })()")
+    # ticks at 1, 2 or 5 times a power of ten across each axis, a grid line at each
+    t = js(b, """(() => { const g = tiptapLive.scopeGeom, cv = document.getElementById('scope');
+      const d = cv.getContext('2d').getImageData(0, 0, cv.width, cv.height).data, W = cv.width;
+      const X = (x) => g.g.left + (x - g.x0) / (g.x1 - g.x0) * g.g.pw;
+      const p = g.panels[0], Y = (v) => p.y0 + g.g.ph - (v - p.lo) / (p.hi - p.lo) * g.g.ph;
+      const grey = (i) => d[i] === 227 && d[i + 1] === 227 && d[i + 2] === 227;
+      // along each grid line inside the first panel, the share of its pixels in the grid's grey
+      const col = g.xticks.map((x) => { let n = 0, k = 0; const c = Math.round(X(x));
+        for (let y = Math.ceil(p.y0) + 2; y < p.y0 + g.g.ph - 2; y++, k++) n += grey(4 * (y * W + c)); return n / k; });
+      const row = p.yticks.map((v) => { let n = 0, k = 0; const r = Math.round(Y(v));
+        for (let x = Math.ceil(g.g.left) + 2; x < g.g.left + g.g.pw - 2; x++, k++) n += grey(4 * (r * W + x)); return n / k; });
+      return {x: g.xticks, xstep: g.xstep, y: p.yticks, ystep: p.ystep, x0: g.x0, x1: g.x1, lo: p.lo, hi: p.hi,
+              col, row, panels: g.panels.map((q) => q.yticks.length)}; })()""")
+    nice = lambda step: any(abs(step / (m * 10 ** round(__import__("math").log10(step / m))) - 1) < 1e-9 for m in (1, 2, 5))
+    assert len(t["x"]) >= 3 and nice(t["xstep"]) and t["x0"] <= t["x"][0] and t["x"][-1] <= t["x1"], t
+    assert all(abs(b_ - a_ - t["xstep"]) < 1e-9 * t["xstep"] for a_, b_ in zip(t["x"], t["x"][1:])), t
+    assert len(t["y"]) >= 2 and nice(t["ystep"]) and t["lo"] <= t["y"][0] and t["y"][-1] <= t["hi"], t
+    assert min(t["panels"]) >= 2, t["panels"]
+    # (a line on the panel's border, or under the grating's walls drawn on it, is covered)
+    lines = sorted(t["col"] + t["row"])
+    assert lines[len(lines) // 2] > 0.8 and sum(v > 0.3 for v in t["row"]) >= 2, (t["col"], t["row"])
+    print("ok scope ticks: x every %g nm (%d), z every %g nm (%d), %s ticks on the panels; the median grid "
+          "line %.0f %% grey" % (t["xstep"], len(t["x"]), t["ystep"], len(t["y"]), t["panels"],
+                                 100 * lines[len(lines) // 2]))
+
     # hold: new scopes come, the one shown stays
     b.eval("document.getElementById('hold').click()")
     line, n = b.eval("tiptapLive.scopeShown.line"), b.eval("tiptapLive.scopes")
