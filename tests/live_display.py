@@ -436,6 +436,11 @@ def ring(b):
              "an early line of the second pass")
     b.eval("tiptapSet('feedback.integral_gain', '30000')")
     wait_for(b, "tiptapLive.status.oscillating", "the ring at 30 kHz")
+    # the warning names the line it judged, and a ring of 100 nm and more is in plain view
+    w = " ".join(b.eval("document.getElementById('warning').textContent").split())
+    jl = b.eval("tiptapLive.status.judged_line")
+    assert ("on line %d:" % jl) in w and "in plain view" in w and "hide it" not in w, w
+    print("ok the warning at 30 kHz: %s" % w[:160])
     b.eval("tiptapSet('feedback.integral_gain', '1000')")
     wait_for(b, "(() => { const r = tiptapLive.images.height_trace, s = tiptapLive.shown.height_trace; "
                 "return Math.max(...Array.from(r).filter(isFinite)) > 100e-9 && s.hi - s.lo < 40e-9; })()",
@@ -458,6 +463,25 @@ def ring(b):
     time.sleep(0.3)
     shot(b, shots, "live-images.png")
     choose(b, "#range-height-retrace", "lines")
+
+
+def lag(b):
+    """At ki = 100 Hz the loop lags (z strays from the surface): the loop box says so,
+    naming the judged line, never "steady"."""
+    b.eval("tiptapSet('feedback.integral_gain', '100')")
+    wait_for(b, "tiptapLive.lastReply.ok && tiptapLive.controls.find(c => c.name === "
+                "'feedback.integral_gain').value === '100'", "100 Hz accepted")
+    new_scope(b, "a line at 100 Hz")
+    wait_for(b, "tiptapLive.status.lagging && tiptapLive.status.judged_line >= tiptapLive.status.first_line_as_set",
+             "a lagging line judged at 100 Hz")
+    g = b.eval("document.getElementById('goodloop').textContent")
+    st = js(b, "tiptapLive.status")
+    assert g.startswith("The loop lags (line %d)" % st["judged_line"]) and "steady" not in g, g
+    assert st["track_rms"] > 0.35 * st["surface_range"], st
+    print("ok at 100 Hz: %s" % g)
+    b.eval("tiptapSet('feedback.integral_gain', '1000')")
+    wait_for(b, "tiptapLive.lastReply.ok && tiptapLive.controls.find(c => c.name === "
+                "'feedback.integral_gain').value === '1000'", "1 kHz again")
 
 
 def screenshots(b):
@@ -518,6 +542,7 @@ def main(b):
     images(b)
     scope(b)
     ring(b)
+    lag(b)
     screenshots(b)
     slow_axis(b)
 
