@@ -69,15 +69,18 @@ def fields(b, url):
     unit = b.eval("document.querySelector('[data-name=\"feedback.proportional_gain\"]')"
                   ".parentNode.querySelector('.unit').textContent")
     assert unit == "m/m", unit
-    every = b.eval("document.querySelector('[data-name=\"solver.tier\"] option[value=every]').textContent")
+    every = b.eval("document.querySelector('[data-name=\"solver.tier\"] option[value=every]').title")
     assert "slower than real time" in every, every
-    # the tier menu is the server's table (the controls message), in its order, each with its hint
+    # the tier menu is the server's table (the controls message), in its order, each with its
+    # hint as its tooltip; the line under the menu gives the hint of the tier in force
     menu = b.eval("[...document.querySelectorAll('[data-name=\"solver.tier\"] option')]"
-                  ".map(o => [o.value, o.textContent])")
+                  ".map(o => [o.value, o.title])")
     table = b.eval("tiptapLive.tierTable")
     assert [t["name"] for t in table] == ["every", "envelope", "averaged"], table
-    assert [v for v, _ in menu] == [t["name"] for t in table], (menu, table)
-    assert all(t["hint"] in text for (_, text), t in zip(menu, table)), (menu, table)
+    assert menu == [[t["name"], t["hint"]] for t in table], (menu, table)
+    line = b.eval("document.getElementById('c-solver-tier-hint').textContent")
+    tier = in_force(b, "solver.tier")
+    assert line == tier + ": " + next(t["hint"] for t in table if t["name"] == tier), line
     icon = b.eval("document.querySelector('link[rel=icon]').href")
     code = b.call("Runtime.evaluate", {"expression": "fetch('%s').then(r => r.status)" % icon,
                                        "awaitPromise": True, "returnByValue": True})["result"]["value"]

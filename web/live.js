@@ -67,14 +67,16 @@ function send(text) {
 // holds no unsent text returns to the value in force.
 // the tier menu is the server's table of tiers (m.tiers: name and hint, the solver's order)
 const choices = { "noise": ["on", "off"], "scan.fast_axis": ["x", "y"] };
-const optionText = {};
+// an option's hint: its tooltip, and the line under its menu for the one in force (the
+// closed menu shows the name only: the column is too narrow for the hint)
+const optionHint = {};
 const hints = {};
 function tierTable(tiers) {
   if (!tiers || !tiers.length) return;
   state.tierTable = tiers;
   choices["solver.tier"] = tiers.map((t) => t.name);
-  optionText["solver.tier"] = {};
-  for (const t of tiers) optionText["solver.tier"][t.name] = t.name + " (" + t.hint + ")";
+  optionHint["solver.tier"] = {};
+  for (const t of tiers) optionHint["solver.tier"][t.name] = t.hint;
   hints["solver.tier"] = tiers.map((t) => t.name + ": " + t.hint).join("; ");
 }
 // units the server leaves blank: shown, never sent (a bare number is what the key takes)
@@ -118,7 +120,8 @@ function controls(m) {
       if (opts) for (const o of opts) {
         const op = document.createElement("option");
         op.value = o;
-        op.textContent = (optionText[c.name] || {})[o] || o;
+        op.textContent = o;
+        op.title = (optionHint[c.name] || {})[o] || "";
         el.appendChild(op);
       }
       else { el.type = "text"; el.inputMode = "decimal"; }
@@ -130,8 +133,14 @@ function controls(m) {
       const u = document.createElement("span");
       u.className = "unit"; u.textContent = c.unit || shownUnit[c.name] || "";
       lab.append(span, el, u);
+      if (optionHint[c.name]) {
+        const h = document.createElement("span");
+        h.className = "hint"; h.id = id + "-hint";
+        lab.append(h);
+      }
       form.appendChild(lab);
     }
+    if (optionHint[c.name]) $(id + "-hint").textContent = c.value + ": " + (optionHint[c.name][c.value] || "");
     // the lesson's hidden controls are not drawn; its locked ones shown, not editable
     // (the server refuses a change to them too)
     el.parentElement.hidden = !!c.hidden;
