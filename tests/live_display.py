@@ -520,6 +520,31 @@ def screenshots(b):
     b.eval("document.getElementById('zoomreset').click()")
 
 
+def previews(b):
+    """A change's next line comes first from the averaged preview: its row is marked as one
+    and its caption says so; a scan on the averaged tier is no preview, and no caption says
+    it is (the issue's "every averaged line captioned as a preview")."""
+    n = b.eval("tiptapLive.previewRows")
+    b.eval("tiptapSet('feedback.integral_gain', '1100')")
+    wait_for(b, "tiptapLive.previewRows > %d" % n, "a preview row after a change")
+    print("ok a change's first line came from the averaged preview, marked as one (%d preview rows)"
+          % b.eval("tiptapLive.previewRows"))
+    frame = b.eval("tiptapLive.frame.frame")
+    b.eval("tiptapSet('solver.tier', 'averaged')")
+    wait_for(b, "tiptapLive.frame.frame > %d && tiptapLive.status.tier === 'averaged' && "
+                "tiptapLive.status.lines_done >= 3" % frame, "three lines on the averaged tier")
+    caps = b.eval("[...document.querySelectorAll('[id^=cap-]')].map(e => e.textContent)")
+    tiers = b.eval("tiptapLive.tiers.filter(t => t)")
+    assert caps and not any("preview" in c for c in caps), caps
+    assert tiers and all(t == "averaged" for t in tiers), tiers
+    print("ok on the averaged tier %d lines, none a preview; captions: %s" % (len(tiers), caps[0]))
+    frame = b.eval("tiptapLive.frame.frame")
+    b.eval("tiptapSet('solver.tier', 'envelope')")
+    b.eval("tiptapSet('feedback.integral_gain', '1000')")
+    wait_for(b, "tiptapLive.frame.frame > %d && tiptapLive.status.tier === 'envelope'" % frame,
+             "the envelope tier again")
+
+
 def slow_axis(b):
     """The grating scanned along y: each line runs along a ridge or a trench, flat, and
     the default range still spans the ridges' height."""
@@ -547,6 +572,7 @@ def main(b):
     ring(b)
     lag(b)
     screenshots(b)
+    previews(b)
     slow_axis(b)
 
 

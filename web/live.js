@@ -5,7 +5,7 @@
 "use strict";
 
 const state = {
-  frame: null, images: {}, tiers: [], tierTable: [], scope: null, status: null, controls: [],
+  frame: null, images: {}, tiers: [], tierTable: [], previewRows: 0, scope: null, status: null, controls: [],
   scopes: 0, rows: 0, replies: 0, lastReply: null, ws: null, sent: 0,
   // the display: what each image shows (per image, kept across frames), the scope shown
   // (the newest, or the one held), the reference, the zoom and the cursor
@@ -442,6 +442,7 @@ function row(m) {
   }
   // only the preview's rows are captioned as such (a scan on the averaged tier is not one)
   state.tiers[m.line] = m.preview ? "preview" : m.tier;
+  if (m.preview) state.previewRows++;
   state.lastLine = m.line;
   drawImages(m.line);
 }
@@ -532,7 +533,7 @@ function drawImages(line) {
     }
     const ln = line != null ? line : state.lastLine;
     $("cap-" + id).textContent = c.name + " (" + dir + "), " + u.unit + (v.flatten !== "none" ? ", flattened" : "") +
-      (ln != null && state.tiers[ln] === "averaged" ? "; line " + ln + " from the averaged preview" : "");
+      (ln != null && state.tiers[ln] === "preview" ? "; line " + ln + " from the averaged preview" : "");
   }
 }
 // The colour bar under an image: the map from lo to hi, ticks in the display unit.

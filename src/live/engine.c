@@ -415,7 +415,7 @@ static void preview_line(tt_live_engine *e, unsigned long change, double at)
         return;
     pthread_mutex_lock(&e->mu);
     if (e->v.frame == frame && e->row_version[line] < change) {
-        tt_live_publish_row(e, e->pscan, e->pline, line, TT_TIER_AVERAGED);
+        tt_live_publish_row(e, e->pscan, e->pline, line, TT_TIER_AVERAGED | TT_LIVE_PREVIEW);
         tt_live_publish_scope(e, e->pscope, line, TT_TIER_AVERAGED);
         e->v.preview_ms = 1e3 * (tt_clock(TT_CLOCK_WALL) - at);
     }
