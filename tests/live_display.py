@@ -78,6 +78,16 @@ def fields(b, url):
     table = b.eval("tiptapLive.tierTable")
     assert [t["name"] for t in table] == ["every", "envelope", "averaged"], table
     assert menu == [[t["name"], t["hint"]] for t in table], (menu, table)
+    # the setpoint in nm, with what it is of the free amplitude; a value in % is taken as such
+    sp = b.eval("document.getElementById('c-feedback-setpoint-hint').textContent")
+    assert sp.startswith("80.0 % of the free amplitude"), sp
+    b.eval("tiptapSet('feedback.setpoint', '75 %')")
+    wait_for(b, "tiptapLive.controls.find(c => c.name === 'feedback.setpoint').value === '15' && "
+                "document.getElementById('c-feedback-setpoint-hint').textContent.startsWith('75.0 %')",
+             "75 % in force, 15 nm")
+    b.eval("tiptapSet('feedback.setpoint', '16')")
+    wait_for(b, "tiptapLive.controls.find(c => c.name === 'feedback.setpoint').value === '16'", "16 nm again")
+    print("ok the setpoint's line: '%s'; 75 %% typed came into force as 15 nm" % sp)
     line = b.eval("document.getElementById('c-solver-tier-hint').textContent")
     tier = in_force(b, "solver.tier")
     assert line == tier + ": " + next(t["hint"] for t in table if t["name"] == tier), line

@@ -71,6 +71,14 @@ const choices = { "noise": ["on", "off"], "scan.fast_axis": ["x", "y"] };
 // closed menu shows the name only: the column is too narrow for the hint)
 const optionHint = {};
 const hints = {};
+// a line under a field that says what its value in force means (the scene's 80 % setpoint
+// is a number of nm on the page)
+const derivedHint = {
+  "feedback.setpoint": () => {
+    const sp = parseFloat(inForce("feedback.setpoint")), a0 = parseFloat(inForce("cantilever.free_amplitude"));
+    return sp > 0 && a0 > 0 ? (100 * sp / a0).toPrecision(3) + " % of the free amplitude (a value in % sets it so)" : "";
+  },
+};
 function tierTable(tiers) {
   if (!tiers || !tiers.length) return;
   state.tierTable = tiers;
@@ -133,7 +141,7 @@ function controls(m) {
       const u = document.createElement("span");
       u.className = "unit"; u.textContent = c.unit || shownUnit[c.name] || "";
       lab.append(span, el, u);
-      if (optionHint[c.name]) {
+      if (optionHint[c.name] || derivedHint[c.name]) {
         const h = document.createElement("span");
         h.className = "hint"; h.id = id + "-hint";
         lab.append(h);
@@ -152,6 +160,11 @@ function controls(m) {
     el.classList.toggle("stale", !!editing && c.value !== el.dataset.was);
     el.title = el.classList.contains("stale") ? "in force now: " + c.value + " (Escape puts it back)" : "";
     if (!editing) el.dataset.was = c.value;
+  }
+  // once every value in force is known
+  for (const name in derivedHint) {
+    const h = $("c-" + name.replace(/\./g, "-") + "-hint");
+    if (h) h.textContent = derivedHint[name]();
   }
   const ls = m.lesson;
   $("lesson").hidden = !ls;
