@@ -330,6 +330,8 @@ static void *engine_main(void *arg)
 {
     tt_live_engine *e = arg;
     double changed_at = 0;
+    /* the run layer's warnings go to the page; none is raised while this thread holds mu,
+     * which the handler takes */
     tt_warning_push(tt_live_publish_warning, e);
     /* a change that abandons the line under way interrupts it as Ctrl-C would */
     tt_cancel_watch(&e->abandon);
