@@ -64,4 +64,16 @@ if ls "${TMPDIR:-/tmp}"/tiptap-live-* >/dev/null 2>&1 && [ -n "$(find "${TMPDIR:
 else
   ok "no export folder left behind"
 fi
+
+# the run layer's warnings: the console's of a pass are tiptap scan's of the same scene
+# (tests/live_warnings.py; the teaching scene's contact goes past the laws' small contact)
+"$tiptap" scan "${scene[@]}" -o "$tmp/scan" >/dev/null 2>"$tmp/scan_err"
+live_start "${scene[@]}"
+if [ -n "$port" ] && [ -x "$py" ]; then
+  "$py" "$(dirname "$0")/live_warnings.py" "$port" "$tmp/scan_err" || fail=1
+  kill -INT "$pid"
+  wait "$pid"
+elif [ -z "$port" ]; then
+  bad "the server did not start again: $(cat "$tmp/err")"
+fi
 exit $fail

@@ -63,18 +63,22 @@ class Browser:
             self.buf += chunk
         raise RuntimeError("%s: no answer in %d s" % (method, timeout))
 
-    def open_page(self, url, width, height):
+    def open_page(self, url, width, height, background=False):
         """A new page at url, width x height CSS pixels at one device pixel each; its
-        session becomes the default one, and is returned."""
-        target = self.call("Target.createTarget", {"url": "about:blank"}, session=False)["targetId"]
+        session becomes the default one, and is returned. background: a tab behind the
+        others, hidden to the page (document.hidden) until Target.activateTarget."""
+        target = self.call("Target.createTarget", {"url": "about:blank", "background": background},
+                           session=False)["targetId"]
         self.session = self.call("Target.attachToTarget", {"targetId": target, "flatten": True},
                                  session=False)["sessionId"]
         self.call("Page.enable")
         self.call("Runtime.enable")
         self.call("Emulation.setDeviceMetricsOverride",
                   {"width": width, "height": height, "deviceScaleFactor": 1, "mobile": False})
-        # focus as in a window in front, so that a field keeps the focus it is given
-        self.call("Emulation.setFocusEmulationEnabled", {"enabled": True})
+        # focus as in a window in front, so that a field keeps the focus it is given (a
+        # tab in the background: not, since the emulated focus also shows it)
+        if not background:
+            self.call("Emulation.setFocusEmulationEnabled", {"enabled": True})
         self.call("Page.navigate", {"url": url})
         self.targets[self.session] = target
         return self.session

@@ -69,8 +69,28 @@ def fields(b, url):
     unit = b.eval("document.querySelector('[data-name=\"feedback.proportional_gain\"]')"
                   ".parentNode.querySelector('.unit').textContent")
     assert unit == "m/m", unit
-    every = b.eval("document.querySelector('[data-name=\"solver.tier\"] option[value=every]').textContent")
+    every = b.eval("document.querySelector('[data-name=\"solver.tier\"] option[value=every]').title")
     assert "slower than real time" in every, every
+    # the tier menu is the server's table (the controls message), in its order, each with its
+    # hint as its tooltip; the line under the menu gives the hint of the tier in force
+    menu = b.eval("[...document.querySelectorAll('[data-name=\"solver.tier\"] option')]"
+                  ".map(o => [o.value, o.title])")
+    table = b.eval("tiptapLive.tierTable")
+    assert [t["name"] for t in table] == ["every", "envelope", "averaged"], table
+    assert menu == [[t["name"], t["hint"]] for t in table], (menu, table)
+    # the setpoint in nm, with what it is of the free amplitude; a value in % is taken as such
+    sp = b.eval("document.getElementById('c-feedback-setpoint-hint').textContent")
+    assert sp.startswith("80.0 % of the free amplitude"), sp
+    b.eval("tiptapSet('feedback.setpoint', '75 %')")
+    wait_for(b, "tiptapLive.controls.find(c => c.name === 'feedback.setpoint').value === '15' && "
+                "document.getElementById('c-feedback-setpoint-hint').textContent.startsWith('75.0 %')",
+             "75 % in force, 15 nm")
+    b.eval("tiptapSet('feedback.setpoint', '16')")
+    wait_for(b, "tiptapLive.controls.find(c => c.name === 'feedback.setpoint').value === '16'", "16 nm again")
+    print("ok the setpoint's line: '%s'; 75 %% typed came into force as 15 nm" % sp)
+    line = b.eval("document.getElementById('c-solver-tier-hint').textContent")
+    tier = in_force(b, "solver.tier")
+    assert line == tier + ": " + next(t["hint"] for t in table if t["name"] == tier), line
     icon = b.eval("document.querySelector('link[rel=icon]').href")
     code = b.call("Runtime.evaluate", {"expression": "fetch('%s').then(r => r.status)" % icon,
                                        "awaitPromise": True, "returnByValue": True})["result"]["value"]
@@ -150,6 +170,33 @@ def fields(b, url):
                 "document.getElementById('status').textContent.includes('last change')",
              "the latency shown after a change")
     print("ok after a change: %s" % b.eval("document.getElementById('status').textContent"))
+
+
+def hidden_tab(b, url):
+    """A tab behind another (the Page Visibility API: document.hidden) idles its instrument:
+    no line runs while hidden; shown, it runs; put behind again, it idles again."""
+    a = b.session
+    other = b.open_page(url, 1024, 768, background=True)
+    # (the line under way when the page said so ends first)
+    wait_for(b, "window.tiptapLive && tiptapLive.status && document.hidden && tiptapLive.status.idle "
+                "&& !tiptapLive.status.running", "the hidden tab's instrument idle")
+    at = lambda: b.eval("tiptapLive.status.frame * 1e6 + tiptapLive.status.line")
+    line0, scopes0 = at(), b.eval("tiptapLive.scopes")
+    time.sleep(3)  # 12 lines' time at 4 Hz
+    assert at() == line0 and b.eval("tiptapLive.scopes") == scopes0, (line0, at())
+    state = b.eval("document.getElementById('runstate').textContent")
+    assert "hidden" in state, state
+    print("ok a hidden tab's instrument idles: no line in 3 s (line %d); '%s'" % (line0 % 1e6, state))
+    b.call("Target.activateTarget", {"targetId": b.targets[other]}, session=False)
+    wait_for(b, "!document.hidden && !tiptapLive.status.idle && "
+                "tiptapLive.status.frame * 1e6 + tiptapLive.status.line > %d" % line0, "a line once shown")
+    print("ok shown, it runs: line %d" % (at() % 1e6))
+    b.call("Target.activateTarget", {"targetId": b.targets[a]}, session=False)
+    wait_for(b, "document.hidden && tiptapLive.status.idle", "idle again once behind the first tab")
+    print("ok behind the first tab again, idle again")
+    b.call("Target.closeTarget", {"targetId": b.targets[other]}, session=False)
+    b.session = a
+    assert not b.eval("document.hidden"), "the first tab hidden"
 
 
 IMG = "height_trace"
@@ -293,6 +340,31 @@ def scope(b):
     geo = lambda: js(b, "(() => { const r = document.getElementById('scope').getBoundingClientRect(), "
                         "g = tiptapLive.scopeGeom; return {left: r.left, top: r.top, x0: g.x0, x1: g.x1, "
                         "gl: g.g.left, pw: g.g.pw, p0: g.panels[0].y0, ph: g.g.ph}; })()")
+    # ticks at 1, 2 or 5 times a power of ten across each axis, a grid line at each
+    t = js(b, """(() => { const g = tiptapLive.scopeGeom, cv = document.getElementById('scope');
+      const d = cv.getContext('2d').getImageData(0, 0, cv.width, cv.height).data, W = cv.width;
+      const X = (x) => g.g.left + (x - g.x0) / (g.x1 - g.x0) * g.g.pw;
+      const p = g.panels[0], Y = (v) => p.y0 + g.g.ph - (v - p.lo) / (p.hi - p.lo) * g.g.ph;
+      const grey = (i) => d[i] === 227 && d[i + 1] === 227 && d[i + 2] === 227;
+      // along each grid line inside the first panel, the share of its pixels in the grid's grey
+      const col = g.xticks.map((x) => { let n = 0, k = 0; const c = Math.round(X(x));
+        for (let y = Math.ceil(p.y0) + 2; y < p.y0 + g.g.ph - 2; y++, k++) n += grey(4 * (y * W + c)); return n / k; });
+      const row = p.yticks.map((v) => { let n = 0, k = 0; const r = Math.round(Y(v));
+        for (let x = Math.ceil(g.g.left) + 2; x < g.g.left + g.g.pw - 2; x++, k++) n += grey(4 * (r * W + x)); return n / k; });
+      return {x: g.xticks, xstep: g.xstep, y: p.yticks, ystep: p.ystep, x0: g.x0, x1: g.x1, lo: p.lo, hi: p.hi,
+              col, row, panels: g.panels.map((q) => q.yticks.length)}; })()""")
+    nice = lambda step: any(abs(step / (m * 10 ** round(__import__("math").log10(step / m))) - 1) < 1e-9 for m in (1, 2, 5))
+    assert len(t["x"]) >= 3 and nice(t["xstep"]) and t["x0"] <= t["x"][0] and t["x"][-1] <= t["x1"], t
+    assert all(abs(b_ - a_ - t["xstep"]) < 1e-9 * t["xstep"] for a_, b_ in zip(t["x"], t["x"][1:])), t
+    assert len(t["y"]) >= 2 and nice(t["ystep"]) and t["lo"] <= t["y"][0] and t["y"][-1] <= t["hi"], t
+    assert min(t["panels"]) >= 2, t["panels"]
+    # (a line on the panel's border, or under the grating's walls drawn on it, is covered)
+    lines = sorted(t["col"] + t["row"])
+    assert lines[len(lines) // 2] > 0.8 and sum(v > 0.3 for v in t["row"]) >= 2, (t["col"], t["row"])
+    print("ok scope ticks: x every %g nm (%d), z every %g nm (%d), %s ticks on the panels; the median grid "
+          "line %.0f %% grey" % (t["xstep"], len(t["x"]), t["ystep"], len(t["y"]), t["panels"],
+                                 100 * lines[len(lines) // 2]))
+
     # hold: new scopes come, the one shown stays
     b.eval("document.getElementById('hold').click()")
     line, n = b.eval("tiptapLive.scopeShown.line"), b.eval("tiptapLive.scopes")
@@ -377,6 +449,11 @@ def ring(b):
              "an early line of the second pass")
     b.eval("tiptapSet('feedback.integral_gain', '30000')")
     wait_for(b, "tiptapLive.status.oscillating", "the ring at 30 kHz")
+    # the warning names the line it judged, and a ring of 100 nm and more is in plain view
+    w = " ".join(b.eval("document.getElementById('warning').textContent").split())
+    jl = b.eval("tiptapLive.status.judged_line")
+    assert ("on line %d:" % jl) in w and "in plain view" in w and "hide it" not in w, w
+    print("ok the warning at 30 kHz: %s" % w[:160])
     b.eval("tiptapSet('feedback.integral_gain', '1000')")
     wait_for(b, "(() => { const r = tiptapLive.images.height_trace, s = tiptapLive.shown.height_trace; "
                 "return Math.max(...Array.from(r).filter(isFinite)) > 100e-9 && s.hi - s.lo < 40e-9; })()",
@@ -399,6 +476,25 @@ def ring(b):
     time.sleep(0.3)
     shot(b, shots, "live-images.png")
     choose(b, "#range-height-retrace", "lines")
+
+
+def lag(b):
+    """At ki = 100 Hz the loop lags (z strays from the surface): the loop box says so,
+    naming the judged line, never "steady"."""
+    b.eval("tiptapSet('feedback.integral_gain', '100')")
+    wait_for(b, "tiptapLive.lastReply.ok && tiptapLive.controls.find(c => c.name === "
+                "'feedback.integral_gain').value === '100'", "100 Hz accepted")
+    new_scope(b, "a line at 100 Hz")
+    wait_for(b, "tiptapLive.status.lagging && tiptapLive.status.judged_line >= tiptapLive.status.first_line_as_set",
+             "a lagging line judged at 100 Hz")
+    g = b.eval("document.getElementById('goodloop').textContent")
+    st = js(b, "tiptapLive.status")
+    assert g.startswith("The loop lags (line %d)" % st["judged_line"]) and "steady" not in g, g
+    assert st["track_rms"] > 0.35 * st["surface_range"], st
+    print("ok at 100 Hz: %s" % g)
+    b.eval("tiptapSet('feedback.integral_gain', '1000')")
+    wait_for(b, "tiptapLive.lastReply.ok && tiptapLive.controls.find(c => c.name === "
+                "'feedback.integral_gain').value === '1000'", "1 kHz again")
 
 
 def screenshots(b):
@@ -434,6 +530,31 @@ def screenshots(b):
     b.eval("document.getElementById('zoomreset').click()")
 
 
+def previews(b):
+    """A change's next line comes first from the averaged preview: its row is marked as one
+    and its caption says so; a scan on the averaged tier is no preview, and no caption says
+    it is (the issue's "every averaged line captioned as a preview")."""
+    n = b.eval("tiptapLive.previewRows")
+    b.eval("tiptapSet('feedback.integral_gain', '1100')")
+    wait_for(b, "tiptapLive.previewRows > %d" % n, "a preview row after a change")
+    print("ok a change's first line came from the averaged preview, marked as one (%d preview rows)"
+          % b.eval("tiptapLive.previewRows"))
+    frame = b.eval("tiptapLive.frame.frame")
+    b.eval("tiptapSet('solver.tier', 'averaged')")
+    wait_for(b, "tiptapLive.frame.frame > %d && tiptapLive.status.tier === 'averaged' && "
+                "tiptapLive.status.lines_done >= 3" % frame, "three lines on the averaged tier")
+    caps = b.eval("[...document.querySelectorAll('[id^=cap-]')].map(e => e.textContent)")
+    tiers = b.eval("tiptapLive.tiers.filter(t => t)")
+    assert caps and not any("preview" in c for c in caps), caps
+    assert tiers and all(t == "averaged" for t in tiers), tiers
+    print("ok on the averaged tier %d lines, none a preview; captions: %s" % (len(tiers), caps[0]))
+    frame = b.eval("tiptapLive.frame.frame")
+    b.eval("tiptapSet('solver.tier', 'envelope')")
+    b.eval("tiptapSet('feedback.integral_gain', '1000')")
+    wait_for(b, "tiptapLive.frame.frame > %d && tiptapLive.status.tier === 'envelope'" % frame,
+             "the envelope tier again")
+
+
 def slow_axis(b):
     """The grating scanned along y: each line runs along a ridge or a trench, flat, and
     the default range still spans the ridges' height."""
@@ -455,10 +576,13 @@ def slow_axis(b):
 def main(b):
     readable(b)
     fields(b, url)
+    hidden_tab(b, url)
     images(b)
     scope(b)
     ring(b)
+    lag(b)
     screenshots(b)
+    previews(b)
     slow_axis(b)
 
 

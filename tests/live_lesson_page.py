@@ -4,7 +4,7 @@ title and instructions shown; the hidden controls not drawn, the locked ones not
 editable; the loop box saying "not judged yet" at the first status (judged 0) and
 "steady" or "lags" only once a line was judged, naming it; amplitude and peak-force
 images beside the others; pause stops the lines (the button then reads "resume"), step
-runs one line, resume runs on; at P = 5 the warning suggests a P with the I. With a shots folder, docs/live-lesson.png.
+runs one line, resume runs on, restart starts a new frame at line 0; at P = 5 the warning suggests a P with the I. With a shots folder, docs/live-lesson.png.
 
 usage: live_lesson_page.py CHROMIUM URL SHOTS_DIR"""
 import sys
@@ -67,6 +67,17 @@ def main(b):
     wait_for(b, "!tiptapLive.status.paused && tiptapLive.status.line != %d" % ((line + 1) % lines),
              "lines again after resume")
     print("ok resumed")
+    # restart: a new frame from line 0, engaged afresh (the button sends the protocol's restart)
+    frame0 = b.eval("tiptapLive.status.frame")
+    b.eval("document.getElementById('restart').click()")
+    wait_for(b, "tiptapLive.frame.frame > %d && tiptapLive.status.frame > %d && tiptapLive.status.passes == 0 "
+                "&& tiptapLive.status.lines_done < 3" % (frame0, frame0), "a new frame after restart")
+    blank = b.eval("(() => { const r = tiptapLive.images.height_trace, n = tiptapLive.frame.pixels; "
+                   "let k = 0; for (let l = 0; l < tiptapLive.frame.lines; l++) k += isFinite(r[l * n]) ? 0 : 1; "
+                   "return k; })()")
+    assert blank >= b.eval("tiptapLive.frame.lines") - 3, "the new frame holds %d blank lines" % blank
+    print("ok restart: frame %d to %d, from line 0 (%d of %d lines blank)"
+          % (frame0, b.eval("tiptapLive.status.frame"), blank, b.eval("tiptapLive.frame.lines")))
     # P as the cause: at P = 5 the loop rings and the warning offers a P with the I
     b.eval("tiptapSet('feedback.proportional_gain', '5')")
     wait_for(b, "tiptapLive.status.oscillating && !document.getElementById('usepgain').hidden",

@@ -65,7 +65,7 @@ function drawScope() {
   if (state.zoom) { x0 = Math.max(x0, state.zoom[0]); x1 = Math.min(x1, state.zoom[1]); if (!(x1 > x0)) { state.zoom = null; return drawScope(); } }
   const X = (x) => g.left + (x - x0) / (x1 - x0) * g.pw;
   const xt = fitTicks(x0, x1, g.pw);
-  const geo = { x0, x1, g, panels: [] };
+  const geo = { x0, x1, g, panels: [], xticks: xt.at, xstep: xt.step };
   panels.forEach((p, k) => {
     const y0 = g.top + k * (g.ph + g.gap);
     // the y range of what is in view, the reference's too
@@ -80,11 +80,11 @@ function drawScope() {
     if (!(hi > lo)) { hi = (isFinite(hi) ? hi : 0) + 1; lo = hi - 2; }
     const pad = 0.06 * (hi - lo); lo -= pad; hi += pad;
     const Y = (v) => y0 + g.ph - (v - lo) / (hi - lo) * g.ph;
-    geo.panels.push({ y0, lo, hi });
     // grid and ticks
     ctx.strokeStyle = "#e3e3e3"; ctx.lineWidth = 1; ctx.fillStyle = "#222";
     ctx.textAlign = "right"; ctx.textBaseline = "middle";
     const yt = ticks(lo, hi, Math.max(3, Math.floor(g.ph / 24)));
+    geo.panels.push({ y0, lo, hi, yticks: yt.at, ystep: yt.step });
     for (const t of yt.at) {
       const y = Math.round(Y(t)) + 0.5;
       ctx.beginPath(); ctx.moveTo(g.left, y); ctx.lineTo(g.left + g.pw, y); ctx.stroke();

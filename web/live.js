@@ -5,7 +5,7 @@
 "use strict";
 
 const state = {
-  frame: null, images: {}, tiers: [], scope: null, status: null, controls: [],
+  frame: null, images: {}, tiers: [], tierTable: [], previewRows: 0, scope: null, status: null, controls: [],
   scopes: 0, rows: 0, replies: 0, lastReply: null, ws: null, sent: 0,
   // the display: what each image shows (per image, kept across frames), the scope shown
   // (the newest, or the one held), the reference, the zoom and the cursor
@@ -25,6 +25,11 @@ function instrumentNumber() {
 function exportPath(name) {
   return "/export/" + (state.instrument ? state.instrument + "/" : "") + name;
 }
+// the Page Visibility API: a tab put behind another (or minimised, where the browser
+// says so) idles its instrument; shown again, it runs on
+document.addEventListener("visibilitychange", () => {
+  if (state.ws && state.ws.readyState === 1) state.ws.send(document.hidden ? "hidden" : "visible");
+});
 function connect() {
   const n = instrumentNumber();
   const ws = new WebSocket("ws://" + location.host + "/" + (n ? n : ""), "tiptap-live");
@@ -33,6 +38,9 @@ function connect() {
     $("conn").textContent = "connected"; $("conn").className = "ok";
     // a new connection gets the controls afresh; nothing sent before waits for a reply
     for (const el of document.querySelectorAll("#controls [data-name]")) el.dataset.pending = "";
+    // a hidden tab does not look: its instrument idles until it is shown (the server
+    // counts a new connection as looking)
+    if (document.hidden) ws.send("hidden");
   };
   ws.onclose = () => {
     $("conn").textContent = "disconnected: retrying"; $("conn").className = "bad";
@@ -57,15 +65,28 @@ function send(text) {
 // A sent value waits for the server's reply; accepted, the controls message brings the
 // value in force (another page's changes come the same way); refused, every field that
 // holds no unsent text returns to the value in force.
-const choices = {
-  "noise": ["on", "off"], "scan.fast_axis": ["x", "y"],
-  "solver.tier": ["averaged", "envelope", "every"],
+// the tier menu is the server's table of tiers (m.tiers: name and hint, the solver's order)
+const choices = { "noise": ["on", "off"], "scan.fast_axis": ["x", "y"] };
+// an option's hint: its tooltip, and the line under its menu for the one in force (the
+// closed menu shows the name only: the column is too narrow for the hint)
+const optionHint = {};
+const hints = {};
+// a line under a field that says what its value in force means (the scene's 80 % setpoint
+// is a number of nm on the page)
+const derivedHint = {
+  "feedback.setpoint": () => {
+    const sp = parseFloat(inForce("feedback.setpoint")), a0 = parseFloat(inForce("cantilever.free_amplitude"));
+    return sp > 0 && a0 > 0 ? (100 * sp / a0).toPrecision(3) + " % of the free amplitude (a value in % sets it so)" : "";
+  },
 };
-const optionText = { "solver.tier": { every: "every (far slower than real time)" } };
-const hints = {
-  "solver.tier": "averaged: the slow flow of amplitude and phase; envelope: cycles integrated " +
-    "only where needed; every: every drive cycle integrated, the reference, far slower than real time",
-};
+function tierTable(tiers) {
+  if (!tiers || !tiers.length) return;
+  state.tierTable = tiers;
+  choices["solver.tier"] = tiers.map((t) => t.name);
+  optionHint["solver.tier"] = {};
+  for (const t of tiers) optionHint["solver.tier"][t.name] = t.hint;
+  hints["solver.tier"] = tiers.map((t) => t.name + ": " + t.hint).join("; ");
+}
 // units the server leaves blank: shown, never sent (a bare number is what the key takes)
 const shownUnit = { "feedback.proportional_gain": "m/m" };
 function inForce(name) {
@@ -81,6 +102,7 @@ function restore(el) {
 }
 function controls(m) {
   state.controls = m.controls;
+  tierTable(m.tiers);
   if (m.instrument && m.instrument !== state.instrument) {
     state.instrument = m.instrument;
     try { sessionStorage.setItem("tiptap-instrument", String(m.instrument)); } catch (e) { /* none kept */ }
@@ -106,7 +128,8 @@ function controls(m) {
       if (opts) for (const o of opts) {
         const op = document.createElement("option");
         op.value = o;
-        op.textContent = (optionText[c.name] || {})[o] || o;
+        op.textContent = o;
+        op.title = (optionHint[c.name] || {})[o] || "";
         el.appendChild(op);
       }
       else { el.type = "text"; el.inputMode = "decimal"; }
@@ -118,8 +141,14 @@ function controls(m) {
       const u = document.createElement("span");
       u.className = "unit"; u.textContent = c.unit || shownUnit[c.name] || "";
       lab.append(span, el, u);
+      if (optionHint[c.name] || derivedHint[c.name]) {
+        const h = document.createElement("span");
+        h.className = "hint"; h.id = id + "-hint";
+        lab.append(h);
+      }
       form.appendChild(lab);
     }
+    if (optionHint[c.name]) $(id + "-hint").textContent = c.value + ": " + (optionHint[c.name][c.value] || "");
     // the lesson's hidden controls are not drawn; its locked ones shown, not editable
     // (the server refuses a change to them too)
     el.parentElement.hidden = !!c.hidden;
@@ -131,6 +160,11 @@ function controls(m) {
     el.classList.toggle("stale", !!editing && c.value !== el.dataset.was);
     el.title = el.classList.contains("stale") ? "in force now: " + c.value + " (Escape puts it back)" : "";
     if (!editing) el.dataset.was = c.value;
+  }
+  // once every value in force is known
+  for (const name in derivedHint) {
+    const h = $("c-" + name.replace(/\./g, "-") + "-hint");
+    if (h) h.textContent = derivedHint[name]();
   }
   const ls = m.lesson;
   $("lesson").hidden = !ls;
@@ -196,7 +230,8 @@ function status(m) {
       " rms over a relief of " + fmt(m.surface_range * 1e9, "nm") + "; raise the I gain." :
       "The loop is steady" + jl + ".";
   if (state.firstLoopText == null) state.firstLoopText = g.textContent; // for the browser test
-  $("runstate").textContent = m.idle ? "waiting for a page" : m.paused ? "paused at line " + m.line : "";
+  runWarnings(m);
+  $("runstate").textContent = m.idle ? (document.hidden ? "idle: this tab is hidden" : "waiting for a page") : m.paused ? "paused at line " + m.line : "";
   const pb = $("pause");
   pb.textContent = m.paused ? "resume" : "pause";
   pb.setAttribute("aria-pressed", m.paused ? "true" : "false");
@@ -241,6 +276,20 @@ function status(m) {
   // auto-tune counts the lines on the scan's own tier (the oscillation check's), not previews
   if (loop.lastScopes !== state.scopes && state.scope && state.scope.tier === m.tier) {
     loop.lastScopes = state.scopes; tuneLine(m);
+  }
+}
+// the run's warnings, as tiptap scan prints them of the same scene (the run layer's):
+// an earlier frame's marked as such
+function runWarnings(m) {
+  const ws = m.warnings || [];
+  $("runwarnings").hidden = !ws.length;
+  const ul = $("runwarninglist");
+  ul.textContent = "";
+  for (const w of ws) {
+    const li = document.createElement("li");
+    li.textContent = (w.frame !== m.frame ? "(frame " + w.frame + ") " : "") + w.text;
+    li.dataset.category = w.category;
+    ul.appendChild(li);
   }
 }
 function fmt(x, unit) {
@@ -406,6 +455,7 @@ function row(m) {
   }
   // only the preview's rows are captioned as such (a scan on the averaged tier is not one)
   state.tiers[m.line] = m.preview ? "preview" : m.tier;
+  if (m.preview) state.previewRows++;
   state.lastLine = m.line;
   drawImages(m.line);
 }
@@ -496,7 +546,7 @@ function drawImages(line) {
     }
     const ln = line != null ? line : state.lastLine;
     $("cap-" + id).textContent = c.name + " (" + dir + "), " + u.unit + (v.flatten !== "none" ? ", flattened" : "") +
-      (ln != null && state.tiers[ln] === "averaged" ? "; line " + ln + " from the averaged preview" : "");
+      (ln != null && state.tiers[ln] === "preview" ? "; line " + ln + " from the averaged preview" : "");
   }
 }
 // The colour bar under an image: the map from lo to hi, ticks in the display unit.

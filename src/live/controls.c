@@ -591,11 +591,6 @@ int tt_live_controls_scene(const tt_live_controls *c, tt_scene **scene, tt_scan_
     return rc;
 }
 
-static const char *tier_name(tt_tier t)
-{
-    return t == TT_TIER_EVERY ? "every" : t == TT_TIER_ENVELOPE ? "envelope" : "averaged";
-}
-
 const char *tt_live_controls_value(const tt_live_controls *c, size_t i, char *buf, size_t len)
 {
     const tt_scan_params *p = &c->params;
@@ -627,7 +622,7 @@ const char *tt_live_controls_value(const tt_live_controls *c, size_t i, char *bu
     else if (strcmp(table[i].name, "cantilever.free_amplitude") == 0)
         snprintf(buf, len, "%.6g", p->cantilever.A0 * 1e9);
     else if (strcmp(table[i].name, "solver.tier") == 0)
-        snprintf(buf, len, "%s", tier_name(p->solver.tier));
+        snprintf(buf, len, "%s", tt_tier_name(p->solver.tier));
     else
         snprintf(buf, len, "%s", c->given[i] ? c->given[i] : "");
     return buf;

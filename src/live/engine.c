@@ -20,6 +20,7 @@
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 #include "tiptap/util/clock.h"
+#include "tiptap/util/warning.h"
 
 
 static int channel_by_name(const char *name)
@@ -49,7 +50,7 @@ static void frame_free(tt_live_engine *e)
 
 static void fresh_free(fresh *f)
 {
-    tt_scan_free(f->scan);
+    tt_scan_free(f->run.scan);
     for (int c = 0; c < TT_LIVE_NCH; c++)
         for (int r = 0; r < 2; r++)
             free(f->rows[c][r]);
@@ -59,16 +60,17 @@ static void fresh_free(fresh *f)
     memset(f, 0, sizeof *f);
 }
 
-/* The scan of scene p and the page's empty images of it (the channels it records of
- * height, error, phase, amplitude and peak force). */
-static int fresh_alloc(fresh *f, const tt_scene *scene, const tt_scan_params *p)
+/* The scan of scene, made as tiptap scan makes it (tt_run_scan_begin: its checks and
+ * refusals), and the page's empty images of it (the channels it records of height,
+ * error, phase, amplitude and peak force). */
+static int fresh_alloc(fresh *f, const tt_scene *scene)
 {
     static const char *const names[TT_LIVE_NCH] = {"height", "error", "phase", "amplitude", "peak_force"};
     memset(f, 0, sizeof *f);
-    int rc = tt_scene_locate(scene, tt_scan_alloc(&f->scan, p));
+    int rc = tt_run_scan_begin(scene, &f->run);
     if (rc)
         return rc;
-    const tt_scan *s = f->scan;
+    const tt_scan *s = f->run.scan;
     long px = tt_scan_fast_y(s) ? tt_scan_yres(s) : tt_scan_xres(s), nl = tt_scan_lines(s);
     size_t n = (size_t)px * (size_t)nl;
     f->row_version = calloc((size_t)nl, sizeof *f->row_version);
@@ -96,7 +98,7 @@ static int fresh_alloc(fresh *f, const tt_scene *scene, const tt_scan_params *p)
 static void frame_publish(tt_live_engine *e, fresh *f)
 {
     static const char *const names[TT_LIVE_NCH] = {"height", "error", "phase", "amplitude", "peak_force"};
-    const tt_scan *s = e->scan;
+    const tt_scan *s = e->run.scan;
     pthread_mutex_lock(&e->mu);
     frame_free(e);
     e->v.frame++;
@@ -131,7 +133,7 @@ static void frame_publish(tt_live_engine *e, fresh *f)
     pthread_mutex_unlock(&e->mu);
     free(e->line_buf);
     e->line_buf = f->line_buf;
-    f->scan = NULL; /* the engine's now */
+    f->run.scan = NULL; /* the engine's now */
     memset(f, 0, sizeof *f);
 }
 
@@ -183,11 +185,14 @@ static void take_change(tt_live_engine *e, tt_scene *scene, tt_scan_params *p, i
 {
     /* the console says which of its knobs need a new scan (controls.h); a setter that
      * refuses leaves the running scan half set: replaced too */
-    int use_fresh = restart || !e->scan || apply_live(e->scan, p);
+    int use_fresh = restart || !e->run.scan || apply_live(e->run.scan, p);
     if (use_fresh) {
-        tt_scan_free(e->scan);
-        e->scan = f->scan;
-        f->scan = NULL;
+        /* the old scan's lines said what tiptap scan says of them, before it goes */
+        if (e->run.scan)
+            tt_run_scan_end(&e->run, NULL, NULL);
+        tt_scan_free(e->run.scan);
+        e->run = f->run;
+        f->run.scan = NULL;
     }
     tt_scene_free(e->scene);
     if (e->scene)
@@ -222,7 +227,7 @@ static int run_line(tt_live_engine *e, long line, double changed_at)
     pthread_mutex_unlock(&e->mu);
     e->wake(e->user);
     double t0 = tt_clock(TT_CLOCK_WALL), c0 = tt_clock(TT_CLOCK_THREAD);
-    int rc = tt_scan_step(e->scan, line, e->scope);
+    int rc = tt_run_scan_step(&e->run, e->scene, line, e->scope);
     double t1 = tt_clock(TT_CLOCK_WALL), c1 = tt_clock(TT_CLOCK_THREAD);
     pthread_mutex_lock(&e->mu);
     e->running = e->v.running = 0;
@@ -231,7 +236,7 @@ static int run_line(tt_live_engine *e, long line, double changed_at)
         pthread_mutex_unlock(&e->mu);
         return rc;
     }
-    tt_live_publish_row(e, e->scan, e->line_buf, line, (int)e->params.solver.tier);
+    tt_live_publish_row(e, e->run.scan, e->line_buf, line, (int)e->params.solver.tier);
     tt_live_publish_scope(e, e->scope, line, (int)e->params.solver.tier);
     tt_live_judge_loop(e);
     if (changed_at > 0)
@@ -253,8 +258,11 @@ static int run_line(tt_live_engine *e, long line, double changed_at)
         e->v.status_version = ++e->v.version;
     }
     pthread_mutex_unlock(&e->mu);
-    if (wrapped)
-        tt_scan_disengage(e->scan);
+    if (wrapped) {
+        /* a pass is a scan: its result warnings, as tiptap scan gives them */
+        tt_run_scan_end(&e->run, NULL, NULL);
+        tt_scan_disengage(e->run.scan);
+    }
     e->wake(e->user);
     return TT_OK;
 }
@@ -281,12 +289,12 @@ static void do_export(tt_live_engine *e)
     pthread_mutex_lock(&e->mu);
     unsigned long want = e->export_asked;
     pthread_mutex_unlock(&e->mu);
-    if (want == e->export_done || !e->write || !e->scan)
+    if (want == e->export_done || !e->write || !e->run.scan)
         return;
     char dir[4096], old[4096];
     const char *tmp = getenv("TMPDIR");
     snprintf(dir, sizeof dir, "%s/tiptap-live-XXXXXX", tmp && *tmp ? tmp : "/tmp");
-    int rc = mkdtemp(dir) ? e->write(e->write_user, e->scan, e->scene, dir)
+    int rc = mkdtemp(dir) ? e->write(e->write_user, e->run.scan, e->scene, dir)
                           : tt_error(TT_EIO, "cannot make a folder for the export: %s", strerror(errno));
     pthread_mutex_lock(&e->mu);
     snprintf(old, sizeof old, "%s", e->export_dir);
@@ -322,6 +330,9 @@ static void *engine_main(void *arg)
 {
     tt_live_engine *e = arg;
     double changed_at = 0;
+    /* the run layer's warnings go to the page; none is raised while this thread holds mu,
+     * which the handler takes */
+    tt_warning_push(tt_live_publish_warning, e);
     /* a change that abandons the line under way interrupts it as Ctrl-C would */
     tt_cancel_watch(&e->abandon);
     for (;;) {
@@ -351,7 +362,7 @@ static void *engine_main(void *arg)
             take_change(e, scene, &p, restart, &f);
             changed_at = at;
         }
-        if (!e->scan || !e->line_buf) {
+        if (!e->run.scan || !e->line_buf) {
             pace(e, tt_clock(TT_CLOCK_WALL) + 1);
             continue;
         }
@@ -373,7 +384,7 @@ static void *engine_main(void *arg)
         int rc = run_line(e, e->v.line, changed_at);
         if (rc == TT_EINTR && __atomic_load_n(&e->abandon, __ATOMIC_RELAXED)) {
             /* abandoned for a change: that line again, engaged afresh, at once */
-            tt_scan_disengage(e->scan);
+            tt_scan_disengage(e->run.scan);
             continue;
         }
         if (rc == TT_EINTR)
@@ -406,7 +417,7 @@ static void preview_line(tt_live_engine *e, unsigned long change, double at)
         return;
     pthread_mutex_lock(&e->mu);
     if (e->v.frame == frame && e->row_version[line] < change) {
-        tt_live_publish_row(e, e->pscan, e->pline, line, TT_TIER_AVERAGED);
+        tt_live_publish_row(e, e->pscan, e->pline, line, TT_TIER_AVERAGED | TT_LIVE_PREVIEW);
         tt_live_publish_scope(e, e->pscope, line, TT_TIER_AVERAGED);
         e->v.preview_ms = 1e3 * (tt_clock(TT_CLOCK_WALL) - at);
     }
@@ -484,7 +495,7 @@ int tt_live_engine_alloc(tt_live_engine **out, tt_scene *scene, tt_scan_params *
         e->pwant = 1;
     }
     fresh f;
-    if (!rc && !(rc = fresh_alloc(&f, scene, p))) {
+    if (!rc && !(rc = fresh_alloc(&f, scene))) {
         take_change(e, scene, p, 1, &f);
     } else {
         tt_scene_free(scene);
@@ -542,7 +553,7 @@ void tt_live_engine_free(tt_live_engine *e)
         for (int k = 0; k < TT_LIVE_NS; k++)
             free(e->series[r][k]);
     tt_scan_scope_free(e->scope);
-    tt_scan_free(e->scan);
+    tt_scan_free(e->run.scan);
     if (e->scene) {
         tt_scene_free(e->scene);
         tt_config_scan_free(&e->params);
@@ -556,7 +567,7 @@ void tt_live_engine_free(tt_live_engine *e)
 int tt_live_engine_submit(tt_live_engine *e, tt_scene *scene, tt_scan_params *p, int restart)
 {
     fresh f, old = {0};
-    int rc = fresh_alloc(&f, scene, p);
+    int rc = fresh_alloc(&f, scene);
     if (rc) {
         tt_scene_free(scene);
         tt_config_scan_free(p);

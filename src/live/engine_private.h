@@ -14,12 +14,13 @@
 #include "tiptap/instrument/scan.h"
 #include "tiptap/instrument/scan_scope.h"
 #include "tiptap/live/engine.h"
+#include "tiptap/run/run.h"
 
 /* What a change needs made before the engine takes it: the scan of a new frame and the
  * page's images of it, made on the submitting thread, so that taking a change cannot
  * fail (a running scan that takes it between lines frees them unused). */
 typedef struct {
-    tt_scan *scan;
+    tt_run_scan_lines run; /* tiptap scan's scan, stepped a line at a time */
     double *rows[TT_LIVE_NCH][2];
     unsigned long *row_version;
     unsigned char *row_tier;
@@ -49,7 +50,7 @@ struct tt_live_engine {
     /* what runs: owned by the thread */
     tt_scene *scene;
     tt_scan_params params;
-    tt_scan *scan;
+    tt_run_scan_lines run; /* run.scan: the scan running */
     tt_scan_scope *scope;
     double *line_buf;
     int running; /* the thread is inside a line (under mu) */
@@ -90,5 +91,8 @@ void tt_live_publish_row(tt_live_engine *e, const tt_scan *s, double *buf, long 
 /* The oscillation warning, the gain suggestion and the lag from the line just run on the
  * scan's own tier (under mu). */
 void tt_live_judge_loop(tt_live_engine *e);
+/* The engine thread's warning handler (util/warning.h; data: the engine): the warning
+ * kept in the view for the page, and printed on stderr. */
+void tt_live_publish_warning(const char *category, const char *message, void *data);
 
 #endif

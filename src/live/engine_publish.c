@@ -1,6 +1,7 @@
 /* Publishing a line of the live console's engine (src/live/engine_private.h): its pixels,
- * its scope record decimated for a screen, and the loop's judgement from it. */
+ * its scope record decimated for a screen, the loop's judgement from it, and the run's warnings. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -74,7 +75,7 @@ void tt_live_judge_loop(tt_live_engine *e)
 {
     tt_loop loop;
     tt_oscillation o;
-    tt_scan_loop(e->scan, &loop);
+    tt_scan_loop(e->run.scan, &loop);
     if (tt_scan_oscillation(e->scope, &loop, &o) != TT_OK)
         return;
     e->v.oscillating = o.rings;
@@ -132,4 +133,34 @@ void tt_live_judge_loop(tt_live_engine *e)
     e->v.height_range = hi >= lo ? hi - lo : NAN;
     e->v.judged_line = e->v.line;
     e->v.judged++;
+}
+
+/* A warning raised on the engine's thread (the run layer's, as tiptap scan raises them):
+ * kept for the page, a repeat moved to the end with its new frame, and printed on the
+ * server's stderr as the program prints every warning. */
+void tt_live_publish_warning(const char *category, const char *message, void *data)
+{
+    tt_live_engine *e = data;
+    fprintf(stderr, "tiptap: warning: %s\n", message);
+    pthread_mutex_lock(&e->mu);
+    tt_live_view *v = &e->v;
+    int i = 0;
+    while (i < v->nwarnings && strcmp(v->warning[i], message) != 0)
+        i++;
+    if (i == TT_LIVE_WARNINGS)
+        i = 0; /* full: the oldest goes */
+    if (i < v->nwarnings) {
+        v->nwarnings--;
+        for (int k = i; k < v->nwarnings; k++) {
+            memcpy(v->warning[k], v->warning[k + 1], sizeof v->warning[k]);
+            memcpy(v->warning_category[k], v->warning_category[k + 1], sizeof v->warning_category[k]);
+            v->warning_frame[k] = v->warning_frame[k + 1];
+        }
+    }
+    i = v->nwarnings++;
+    tt_live_text(v->warning[i], sizeof v->warning[i], message);
+    tt_live_text(v->warning_category[i], sizeof v->warning_category[i], category);
+    v->warning_frame[i] = v->frame;
+    v->status_version = ++v->version;
+    pthread_mutex_unlock(&e->mu);
 }

@@ -9,6 +9,8 @@
 #include <string.h>
 #include <strings.h>
 
+#include "tiptap/solver/integrator.h"
+
 void tt_live_buf_reset(tt_live_buf *b)
 {
     b->len = 0;
@@ -192,9 +194,29 @@ static void array(tt_live_buf *b, const double *x, size_t n)
     tt_live_buf_printf(b, "]");
 }
 
-static const char *tier_name(int t)
+/* What each tier means on the console, for its menu (the names are the solver's table,
+ * tt_tier_name). */
+static const char *tier_hint(tt_tier t)
 {
-    return t == 0 ? "every" : t == 1 ? "envelope" : "averaged";
+    switch (t) {
+    case TT_TIER_EVERY: return "integrates every cycle: the reference, far slower than real time";
+    case TT_TIER_ENVELOPE: return "integrates cycles only where the loop moves";
+    case TT_TIER_AVERAGED: return "the slow flow of amplitude and phase: fastest, no noise";
+    default: return "";
+    }
+}
+
+static void tiers(tt_live_buf *b)
+{
+    tt_live_buf_printf(b, ",\"tiers\":[");
+    for (int i = 0; i < tt_tier_count(); i++) {
+        tt_live_buf_printf(b, "%s{\"name\":", i ? "," : "");
+        str(b, tt_tier_name((tt_tier)i));
+        tt_live_buf_printf(b, ",\"hint\":");
+        str(b, tier_hint((tt_tier)i));
+        tt_live_buf_printf(b, "}");
+    }
+    tt_live_buf_printf(b, "]");
 }
 
 void tt_live_msg_controls(tt_live_buf *b, const tt_live_controls *c, int number, int count)
@@ -226,6 +248,7 @@ void tt_live_msg_controls(tt_live_buf *b, const tt_live_controls *c, int number,
     int si = tt_live_controls_sample_index(c);
     tt_live_buf_printf(b, "],\"sample\":");
     str(b, si >= 0 ? tt_live_controls_sample(c, (size_t)si) : "");
+    tiers(b);
     const tt_live_lesson *l = tt_live_controls_lesson(c);
     tt_live_buf_printf(b, ",\"lesson\":");
     if (l) {
@@ -272,7 +295,7 @@ void tt_live_msg_status(tt_live_buf *b, const tt_live_view *v, int clients)
                           "\"passes\":%ld,\"first_line_as_set\":%ld,\"tier\":\"%s\",\"clients\":%d,"
                           "\"oscillating\":%s,\"reproducible\":%s,\"realtime\":",
                        v->frame, v->line, v->lines_done, v->passes, v->first_line_as_set,
-                       tier_name(v->tier), clients, v->oscillating ? "true" : "false",
+                       tt_tier_name((tt_tier)v->tier), clients, v->oscillating ? "true" : "false",
                        v->reproducible ? "true" : "false");
     num(b, v->realtime);
     tt_live_buf_printf(b, ",\"realtime_cpu\":");
@@ -299,6 +322,15 @@ void tt_live_msg_status(tt_live_buf *b, const tt_live_view *v, int clients)
         tt_live_buf_printf(b, "%ld", v->judged_line);
     else
         tt_live_buf_printf(b, "null");
+    tt_live_buf_printf(b, ",\"warnings\":[");
+    for (int i = 0; i < v->nwarnings; i++) {
+        tt_live_buf_printf(b, "%s{\"category\":", i ? "," : "");
+        str(b, v->warning_category[i]);
+        tt_live_buf_printf(b, ",\"frame\":%ld,\"text\":", v->warning_frame[i]);
+        str(b, v->warning[i]);
+        tt_live_buf_printf(b, "}");
+    }
+    tt_live_buf_printf(b, "]");
     tt_live_buf_printf(b, ",\"error_rms\":");
     num(b, v->error_rms);
     tt_live_buf_printf(b, ",\"setpoint\":");
@@ -318,7 +350,7 @@ void tt_live_msg_row(tt_live_buf *b, const tt_live_view *v, long line)
 {
     tt_live_buf_printf(b, "{\"type\":\"row\",\"frame\":%ld,\"line\":%ld,\"tier\":\"%s\",\"preview\":%s,"
                           "\"data\":[",
-                       v->frame, line, tier_name(v->row_tier[line] & ~TT_LIVE_PREVIEW),
+                       v->frame, line, tt_tier_name((tt_tier)(v->row_tier[line] & ~TT_LIVE_PREVIEW)),
                        v->row_tier[line] & TT_LIVE_PREVIEW ? "true" : "false");
     for (int c = 0, k = 0; c < TT_LIVE_NCH; c++)
         for (int r = 0; r < 2; r++) {
@@ -335,7 +367,7 @@ void tt_live_msg_scope(tt_live_buf *b, const tt_live_view *v)
     static const char *const names[TT_LIVE_NS] = {"position", "z", "error", "amplitude", "phase",
                                                   "surface"};
     tt_live_buf_printf(b, "{\"type\":\"scope\",\"frame\":%ld,\"line\":%ld,\"tier\":\"%s\",\"rate\":",
-                       v->frame, v->scope_line, tier_name(v->scope_tier));
+                       v->frame, v->scope_line, tt_tier_name((tt_tier)v->scope_tier));
     num(b, v->scope_rate);
     for (int r = 0; r < 2; r++) {
         tt_live_buf_printf(b, ",\"%s\":{\"t0\":", r ? "retrace" : "trace");

@@ -198,8 +198,9 @@ static void attach(server *s, pss *p)
     p->inst = in;
     p->seen_controls = p->seen_frame = p->seen_rows = p->seen_scope = p->seen_status = 0;
     s->last = in;
-    /* a page looks: the engine runs (it waits, no CPU, while none does) */
-    tt_live_engine_watched(in->engine, 1);
+    /* a page looks (unless its tab is hidden): the engine runs (it waits, no CPU, while
+     * none does) */
+    tt_live_engine_watched(in->engine, !p->hidden);
     lws_callback_on_writable(p->wsi);
 }
 
@@ -250,6 +251,16 @@ static void ws_message(server *s, pss *p)
     size_t n = p->rxlen;
     while (n > 0 && (p->rx[n - 1] == '\n' || p->rx[n - 1] == '\r' || p->rx[n - 1] == ' '))
         n--;
+    /* the tab hidden or shown again: a hidden page idles its instrument as a closed one
+     * does (not answered: nothing to refuse, and no field waits on it) */
+    int hide = n == 6 && memcmp(p->rx, "hidden", 6) == 0, show = n == 7 && memcmp(p->rx, "visible", 7) == 0;
+    if (hide || show) {
+        p->hidden = hide;
+        if (p->inst)
+            tt_live_engine_watched(p->inst->engine, show);
+        wake_all(s);
+        return;
+    }
     instrument *in = p->inst;
     if (!in) {
         char why[200];

@@ -59,6 +59,7 @@ struct pss {
      * one it asked for (its path /N: a reload's; 0 none), and what it has seen */
     instrument *inst;
     int want;
+    int hidden; /* the page said its tab is hidden (the Page Visibility API): it does not look */
     unsigned long seen_controls, seen_frame, seen_rows, seen_scope, seen_status;
     int have_reply, reply_ok;
     unsigned dropped;

@@ -41,6 +41,8 @@ enum { TT_LIVE_PREVIEW = 0x10 };
 /* The scope's series on the page (a subset of the scan's record). */
 enum { TT_LIVE_S_POS, TT_LIVE_S_Z, TT_LIVE_S_ERROR, TT_LIVE_S_AMPLITUDE, TT_LIVE_S_PHASE,
        TT_LIVE_S_SURFACE, TT_LIVE_NS };
+/* The run's warnings the page is shown at most (the newest). */
+enum { TT_LIVE_WARNINGS = 4 };
 /* Points of a scope series on the page at most (min and max of each bucket). */
 enum { TT_LIVE_SCOPE_BUDGET = 1600 };
 
@@ -103,6 +105,12 @@ typedef struct {
     int running;           /* a line on the scan's own tier is under way */
     int idle;              /* no page looks: the scan waits */
     char note[512];        /* the engine's last message ("" none): a change it refused */
+    /* tiptap scan's warnings of the run (run/run.h: the inputs at a scan's first line,
+     * the results at a pass's end), the newest last, each once, with its frame */
+    int nwarnings;
+    char warning[TT_LIVE_WARNINGS][512];
+    char warning_category[TT_LIVE_WARNINGS][16];
+    long warning_frame[TT_LIVE_WARNINGS];
 } tt_live_view;
 
 typedef struct tt_live_engine tt_live_engine;

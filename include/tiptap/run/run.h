@@ -142,6 +142,25 @@ struct tt_run_scan_result {
 };
 int tt_run_scan(const tt_scene *s, const tt_run_scan_job *job, tt_run_scan_result *r);
 
+/* The scan a line at a time, for a caller that steps it on its own clock (tiptap live):
+ * tt_run_scan's scan, checks and warnings, with the lines run one by one. begin makes
+ * the scan (tt_run_scan_alloc, one thread: a refusal makes nothing) and raises no
+ * warning, so that it may run on another thread than the steps; the first step raises
+ * the input warnings of s (tt_run_scan_warn_inputs) and each runs line `line`
+ * (tt_scan_step; scope NULL: none); end raises the result warnings of the lines run
+ * since the begin or the last end (tt_run_scan_warn_result) and, with scope, the
+ * oscillation warning on its line, and returns how many it raised. The scan stays the
+ * caller's (r->scan: tt_scan_free). */
+typedef struct {
+    tt_scan *scan;
+    tt_run_scan_cost cost;
+    int warned;     /* the input warnings were raised */
+    long lines_run; /* since the begin or the last end */
+} tt_run_scan_lines;
+int tt_run_scan_begin(const tt_scene *s, tt_run_scan_lines *r);
+int tt_run_scan_step(tt_run_scan_lines *r, const tt_scene *s, long line, tt_scan_scope *scope);
+int tt_run_scan_end(tt_run_scan_lines *r, const tt_scan_scope *scope, const char *files);
+
 /* The outputs of `tiptap scan -o DIR` can be written: every file it writes (and every
  * channel's, which it may remove) is no input of the scene and no folder. */
 int tt_run_scan_check_outputs(const char *dir, const tt_scan *scan, int hdf5);
