@@ -26,9 +26,11 @@ enum { NEWTON_MAX = 7 };
  * values (valid while ext_ok), and the Newton iteration's memory. */
 typedef struct {
     tt_step_control ctl;
-    double k[4][NY];     /* the derivatives at stages 1 to 3 */
-    double rcont[5][2];  /* the collocation polynomial of d and v in Newton form */
-    double ext[4][2], ext_tau, ext_h;
+    double k[4][NYMAX];  /* the derivatives at stages 1 to 3 */
+    /* the collocation polynomial of d and v in Newton form (radau serves the one-mode
+     * system without law states: config refuses a sample with relaxation arms) */
+    double rcont[5][TT_SIM_DIM_MAX];
+    double ext[4][TT_SIM_DIM_MAX], ext_tau, ext_h;
     int ext_ok;
     double tol;          /* the tolerance radau's O(h^4) estimate is held to */
     double newton_eta;   /* contraction estimate theta / (1 - theta) of the last step */
@@ -45,7 +47,7 @@ typedef struct {
 } radau_ctx;
 
 /* A radau collocation polynomial of d and v in Newton form on the nodes 0, c1, c2, 1. */
-static inline void radau_poly(const double (*p)[2], double th, double *d, double *v)
+static inline void radau_poly(const double (*p)[TT_SIM_DIM_MAX], double th, double *d, double *v)
 {
     double out[2];
     for (int i = 0; i < 2; i++)
@@ -161,7 +163,7 @@ static int radau_newton(radau_state *st, const tt_sim *S, const radau_ctx *R, do
     if (st->ext_ok)
         for (int i = 0; i < 3; i++) {
             double de, ve;
-            radau_poly((const double (*)[2])st->ext, (t + RC[i] * h - st->ext_tau) / st->ext_h, &de, &ve);
+            radau_poly((const double (*)[TT_SIM_DIM_MAX])st->ext, (t + RC[i] * h - st->ext_tau) / st->ext_h, &de, &ve);
             zv[i] = ve - v0;
         }
     const double fnewt = fmax(10 * DBL_EPSILON / tol, fmin(0.03, sqrt(tol)));
@@ -211,10 +213,10 @@ static int radau_newton(radau_state *st, const tt_sim *S, const radau_ctx *R, do
 static void radau_finish(radau_state *st, tt_sim *S, const radau_ctx *R, const double *y0, const double zd[3],
                          const double zv[3])
 {
-    double (*k)[NY] = st->k;
+    double (*k)[NYMAX] = st->k;
     const double h = R->h;
-    double Yst[NY];
-    memcpy(Yst, y0, sizeof Yst);
+    double Yst[NYMAX];
+    sim_copy(S, Yst, y0);
     for (int j = 0; j < 3; j++) {
         Yst[Y_D] = R->d0 + zd[j];
         Yst[Y_V] = R->v0 + zv[j];
@@ -224,9 +226,9 @@ static void radau_finish(radau_state *st, tt_sim *S, const radau_ctx *R, const d
      * the Newton error of the stiff part by h |J|) */
     S->y1[Y_D] = R->d0 + zd[2];
     S->y1[Y_V] = R->v0 + zv[2];
-    for (int q = Y_WDRIVE; q < NY; q++)
+    for (int q = Y_WDRIVE; q < NY; q++) /* n = 2: the quadratures at their enum indexes */
         S->y1[q] = y0[q] + h * (RA[2][0] * k[1][q] + RA[2][1] * k[2][q] + RA[2][2] * k[3][q]);
-    memcpy(S->dydt_out, k[3], sizeof S->dydt_out);
+    sim_copy(S, S->dydt_out, k[3]);
     for (int i = 0; i < 2; i++) {
         double z1 = i ? zv[0] : zd[0], z2 = i ? zv[1] : zd[1], z3 = i ? zv[2] : zd[2];
         double f01 = z1 / RC[0], f12 = (z2 - z1) / (RC[1] - RC[0]), f23 = (z3 - z2) / (1 - RC[1]);
@@ -277,8 +279,8 @@ static double radau_step(void *state, tt_sim *S, double h)
     const double *y0 = S->y;
     const int first = !st->ext_ok;
     ensure_fsal(S);
-    memcpy(S->dydt_in, S->fsal, sizeof S->dydt_in);
-    memcpy(S->y0, y0, sizeof S->y0);
+    sim_copy(S, S->dydt_in, S->fsal);
+    sim_copy(S, S->y0, y0);
     S->step_tau = S->tau;
     S->step_h = h;
     S->step_long = 0;
@@ -345,7 +347,7 @@ static void radau_dense(const void *state, const tt_sim *S, double th, double *d
 /* The step of length 0 at (tau, y): its polynomial is the constant y. */
 static void radau_point(void *state, const tt_sim *S)
 {
-    tt_poly_point(((radau_state *)state)->rcont, S->y);
+    tt_poly_point(((radau_state *)state)->rcont, S->y, S->sys.n);
 }
 
 static void radau_reset(void *state, const tt_sim *S)
