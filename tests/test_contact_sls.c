@@ -4,9 +4,13 @@
  * retardation time, a zero arm is the elastic law, and the energy balance closes with
  * the arms' loss booked as e_visc. */
 #include <math.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "tt_test.h"
 #include "solver/sim.h"
+#include "tiptap/config/config.h"
+#include "tiptap/config/scene.h"
 #include "tiptap/physics/contact.h"
 #include "tiptap/util/error.h"
 
@@ -233,6 +237,47 @@ static void bad_arms_refused(void **state)
     tt_error_clear();
 }
 
+/* A scene's arms are checked with one line naming the file, section and key: materials
+ * (scan 0) or the scan's tier (scan 1). */
+static void expect_scene_error(const char *text, int scan, const char *fragment)
+{
+    tt_scene *s = tt_scene_alloc();
+    tt_error_clear();
+    assert_int_equal(tt_scene_load_string(s, text, "t.ini"), TT_OK);
+    int rc;
+    if (scan) {
+        tt_scan_params p;
+        rc = tt_config_scan(s, &p);
+        if (rc == TT_OK)
+            tt_config_scan_free(&p);
+    } else {
+        tt_material *m = NULL;
+        size_t n = 0;
+        rc = tt_config_materials(s, &m, &n);
+        free(m);
+    }
+    const char *msg = tt_error_message();
+    if (rc == TT_OK || !strstr(msg, "t.ini: [") || !strstr(msg, fragment) || strchr(msg, '\n'))
+        fail_msg("%s -> '%s' (wanted one line with '%s')", text, rc ? msg : "accepted", fragment);
+    tt_scene_free(s);
+    tt_error_clear();
+}
+
+static void scene_arms_refused(void **state)
+{
+    (void)state;
+    const char *arm = "[material p]\nmodel = hertz\narm1_modulus = 1 GPa\n";
+    expect_scene_error(arm, 0, "arm1_modulus: needs arm1_relaxation_time");
+    expect_scene_error("[material p]\nmodel = hertz\narm2_modulus = 1 GPa\narm2_relaxation_time = 1 us\n",
+                       0, "arm1 is missing");
+    expect_scene_error("[material p]\nadhesion_energy = 50 mJ/m^2\narm1_modulus = 1 GPa\n"
+                       "arm1_relaxation_time = 1 us\n", 0, "the Hertz law alone");
+    expect_scene_error("[solver]\nmethod = radau\n[material p]\nmodel = hertz\narm1_modulus = 1 GPa\n"
+                       "arm1_relaxation_time = 1 us\n", 0, "radau");
+    expect_scene_error("[material p]\nmodel = hertz\narm1_modulus = 1 GPa\narm1_relaxation_time = 1 us\n",
+                       1, "[solver] tier: envelope does not serve [material p]'s relaxation arms");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -242,6 +287,7 @@ int main(void)
         cmocka_unit_test(zero_arm_is_elastic),
         cmocka_unit_test(energy_balance_closes),
         cmocka_unit_test(bad_arms_refused),
+        cmocka_unit_test(scene_arms_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
