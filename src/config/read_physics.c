@@ -175,13 +175,6 @@ static int read_arms(const tt_scene *s, const char *name, tt_contact_params *p)
         return tt_scene_fail(s, "material", name, "arm1_modulus",
                              "relaxation arms need the Hertz law alone: adhesion_energy = 0 or "
                              "model = hertz, and no viscosity or film_thickness");
-    if (p->arms) {
-        const char *method = tt_scene_get_string(s, "solver", NULL, "method");
-        if (method && strcmp(method, "radau") == 0)
-            return tt_scene_fail(s, "material", name, "arm1_modulus",
-                                 "relaxation arms need [solver] method = dopri5 or rk4 (radau's "
-                                 "Newton iteration serves no sample state yet)");
-    }
     return TT_OK;
 }
 
