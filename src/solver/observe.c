@@ -13,17 +13,27 @@ static const double *law_state_at(const tt_sim *S, double th, double *x)
     return tt_system_law_state(S, x);
 }
 
+/* The force of a law with states, which reads them off the dense output: apart, so that
+ * the elastic law's evaluation below stays inline. */
+static __attribute__((noinline)) tt_contact_forces law_force_at(const tt_sim *S, double th,
+                                                                double delta, double rate,
+                                                                int contact)
+{
+    double x[TT_SIM_DIM_MAX];
+    return S->sys.force(S->sys.contact, S->sys.ci, delta, rate, contact, law_state_at(S, th, x));
+}
+
 /* Tip-sample force on the current branch at the tip's (d, v) at fraction th of the
  * current step. */
-static double ts_force(const tt_sim *S, double th, double d, double v, int contact, double *delta)
+static inline double ts_force(const tt_sim *S, double th, double d, double v, int contact,
+                              double *delta)
 {
     double dl = d - (S->sys.s0 + S->sys.sdot * (S->step_tau + th * S->step_h));
     *delta = dl;
     if (!S->sys.contact)
         return 0;
-    double x[TT_SIM_DIM_MAX];
-    tt_contact_forces f = S->sys.force(S->sys.contact, S->sys.ci, dl, v - S->sys.sdot, contact,
-                                       law_state_at(S, th, x));
+    tt_contact_forces f = S->sys.nlaw ? law_force_at(S, th, dl, v - S->sys.sdot, contact)
+                                      : S->sys.force(S->sys.contact, S->sys.ci, dl, v - S->sys.sdot, contact, NULL);
     return f.conservative + f.dissipative;
 }
 
