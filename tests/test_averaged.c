@@ -24,7 +24,7 @@ static tt_cantilever standard(double fd)
 
 static tt_contact *hertz(void)
 {
-    tt_contact_params p = {TT_CONTACT_HERTZ, 10e9, 10e-9, 0, 0.265e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_HERTZ, 10e9, 10e-9, 0, 0.265e-9, NAN, 0, 0, 0, {0}, {0}};
     tt_contact *ct;
     assert_int_equal(tt_contact_alloc(&ct, &p), TT_OK);
     return ct;

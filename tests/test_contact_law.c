@@ -39,7 +39,7 @@ static void check_row(const tt_contact *c, double delta, int in)
 static void hertz_row(void **st)
 {
     (void)st;
-    tt_contact_params p = {TT_CONTACT_MAUGIS, 2e9, 10e-9, 0.0, 0.3e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_MAUGIS, 2e9, 10e-9, 0.0, 0.3e-9, NAN, 0, 0, 0, {0}, {0}};
     tt_contact *c;
     assert_int_equal(tt_contact_alloc(&c, &p), TT_OK);
     const tt_contact_law *law = tt_contact_law_of(c);
@@ -136,7 +136,7 @@ static void maugis_row(void **st)
         tt_contact_free(c);
     }
     /* physical units: the same row scales by F* and d* */
-    tt_contact_params p = {TT_CONTACT_MAUGIS, 1e9, 20e-9, 0.05, 0.3e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_MAUGIS, 1e9, 20e-9, 0.05, 0.3e-9, NAN, 0, 0, 0, {0}, {0}};
     tt_contact *c;
     assert_int_equal(tt_contact_alloc(&c, &p), TT_OK);
     const tt_contact_summary *s = tt_contact_summary_of(c);
@@ -176,7 +176,7 @@ static void custom_row(void **st)
 static void sim_force_is_the_rows(void **st)
 {
     (void)st;
-    tt_contact_params p = {TT_CONTACT_HERTZ, 2e9, 10e-9, 0.0, 0.3e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_HERTZ, 2e9, 10e-9, 0.0, 0.3e-9, NAN, 0, 0, 0, {0}, {0}};
     tt_contact *c;
     assert_int_equal(tt_contact_alloc(&c, &p), TT_OK);
     tt_cantilever cl;
@@ -189,7 +189,7 @@ static void sim_force_is_the_rows(void **st)
     tt_sim_set_contact(sim, c, Qi);
     tt_sim_set_sample(sim, 0, sdot);
     const double ci = cl.m * cl.w0 / Qi, delta = 1e-9, v = 0.3;
-    tt_sample smp = {0, 0, delta, v, 0, 1};
+    tt_sample smp = {0, 0, delta, v, 0, 1, 0, NAN};
     double a, load = p.K * sqrt(p.R * delta) * delta;
     assert_close(tt_sim_force(sim, &smp, &a), load + ci * (v - sdot), 1e-12 * load);
     assert_close(a, sqrt(p.R * delta), 1e-20);

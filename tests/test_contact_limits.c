@@ -88,7 +88,7 @@ static void hertz_at_large_A(void **st)
         assert_close(D / (A * A), 1, 0.05);
     }
     /* in physical units the table follows P = K sqrt(R) delta^1.5 deep in contact */
-    tt_contact_params p = {TT_CONTACT_MAUGIS, 1e11, 1e-8, 1e-4, 0.265e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_MAUGIS, 1e11, 1e-8, 1e-4, 0.265e-9, NAN, 0, 0, 0, {0}, {0}};
     tt_contact *c;
     assert_int_equal(tt_contact_alloc(&c, &p), TT_OK);
     double delta = 5e-9;
@@ -131,7 +131,7 @@ static void fold_appears_at_lambda_0938(void **st)
 static void no_adhesion_is_exactly_hertz(void **st)
 {
     (void)st;
-    tt_contact_params p = {TT_CONTACT_MAUGIS, 50e9, 20e-9, 0, 0.265e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_MAUGIS, 50e9, 20e-9, 0, 0.265e-9, NAN, 0, 0, 0, {0}, {0}};
     tt_contact *c;
     assert_int_equal(tt_contact_alloc(&c, &p), TT_OK);
     const tt_contact_summary *s = tt_contact_summary_of(c);
@@ -152,7 +152,7 @@ static void bad_parameters_are_refused(void **st)
 {
     (void)st;
     tt_contact *c;
-    tt_contact_params p = {TT_CONTACT_MAUGIS, -1, 1e-8, 0.1, 0.3e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_MAUGIS, -1, 1e-8, 0.1, 0.3e-9, NAN, 0, 0, 0, {0}, {0}};
     assert_int_equal(tt_contact_alloc(&c, &p), TT_EINVAL);
     assert_non_null(strstr(tt_error_message(), "modulus"));
     p.K = 1e9;

@@ -85,7 +85,7 @@ static void table_self_check(void **st)
         assert_true(e > 0 && e < 2e-9);
         tt_contact_free(c);
     }
-    tt_contact_params p = {TT_CONTACT_MAUGIS, 50e9, 20e-9, 0, 0.265e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_MAUGIS, 50e9, 20e-9, 0, 0.265e-9, NAN, 0, 0, 0, {0}, {0}};
     tt_contact *h;
     assert_int_equal(tt_contact_alloc(&h, &p), TT_OK); /* w = 0: exact Hertz, no table */
     assert_true(tt_contact_table_error(h, 2000) == 0);
@@ -95,7 +95,7 @@ static void table_self_check(void **st)
 static void seed_figure_4a_summary(void **st)
 {
     (void)st;
-    tt_contact_params p = {TT_CONTACT_MAUGIS, 100e9, 100e-9, 0.1, 0.265e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_MAUGIS, 100e9, 100e-9, 0.1, 0.265e-9, NAN, 0, 0, 0, {0}, {0}};
     tt_contact *c;
     assert_int_equal(tt_contact_alloc(&c, &p), TT_OK);
     const tt_contact_summary *s = tt_contact_summary_of(c);

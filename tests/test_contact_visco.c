@@ -10,7 +10,7 @@
 
 static tt_contact *law(tt_contact_model m, double w, double eta, double h)
 {
-    tt_contact_params p = {m, 2e9, 10e-9, w, 0.3e-9, NAN, eta, h};
+    tt_contact_params p = {m, 2e9, 10e-9, w, 0.3e-9, NAN, eta, h, 0, {0}, {0}};
     tt_contact *c;
     assert_int_equal(tt_contact_alloc(&c, &p), TT_OK);
     return c;
@@ -152,12 +152,12 @@ static void bad_parameters_are_refused(void **st)
 {
     (void)st;
     tt_contact *c;
-    tt_contact_params neg = {TT_CONTACT_HERTZ, 2e9, 10e-9, 0, 0.3e-9, NAN, -1, 0};
+    tt_contact_params neg = {TT_CONTACT_HERTZ, 2e9, 10e-9, 0, 0.3e-9, NAN, -1, 0, 0, {0}, {0}};
     assert_int_equal(tt_contact_alloc(&c, &neg), TT_EINVAL);
-    tt_contact_params nan = {TT_CONTACT_HERTZ, 2e9, 10e-9, 0, 0.3e-9, NAN, 0, NAN};
+    tt_contact_params nan = {TT_CONTACT_HERTZ, 2e9, 10e-9, 0, 0.3e-9, NAN, 0, NAN, 0, {0}, {0}};
     assert_int_equal(tt_contact_alloc(&c, &nan), TT_EINVAL);
     /* the series is the paraboloid's without adhesion */
-    tt_contact_params md = {TT_CONTACT_MAUGIS, 2e9, 10e-9, 0.05, 0.3e-9, NAN, 0, 100e-9};
+    tt_contact_params md = {TT_CONTACT_MAUGIS, 2e9, 10e-9, 0.05, 0.3e-9, NAN, 0, 100e-9, 0, {0}, {0}};
     assert_int_equal(tt_contact_alloc(&c, &md), TT_EINVAL);
     tt_error_clear();
 }
@@ -166,7 +166,7 @@ static void bad_parameters_are_refused(void **st)
 static void steady(tt_method method, double eta, tt_cycle *cy, double *loop)
 {
     /* soft and sticky: lambda about 2.5, a jump-in/pull-off loop every tap */
-    tt_contact_params p = {TT_CONTACT_MAUGIS, 1e9, 10e-9, 0.1, 0.265e-9, NAN, eta, 0};
+    tt_contact_params p = {TT_CONTACT_MAUGIS, 1e9, 10e-9, 0.1, 0.265e-9, NAN, eta, 0, 0, {0}, {0}};
     tt_contact *ct;
     assert_int_equal(tt_contact_alloc(&ct, &p), TT_OK);
     *loop = tt_contact_summary_of(ct)->loop_energy;

@@ -45,7 +45,7 @@ static void rk4_on_hertz_converges(void **st)
     /* Hertz contact (P ~ delta^1.5 at onset): the solution is only a few times
      * differentiable at the events, so the order drops below 4, but the error still
      * falls steadily and is small at the default step counts. */
-    tt_contact_params p = {TT_CONTACT_MAUGIS, 3e9, 10e-9, 0, 0.265e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_MAUGIS, 3e9, 10e-9, 0, 0.265e-9, NAN, 0, 0, 0, {0}, {0}};
     tt_contact *ct;
     assert_int_equal(tt_contact_alloc(&ct, &p), TT_OK);
     tt_cycle ref = run(ct, 10, TT_METHOD_RK4, 8192, 0);
@@ -66,7 +66,7 @@ static void dopri5_error_follows_tolerance(void **st)
     (void)st;
     /* An adaptive method's error scales with its tolerance: a hundredfold tighter
      * tolerance must cut the amplitude error at least tenfold against a reference. */
-    tt_contact_params p = {TT_CONTACT_MAUGIS, 3e9, 10e-9, 0.04, 0.265e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_MAUGIS, 3e9, 10e-9, 0.04, 0.265e-9, NAN, 0, 0, 0, {0}, {0}};
     tt_contact *ct;
     assert_int_equal(tt_contact_alloc(&ct, &p), TT_OK);
     tt_cycle ref = run(ct, 10, TT_METHOD_DOPRI5, 0, 1e-13);

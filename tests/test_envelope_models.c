@@ -35,7 +35,7 @@ static void fixture_init(fixture *f, int keep)
     tt_solver_default(&s);
     s.tolerance = 1e-12; /* the integration's error far below the model's */
     assert_int_equal(tt_sim_alloc(&f->sim, &f->c, &s), TT_OK);
-    tt_contact_params p = {TT_CONTACT_MAUGIS, 3e9, 10e-9, 0.04, 0.265e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_MAUGIS, 3e9, 10e-9, 0.04, 0.265e-9, NAN, 0, 0, 0, {0}, {0}};
     assert_int_equal(tt_contact_alloc(&f->ct, &p), TT_OK);
     tt_sim_set_sampling(f->sim, NS, f->smp);
     tt_sim_reset_free(f->sim);

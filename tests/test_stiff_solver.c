@@ -66,7 +66,7 @@ typedef struct {
  * k_c and the interaction damping 33 m* w0. */
 static int stiff(double gap, tt_method m, double tol, int steps_per_cycle, stiff_run *r)
 {
-    tt_contact_params p = {TT_CONTACT_MAUGIS, 1e12, 10e-9, 0, 0.265e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_MAUGIS, 1e12, 10e-9, 0, 0.265e-9, NAN, 0, 0, 0, {0}, {0}};
     tt_contact *ct;
     assert_int_equal(tt_contact_alloc(&ct, &p), TT_OK);
     tt_cantilever c;
@@ -106,7 +106,7 @@ static void radau_on_a_very_stiff_contact(void **st)
     assert_int_equal(stiff(15e-9, TT_METHOD_DOPRI5, 1e-8, 0, &d5), TT_OK);
     assert_int_equal(stiff(15e-9, TT_METHOD_RADAU, 1e-8, 0, &ra), TT_OK);
     double dPdd;
-    tt_contact_params p = {TT_CONTACT_MAUGIS, 1e12, 10e-9, 0, 0.265e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_MAUGIS, 1e12, 10e-9, 0, 0.265e-9, NAN, 0, 0, 0, {0}, {0}};
     tt_contact *ct;
     assert_int_equal(tt_contact_alloc(&ct, &p), TT_OK);
     (void)tt_contact_load(ct, ref.last.max_indentation, 1, &dPdd, NULL);
@@ -162,7 +162,7 @@ static void radau_hysteresis_loss_is_the_loop_area(void **st)
     (void)st;
     /* test_tapping_energy.c's soft, sticky sample (lambda about 2.5): jump-in and
      * pull-off are located on the collocation polynomial. */
-    tt_contact_params p = {TT_CONTACT_MAUGIS, 1e9, 10e-9, 0.1, 0.265e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_MAUGIS, 1e9, 10e-9, 0.1, 0.265e-9, NAN, 0, 0, 0, {0}, {0}};
     tt_contact *ct;
     assert_int_equal(tt_contact_alloc(&ct, &p), TT_OK);
     const tt_contact_summary *sum = tt_contact_summary_of(ct);

@@ -13,7 +13,7 @@
  * contact (K 1 GPa, R 10 nm, w 0.1 J/m^2) with interaction damping. */
 static tt_sim *standard(tt_contact **ct, tt_drive drive, tt_method m)
 {
-    tt_contact_params p = {TT_CONTACT_MAUGIS, 1e9, 10e-9, 0.1, 0.3e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_MAUGIS, 1e9, 10e-9, 0.1, 0.3e-9, NAN, 0, 0, 0, {0}, {0}};
     assert_int_equal(tt_contact_alloc(ct, &p), TT_OK);
     tt_cantilever c;
     assert_int_equal(tt_cantilever_init(&c, 40, 300e3, 400, 20e-9, 300e3, drive), TT_OK);

@@ -15,7 +15,7 @@ typedef struct {
 static void steady(const scene_t *sc, tt_method method, double tol, tt_cycle *cy,
                    tt_contact_summary *sum)
 {
-    tt_contact_params p = {TT_CONTACT_MAUGIS, sc->K, 10e-9, sc->w, 0.265e-9, NAN, 0, 0};
+    tt_contact_params p = {TT_CONTACT_MAUGIS, sc->K, 10e-9, sc->w, 0.265e-9, NAN, 0, 0, 0, {0}, {0}};
     tt_contact *ct;
     assert_int_equal(tt_contact_alloc(&ct, &p), TT_OK);
     *sum = *tt_contact_summary_of(ct);

@@ -164,6 +164,9 @@ typedef struct {
     double lambda;
     double viscosity;
     double film_thickness;
+    int arms;
+    double arm_modulus[4];
+    double arm_time[4];
 } tt_contact_params;
 typedef struct tt_contact tt_contact;
 int tt_contact_model_parse(const char *name, tt_contact_model *out);

@@ -144,6 +144,40 @@ static int read_model(const tt_scene *s, const char *name, tt_contact_params *p)
     return TT_OK;
 }
 
+/* The relaxation arms: arm1 .. arm4 in order, each a modulus with its time, converted
+ * to the reduced modulus's units with the sample's Poisson ratio (the tip's compliance
+ * stays with the relaxed modulus alone: docs/physics.md). */
+static int read_arms(const tt_scene *s, const char *name, tt_contact_params *p)
+{
+    int rc;
+    p->arms = 0;
+    for (int i = 0; i < TT_CONTACT_ARMS_MAX; i++) {
+        char km[32], kt[32];
+        snprintf(km, sizeof km, "arm%d_modulus", i + 1);
+        snprintf(kt, sizeof kt, "arm%d_relaxation_time", i + 1);
+        int hm = tt_scene_has(s, "material", name, km), ht = tt_scene_has(s, "material", name, kt);
+        if (!hm && !ht)
+            continue;
+        if (hm != ht)
+            return tt_scene_fail(s, "material", name, hm ? km : kt, "needs %s too: an arm is a modulus and a relaxation time",
+                                 hm ? kt : km);
+        if (p->arms != i)
+            return tt_scene_fail(s, "material", name, km, "arm%d is missing: number the arms from 1", p->arms + 1);
+        double E, nu;
+        if ((rc = tt_scene_get_double(s, "material", name, km, &E)) ||
+            (rc = tt_scene_get_double(s, "material", name, kt, &p->arm_time[i])) ||
+            (rc = tt_scene_get_double(s, "material", name, "poisson_ratio", &nu)))
+            return rc;
+        p->arm_modulus[i] = E / (0.75 * (1 - nu * nu));
+        p->arms = i + 1;
+    }
+    if (p->arms && ((p->w > 0 && p->model != TT_CONTACT_HERTZ) || p->viscosity > 0 || p->film_thickness > 0))
+        return tt_scene_fail(s, "material", name, "arm1_modulus",
+                             "relaxation arms need the Hertz law alone: adhesion_energy = 0 or "
+                             "model = hertz, and no viscosity or film_thickness");
+    return TT_OK;
+}
+
 static int read_material(const tt_scene *s, const tt_tip *tip, const char *name, tt_material *m)
 {
     int rc;
@@ -184,6 +218,8 @@ static int read_material(const tt_scene *s, const tt_tip *tip, const char *name,
                                  "the bottom-effect series is for the Hertz law: give "
                                  "adhesion_energy = 0 or model = hertz");
     }
+    if ((rc = read_arms(s, name, p)))
+        return rc;
     m->map_rgb = -1;
     m->map_grey = -1;
     const char *v = tt_scene_get_string(s, "material", name, "map_value");

@@ -38,6 +38,10 @@ int tt_config_approach_setup(tt_setup *st, const tt_scene *s, tt_approach_params
                                        tt_setup_materials(st), &mat)))
         return rc;
     p->material = tt_setup_material(st, mat)->name; /* for tt_approach_warn */
+    /* shooting's Newton iterates the tip's (d, v): a sample with a state of its own
+     * (relaxation arms) settles instead */
+    if (tt_setup_material(st, mat)->contact.arms > 0)
+        p->steady = TT_STEADY_SETTLE;
     p->tip_radius = tt_setup_material(st, mat)->contact.R;
     return tt_setup_use_material(st, mat);
 }

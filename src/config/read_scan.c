@@ -551,6 +551,21 @@ static int read_noise(const tt_scene *s, tt_scan_params *p)
     return TT_OK;
 }
 
+/* The envelope and averaged tiers model the cycle map on the tip's (d, v) alone: a
+ * sample whose surface is a state of its own (relaxation arms) runs every cycle. */
+static int check_tier_arms(const tt_scene *s, const tt_scan_params *p)
+{
+    if (p->solver.tier == TT_TIER_EVERY)
+        return TT_OK;
+    for (size_t i = 0; i < p->nmaterials; i++)
+        if (p->materials[i].contact.arms > 0)
+            return tt_scene_fail(s, "solver", NULL, "tier",
+                                 "%s does not serve [material %s]'s relaxation arms yet (the "
+                                 "surface's state): set tier = every",
+                                 tt_tier_name(p->solver.tier), p->materials[i].name);
+    return TT_OK;
+}
+
 int tt_config_scan(const tt_scene *s, tt_scan_params *p)
 {
     memset(p, 0, sizeof *p);
@@ -569,7 +584,8 @@ int tt_config_scan(const tt_scene *s, tt_scan_params *p)
         (rc = tt_config_feedback(s, p->cantilever.A0, &p->feedback)) ||
         (rc = tt_config_surface(s, m, n, &p->surface)) || (rc = check_particles(s, p)) ||
         (rc = check_measured(s, p)) || (rc = check_map_image(s, p)) ||
-        (rc = tt_config_tip_shape(s, &p->tip)) || (rc = tt_config_instrument(s, &p->instrument))) {
+        (rc = tt_config_tip_shape(s, &p->tip)) || (rc = tt_config_instrument(s, &p->instrument)) ||
+        (rc = check_tier_arms(s, p))) {
         tt_config_scan_free(p);
         return rc;
     }

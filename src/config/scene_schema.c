@@ -47,6 +47,15 @@ static const tt_scene_key tip_keys[] = {
      "cone: half-angle of the cone, tangent to the apex sphere"},
 };
 
+/* A relaxation arm's two keys (docs/physics.md, the generalised Maxwell sample). */
+#define ARM_KEYS(i)                                                                                \
+    {"arm" i "_modulus", Q(TT_DIM_PRESSURE), NULL, 0, TT_MODULUS_MAX, 0, NULL,                    \
+     "Young's modulus E_" i " of relaxation arm " i " (a Maxwell element beside the relaxed "      \
+     "youngs_modulus: the standard linear solid with one arm, generalised Maxwell with more; "    \
+     "Hertz law only); absent: no such arm"},                                                      \
+    {"arm" i "_relaxation_time", Q(TT_DIM_TIME), NULL, 0, INF, POS, NULL,                          \
+     "relaxation time tau_" i " of arm " i ": its dashpot's viscosity over its modulus"}
+
 static const tt_scene_key material_keys[] = {
     {"youngs_modulus", Q(TT_DIM_PRESSURE), "2 GPa", 0, TT_MODULUS_MAX, POS, NULL,
      "sample Young's modulus (ignored when reduced_modulus is given)"},
@@ -71,6 +80,7 @@ static const tt_scene_key material_keys[] = {
      "the Hertz load and the viscous force; Hertz law only); absent: bulk"},
     {"map_value", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
      "grey level (0-255 or 0-65535) or colour (#rrggbb) of this material in a PNG material map"},
+    ARM_KEYS("1"), ARM_KEYS("2"), ARM_KEYS("3"), ARM_KEYS("4"),
 };
 
 static const tt_scene_key approach_keys[] = {
@@ -92,7 +102,7 @@ static const tt_scene_key approach_keys[] = {
      "or per period of an orbit of up to 64 cycles"},
     {"steady", TT_KEY_ENUM, 0, "shooting", 0, 0, 0, "shooting|settle",
      "steady mode: shooting: Newton on the one-period map finds the periodic orbit (falls back to "
-     "settling); settle: run cycles until the point settles"},
+     "settling; a sample with relaxation arms settles); settle: run cycles until the point settles"},
 };
 
 static const tt_scene_key trace_keys[] = {

@@ -35,7 +35,8 @@ static int ends_with(const char *s, const char *tail)
 int tt_sweep_viscous(const tt_sweep *sw)
 {
     for (size_t k = 0; k < sw->naxes; k++)
-        if (ends_with(sw->axes[k].key, ".viscosity") || ends_with(sw->axes[k].key, ".film_thickness"))
+        if (ends_with(sw->axes[k].key, ".viscosity") || ends_with(sw->axes[k].key, ".film_thickness") ||
+            (ends_with(sw->axes[k].key, "_modulus") && strstr(sw->axes[k].key, ".arm")))
             return 1;
     tt_material *m = NULL;
     size_t n = 0;

@@ -177,7 +177,8 @@ static void fill_samples(tt_trace *t)
         if (t->sd > 0)
             o->deflection += t->sd * tt_noise_gauss(t->kd, (uint64_t)t->row * (uint64_t)t->p.samples_per_cycle +
                                                                (uint64_t)k);
-        o->sample = s->s;
+        /* the surface where it is: a sample with relaxation arms lags behind the tip */
+        o->sample = s->u != 0 ? s->s + s->u : s->s;
         o->contact_radius = a;
         o->pressure = s->contact ? hertz_pressure(cp, a) : 0;
         o->contact = s->contact;

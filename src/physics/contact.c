@@ -1,6 +1,7 @@
 /* Tip-sample contact mechanics (Burnham et al. section 2.2; see include/tiptap/physics/contact.h).
  * The law table, the allocation and the event thresholds are here; the tabulated curves
- * in contact_md.c, the Kelvin-Voigt sample and the bonded film in contact_visco.c. */
+ * in contact_md.c, the Kelvin-Voigt sample and the bonded film in contact_visco.c, the
+ * generalised Maxwell sample in contact_sls.c. */
 #include "tiptap/physics/contact.h"
 
 #include <math.h>
@@ -43,14 +44,14 @@ ELASTIC_ROW_FUNCTIONS(static, custom, custom)
 /* The law table: a row per tt_contact_model, then the custom law. A new law is a row
  * here (its force, detail and energy, its state_size), its name in tt_contact_model and
  * its parameters in tt_contact_alloc (docs/architecture.md). */
-#define TABLE_ROW tt_contact_table_force, tt_contact_table_detail, tt_contact_table_energy
+#define TABLE_ROW tt_contact_table_force, tt_contact_table_detail, tt_contact_table_energy, NULL, NULL
 enum { LAW_CUSTOM = TT_CONTACT_JKR + 1, NLAWS };
 static const tt_contact_law laws[NLAWS] = {
     [TT_CONTACT_MAUGIS] = {"maugis", 0, TABLE_ROW},
-    [TT_CONTACT_HERTZ] = {"hertz", 0, hertz_force, hertz_detail, hertz_energy},
+    [TT_CONTACT_HERTZ] = {"hertz", 0, hertz_force, hertz_detail, hertz_energy, NULL, NULL},
     [TT_CONTACT_DMT] = {"dmt", 0, TABLE_ROW},
     [TT_CONTACT_JKR] = {"jkr", 0, TABLE_ROW},
-    [LAW_CUSTOM] = {"custom", 0, custom_force, custom_detail, custom_energy},
+    [LAW_CUSTOM] = {"custom", 0, custom_force, custom_detail, custom_energy, NULL, NULL},
 };
 
 const tt_contact_law *tt_contact_law_of(const tt_contact *c) { return c->law; }
@@ -119,6 +120,15 @@ int tt_contact_alloc(tt_contact **out, const tt_contact_params *p)
         return bad("the film thickness must be zero (bulk) or positive and finite");
     if (p->film_thickness > 0 && p->w > 0 && p->model != TT_CONTACT_HERTZ)
         return bad("a film (film_thickness) needs the Hertz law: adhesion_energy 0 or model hertz");
+    if (p->arms < 0 || p->arms > TT_CONTACT_ARMS_MAX)
+        return bad("the number of relaxation arms must lie from 0 to 4");
+    for (int i = 0; i < p->arms; i++)
+        if (!(p->arm_modulus[i] >= 0) || !isfinite(p->arm_modulus[i]) || !(p->arm_time[i] > 0))
+            return bad("each relaxation arm needs a modulus >= 0 and a relaxation time > 0");
+    if (p->arms > 0 && ((p->w > 0 && p->model != TT_CONTACT_HERTZ) || p->viscosity > 0 ||
+                        p->film_thickness > 0))
+        return bad("relaxation arms need the Hertz law alone: adhesion_energy 0 or model hertz, "
+                   "no viscosity, no film_thickness");
     struct tt_contact *c = calloc(1, sizeof *c);
     if (!c)
         return tt_error_nomem("a contact force law");
@@ -132,6 +142,7 @@ int tt_contact_alloc(tt_contact **out, const tt_contact_params *p)
         c->sum.P0 = c->sum.Delta0 = c->sum.pulloff_load = NAN;
         c->sum.jumpout_delta = c->sum.jumpin_delta = 0;
         tt_contact_visco_setup(c, p);
+        tt_contact_sls_setup(c, p);
         *out = c;
         return TT_OK;
     }

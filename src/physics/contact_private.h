@@ -42,6 +42,10 @@ struct tt_contact {
     const tt_contact_law *elastic;
     load_fn *elastic_load;
     double eta, film_h, film_k[5], film_rate; /* film_rate: 2 eta / (3 K) */
+    /* the relaxation arms (contact_sls.c): their moduli and rates 1 / tau, and the
+     * glassy modulus K + sum of the arms' */
+    int arms;
+    double arm_K[TT_CONTACT_ARMS_MAX], arm_rate[TT_CONTACT_ARMS_MAX], K_glassy;
     tt_contact_params p;
     tt_contact_summary sum;
     int hertz;             /* physical Hertz (w = 0 or model hertz): no table */
@@ -142,5 +146,9 @@ int tt_contact_md_build(struct tt_contact *c);
  * them). */
 extern const tt_contact_law tt_contact_kelvin_voigt;
 void tt_contact_visco_setup(struct tt_contact *c, const tt_contact_params *p);
+
+/* contact_sls.c: the generalised Maxwell rows (one per number of arms), set up on the
+ * Hertz law (a no-op without arms; tt_contact_alloc checked them). */
+void tt_contact_sls_setup(struct tt_contact *c, const tt_contact_params *p);
 
 #endif

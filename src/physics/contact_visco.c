@@ -89,7 +89,7 @@ static double kv_energy(const tt_contact *c, double delta, int in_contact, const
     return c->film_h > 0 ? film_energy(c, delta) : c->elastic->energy(c, delta, in_contact, q);
 }
 
-const tt_contact_law tt_contact_kelvin_voigt = {"kelvin-voigt", 0, kv_force, kv_detail, kv_energy};
+const tt_contact_law tt_contact_kelvin_voigt = {"kelvin-voigt", 0, kv_force, kv_detail, kv_energy, NULL, NULL};
 
 void tt_contact_visco_setup(struct tt_contact *c, const tt_contact_params *p)
 {

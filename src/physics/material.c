@@ -11,7 +11,7 @@ double tt_material_reduced_modulus(const tt_tip *tip, double E, double nu)
 
 int tt_material_viscous(const tt_material *m)
 {
-    return m->contact.viscosity > 0 || m->contact.film_thickness > 0;
+    return m->contact.viscosity > 0 || m->contact.film_thickness > 0 || m->contact.arms > 0;
 }
 
 double tt_material_lambda(const tt_contact_params *p)

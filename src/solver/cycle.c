@@ -11,8 +11,8 @@
 static void step_accept(tt_sim *S)
 {
     tt_observe(S, 1);
-    memcpy(S->y, S->y1, sizeof S->y);
-    memcpy(S->fsal, S->dydt_out, sizeof S->fsal);
+    sim_copy(S, S->y, S->y1);
+    sim_copy(S, S->fsal, S->dydt_out);
     S->fsal_ok = !S->step_long; /* a long step computes no derivative at its end */
     if (S->type->accept)
         S->type->accept(S->step, S);
@@ -33,7 +33,7 @@ static int check_finite(tt_sim *S)
 /* Clear the per-cycle integrals and accumulators at the cycle start. */
 static void cycle_begin(tt_sim *S)
 {
-    for (int i = Y_WDRIVE; i < NY; i++)
+    for (int i = S->sys.n; i < sim_ny(S); i++)
         S->y[i] = 0;
     S->tau = 0;
     S->peak_force = -INFINITY;
@@ -73,25 +73,26 @@ static void cycle_result(const tt_sim *S, double E_start, tt_cycle *out)
     const tt_cantilever *c = &S->c;
     const double T = c->T;
     double E_end = S->sys.energy(S, T, S->y, S->contact_state);
-    double X = 2.0 / T * S->y[Y_IC], Yq = 2.0 / T * S->y[Y_IS];
+    const double *q = sim_quad(S, S->y);
+    double X = 2.0 / T * q[Y_IC], Yq = 2.0 / T * q[Y_IS];
     out->amplitude = hypot(X, Yq);
     double ph = atan2(Yq, X);
     if (ph < -M_PI / 2)
         ph += 2 * M_PI; /* lags run from about 0 to past 180 degrees */
     out->phase = ph;
-    out->mean = S->y[Y_IY] / T;
+    out->mean = q[Y_IY] / T;
     out->y_min = S->y_min;
     out->y_max = S->y_max;
     out->peak_force = S->skip_peaks ? NAN : S->peak_force;
     out->max_indentation = S->skip_peaks ? NAN : S->max_indent;
-    out->contact_fraction = S->y[Y_TC] / T;
-    out->e_drive = S->y[Y_WDRIVE];
-    out->e_damp = S->y[Y_WDAMP];
-    out->e_ts = S->y[Y_WCI] + S->y[Y_WVISC] + S->e_jumps;
+    out->contact_fraction = q[Y_TC] / T;
+    out->e_drive = q[Y_WDRIVE];
+    out->e_damp = q[Y_WDAMP];
+    out->e_ts = q[Y_WCI] + q[Y_WVISC] + S->e_jumps;
     out->e_hyst = S->e_jumps;
-    out->e_ci = S->y[Y_WCI];
-    out->e_visc = S->y[Y_WVISC];
-    out->e_sample = S->y[Y_WS];
+    out->e_ci = q[Y_WCI];
+    out->e_visc = q[Y_WVISC];
+    out->e_sample = q[Y_WS];
     out->residual = out->e_drive - out->e_damp - out->e_ts - out->e_sample - (E_end - E_start);
     out->residual_rel = fabs(out->residual) / (M_PI * c->c * c->wd * c->A0 * c->A0);
     out->t_contact = S->t_contact;

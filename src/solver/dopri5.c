@@ -13,8 +13,8 @@
 typedef struct {
     tt_step_control ctl;
     tt_flight *fl;
-    double k[6][NY]; /* stages 1 to 5 (stage 0 and the end are the record's dydt_in, dydt_out) */
-    double rcont[5][2];
+    double k[6][NYMAX]; /* stages 1 to 5 (stage 0 and the end are the record's dydt_in, dydt_out) */
+    double rcont[5][TT_SIM_DIM_MAX]; /* the dense output of the system's n components */
 } dopri5_state;
 
 /* Dormand & Prince 1980; dense output of Hairer's dopri5. */
@@ -67,12 +67,13 @@ static double dopri5_factor(const void *state, double err)
     return fac > 5 ? 5 : fac < 0.2 ? 0.2 : fac;
 }
 
-/* Hairer's dense output coefficients of d and v for the step just computed. */
-static void dopri5_dense_fill(dopri5_state *st, const tt_sim *S, const double *y0, double h)
+/* Hairer's dense output coefficients of the n components for the step just computed. */
+static inline void dopri5_dense_fill(dopri5_state *st, const tt_sim *S, const double *y0, double h,
+                                     const int n)
 {
-    double (*k)[NY] = st->k;
+    double (*k)[NYMAX] = st->k;
     const double *k0 = S->dydt_in, *k6 = S->dydt_out;
-    for (int i = 0; i < 2; i++) {
+    for (int i = 0; i < n; i++) {
         double ydiff = S->y1[i] - y0[i];
         double bspl = h * k0[i] - ydiff;
         st->rcont[0][i] = y0[i];
@@ -84,58 +85,74 @@ static void dopri5_dense_fill(dopri5_state *st, const tt_sim *S, const double *y
     }
 }
 
-/* One Dormand-Prince 5(4) step. Returns the scaled error norm (<= 1 accepts). */
-static double dopri5_step(void *state, tt_sim *S, double h)
+/* One Dormand-Prince 5(4) step of a system of n components (a constant where inlined
+ * for n = 2, so that the one-mode elastic system's loops unroll). Returns the scaled
+ * error norm (<= 1 accepts). */
+static inline __attribute__((always_inline)) double dopri5_step_n(void *state, tt_sim *S,
+                                                                  double h, const int n)
 {
     dopri5_state *st = state;
-    double (*k)[NY] = st->k, yt[NY];
+    double (*k)[NYMAX] = st->k, yt[NYMAX];
     double *k0 = S->dydt_in, *k6 = S->dydt_out;
     const double *y0 = S->y;
     double t = S->tau;
     int cs = S->contact_state;
+    const int ny = n + NQ;
+    const size_t sz = (size_t)ny * sizeof *yt;
     ensure_fsal(S);
-    memcpy(k0, S->fsal, sizeof S->dydt_in);
-    /* The stages read only the motion (d, v): the integrals do not feed back, so only
-     * the step's end carries them. */
-    memcpy(yt, y0, sizeof yt);
-    for (int i = 0; i < 2; i++)
+    memcpy(k0, S->fsal, sz);
+    /* The stages read only the system's n components (the motion and the law's states):
+     * the integrals do not feed back, so only the step's end carries them. */
+    memcpy(yt, y0, sz);
+    for (int i = 0; i < n; i++)
         yt[i] = y0[i] + h * A21 * k0[i];
     S->sys.rhs(S, t + C2 * h, yt, cs, k[1]);
-    for (int i = 0; i < 2; i++)
+    for (int i = 0; i < n; i++)
         yt[i] = y0[i] + h * (A31 * k0[i] + A32 * k[1][i]);
     S->sys.rhs(S, t + C3 * h, yt, cs, k[2]);
-    for (int i = 0; i < 2; i++)
+    for (int i = 0; i < n; i++)
         yt[i] = y0[i] + h * (A41 * k0[i] + A42 * k[1][i] + A43 * k[2][i]);
     S->sys.rhs(S, t + C4 * h, yt, cs, k[3]);
-    for (int i = 0; i < 2; i++)
+    for (int i = 0; i < n; i++)
         yt[i] = y0[i] + h * (A51 * k0[i] + A52 * k[1][i] + A53 * k[2][i] + A54 * k[3][i]);
     S->sys.rhs(S, t + C5 * h, yt, cs, k[4]);
-    for (int i = 0; i < 2; i++)
+    for (int i = 0; i < n; i++)
         yt[i] = y0[i] + h * (A61 * k0[i] + A62 * k[1][i] + A63 * k[2][i] + A64 * k[3][i] +
                              A65 * k[4][i]);
     S->sys.rhs(S, t + h, yt, cs, k[5]);
-    for (int i = 0; i < NY; i++)
+    for (int i = 0; i < ny; i++)
         S->y1[i] = y0[i] + h * (A71 * k0[i] + A73 * k[2][i] + A74 * k[3][i] + A75 * k[4][i] +
                                 A76 * k[5][i]);
     S->sys.rhs(S, t + h, S->y1, cs, k6);
-    /* Error on the motion only, relative to the free amplitude (and its velocity). */
-    double sc[2] = {S->solver.tolerance * S->c.A0, S->solver.tolerance * S->c.A0 * S->c.wd};
+    /* Error on the system's components, relative to the free amplitude (and its
+     * velocity for each mode's velocity; a law's states are lengths, held to the
+     * amplitude's scale as positions are). */
+    const double scd = S->solver.tolerance * S->c.A0, scv = scd * S->c.wd;
+    const int nm = 2 * S->sys.modes;
     double err = 0;
-    for (int i = 0; i < 2; i++) {
+    for (int i = 0; i < n; i++) {
         double e = h * (E1 * k0[i] + E3 * k[2][i] + E4 * k[3][i] + E5 * k[4][i] + E6 * k[5][i] +
                         E7 * k6[i]);
-        double r = fabs(e) / sc[i];
+        double r = fabs(e) / (i < nm && (i & 1) ? scv : scd);
         if (r > err)
             err = r;
     }
     if (!isfinite(err))
         err = INFINITY;
-    dopri5_dense_fill(st, S, y0, h);
-    memcpy(S->y0, y0, sizeof S->y0);
+    dopri5_dense_fill(st, S, y0, h, n);
+    memcpy(S->y0, y0, sz);
     S->step_tau = t;
     S->step_h = h;
     S->step_long = 0;
     return err;
+}
+
+/* The step: unrolled for the one-mode elastic system, over n otherwise. */
+static double dopri5_step(void *state, tt_sim *S, double h)
+{
+    if (S->sys.n == 2)
+        return dopri5_step_n(state, S, h, 2);
+    return dopri5_step_n(state, S, h, S->sys.n);
 }
 
 static void dopri5_dense(const void *state, const tt_sim *S, double th, double *d, double *v)
@@ -153,6 +170,17 @@ static void dopri5_dense(const void *state, const tt_sim *S, double th, double *
                        th1 * (st->rcont[2][i] + th * (st->rcont[3][i] + th1 * st->rcont[4][i])));
     *d = out[0];
     *v = out[1];
+}
+
+/* The system's n components at fraction th (a flight step carries no law states). */
+static void dopri5_dense_x(const void *state, const tt_sim *S, double th, double *x)
+{
+    const dopri5_state *st = state;
+    double th1 = 1 - th;
+    for (int i = 0; i < S->sys.n; i++)
+        x[i] = st->rcont[0][i] +
+               th * (st->rcont[1][i] +
+                     th1 * (st->rcont[2][i] + th * (st->rcont[3][i] + th1 * st->rcont[4][i])));
 }
 
 /* Out of contact and away from the surface, the free flight's exponential steps; they
@@ -177,7 +205,7 @@ static int dopri5_redo(void *state, tt_sim *S, double h)
 /* The step of length 0 at (tau, y): its polynomial is the constant y. */
 static void dopri5_point(void *state, const tt_sim *S)
 {
-    tt_poly_point(((dopri5_state *)state)->rcont, S->y);
+    tt_poly_point(((dopri5_state *)state)->rcont, S->y, S->sys.n);
 }
 
 static void dopri5_reset(void *state, const tt_sim *S)
@@ -224,5 +252,6 @@ const tt_step_type tt_step_dopri5 = {
     .advance = dopri5_advance,
     .redo = dopri5_redo,
     .dense = dopri5_dense,
+    .dense_x = dopri5_dense_x,
     .point = dopri5_point,
 };

@@ -116,7 +116,7 @@ int tt_event_take(tt_sim *S, double th)
         int rc = S->type->redo(S->step, S, th * h);
         if (rc)
             return rc;
-        memcpy(S->y, S->y1, sizeof S->y);
+        sim_copy(S, S->y, S->y1);
         S->tau = S->step_tau + S->step_h;
         S->steps++;
     }

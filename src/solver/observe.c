@@ -4,14 +4,36 @@
 
 #include "stepper.h"
 
-/* Tip-sample force on the current branch at a state. */
-static double ts_force(const tt_sim *S, double tau, double d, double v, int contact, double *delta)
+/* The law's state at fraction th of the current step into x (NULL: an elastic law). */
+static const double *law_state_at(const tt_sim *S, double th, double *x)
 {
-    double dl = d - (S->sys.s0 + S->sys.sdot * tau);
+    if (!S->sys.nlaw)
+        return NULL;
+    S->type->dense_x(S->step, S, th, x);
+    return tt_system_law_state(S, x);
+}
+
+/* The force of a law with states, which reads them off the dense output: apart, so that
+ * the elastic law's evaluation below stays inline. */
+static __attribute__((noinline)) tt_contact_forces law_force_at(const tt_sim *S, double th,
+                                                                double delta, double rate,
+                                                                int contact)
+{
+    double x[TT_SIM_DIM_MAX];
+    return S->sys.force(S->sys.contact, S->sys.ci, delta, rate, contact, law_state_at(S, th, x));
+}
+
+/* Tip-sample force on the current branch at the tip's (d, v) at fraction th of the
+ * current step. */
+static inline double ts_force(const tt_sim *S, double th, double d, double v, int contact,
+                              double *delta)
+{
+    double dl = d - (S->sys.s0 + S->sys.sdot * (S->step_tau + th * S->step_h));
     *delta = dl;
     if (!S->sys.contact)
         return 0;
-    tt_contact_forces f = S->sys.force(S->sys.contact, S->sys.ci, dl, v - S->sys.sdot, contact, NULL);
+    tt_contact_forces f = S->sys.nlaw ? law_force_at(S, th, dl, v - S->sys.sdot, contact)
+                                      : S->sys.force(S->sys.contact, S->sys.ci, dl, v - S->sys.sdot, contact, NULL);
     return f.conservative + f.dissipative;
 }
 
@@ -29,6 +51,16 @@ static void observe_at(tt_sim *S, double ts, tt_sample *smp)
     smp->z = z;
     smp->s = S->sys.s0 + S->sys.sdot * ts;
     smp->contact = S->contact_state;
+    smp->u = 0;
+    smp->f = NAN;
+    if (S->sys.nlaw) {
+        /* the surface where it is: at the tip in contact, where the arms let it be out */
+        double x[TT_SIM_DIM_MAX], delta;
+        const double *q = law_state_at(S, f, x);
+        double u = S->sys.law->surface(S->sys.contact, q);
+        smp->u = smp->contact ? fmax(u, smp->d - smp->s) : u;
+        smp->f = ts_force(S, f, smp->d, smp->v, smp->contact, &delta);
+    }
 }
 
 /* Samples at k T / n inside (t0, t0 + th h]; k = 0 is taken at the cycle start. Then
@@ -62,14 +94,13 @@ static void observe_samples(tt_sim *S, double th)
  * sample it at quarter steps of [0, th] and refine an interior maximum by a parabola. */
 static void observe_contact_peak(tt_sim *S, double th)
 {
-    double h = S->step_h, t0 = S->step_tau;
     double d, v, delta;
     double f[5], tq[5];
     int best = 0;
     for (int q = 0; q < 5; q++) {
         tq[q] = th * q / 4.0;
         tt_step_dense(S, tq[q], &d, &v);
-        f[q] = ts_force(S, t0 + tq[q] * h, d, v, 1, &delta);
+        f[q] = ts_force(S, tq[q], d, v, 1, &delta);
         if (f[q] > f[best])
             best = q;
     }
@@ -80,7 +111,7 @@ static void observe_contact_peak(tt_sim *S, double th)
             double off = 0.5 * (f[best - 1] - f[best + 1]) / den; /* in quarter steps */
             if (fabs(off) <= 1) {
                 tt_step_dense(S, tq[best] + off * th / 4.0, &d, &v);
-                double fr = ts_force(S, t0 + (tq[best] + off * th / 4.0) * h, d, v, 1, &delta);
+                double fr = ts_force(S, tq[best] + off * th / 4.0, d, v, 1, &delta);
                 if (fr > fmax)
                     fmax = fr;
             }
@@ -119,9 +150,8 @@ void tt_observe(tt_sim *S, double th)
  * whose end state is (d, v). */
 static void observe_peaks(tt_sim *S, double th, double d, double v)
 {
-    double h = S->step_h, t0 = S->step_tau;
     double delta;
-    double F = ts_force(S, t0 + th * h, d, v, S->contact_state, &delta);
+    double F = ts_force(S, th, d, v, S->contact_state, &delta);
     if (F > S->peak_force)
         S->peak_force = F;
     if (delta > S->max_indent)
@@ -131,7 +161,7 @@ static void observe_peaks(tt_sim *S, double th, double d, double v)
     if (v0 > 0 && v1 < 0) {
         double tm = tt_event_root(S, 1, 0, 0, th, v0, v1);
         tt_step_dense(S, tm, &d, &v);
-        F = ts_force(S, t0 + tm * h, d, v, S->contact_state, &delta);
+        F = ts_force(S, tm, d, v, S->contact_state, &delta);
         if (F > S->peak_force)
             S->peak_force = F;
         if (delta > S->max_indent)
@@ -142,7 +172,7 @@ static void observe_peaks(tt_sim *S, double th, double d, double v)
     if (S->step_long && v0 < 0 && v1 > 0) {
         double tm = tt_event_root(S, 1, 0, 0, th, v0, v1);
         tt_step_dense(S, tm, &d, &v);
-        F = ts_force(S, t0 + tm * h, d, v, S->contact_state, &delta);
+        F = ts_force(S, tm, d, v, S->contact_state, &delta);
         if (F > S->peak_force)
             S->peak_force = F;
     }
@@ -158,11 +188,11 @@ void tt_observe_start(tt_sim *S)
         return;
     S->step_tau = 0;
     S->step_h = 0;
-    memcpy(S->y0, S->y, sizeof S->y0);
-    memcpy(S->y1, S->y, sizeof S->y1);
+    sim_copy(S, S->y0, S->y);
+    sim_copy(S, S->y1, S->y);
     ensure_fsal(S);
-    memcpy(S->dydt_in, S->fsal, sizeof S->dydt_in);
-    memcpy(S->dydt_out, S->fsal, sizeof S->dydt_out);
+    sim_copy(S, S->dydt_in, S->fsal);
+    sim_copy(S, S->dydt_out, S->fsal);
     if (S->type->point)
         S->type->point(S->step, S);
     tt_observe(S, 0);

@@ -12,34 +12,38 @@
 typedef struct {
     int j;          /* index of the next grid point in the cycle */
     double dmax;    /* deepest penetration among the step's stages and end */
-    double k[4][NY]; /* stages 1 to 3 (stage 0 and the end are the record's dydt_in, dydt_out) */
+    double k[4][NYMAX]; /* stages 1 to 3 (stage 0 and the end are the record's dydt_in, dydt_out) */
 } rk4_state;
 
-/* One classic RK4 step. */
-static void rk4_step(rk4_state *st, tt_sim *S, double h)
+/* One classic RK4 step of a system of n components (a constant where inlined for
+ * n = 2). */
+static inline __attribute__((always_inline)) void rk4_step_n(rk4_state *st, tt_sim *S, double h,
+                                                             const int n)
 {
-    double (*k)[NY] = st->k, yt[NY];
+    double (*k)[NYMAX] = st->k, yt[NYMAX];
     double *k0 = S->dydt_in, *k6 = S->dydt_out;
     const double *y0 = S->y;
     double t = S->tau;
     int cs = S->contact_state;
+    const int ny = n + NQ;
+    const size_t sz = (size_t)ny * sizeof *yt;
     ensure_fsal(S);
-    memcpy(k0, S->fsal, sizeof S->dydt_in);
-    memcpy(yt, y0, sizeof yt); /* the stages read only (d, v) */
+    memcpy(k0, S->fsal, sz);
+    memcpy(yt, y0, sz); /* the stages read only the system's n components */
     double smid = S->sys.s0 + S->sys.sdot * (t + 0.5 * h), send = S->sys.s0 + S->sys.sdot * (t + h);
-    for (int i = 0; i < 2; i++)
+    for (int i = 0; i < n; i++)
         yt[i] = y0[i] + 0.5 * h * k0[i];
     double dmax = yt[Y_D] - smid;
     S->sys.rhs(S, t + 0.5 * h, yt, cs, k[1]);
-    for (int i = 0; i < 2; i++)
+    for (int i = 0; i < n; i++)
         yt[i] = y0[i] + 0.5 * h * k[1][i];
     dmax = fmax(dmax, yt[Y_D] - smid);
     S->sys.rhs(S, t + 0.5 * h, yt, cs, k[2]);
-    for (int i = 0; i < 2; i++)
+    for (int i = 0; i < n; i++)
         yt[i] = y0[i] + h * k[2][i];
     dmax = fmax(dmax, yt[Y_D] - send);
     S->sys.rhs(S, t + h, yt, cs, k[3]);
-    for (int i = 0; i < NY; i++)
+    for (int i = 0; i < ny; i++)
         S->y1[i] = y0[i] + h / 6.0 * (k0[i] + 2 * k[1][i] + 2 * k[2][i] + k[3][i]);
     /* A step that enters a stiff contact (from its soft onset, where the stiffness at the
      * start says nothing) shows it in its stages: they overshoot deep into it. */
@@ -47,10 +51,19 @@ static void rk4_step(rk4_state *st, tt_sim *S, double h)
     /* The derivative at the end serves the cubic Hermite dense output and, unless the
      * state changes there, the next step's first stage. */
     S->sys.rhs(S, t + h, S->y1, cs, k6);
-    memcpy(S->y0, y0, sizeof S->y0);
+    memcpy(S->y0, y0, sz);
     S->step_tau = t;
     S->step_h = h;
     S->step_long = 0;
+}
+
+/* The step: unrolled for the one-mode elastic system, over n otherwise. */
+static void rk4_step(rk4_state *st, tt_sim *S, double h)
+{
+    if (S->sys.n == 2)
+        rk4_step_n(st, S, h, 2);
+    else
+        rk4_step_n(st, S, h, S->sys.n);
 }
 
 /* rk4 is stable for oscillation only while h * sqrt(k_contact / m) < 2.8; past that it
@@ -62,7 +75,8 @@ static int rk4_check_stiffness(tt_sim *S, double h, double delta)
     if (!S->sys.contact)
         return TT_OK;
     tt_contact_detail law;
-    tt_contact_evaluate(S->sys.contact, S->sys.ci, delta, 0.0, S->contact_state, NULL, &law);
+    tt_contact_evaluate(S->sys.contact, S->sys.ci, delta, 0.0, S->contact_state, tt_system_law_state(S, S->y),
+                        &law);
     double dPdd = law.stiffness;
     double keff = S->c.k + (dPdd > 0 ? dPdd : 0);
     double wc = sqrt(keff / S->c.m), wi = law.damping / S->c.m; /* the damping's rate, 1/s */
@@ -124,6 +138,18 @@ static void rk4_dense(const void *state, const tt_sim *S, double th, double *d, 
     *v = h00 * S->y0[Y_V] + h10 * h * S->dydt_in[Y_V] + h01 * S->y1[Y_V] + h11 * h * S->dydt_out[Y_V];
 }
 
+/* Cubic Hermite on each of the n components, from their values and derivatives at the
+ * step's ends. */
+static void rk4_dense_x(const void *state, const tt_sim *S, double th, double *x)
+{
+    (void)state;
+    double h = S->step_h;
+    double t2 = th * th, t3 = t2 * th;
+    double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + th, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
+    for (int i = 0; i < S->sys.n; i++)
+        x[i] = h00 * S->y0[i] + h10 * h * S->dydt_in[i] + h01 * S->y1[i] + h11 * h * S->dydt_out[i];
+}
+
 /* A step taken in full reaches its grid point. */
 static void rk4_accept(void *state, const tt_sim *S)
 {
@@ -155,5 +181,6 @@ const tt_step_type tt_step_rk4 = {
     .advance = rk4_advance,
     .redo = rk4_redo,
     .dense = rk4_dense,
+    .dense_x = rk4_dense_x,
     .accept = rk4_accept,
 };

@@ -60,6 +60,8 @@ void tt_sim_free(tt_sim *sim)
 
 void tt_sim_set_contact(tt_sim *S, const tt_contact *contact, double Qi)
 {
+    const tt_contact_law *was = S->sys.law;
+    int nlaw = S->sys.nlaw;
     S->sys.contact = contact;
     S->sys.ci = (isfinite(Qi) && Qi > 0) ? S->c.m * S->c.w0 / Qi : 0.0;
     S->sys.force = contact ? tt_contact_law_of(contact)->force : NULL;
@@ -75,6 +77,21 @@ void tt_sim_set_contact(tt_sim *S, const tt_contact *contact, double Qi)
      * threshold, and a grazing tip may end a step just past one without a sign change;
      * only past this margin is a switch forced (tiny next to any force-law length). */
     S->sys.margin = 1e-6 * S->c.A0;
+    /* The law's states follow the modes: a law of the same row carries them on (a scan
+     * within one material), another starts from a relaxed sample; the quadratures move
+     * to the new dimension's place. */
+    const tt_contact_law *law = contact ? tt_contact_law_of(contact) : NULL;
+    if (law != was) {
+        int n0 = S->sys.n;
+        double q[NQ];
+        memcpy(q, S->y + n0, sizeof q);
+        tt_system_plan(S, S->sys.generic);
+        for (int i = 2 * S->sys.modes; i < S->sys.n; i++)
+            S->y[i] = 0;
+        memcpy(S->y + S->sys.n, q, sizeof q);
+        if (S->sys.nlaw != nlaw)
+            tt_step_setup(S);
+    }
     tt_sim_invalidate(S);
 }
 
@@ -115,7 +132,7 @@ void tt_sim_set_cantilever(tt_sim *S, const tt_cantilever *c)
 {
     /* Same drive period required: the cycle bookkeeping assumes it. */
     S->c = *c;
-    tt_system_plan(S, S->sys.rhs == tt_system_rhs_n);
+    tt_system_plan(S, S->sys.generic);
     tt_step_setup(S);
     tt_sim_set_contact(S, S->sys.contact, S->sys.ci > 0 ? S->c.m * S->c.w0 / S->sys.ci : NAN);
 }
@@ -191,5 +208,9 @@ double tt_sim_force(const tt_sim *S, const tt_sample *smp, double *a)
                         &law);
     if (a)
         *a = law.radius;
+    /* a law with states: the force the sim recorded with the sample (the radius is the
+     * paraboloid's at the penetration, whatever the state) */
+    if (S->sys.nlaw && isfinite(smp->f))
+        return smp->f;
     return law.f.conservative + law.f.dissipative;
 }

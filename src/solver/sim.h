@@ -9,6 +9,7 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "tiptap/solver/integrator.h"
 
@@ -27,6 +28,11 @@ enum {
     NY
 };
 
+/* The state's layout for a system of dimension n: [the modes' (q, q') and the law's
+ * states: n][the quadratures Y_WDRIVE..Y_TC: NQ], quadrature q at index n + q - Y_WDRIVE;
+ * n = 2 is the enum above. The arrays are sized for the largest system (NYMAX). */
+enum { NQ = NY - Y_WDRIVE, NYMAX = TT_SIM_DIM_MAX + NQ };
+
 typedef struct tt_step_type tt_step_type;
 
 /* The system the steps integrate, planned when the sim is made (system.c): its dimension
@@ -36,14 +42,18 @@ typedef struct tt_step_type tt_step_type;
  * kernels (sim.h's rhs_with and energy); the generic ones loop over the modes and equal
  * them bit for bit at n = 2 (tests/test_system.c). Mode 0 is the tip's position, each
  * further mode i a deflection q_i (m_i q_i'' + c_i q_i' + k_i q_i = the force on the
- * tip) added to it. The state arrays of tt_sim hold one mode (NY) so far. */
+ * tip) added to it. The law's internal states (a viscoelastic sample's) follow the
+ * modes, first-order components integrated by the same steps. */
 enum { TT_MODES_MAX = 4 };
 typedef struct {
-    int n;         /* motion components, 2 per mode; the quadratures start at index n */
+    int n;         /* 2 per mode, then the law's states; the quadratures start at index n */
     int modes;
+    int nlaw;      /* the law's internal states, at index 2 modes (0: an elastic law) */
+    int generic;   /* the generic kernels asked for (tt_system_plan) */
     double m[TT_MODES_MAX], k[TT_MODES_MAX], c[TT_MODES_MAX];
     double inv_m[TT_MODES_MAX]; /* 1 / m: the right-hand side multiplies rather than divides */
     const tt_contact *contact;
+    const tt_contact_law *law; /* its row: the state's rate and the surface (nlaw > 0) */
     /* the law's time-loop kernel, chosen when the contact is set (tt_sim_set_contact):
      * one indirect call, no dispatch among the laws per evaluation */
     tt_contact_forces (*force)(const tt_contact *c, double ci, double delta, double rate,
@@ -75,15 +85,15 @@ struct tt_sim {
     /* state */
     long cycle;          /* completed cycles */
     double tau;          /* time within the cycle, s */
-    double y[NY];
+    double y[NYMAX];
     int contact_state;
     /* first-same-as-last derivative at (tau, y), valid while fsal_ok */
-    double fsal[NY];
+    double fsal[NYMAX];
     int fsal_ok;
     /* the current step, written by the step type: its start and length, the state and
      * the derivative at both ends (dydt_out unset after a long step) */
     double step_tau, step_h;
-    double y0[NY], y1[NY], dydt_in[NY], dydt_out[NY];
+    double y0[NYMAX], y1[NYMAX], dydt_in[NYMAX], dydt_out[NYMAX];
     int step_long;       /* a long exact step (flight): no derivative at its end, and its
                           * ends too far apart to stand for the turning points between */
     /* sampling */
@@ -103,6 +113,34 @@ struct tt_sim {
     int switches_near;  /* ... and within 1e-12 T of one another (events.c) */
     long steps, rejected, events;
 };
+
+/* The length of the state in use: the system's n components and the quadratures. */
+static inline int sim_ny(const tt_sim *S)
+{
+    return S->sys.n + NQ;
+}
+
+/* The quadratures of a state Y of the sim's system: q[Y_WDRIVE] .. q[Y_TC]. */
+static inline const double *sim_quad(const tt_sim *S, const double *Y)
+{
+    return Y + S->sys.n - Y_WDRIVE;
+}
+
+/* Copy a state of the sim's length: a fixed-size copy for the one-mode elastic system
+ * (inlined moves), the used length otherwise. */
+static inline void sim_copy(const tt_sim *S, double *dst, const double *src)
+{
+    if (S->sys.n == 2)
+        memcpy(dst, src, NY * sizeof *dst);
+    else
+        memcpy(dst, src, (size_t)sim_ny(S) * sizeof *dst);
+}
+
+/* The law's internal states within a state Y of the system (NULL: an elastic law). */
+static inline const double *tt_system_law_state(const tt_sim *S, const double *Y)
+{
+    return S->sys.nlaw ? Y + 2 * S->sys.modes : NULL;
+}
 
 /* The run's time at tau within the current cycle, s. */
 static inline double sim_time(const tt_sim *S, double tau)
@@ -182,17 +220,18 @@ typedef struct {
     double z, zd, F, cw, sw;
 } drive_val;
 
-/* The tip-sample force on the contact branch at the tip's (d, v) at tau, and the
- * penetration's rate in *deltad. */
+/* The tip-sample force on the contact branch at the tip's (d, v) at tau with the law's
+ * state q (NULL: none), the penetration and its rate in *delta, *deltad. */
 static inline tt_contact_forces tip_forces(const tt_sim *S, double tau, double d, double v,
-                                           int contact, double *deltad)
+                                           int contact, const double *q, double *delta,
+                                           double *deltad)
 {
     double s = S->sys.s0 + S->sys.sdot * tau;
-    double delta = d - s;
+    *delta = d - s;
     *deltad = v - S->sys.sdot;
     tt_contact_forces f = {0.0, 0.0, 0.0};
     if (S->sys.contact)
-        f = S->sys.force(S->sys.contact, S->sys.ci, delta, *deltad, contact, NULL);
+        f = S->sys.force(S->sys.contact, S->sys.ci, *delta, *deltad, contact, q);
     return f;
 }
 
@@ -205,8 +244,8 @@ static inline void rhs_with(const tt_sim *S, double tau, const drive_val *dv, co
     const tt_cantilever *c = &S->c;
     double z = dv->z, zd = dv->zd, Fd = dv->F, cw = dv->cw, sw = dv->sw;
     double d = Y[Y_D], v = Y[Y_V];
-    double deltad;
-    tt_contact_forces f = tip_forces(S, tau, d, v, contact, &deltad);
+    double delta, deltad;
+    tt_contact_forces f = tip_forces(S, tau, d, v, contact, NULL, &delta, &deltad);
     double P = f.conservative, Fi = f.dissipative;
     double spring = c->k * (d - z), damp = c->c * (v - zd);
     double y = d - z;
@@ -230,9 +269,14 @@ void tt_system_rhs_n(const tt_sim *S, double tau, const double *Y, int contact, 
 /* The energy (system.c), specialised (tt_sim_energy) or generic. */
 double tt_sim_energy(const tt_sim *S, double tau, const double *Y, int contact);
 double tt_system_energy_n(const tt_sim *S, double tau, const double *Y, int contact);
-/* Plan the system of the sim's cantilever (one mode): the specialised kernels, or the
- * generic ones when generic is set (for the test of their equality). */
+/* Plan the system of the sim's cantilever (one mode) and its contact law's states: the
+ * specialised kernels for an elastic law, or the generic ones when generic is set (for
+ * the test of their equality) or the law has internal states. */
 void tt_system_plan(tt_sim *S, int generic);
+/* The depression of the sample's surface below s by the law's state (m, 0 for an
+ * elastic law) at fraction th of the current step, on its dense output (system.c): the
+ * surface the events locate contact against. */
+double tt_system_surface_at(const tt_sim *S, double th);
 
 /* The derivative at the current state, for a step's first stage: kept from the last
  * step's end (first same as last) unless the state changed since. */

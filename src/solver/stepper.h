@@ -42,8 +42,11 @@ struct tt_step_type {
     int (*advance)(void *state, tt_sim *S, double T, int *outcome);
     /* Redo the current step up to length h, where an event lies; a status. */
     int (*redo)(void *state, tt_sim *S, double h);
-    /* d and v at fraction th of the current step. */
+    /* The tip's d and v at fraction th of the current step (mode 0's, with one mode). */
     void (*dense)(const void *state, const tt_sim *S, double th, double *d, double *v);
+    /* The system's n components at fraction th of the current step (the law's states
+     * with the motion), into x. */
+    void (*dense_x)(const void *state, const tt_sim *S, double th, double *x);
     /* Make the current step the point (tau, y), of length 0 (its dense output is that
      * state at every fraction; NULL: the record's y0, y1 and derivatives suffice). */
     void (*point)(void *state, const tt_sim *S);
@@ -78,12 +81,16 @@ static inline void tt_step_dense(const tt_sim *S, double th, double *d, double *
 }
 
 /* Event functions on the dense output (dense.c): penetration past a threshold, and
- * the relative velocity (for turning points). */
+ * the relative velocity (for turning points). The penetration is the tip's against the
+ * surface where it is now, the sample's motion and the law's state together (the
+ * system's, tt_system_surface_at); the velocity is against the sample's motion alone,
+ * the surface's own recovery being slow next to the tip's. */
 static inline double tt_event_delta(const tt_sim *S, double th, double thr)
 {
     double d, v;
     tt_step_dense(S, th, &d, &v);
-    return d - (S->sys.s0 + S->sys.sdot * (S->step_tau + th * S->step_h)) - thr;
+    double g = d - (S->sys.s0 + S->sys.sdot * (S->step_tau + th * S->step_h)) - thr;
+    return S->sys.nlaw ? g - tt_system_surface_at(S, th) : g;
 }
 
 static inline double tt_event_vel(const tt_sim *S, double th)
@@ -93,11 +100,11 @@ static inline double tt_event_vel(const tt_sim *S, double th)
     return v - S->sys.sdot;
 }
 
-/* A dense-output polynomial of d and v (five coefficients, dopri5's or radau's) that is
- * the constant y: a step of length 0. */
-static inline void tt_poly_point(double p[5][2], const double *y)
+/* A dense-output polynomial of the n components (five coefficients, dopri5's or
+ * radau's) that is the constant y: a step of length 0. */
+static inline void tt_poly_point(double p[5][TT_SIM_DIM_MAX], const double *y, int n)
 {
-    for (int i = 0; i < 2; i++) {
+    for (int i = 0; i < n; i++) {
         p[0][i] = y[i];
         p[1][i] = p[2][i] = p[3][i] = p[4][i] = 0;
     }

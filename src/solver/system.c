@@ -1,7 +1,7 @@
 /* The system the steps integrate: its plan (dimension and kernels), the one-mode
  * elastic system's specialised right-hand side and energy, and the generic n-mode
  * kernels beside them (sim.h, tt_system). */
-#include "sim.h"
+#include "stepper.h"
 
 void tt_sim_rhs(const tt_sim *S, double tau, const double *Y, int contact, double *Fo)
 {
@@ -48,8 +48,9 @@ void tt_system_rhs_n(const tt_sim *S, double tau, const double *Y, int contact, 
         dv.F += noise_force(S, tau);
     double d, v;
     system_tip(sys, Y, &d, &v);
-    double deltad;
-    tt_contact_forces f = tip_forces(S, tau, d, v, contact, &deltad);
+    const double *q = tt_system_law_state(S, Y);
+    double delta, deltad;
+    tt_contact_forces f = tip_forces(S, tau, d, v, contact, q, &delta, &deltad);
     double P = f.conservative, Fi = f.dissipative;
     double wdrive = 0, wdamp = 0;
     for (int i = 0; i < sys->modes; i++) {
@@ -69,6 +70,12 @@ void tt_system_rhs_n(const tt_sim *S, double tau, const double *Y, int contact, 
     Q[Y_WDAMP] = wdamp;
     Q[Y_WCI] = (Fi - f.viscous) * deltad;
     Q[Y_WVISC] = f.viscous * deltad;
+    if (q) {
+        /* the law's states after the modes, and the power their dashpots dissipate */
+        double loss;
+        sys->law->rate(sys->contact, delta, deltad, contact, q, Fo + 2 * sys->modes, &loss);
+        Q[Y_WVISC] += loss;
+    }
     Q[Y_WS] = (P + Fi) * S->sys.sdot;
     Q[Y_IC] = y * dv.cw;
     Q[Y_IS] = y * dv.sw;
@@ -91,15 +98,32 @@ double tt_system_energy_n(const tt_sim *S, double tau, const double *Y, int cont
     }
     double d, v;
     system_tip(sys, Y, &d, &v);
-    double U = S->sys.contact ? tt_contact_energy(S->sys.contact, d - (S->sys.s0 + S->sys.sdot * tau), contact) : 0;
+    double delta = d - (S->sys.s0 + S->sys.sdot * tau), U = 0;
+    if (sys->nlaw)
+        U = sys->law->energy(sys->contact, delta, contact, tt_system_law_state(S, Y));
+    else if (sys->contact)
+        U = tt_contact_energy(sys->contact, delta, contact);
     return E + U;
+}
+
+double tt_system_surface_at(const tt_sim *S, double th)
+{
+    if (!S->sys.nlaw)
+        return 0.0;
+    double x[TT_SIM_DIM_MAX];
+    S->type->dense_x(S->step, S, th, x);
+    return S->sys.law->surface(S->sys.contact, tt_system_law_state(S, x));
 }
 
 void tt_system_plan(tt_sim *S, int generic)
 {
     tt_system *sys = &S->sys;
+    sys->generic = generic;
     sys->modes = 1;
-    sys->n = 2 * sys->modes;
+    sys->law = sys->contact ? tt_contact_law_of(sys->contact) : NULL;
+    sys->nlaw = sys->law ? (int)sys->law->state_size : 0;
+    sys->n = 2 * sys->modes + sys->nlaw;
+    generic |= sys->nlaw > 0;
     sys->m[0] = S->c.m;
     sys->k[0] = S->c.k;
     sys->c[0] = S->c.c;

@@ -36,6 +36,9 @@ typedef enum {
 int tt_contact_model_parse(const char *name, tt_contact_model *out);
 const char *tt_contact_model_name(tt_contact_model m);
 
+/* The most relaxation arms a sample may have (tt_contact_params.arms). */
+#define TT_CONTACT_ARMS_MAX 4
+
 typedef struct {
     tt_contact_model model;
     double K;      /* reduced modulus, Pa (> 0) */
@@ -49,6 +52,15 @@ typedef struct {
                             * eta a(delta) ddelta/dt in contact, a the contact radius */
     double film_thickness; /* m (>= 0; 0: bulk): a film bonded to a rigid substrate,
                             * Garcia & Garcia's bottom-effect series (Hertz law only) */
+    /* relaxation arms (contact_sls.c, docs/physics.md): a generalised Maxwell sample,
+     * K its relaxed (equilibrium) modulus and each arm a Maxwell element in parallel,
+     * its modulus in K's units (reduced, Pa, >= 0) and its relaxation time (s, > 0;
+     * INFINITY: a spring that never relaxes); one arm is the standard linear solid. The
+     * surface's position is the law's state, so it lags behind a tip that leaves.
+     * Hertz law only; 0 arms leave the elastic law as it is */
+    int arms;
+    double arm_modulus[TT_CONTACT_ARMS_MAX];
+    double arm_time[TT_CONTACT_ARMS_MAX];
 } tt_contact_params;
 
 typedef struct {
@@ -145,8 +157,18 @@ typedef struct tt_contact_law {
     /* the forces and their derivatives, and the contact radius */
     void (*detail)(const tt_contact *c, double ci, double delta, double rate, int in_contact,
                    const double *state, tt_contact_detail *out);
-    /* the potential U (J) of the conservative force (tt_contact_energy) */
+    /* the potential U (J) of the conservative force (tt_contact_energy); with internal
+     * state, the energy the sample stores too */
     double (*energy)(const tt_contact *c, double delta, int in_contact, const double *state);
+    /* a law with internal state (NULL otherwise): the state's rate d state/dt into
+     * dstate at (delta, rate, state), and the power (W) its own dissipation takes, which
+     * the energy balance books as the viscous loss */
+    void (*rate)(const tt_contact *c, double delta, double rate, int in_contact,
+                 const double *state, double *dstate, double *power);
+    /* ... and where its surface is: the depression (m, >= 0) below the undisturbed
+     * surface that the state holds it at with the tip away; contact begins and ends
+     * when the penetration crosses it */
+    double (*surface)(const tt_contact *c, const double *state);
 } tt_contact_law;
 
 /* The row c evaluates through (Hertz when w = 0, whatever the model). */

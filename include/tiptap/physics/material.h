@@ -32,7 +32,8 @@ typedef struct {
                                 * own depth; -1: none */
 } tt_material;
 
-/* 1 when the material has a viscosity or a film (the Kelvin-Voigt law): the runs then
+/* 1 when the material has a viscosity or a film (the Kelvin-Voigt law) or relaxation
+ * arms (the generalised Maxwell law): the runs then
  * write the tip-sample loss per mechanism (hysteresis, interaction damping, viscous)
  * beside the total, which elastic scenes keep as they were. */
 int tt_material_viscous(const tt_material *m);

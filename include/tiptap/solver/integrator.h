@@ -91,6 +91,11 @@ typedef struct {
     double d, v;    /* tip position (m) and velocity (m/s) */
     double s;       /* sample surface position, m */
     int contact;
+    /* a sample with internal states (relaxation arms): its surface's depression below
+     * s, m (at the tip in contact, where the arms let it be out; 0 for an elastic
+     * law), and the tip-sample force there, N (NAN for an elastic law, which
+     * tt_sim_force computes from d - s alone) */
+    double u, f;
 } tt_sample;
 
 typedef struct tt_sim tt_sim;
