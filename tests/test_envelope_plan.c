@@ -273,7 +273,7 @@ static void generic_kernels_equal_specialised(void **st)
     (void)st;
     fixture f;
     setup(&f);
-    tt_contact_params cp = {TT_CONTACT_MAUGIS, 3e9, 10e-9, 0.04, 0.265e-9, NAN, 0, 0};
+    tt_contact_params cp = {TT_CONTACT_MAUGIS, 3e9, 10e-9, 0.04, 0.265e-9, NAN, 0, 0, 0, {0}, {0}};
     tt_contact *ct;
     assert_int_equal(tt_contact_alloc(&ct, &cp), TT_OK);
     tt_sim_set_contact(f.sim, ct, 2);
