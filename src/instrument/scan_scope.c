@@ -21,6 +21,7 @@ static const struct {
 } info[TT_SCOPE_COUNT] = {
     {"time", "s"}, {"position", "m"}, {"z", "m"},         {"error", "m"},
     {"amplitude", "m"}, {"phase", "deg"}, {"surface", "m"}, {"pixel", ""}, {"material", ""},
+    {"followed", "m"},
 };
 
 const char *tt_scan_scope_name(int q) { return q >= 0 && q < TT_SCOPE_COUNT ? info[q].name : "?"; }
@@ -126,5 +127,6 @@ void tt_scan_scope_put(const line_ctx *L, const line_state *st, long b, double A
     const surf_pt at = tt_scan_surface_at(L, k);
     v[TT_SCOPE_SURFACE][b] = at.topo;
     v[TT_SCOPE_MATERIAL][b] = (double)at.mat;
+    v[TT_SCOPE_FOLLOWED][b] = at.h;
     v[TT_SCOPE_PIXEL][b] = (double)tt_raster_pixel(&S->raster, L->dir, L->nc, k - 1);
 }
