@@ -64,7 +64,11 @@ enum {
      * sample (with the standing offset of the tip's rest at the setpoint) */
     TT_CH_ARTEFACT_INDEX = 22,
     TT_CH_ARTEFACT = 1 << 22,
-    TT_CH_COUNT = 23
+    /* the true surface dilated by the tip's shape (tip.h) under the tip's axis, m: the
+     * plain geometric image, no dynamics, tilt or z drift (topography for a point tip) */
+    TT_CH_DILATION_INDEX = 23,
+    TT_CH_DILATION = 1 << 23,
+    TT_CH_COUNT = 24
 };
 
 /* Name ("height"), unit ("m", "deg", "N", "J") and title of channel index i. */
