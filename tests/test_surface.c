@@ -180,11 +180,28 @@ static void bad_input(void **st)
     assert_non_null(strstr(tt_error_message(), "[surface] map: islands need type = particles"));
 }
 
+/* A key that only another type reads is refused, naming both types (issue 32); at its
+ * default it passes, as the effective scene written back carries every key. */
+static void other_types_keys(void **st)
+{
+    (void)st;
+    make("[surface]\ntype = grating\nparticle_radius = 30 nm\n", 0);
+    assert_non_null(strstr(tt_error_message(), "[surface] particle_radius: a key of type = particles, "
+                                               "not of this surface's type = grating"));
+    make("[surface]\nmeasured_tip_shape = cone\n", 0);
+    assert_non_null(strstr(tt_error_message(), "[surface] measured_tip_shape: a key of type = measured, "
+                                               "not of this surface's type = flat"));
+    make("[surface]\ntype = steps\nseed = 4\n", 0);
+    assert_non_null(strstr(tt_error_message(), "[surface] seed: a key of type = particles or rough"));
+    tt_surface_free(make("[surface]\ntype = grating\nparticle_radius = 2e-8 m\nlevel = none\nseed = 1\n", 1));
+    tt_surface_free(make("[surface]\ntype = rough\nseed = 4\n", 1));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(shapes),     cmocka_unit_test(rough_statistics), cmocka_unit_test(material_maps),
-        cmocka_unit_test(png_maps),   cmocka_unit_test(bad_input),
+        cmocka_unit_test(png_maps),   cmocka_unit_test(bad_input), cmocka_unit_test(other_types_keys),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

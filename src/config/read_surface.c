@@ -173,7 +173,6 @@ static int read_map_materials(const tt_scene *s, const char *list, const tt_mate
     return TT_OK;
 }
 
-static const char *const surface_types[] = {"flat", "steps", "grating", "particles", "rough", "png", "measured"};
 static const char *const surface_maps[] = {"uniform", "stripes", "disks", "checkerboard", "islands", "png",
                                            "labels", "threshold"};
 
@@ -238,6 +237,78 @@ static int read_two_material_map(const tt_scene *s, const tt_material *m, size_t
     return TT_OK;
 }
 
+/* The topography's keys and the types that read them (bit t: tt_surface_type t); the
+ * material map's keys are any type's. */
+#define T(t) (1u << TT_SURFACE_##t)
+static const struct {
+    const char *key;
+    unsigned types;
+} type_keys[] = {
+    {"step_height", T(STEPS)}, {"step_width", T(STEPS)},
+    {"period", T(GRATING)}, {"duty", T(GRATING)}, {"height", T(GRATING)}, {"edge_width", T(GRATING)},
+    {"particle_radius", T(PARTICLES)}, {"particle_count", T(PARTICLES)},
+    {"seed", T(PARTICLES) | T(ROUGH)}, {"rms", T(ROUGH)}, {"correlation_length", T(ROUGH)},
+    {"png", T(PNG)}, {"png_height_range", T(PNG) | T(MEASURED)},
+    {"image", T(MEASURED)}, {"channel", T(MEASURED)}, {"pixel_size", T(MEASURED)},
+    {"level", T(MEASURED)}, {"line_level", T(MEASURED)}, {"crop", T(MEASURED)},
+    {"interpolation", T(MEASURED)}, {"z_scale", T(MEASURED)}, {"z_offset", T(MEASURED)},
+    {"measured_tip_shape", T(MEASURED)}, {"measured_tip_radius", T(MEASURED)},
+    {"measured_tip_half_angle", T(MEASURED)},
+};
+#undef T
+
+static const char *const surface_types[] = {"flat", "steps", "grating", "particles", "rough", "png", "measured"};
+
+/* Whether a given key holds its default: compared as the getters read it (20 nm and
+ * 2e-8 m are one value), against a scene of defaults alone. */
+static int holds_default(const tt_scene *s, const tt_scene *defaults, const char *key)
+{
+    const tt_scene_key *k = scene_find_key(scene_find_section("surface"), key);
+    if (!k || !k->def)
+        return 0;
+    if (k->kind == TT_KEY_QUANTITY) {
+        double a, b;
+        return tt_scene_get_double(s, "surface", NULL, key, &a) == TT_OK &&
+               tt_scene_get_double(defaults, "surface", NULL, key, &b) == TT_OK && a == b;
+    }
+    if (k->kind == TT_KEY_INT) {
+        long a, b;
+        return tt_scene_get_int(s, "surface", NULL, key, &a) == TT_OK &&
+               tt_scene_get_int(defaults, "surface", NULL, key, &b) == TT_OK && a == b;
+    }
+    const char *a = tt_scene_get_string(s, "surface", NULL, key);
+    return a && strcmp(a, k->def) == 0;
+}
+
+/* A key of another type than the scene's (particle_radius on a grating) would be read
+ * by nothing: refused, naming the types that read it. One at its default passes, so
+ * that an effective scene written back (every key, defaults included) reads again. */
+static int check_type_keys(const tt_scene *s, tt_surface_type type)
+{
+    tt_scene *defaults = tt_scene_alloc();
+    if (!defaults)
+        return tt_error_nomem("a scene of defaults");
+    size_t i = 0;
+    for (; i < sizeof type_keys / sizeof *type_keys; i++)
+        if (!(type_keys[i].types & (1u << type)) && tt_scene_has(s, "surface", NULL, type_keys[i].key) &&
+            !holds_default(s, defaults, type_keys[i].key))
+            break;
+    tt_scene_free(defaults);
+    if (i < sizeof type_keys / sizeof *type_keys) {
+        char list[128] = "";
+        size_t len = 0;
+        for (int t = 0; t < 7; t++)
+            if (type_keys[i].types & (1u << t))
+                len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", len ? " or " : "",
+                                        surface_types[t]);
+        return tt_scene_fail(s, "surface", NULL, type_keys[i].key,
+                             "a key of type = %s, not of this surface's type = %s (remove it, or "
+                             "set the type that reads it)",
+                             list, surface_types[type]);
+    }
+    return TT_OK;
+}
+
 int tt_config_surface(const tt_scene *s, const tt_material *m, size_t n, tt_surface_params *p)
 {
     memset(p, 0, sizeof *p);
@@ -251,8 +322,8 @@ int tt_config_surface(const tt_scene *s, const tt_material *m, size_t n, tt_surf
     }
     if (mp && strcmp(mp, surface_maps[7]) == 0)
         p->map = TT_MAP_THRESHOLD;
-    int rc = read_shape(s, p);
-    if (rc)
+    int rc = check_type_keys(s, p->type);
+    if (rc || (rc = read_shape(s, p)))
         return rc;
     /* two materials on one pixel value: refused before the run is estimated */
     if (p->map == TT_MAP_PNG && !(rc = get_d(s, "map_tolerance", &p->map_tolerance)) &&
