@@ -133,6 +133,8 @@ static int read_shape(const tt_scene *s, tt_surface_params *p)
         if ((rc = tt_scene_get_path(s, "surface", NULL, "png", p->png, sizeof p->png)) ||
             (rc = check_png_file(s, p->png)))
             return rc;
+        if (tt_scene_has(s, "surface", NULL, "pixel_size") && (rc = get_d(s, "pixel_size", &p->pixel_size)))
+            return rc;
         return get_d(s, "png_height_range", &p->png_height_range);
     case TT_SURFACE_MEASURED:
         return read_measured(s, p);
@@ -249,7 +251,7 @@ static const struct {
     {"particle_radius", T(PARTICLES)}, {"particle_count", T(PARTICLES)},
     {"seed", T(PARTICLES) | T(ROUGH)}, {"rms", T(ROUGH)}, {"correlation_length", T(ROUGH)},
     {"png", T(PNG)}, {"png_height_range", T(PNG) | T(MEASURED)},
-    {"image", T(MEASURED)}, {"channel", T(MEASURED)}, {"pixel_size", T(MEASURED)},
+    {"image", T(MEASURED)}, {"channel", T(MEASURED)}, {"pixel_size", T(MEASURED) | T(PNG)},
     {"level", T(MEASURED)}, {"line_level", T(MEASURED)}, {"crop", T(MEASURED)},
     {"interpolation", T(MEASURED)}, {"z_scale", T(MEASURED)}, {"z_offset", T(MEASURED)},
     {"measured_tip_shape", T(MEASURED)}, {"measured_tip_radius", T(MEASURED)},
@@ -326,6 +328,9 @@ int tt_config_surface(const tt_scene *s, const tt_material *m, size_t n, tt_surf
     if (rc || (rc = read_shape(s, p)))
         return rc;
     /* two materials on one pixel value: refused before the run is estimated */
+    if (p->map == TT_MAP_PNG && tt_scene_has(s, "surface", NULL, "map_pixel_size") &&
+        (rc = get_d(s, "map_pixel_size", &p->map_pixel_size)))
+        return rc;
     if (p->map == TT_MAP_PNG && !(rc = get_d(s, "map_tolerance", &p->map_tolerance)) &&
         !(rc = tt_scene_get_path(s, "surface", NULL, "map_png", p->map_png, sizeof p->map_png)))
         rc = tt_scene_locate(s, tt_surface_check_map_values(p, m, n));

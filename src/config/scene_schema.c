@@ -179,7 +179,8 @@ static const tt_scene_key surface_keys[] = {
     {"channel", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
      "measured .gwy: the channel's title or number (default: the first)"},
     {"pixel_size", Q(TT_DIM_LENGTH), NULL, 0, INF, POS, NULL,
-     "measured .png: the image's pixel (square); .gsf and .gwy carry their own"},
+     "measured .png, png: the image's pixel (square; png default: the scan area over its pixels, "
+     "refused when that is not square); .gsf and .gwy carry their own"},
     {"level", TT_KEY_ENUM, 0, "none", 0, 0, 0, "none|offset|plane",
      "measured: offset: the mean taken off; plane: the least-squares plane taken off"},
     {"line_level", TT_KEY_ENUM, 0, "none", 0, 0, 0, "none|offset|slope|median|median_difference",
@@ -223,8 +224,8 @@ static const tt_scene_key surface_keys[] = {
     {"map_channel", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
      "labels, threshold, .gwy map_image: the channel's title or number (default: the first)"},
     {"map_pixel_size", Q(TT_DIM_LENGTH), NULL, 0, INF, POS, NULL,
-     "labels, threshold, .png map_image: its pixel (square; default: the scan area over its "
-     "pixels, refused when that is not square)"},
+     "labels, threshold, .png map_image, png map: its pixel (square; default: the scan area "
+     "over its pixels, refused when that is not square)"},
     {"map_threshold", TT_KEY_STRING, 0, NULL, 0, 0, 0, NULL,
      "threshold: value and the image's unit (e.g. 60 deg); map_materials' first below it, "
      "second at or above"},

@@ -163,6 +163,8 @@ static int build_rough(tt_surface *S, const tt_surface_params *sp)
     while (n < 2048 && fmax(S->sx, S->sy) / n > L / 4)
         n *= 2;
     S->gw = S->gh = n;
+    S->gsx = S->sx;
+    S->gsy = S->sy;
     S->periodic = 1;
     S->grid = fftw_alloc_real((size_t)n * n);
     fftw_complex *F = fftw_alloc_complex((size_t)n * (n / 2 + 1));
@@ -208,7 +210,7 @@ static int build_rough(tt_surface *S, const tt_surface_params *sp)
  * reduced in floating point before it becomes an int, so no distance overflows it. */
 static double grid_at(const tt_surface *S, double x, double y)
 {
-    double u = x / S->sx * S->gw - 0.5, v = y / S->sy * S->gh - 0.5;
+    double u = x / S->gsx * S->gw - 0.5, v = y / S->gsy * S->gh - 0.5;
     double fi = floor(u), fj = floor(v);
     double fu = u - fi, fv = v - fj;
     int i, j, i1, j1;
@@ -286,7 +288,7 @@ int tt_surface_material(const tt_surface *S, double x, double y)
         return particle_at(S, x, y) > 0 ? S->mat[1] : S->mat[0];
     case M_PNG: {
         /* clamped before the conversion: past the area the edge pixels continue */
-        double u = x / S->sx * S->mw, v = y / S->sy * S->mh;
+        double u = x / S->msx * S->mw, v = y / S->msy * S->mh;
         int i = u < 0 ? 0 : u >= S->mw ? S->mw - 1 : (int)u;
         int j = v < 0 ? 0 : v >= S->mh ? S->mh - 1 : (int)v;
         return S->mgrid[(size_t)j * S->mw + i];

@@ -25,11 +25,14 @@ struct tt_surface {
     /* height grid (rough, png) */
     double *grid;
     int gw, gh, periodic;
+    double gsx, gsy;        /* the grid's span (m): the scan area, or a png's pixels times
+                             * its pixel_size */
     /* map */
     int mat[2];             /* background, second material */
     double map_period, map_duty, map_radius;
     int *mgrid;             /* png, labels, threshold material map */
     int mw, mh;
+    double msx, msy;        /* png map: its span (m), as gsx, gsy */
     double mdx, mdy;        /* labels, threshold: the image's pixel (m) */
     int medges;             /* labels, threshold: tt_surface_edges past the image */
     /* measured image (surface_measured.c): GSL's interpolation over nodes xa, ya */

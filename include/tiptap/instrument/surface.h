@@ -51,7 +51,8 @@ typedef struct {
     double png_height_range;                    /* png; measured .png: level 65535's height */
     char image[4096];                           /* measured: .gsf, .gwy or 16-bit .png */
     char channel[256];                          /* measured .gwy: title or number ("": first) */
-    double pixel_size;                          /* measured .png: m */
+    double pixel_size;                          /* measured .png, png: m (png 0: the image spans
+                                                 * the scan area, whose aspect it must have) */
     tt_surface_level level;                     /* measured: the whole image's levelling */
     tt_surface_lines line_level;                /* measured: each row's, after level */
     long crop[4];                               /* measured: left, top, width, height in
@@ -75,7 +76,8 @@ typedef struct {
      * is; threshold: materials[0] below map_threshold, materials[1] at or above it. */
     char map_image[4096];
     char map_channel[256];                      /* .gwy: title or number ("": first) */
-    double map_pixel_size;                      /* .png: m (0: the image spans the scan area) */
+    double map_pixel_size;                      /* .png map_image, png map: m (0: the image spans
+                                                 * the scan area, whose aspect it must have) */
     double map_threshold;                       /* in map_threshold_unit */
     char map_threshold_unit[32];                /* as written: "deg", "nm", "" */
 } tt_surface_params;
