@@ -62,7 +62,7 @@ def test_channels_follow_the_librarys_table():
     table = tiptap.channel_table()
     names = [n for n, _, _ in table]
     assert names[:3] == ["height", "error", "phase"] and names[7] == "amplitude"
-    assert len(table) == 24 and names[22] == "artefact" and names[23] == "dilation"
+    assert len(table) == 25 and names[22] == "artefact" and names[23] == "dilation" and names[24] == "certainty"
     assert len(set(names)) == len(names)
     r = tiptap.scan(QUICK, set={**QUICK_SET, "scan.lines": "1", "lockin.harmonics": "3",
                                 "scan.channels": "height, harmonic3, harmonic2_phase"},

@@ -38,11 +38,17 @@ int tt_config_raster(const tt_scene *s, tt_raster *r)
  * crop or size is refused here in one line. */
 static int check_measured(const tt_scene *s, tt_scan_params *p)
 {
+    const int eroded = p->surface.type == TT_SURFACE_MEASURED && p->surface.measured_tip != TT_TIP_POINT;
+    if ((p->channels & TT_CH_CERTAINTY) && !eroded)
+        return tt_scene_fail(s, "scan", NULL, "channels",
+                             "certainty is the certainty map of a measured image's erosion; it needs "
+                             "[surface] type = measured with a measured_tip_shape");
     if (p->surface.type != TT_SURFACE_MEASURED)
         return TT_OK;
-    /* the comparison with the input, unless the scene chose its channels */
+    /* the comparison with the input (and where the erosion is certain), unless the scene
+     * chose its channels */
     if (!tt_scene_has(s, "scan", NULL, "channels"))
-        p->channels |= TT_CH_TOPOGRAPHY | TT_CH_ARTEFACT;
+        p->channels |= TT_CH_TOPOGRAPHY | TT_CH_ARTEFACT | (eroded ? TT_CH_CERTAINTY : 0);
     return tt_scene_locate(s, tt_surface_check_measured(&p->surface, p->raster.size_x, p->raster.size_y));
 }
 

@@ -266,7 +266,7 @@ static const tt_scene_key scan_keys[] = {
      0, 0, NULL,
      "what to record: height, error (amplitude - setpoint), amplitude (the lock-in's), phase, "
      "peak_force, indentation, dissipation, topography, "
-     "harmonic2 to harmonic8 (need [lockin] harmonics >= h), harmonic2_phase to harmonic8_phase, artefact (height - topography; added by default on a measured surface), dilation (the surface as the tip's shape images it)"},
+     "harmonic2 to harmonic8 (need [lockin] harmonics >= h), harmonic2_phase to harmonic8_phase, artefact (height - topography; added by default on a measured surface), dilation (the surface as the tip's shape images it), certainty (1 where a measured image's erosion is the sample; added by default with measured_tip_shape)"},
     {"profile_line", TT_KEY_INT, 0, "-1", -1, 16383, 0, NULL,
      "line written to profile.csv (-1: the middle line)"},
     {"settle_cycles", TT_KEY_INT, 0, "3000", 0, 1e9, 0, NULL,

@@ -17,7 +17,7 @@ static const struct {
     {"harmonic2_phase", "deg"}, {"harmonic3_phase", "deg"}, {"harmonic4_phase", "deg"},
     {"harmonic5_phase", "deg"}, {"harmonic6_phase", "deg"}, {"harmonic7_phase", "deg"},
     {"harmonic8_phase", "deg"}, {"artefact", "m"},
-    {"dilation", "m"},
+    {"dilation", "m"}, {"certainty", ""},
 };
 
 const char *tt_scan_channel_name(int i) { return i >= 0 && i < TT_CH_COUNT ? channel_info[i].name : "?"; }
@@ -56,7 +56,7 @@ int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t l
             snprintf(why, len,
                      "unknown channel '%.*s'; channels are height, error, amplitude, phase, "
                      "peak_force, indentation, dissipation, topography, harmonic2 to harmonic%d, "
-                     "harmonic2_phase to harmonic%d_phase, artefact, dilation",
+                     "harmonic2_phase to harmonic%d_phase, artefact, dilation, certainty",
                      (int)(e - p), p, TT_CH_HARMONIC_MAX, TT_CH_HARMONIC_MAX);
             return -1;
         }

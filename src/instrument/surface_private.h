@@ -41,6 +41,10 @@ struct tt_surface {
     size_t nx, ny;
     double lo_x, hi_x, lo_y, hi_y; /* the nodes' span: queries are clamped into it */
     double wrap_x, wrap_y;         /* periodic edges: the image's size (0: clamped) */
+    unsigned char *certain;        /* the erosion's certainty map, cert_w x cert_h pixels of
+                                    * cdx x cdy (NULL: no measured_tip) */
+    size_t cert_w, cert_h;
+    double cdx, cdy;
 };
 
 /* surface_png.c: a PNG height map (type png) and a PNG material map (map png). */

@@ -68,7 +68,11 @@ enum {
      * plain geometric image, no dynamics, tilt or z drift (topography for a point tip) */
     TT_CH_DILATION_INDEX = 23,
     TT_CH_DILATION = 1 << 23,
-    TT_CH_COUNT = 24
+    /* a measured surface eroded by its measuring tip: 1 where the erosion is the sample
+     * (its certainty map), 0 where only an upper bound, at the pixel's centre */
+    TT_CH_CERTAINTY_INDEX = 24,
+    TT_CH_CERTAINTY = 1 << 24,
+    TT_CH_COUNT = 25
 };
 
 /* Name ("height"), unit ("m", "deg", "N", "J") and title of channel index i. */

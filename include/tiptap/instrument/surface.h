@@ -112,6 +112,10 @@ int tt_surface_check_map_image(const tt_surface_params *p, const tt_material *ma
 int tt_surface_check_measured(const tt_surface_params *p, double size_x, double size_y);
 
 double tt_surface_height(const tt_surface *s, double x, double y);
+/* A measured surface eroded by its measuring tip (measured_tip): 1 where the erosion is
+ * certain to be the sample (tt_erosion_certainty), 0 where it is only an upper bound,
+ * at the nearest pixel of the prepared image; NAN for any other surface. */
+double tt_surface_certainty(const tt_surface *s, double x, double y);
 int tt_surface_material(const tt_surface *s, double x, double y);
 /* 1 when the whole surface is one material (no map look-ups needed). */
 int tt_surface_uniform(const tt_surface *s);
