@@ -103,16 +103,80 @@ static int read_measured(const tt_scene *s, tt_surface_params *p)
     return TT_OK;
 }
 
+/* line_width, the critical dimension, instead of duty: as the fraction of the period it
+ * is (p->duty, 0 when not given). */
+static int read_line_width(const tt_scene *s, tt_surface_params *p)
+{
+    double w, period;
+    int rc;
+    if (!tt_scene_has(s, "surface", NULL, "line_width"))
+        return TT_OK;
+    if (tt_scene_has(s, "surface", NULL, "duty"))
+        return tt_scene_fail_set(s, (const char *const[]){"surface.line_width", "surface.duty", NULL},
+                                 "line_width and duty both give the line's width; give one");
+    if ((rc = get_d(s, "line_width", &w)) || (rc = get_d(s, "period", &period)))
+        return rc;
+    if (!(w < period))
+        return tt_scene_fail_set(s, (const char *const[]){"surface.line_width", "surface.period", NULL},
+                                 "a line %g nm wide fills the %g nm period; expected a narrower line",
+                                 w * 1e9, period * 1e9);
+    p->duty = w / period;
+    return TT_OK;
+}
+
+/* A lattice's keys; features that would reach past their neighbours' are refused (the
+ * surface looks at the nearest nine centres only). */
+static int read_lattice(const tt_scene *s, tt_surface_params *p)
+{
+    static const char *const lattices[] = {"square", "hexagonal"}, *const features[] = {"pillar", "hole", "spike"};
+    int rc;
+    p->lattice = (tt_lattice)enum_of(s, "lattice", lattices, 2);
+    p->feature = (tt_feature)enum_of(s, "feature", features, 3);
+    if ((rc = get_d(s, "period", &p->period)) || (rc = get_d(s, "height", &p->height)) ||
+        (rc = get_d(s, "edge_width", &p->edge_width)) || (rc = get_d(s, "offset_x", &p->offset_x)) ||
+        (rc = get_d(s, "offset_y", &p->offset_y)) || (rc = get_d(s, "feature_radius", &p->feature_radius)) ||
+        (rc = get_d(s, "spike_radius", &p->spike_radius)) ||
+        (rc = get_d(s, "spike_half_angle", &p->spike_half_angle)))
+        return rc;
+    if (!(p->height > 0))
+        return tt_scene_fail(s, "surface", NULL, "height", "a lattice's features rise %g nm; expected a "
+                             "height above 0 (holes: their depth)", p->height * 1e9);
+    if (p->feature == TT_FEATURE_SPIKE) {
+        tt_tip_shape cone = {TT_TIP_CONE, p->spike_radius, p->spike_half_angle};
+        double base = tt_tip_shape_reach(&cone, p->height);
+        if (base > p->period)
+            return tt_scene_fail_set(s, (const char *const[]){"surface.spike_half_angle", "surface.height",
+                                                              "surface.period", NULL},
+                                     "spikes %g nm high at %g deg stand on bases %g nm wide, more than "
+                                     "twice the %g nm period; expected a narrower or lower spike",
+                                     p->height * 1e9, p->spike_half_angle * 180 / M_PI, 2 * base * 1e9,
+                                     p->period * 1e9);
+        return TT_OK;
+    }
+    if (2 * (p->feature_radius + p->edge_width) >= p->period)
+        return tt_scene_fail_set(s, (const char *const[]){"surface.feature_radius", "surface.edge_width",
+                                                          "surface.period", NULL},
+                                 "features %g nm across (feature_radius %g nm, edge_width %g nm) touch "
+                                 "at the %g nm period; expected them narrower than the period",
+                                 2 * (p->feature_radius + p->edge_width) * 1e9, p->feature_radius * 1e9,
+                                 p->edge_width * 1e9, p->period * 1e9);
+    return TT_OK;
+}
+
 static int read_shape(const tt_scene *s, tt_surface_params *p)
 {
     int rc = TT_OK;
     switch (p->type) {
     case TT_SURFACE_STEPS:
-        if (!(rc = get_d(s, "step_height", &p->step_height)))
+        if (!(rc = get_d(s, "step_height", &p->step_height)) && !(rc = get_d(s, "offset_x", &p->offset_x)))
             rc = get_d(s, "step_width", &p->step_width);
         return rc;
+    case TT_SURFACE_LATTICE:
+        return read_lattice(s, p);
     case TT_SURFACE_GRATING:
-        if (!(rc = get_d(s, "period", &p->period)) && !(rc = get_d(s, "duty", &p->duty)) &&
+        if ((rc = get_d(s, "offset_x", &p->offset_x)) || (rc = read_line_width(s, p)))
+            return rc;
+        if (!(rc = get_d(s, "period", &p->period)) && (p->duty > 0 || !(rc = get_d(s, "duty", &p->duty))) &&
             !(rc = get_d(s, "height", &p->height)) && !(rc = get_d(s, "edge_width", &p->edge_width)) &&
             2 * p->edge_width > p->period * fmin(p->duty, 1 - p->duty) * 2)
             rc = tt_scene_fail_set(s, (const char *const[]){"surface.edge_width", "surface.period", "surface.duty", NULL},
@@ -247,7 +311,11 @@ static const struct {
     unsigned types;
 } type_keys[] = {
     {"step_height", T(STEPS)}, {"step_width", T(STEPS)},
-    {"period", T(GRATING)}, {"duty", T(GRATING)}, {"height", T(GRATING)}, {"edge_width", T(GRATING)},
+    {"period", T(GRATING) | T(LATTICE)}, {"duty", T(GRATING)}, {"line_width", T(GRATING)},
+    {"height", T(GRATING) | T(LATTICE)}, {"edge_width", T(GRATING) | T(LATTICE)},
+    {"offset_x", T(STEPS) | T(GRATING) | T(LATTICE)}, {"offset_y", T(LATTICE)},
+    {"lattice", T(LATTICE)}, {"feature", T(LATTICE)}, {"feature_radius", T(LATTICE)},
+    {"spike_radius", T(LATTICE)}, {"spike_half_angle", T(LATTICE)},
     {"particle_radius", T(PARTICLES)}, {"particle_count", T(PARTICLES)},
     {"seed", T(PARTICLES) | T(ROUGH)}, {"rms", T(ROUGH)}, {"correlation_length", T(ROUGH)},
     {"png", T(PNG)}, {"png_height_range", T(PNG) | T(MEASURED)},
@@ -259,7 +327,9 @@ static const struct {
 };
 #undef T
 
-static const char *const surface_types[] = {"flat", "steps", "grating", "particles", "rough", "png", "measured"};
+static const char *const surface_types[] = {"flat", "steps", "grating", "particles", "rough", "png", "measured",
+                                            "lattice"};
+enum { NTYPES = sizeof surface_types / sizeof *surface_types };
 
 /* Whether a given key holds its default: compared as the getters read it (20 nm and
  * 2e-8 m are one value), against a scene of defaults alone. */
@@ -299,7 +369,7 @@ static int check_type_keys(const tt_scene *s, tt_surface_type type)
     if (i < sizeof type_keys / sizeof *type_keys) {
         char list[128] = "";
         size_t len = 0;
-        for (int t = 0; t < 7; t++)
+        for (int t = 0; t < NTYPES; t++)
             if (type_keys[i].types & (1u << t))
                 len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", len ? " or " : "",
                                         surface_types[t]);
@@ -316,14 +386,12 @@ int tt_config_surface(const tt_scene *s, const tt_material *m, size_t n, tt_surf
     memset(p, 0, sizeof *p);
     const char *t = tt_scene_get_string(s, "surface", NULL, "type");
     const char *mp = tt_scene_get_string(s, "surface", NULL, "map");
-    for (int i = 0; i < 7; i++) {
+    for (int i = 0; i < NTYPES; i++)
         if (t && strcmp(t, surface_types[i]) == 0)
             p->type = (tt_surface_type)i;
+    for (int i = 0; i < 8; i++)
         if (mp && strcmp(mp, surface_maps[i]) == 0)
             p->map = (tt_surface_map)i;
-    }
-    if (mp && strcmp(mp, surface_maps[7]) == 0)
-        p->map = TT_MAP_THRESHOLD;
     int rc = check_type_keys(s, p->type);
     if (rc || (rc = read_shape(s, p)))
         return rc;

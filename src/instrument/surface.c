@@ -241,9 +241,10 @@ double tt_surface_height(const tt_surface *S, double x, double y)
 {
     switch (S->type) {
     case S_STEPS:
-        return S->step_h * floor(x / S->step_w);
+        return S->step_h * floor((x - S->ox) / S->step_w);
     case S_GRATING: {
         /* trapezoidal lines along y: up-edge, top, down-edge, bottom */
+        x -= S->ox;
         double u = x - S->period * floor(x / S->period), top = S->duty * S->period, e = S->edge;
         if (e > 0 && u < e)
             return S->height * u / e;
@@ -262,6 +263,8 @@ double tt_surface_height(const tt_surface *S, double x, double y)
         return grid_at(S, x, y);
     case S_MEASURED:
         return tt_surface_measured_at(S, x, y);
+    case S_LATTICE:
+        return tt_surface_lattice_at(S, x - S->ox, y - S->oy);
     default:
         return 0;
     }
@@ -308,17 +311,21 @@ int tt_surface_flat(const tt_surface *S) { return S->type == S_FLAT; }
 int tt_surface_pieces(const tt_surface *S, double x0, double x1, tt_surface_piece_fn fn,
                       void *user)
 {
+    /* in the pattern's own frame (offset_x taken off), its pieces moved back */
+    const double s = S->ox;
+    x0 -= s;
+    x1 -= s;
     if (S->type == S_STEPS) {
         double w = S->step_w;
         for (double n = floor(x0 / w); n <= floor(x1 / w); n++)
-            fn(user, n * w, n * S->step_h, (n + 1) * w, n * S->step_h);
+            fn(user, n * w + s, n * S->step_h, (n + 1) * w + s, n * S->step_h);
         return 1;
     }
     if (S->type != S_GRATING)
         return 0;
     double p = S->period, top = S->duty * p, e = S->edge, H = S->height;
     for (double n = floor(x0 / p); n <= floor(x1 / p); n++) {
-        double o = n * p;
+        double o = n * p + s;
         if (e > 0)
             fn(user, o, 0, o + e, H);
         fn(user, o + e, H, o + top, H);
@@ -345,12 +352,17 @@ int tt_surface_alloc(tt_surface **out, const tt_surface_params *p, const tt_mate
     case S_STEPS:
         S->step_h = p->step_height;
         S->step_w = p->step_width;
+        S->ox = p->offset_x;
         break;
     case S_GRATING:
         S->period = p->period;
         S->duty = p->duty;
         S->height = p->height;
         S->edge = p->edge_width;
+        S->ox = p->offset_x;
+        break;
+    case S_LATTICE:
+        tt_surface_lattice_init(S, p);
         break;
     case S_PARTICLES:
         rc = build_particles(S, p);

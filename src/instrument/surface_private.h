@@ -7,7 +7,7 @@
 
 #include "tiptap/instrument/surface.h"
 
-typedef enum { S_FLAT, S_STEPS, S_GRATING, S_PARTICLES, S_ROUGH, S_PNG, S_MEASURED } shape;
+typedef enum { S_FLAT, S_STEPS, S_GRATING, S_PARTICLES, S_ROUGH, S_PNG, S_MEASURED, S_LATTICE } shape;
 typedef enum { M_UNIFORM, M_STRIPES, M_DISKS, M_CHECKER, M_ISLANDS, M_PNG, M_LABELS, M_THRESHOLD } mapkind;
 
 struct tt_surface {
@@ -16,6 +16,10 @@ struct tt_surface {
     double sx, sy;
     /* shapes */
     double step_h, step_w, period, duty, height, edge;
+    double ox, oy;          /* steps, grating, lattice: the pattern's offset */
+    int lattice, feature;   /* lattice: tt_lattice, tt_feature */
+    double fr;              /* lattice: feature radius (pillar, hole) */
+    double spike_r, spike_a, spike_reach; /* lattice spike: apex radius, half-angle, base radius */
     double pr;              /* particle radius */
     double *px, *py;        /* particle centres */
     long np;
@@ -46,6 +50,10 @@ struct tt_surface {
     size_t cert_w, cert_h;
     double cdx, cdy;
 };
+
+/* surface_lattice.c: pillars, holes or spikes on a square or hexagonal lattice. */
+void tt_surface_lattice_init(tt_surface *S, const tt_surface_params *p);
+double tt_surface_lattice_at(const tt_surface *S, double x, double y);
 
 /* surface_png.c: a PNG height map (type png) and a PNG material map (map png). */
 int tt_surface_build_png_height(tt_surface *S, const tt_surface_params *p);

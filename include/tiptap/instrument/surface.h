@@ -22,8 +22,12 @@ TT_BEGIN_DECLS
 
 typedef enum {
     TT_SURFACE_FLAT, TT_SURFACE_STEPS, TT_SURFACE_GRATING, TT_SURFACE_PARTICLES,
-    TT_SURFACE_ROUGH, TT_SURFACE_PNG, TT_SURFACE_MEASURED
+    TT_SURFACE_ROUGH, TT_SURFACE_PNG, TT_SURFACE_MEASURED, TT_SURFACE_LATTICE
 } tt_surface_type;
+
+/* A lattice's arrangement and its features (docs/surfaces.md, "Lattices"). */
+typedef enum { TT_LATTICE_SQUARE, TT_LATTICE_HEXAGONAL } tt_lattice;
+typedef enum { TT_FEATURE_PILLAR, TT_FEATURE_HOLE, TT_FEATURE_SPIKE } tt_feature;
 
 /* A measured image's preparation (docs/surfaces.md, "Measured surfaces"). */
 typedef enum { TT_LEVEL_NONE, TT_LEVEL_OFFSET, TT_LEVEL_PLANE } tt_surface_level;
@@ -42,7 +46,12 @@ typedef enum {
 typedef struct {
     tt_surface_type type;
     double step_height, step_width;             /* steps */
-    double period, duty, height, edge_width;    /* grating */
+    double period, duty, height, edge_width;    /* grating; lattice: period, height, edge_width */
+    double offset_x, offset_y;                  /* steps, grating, lattice: the pattern's shift */
+    tt_lattice lattice;                         /* lattice */
+    tt_feature feature;
+    double feature_radius;                      /* lattice pillar, hole: top (rim) radius */
+    double spike_radius, spike_half_angle;      /* lattice spike: a sphere-capped cone */
     double particle_radius;                     /* particles */
     long particle_count;
     double rms, correlation_length;             /* rough */
