@@ -31,13 +31,19 @@ int tt_config_raster(const tt_scene *s, tt_raster *r)
         return rc;
     const char *fast = tt_scene_get_string(s, "scan", NULL, "fast_axis");
     r->fast_y = fast && strcmp(fast, "y") == 0;
-    return TT_OK;
+    if ((rc = tt_scene_get_double(s, "scan", NULL, "angle", &r->angle)) ||
+        (rc = tt_scene_get_double(s, "scan", NULL, "offset_x", &r->offset_x)))
+        return rc;
+    return tt_scene_get_double(s, "scan", NULL, "offset_y", &r->offset_y);
 }
 
 /* The measured image read and prepared once, before the run is estimated: a bad file,
  * crop or size is refused here in one line. */
 static int check_measured(const tt_scene *s, tt_scan_params *p)
 {
+    const tt_raster *r = &p->raster;
+    if (r->angle != 0 || r->offset_x != 0 || r->offset_y != 0)
+        tt_raster_bounds(r, p->surface.visit);
     const int eroded = p->surface.type == TT_SURFACE_MEASURED && p->surface.measured_tip != TT_TIP_POINT;
     if ((p->channels & TT_CH_CERTAINTY) && !eroded)
         return tt_scene_fail(s, "scan", NULL, "channels",

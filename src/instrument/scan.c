@@ -105,9 +105,9 @@ static int make_dilation(tt_scan *S, const tt_tip_shape *tip)
     double mx = fabs(S->inst.drift_x) * t, my = fabs(S->inst.drift_y) * t;
     double fast = (R->fast_y ? R->size_y : R->size_x) / (double)R->pixels;
     double slow = (R->fast_y ? R->size_x : R->size_y) / (double)R->lines;
-    double pitch = fmin(fast, slow), dx = fmax(fmin(pitch, tip->radius) / 4, pitch / 16);
-    return tt_dilation_alloc(&S->dilation, S->surface, tip, -mx, -my, R->size_x + mx,
-                             R->size_y + my, dx);
+    double pitch = fmin(fast, slow), dx = fmax(fmin(pitch, tip->radius) / 4, pitch / 16), b[4];
+    tt_raster_bounds(R, b); /* a rotated or moved scan visits another box of the sample */
+    return tt_dilation_alloc(&S->dilation, S->surface, tip, b[0] - mx, b[1] - my, b[2] + mx, b[3] + my, dx);
 }
 
 /* The certainty channel is the surface's, not the run's: filled once, at each pixel's

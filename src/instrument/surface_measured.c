@@ -168,6 +168,13 @@ static int level_lines(tt_height_image *im, tt_surface_lines how)
 static int check_cover(const tt_surface_params *p, const tt_height_image *im, double sx, double sy)
 {
     double w = (double)im->xres * im->dx, h = (double)im->yres * im->dy;
+    const double *v = p->visit;
+    if (p->edges == TT_EDGES_REFUSE && (v[0] != 0 || v[1] != 0 || v[2] != 0 || v[3] != 0) &&
+        !(v[0] >= -1e-9 * sx && v[1] >= -1e-9 * sy && v[2] <= w * (1 + 1e-9) && v[3] <= h * (1 + 1e-9)))
+        return tt_error(TT_EINVAL, "[surface] edges: %s: the image covers 0 to %g nm by 0 to %g nm, the "
+                                   "scan (its angle and offset) visits %g to %g nm by %g to %g nm; "
+                                   "expected an image covering it, or edges = clamp or periodic",
+                        p->image, w * 1e9, h * 1e9, v[0] * 1e9, v[2] * 1e9, v[1] * 1e9, v[3] * 1e9);
     if (p->edges != TT_EDGES_REFUSE || (w >= sx * (1 - 1e-9) && h >= sy * (1 - 1e-9)))
         return TT_OK;
     return tt_error(TT_EINVAL, "[surface] edges: %s: the image covers %g x %g nm (%zu x %zu pixels of "

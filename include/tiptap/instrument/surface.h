@@ -88,6 +88,10 @@ typedef struct {
     double map_pixel_size;                      /* .png map_image, png map: m (0: the image spans
                                                  * the scan area, whose aspect it must have) */
     double map_threshold;                       /* in map_threshold_unit */
+    double visit[4];                            /* measured, labels, threshold: the box a rotated
+                                                 * or moved scan visits (x0, y0, x1, y1, m), which
+                                                 * edges = refuse asks the image to cover; all 0:
+                                                 * the scan area */
     char map_threshold_unit[32];                /* as written: "deg", "nm", "" */
 } tt_surface_params;
 
