@@ -196,6 +196,22 @@ static void other_types_keys(void **st)
     assert_non_null(strstr(tt_error_message(), "[surface] seed: a key of type = particles or rough"));
     tt_surface_free(make("[surface]\ntype = grating\nparticle_radius = 2e-8 m\nlevel = none\nseed = 1\n", 1));
     tt_surface_free(make("[surface]\ntype = rough\nseed = 4\n", 1));
+    /* a later file (or --set) that changes the type replaces the sample an earlier one
+     * drew, its keys with it; a key given after the type is the user's for this type */
+    for (int later = 0; later < 2; later++) {
+        tt_scene *sc = tt_scene_alloc();
+        assert_int_equal(tt_scene_load_string(sc, later ? "[surface]\ntype = flat\n"
+                                                        : "[surface]\ntype = grating\nperiod = 300 nm\n", "a.ini"), TT_OK);
+        assert_int_equal(tt_scene_load_string(sc, later ? "[surface]\nperiod = 300 nm\n"
+                                                        : "[surface]\ntype = flat\n", "b.ini"), TT_OK);
+        tt_surface *S = NULL;
+        int rc = tt_config_surface_alloc(&S, sc, 1e-6, 1e-6);
+        if (later)
+            assert_non_null(strstr(tt_error_message(), "b.ini: [surface] period: a key of type = grating or lattice"));
+        assert_int_equal(rc != TT_OK, later);
+        tt_surface_free(S);
+        tt_scene_free(sc);
+    }
 }
 
 /* Lattices against hand-computed heights: pillars, holes and spikes on square and

@@ -352,18 +352,28 @@ static int holds_default(const tt_scene *s, const tt_scene *defaults, const char
     return a && strcmp(a, k->def) == 0;
 }
 
+/* When an entry was given: its file's place in the loading, --set (load 0) last. */
+static unsigned long given_at(const tt_scene *s, const char *key)
+{
+    const entry *e = scene_find_entry(s, "surface", NULL, key);
+    return !e ? 0 : e->load ? e->load : (unsigned long)-1;
+}
+
 /* A key of another type than the scene's (particle_radius on a grating) would be read
- * by nothing: refused, naming the types that read it. One at its default passes, so
- * that an effective scene written back (every key, defaults included) reads again. */
+ * by nothing: refused, naming the types that read it. Two pass: one at its default, so
+ * that an effective scene written back (every key, defaults included) reads again, and
+ * one given before a later file or --set changed the type (surfaces/grating.ini, then
+ * --set surface.type=flat: the later type replaces the sample the earlier file drew). */
 static int check_type_keys(const tt_scene *s, tt_surface_type type)
 {
     tt_scene *defaults = tt_scene_alloc();
     if (!defaults)
         return tt_error_nomem("a scene of defaults");
+    const unsigned long typed = given_at(s, "type");
     size_t i = 0;
     for (; i < sizeof type_keys / sizeof *type_keys; i++)
         if (!(type_keys[i].types & (1u << type)) && tt_scene_has(s, "surface", NULL, type_keys[i].key) &&
-            !holds_default(s, defaults, type_keys[i].key))
+            given_at(s, type_keys[i].key) >= typed && !holds_default(s, defaults, type_keys[i].key))
             break;
     tt_scene_free(defaults);
     if (i < sizeof type_keys / sizeof *type_keys) {
