@@ -38,6 +38,10 @@ expect_error "negative stiffness" "neg.ini: [cantilever] spring_constant:" "$tip
 expect_exact "out of range, exact text" \
   "tiptap: $tmp/neg.ini: [cantilever] spring_constant: -0.5 N/m is out of range; expected above 0 N/m" \
   "$tiptap" approach "$tmp/neg.ini"
+# an angle's range in degrees, as it was given (issue 32: it read "above 0 rad and below 1.5708 rad")
+expect_error "angle out of range in degrees" \
+  "[tip] half_angle: 0 deg is out of range; expected above 0 deg and below 90 deg" \
+  "$tiptap" scan "$tmp/good.ini" -o "$tmp/never" --set tip.shape=cone --set "tip.half_angle=0 deg"
 expect_exact "out of range without a unit, exact text" \
   "tiptap: --set: [scan] pixels: 1 is out of range; expected at least 2 and at most 16384" \
   "$tiptap" scan "$tmp/good.ini" -o "$tmp/never" --set scan.pixels=1

@@ -11,14 +11,7 @@ tiptap=$(realpath "$1")
 src=$(realpath "$2")
 source "$(dirname "$0")/tt_cli.sh"
 
-py=/usr/bin/python3
-if ! missing=$(cd "$tmp" && "$py" -c "
-import importlib.util, sys
-gone = [m for m in sys.argv[1:] if importlib.util.find_spec(m.split('.')[0]) is None]
-print(' '.join(gone)); sys.exit(1 if gone else 0)" numpy h5py loguru ruamel.yaml); then
-  echo "skipped: $py lacks $missing (Debian's python3-* packages: tests/vendor/README.md)"
-  exit 77
-fi
+need_python numpy h5py loguru ruamel.yaml
 # what pip would write beside an installed AFMReader: its __init__ asks for its version
 mkdir -p "$tmp/site/AFMReader-0.0.7.dist-info"
 printf 'Metadata-Version: 2.1\nName: AFMReader\nVersion: 0.0.7\n' >"$tmp/site/AFMReader-0.0.7.dist-info/METADATA"

@@ -11,36 +11,20 @@ tiptap=$(realpath "$1")
 src=$(realpath "$2")
 source "$(dirname "$0")/tt_cli.sh"
 
-py=/usr/bin/python3
-need="numpy h5py dask dask.distributed dill scipy matplotlib ipywidgets IPython ase"
-if ! missing=$(cd "$tmp" && MPLBACKEND=Agg "$py" -c "
-import importlib, sys
-gone = [m for m in sys.argv[1:] if importlib.util.find_spec(m.split('.')[0]) is None]
-print(' '.join(gone)); sys.exit(1 if gone else 0)" $need); then
-  echo "skipped: $py lacks $missing (Debian's python3-* packages: tests/vendor/README.md)"
-  exit 77
-fi
+need_python numpy h5py dask dask.distributed dill scipy matplotlib ipywidgets IPython ase
 
 "$tiptap" scan "$src/scans/quick.ini" "$src/surfaces/polymer-blend.ini" --set scan.pixels=8 \
   --set scan.lines=3 -o "$tmp/s" --hdf5 -q 2>"$tmp/err" || { cat "$tmp/err"; bad "scan --hdf5 ran"; exit 1; }
 
-cd "$tmp" && MPLBACKEND=Agg PYTHONPATH="$src/tests/vendor/pyNSID:$src/tests/vendor/sidpy" "$py" - "$tmp/s/scan.h5" <<'PY'
+cd "$tmp" && MPLBACKEND=Agg PYTHONPATH="$src/tests:$src/tests/vendor/pyNSID:$src/tests/vendor/sidpy" "$py" - "$tmp/s/scan.h5" <<'PY'
 import sys
 
 import h5py
 import numpy as np
-import pyNSID
 import sidpy
 from pyNSID.io.hdf_utils import get_all_main, read_h5py_dataset
 
-assert pyNSID.__version__ == "0.0.7.2" and sidpy.__version__ == "0.12.8", (pyNSID.__version__, sidpy.__version__)
-fail = 0
-
-
-def check(ok, what):
-    global fail
-    print(("ok   " if ok else "FAIL ") + what)
-    fail |= not ok
+from tt_nsid import check, done
 
 
 with h5py.File(sys.argv[1], "r") as f:
@@ -76,7 +60,7 @@ with h5py.File(sys.argv[1], "r") as f:
         check(d.metadata == figures and d.metadata["lines_finished"] == 3,
               f"{what}: the run's {len(figures)} figures as metadata")
     check(len(seen) == 14, f"the 7 channels trace and retrace read: {len(seen)}")
-sys.exit(fail)
+done()
 PY
 rc=$?
 [ $rc -eq 0 ] && ok "pyNSID and sidpy read every channel" || bad "pyNSID/sidpy reading: exit $rc"

@@ -66,11 +66,11 @@ else
 fi
 grep -qF "$want" <<<"$out" && grep -qF "rc=1" <<<"$out" && ok "huge scan refused" || bad "huge scan: '$out'"
 [ -e "$tmp/huge" ] && bad "the refused huge scan made its folder" || ok "no folder for the huge scan"
-# a slow line's scope record (every lock-in block of the profile line: 2.7 GB at
+# a slow line's scope record (every lock-in block of the profile line, ten series: 3.0 GB at
 # 0.002 Hz on the standard cantilever) counts too; it ran, then held 27 GB at 0.0002 Hz
 if (ulimit -v 1000000; "$tiptap" keys >/dev/null 2>&1); then
   out=$( (ulimit -v 1000000; "$tiptap" scan "$tmp/s.ini" -o "$tmp/slow" --set "scan.line_rate=0.002 Hz" 2>&1 >/dev/null); echo "rc=$?")
-  grep -qF "tiptap scan: [scan] line_rate: 0.002 Hz makes the profile line's scope record (every lock-in block of the line) need about 2.7 GB of memory, more than the 1.0 GB available" <<<"$out" &&
+  grep -qF "tiptap scan: [scan] line_rate: 0.002 Hz makes the profile line's scope record (every lock-in block of the line) need about 3.0 GB of memory, more than the 1.0 GB available" <<<"$out" &&
     grep -qF "rc=1" <<<"$out" && [ ! -e "$tmp/slow" ] && ok "a slow line's scope refused" || bad "slow line's scope: '$out'"
 else
   echo "skip a slow line's scope under ulimit -v (a sanitizer build cannot start under it)"

@@ -10,6 +10,7 @@
 #include "tt_test.h"
 #include "tiptap/config/config.h"
 #include "tiptap/instrument/erosion.h"
+#include "tiptap/instrument/scan.h"
 #include "tiptap/instrument/surface.h"
 #include "tiptap/util/error.h"
 
@@ -175,6 +176,42 @@ static int load(tt_surface **S, const char *path, const char *keys)
     return rc;
 }
 
+/* The scan's certainty channel: recorded by default with measured_tip_shape, the map
+ * at each pixel's centre (pixels of 2 nm: image pixel 2 k + 1); refused without an
+ * erosion. */
+static void certainty_channel(const char *path, const unsigned char *c)
+{
+    char text[2048];
+    snprintf(text, sizeof text,
+             "[material a]\nyoungs_modulus = 1 GPa\n[surface]\ntype = measured\nimage = %s\n"
+             "measured_tip_shape = sphere\nmeasured_tip_radius = 8 nm\n"
+             "[scan]\nsize = %g nm\nsize_y = %g nm\npixels = %d\nlines = %d\n",
+             path, W * PX * 1e9, H * PX * 1e9, W / 2, H / 2);
+    tt_scene *sc = tt_scene_alloc();
+    assert_int_equal(tt_scene_load_string(sc, text, "s.ini"), TT_OK);
+    tt_scan *scan;
+    if (tt_config_scan_alloc(&scan, sc) != TT_OK)
+        fail_msg("%s", tt_error_message());
+    assert_true(tt_scan_channels(scan) & TT_CH_CERTAINTY);
+    const double *img = tt_scan_image(scan, TT_CH_CERTAINTY_INDEX, 0);
+    assert_non_null(img);
+    for (int j = 0; j < H / 2; j++)
+        for (int i = 0; i < W / 2; i++)
+            assert_close(img[j * (W / 2) + i], c[(2 * j + 1) * W + 2 * i + 1], 0);
+    tt_scan_free(scan);
+    tt_scene_free(sc);
+    /* without the erosion there is no map to record */
+    snprintf(text, sizeof text,
+             "[material a]\nyoungs_modulus = 1 GPa\n[surface]\ntype = measured\nimage = %s\n"
+             "[scan]\nsize = %g nm\nsize_y = %g nm\nchannels = height, certainty\n",
+             path, W * PX * 1e9, H * PX * 1e9);
+    sc = tt_scene_alloc();
+    assert_int_equal(tt_scene_load_string(sc, text, "s.ini"), TT_OK);
+    assert_int_not_equal(tt_config_scan_alloc(&scan, sc), TT_OK);
+    assert_non_null(strstr(tt_error_message(), "s.ini: [scan] channels: certainty is the certainty map"));
+    tt_scene_free(sc);
+}
+
 /* [surface] measured_tip_shape erodes the image before it is interpolated; bad keys are
  * refused naming the key. */
 static void scene_keys(void **st)
@@ -204,11 +241,31 @@ static void scene_keys(void **st)
             assert_close(tt_surface_height(S, (x + 0.5) * PX, (y + 0.5) * PX) * 1e9, r[y * W + x] * 1e9, 1e-6);
     /* beside the pillar the image is broadened, the eroded surface is not */
     assert_true(tt_surface_height(S, 25.5 * PX, 32.5 * PX) < im[32 * W + 25] - 1e-9);
+    /* its certainty map is the library's, at a tolerance of 1e-6 of the height range, and
+     * the reconstruction is the true surface where it is set */
+    static unsigned char c[W * H];
+    tip = sphere_tip(8e-9, hi - lo);
+    size_t n = tt_erosion_certainty(im, r, W, H, &tip, 1e-6 * (hi - lo), c), seen = 0;
+    tt_tip_image_free(&tip);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            double v = tt_surface_certainty(S, (x + 0.5) * PX, (y + 0.5) * PX);
+            assert_close(v, c[y * W + x], 0);
+            if (v == 1) {
+                seen++;
+                assert_close(tt_surface_height(S, (x + 0.5) * PX, (y + 0.5) * PX) * 1e9, s[y * W + x] * 1e9, 1e-5);
+            }
+        }
+    print_message("%zu of %d pixels certain\n", seen, W * H);
+    assert_int_equal(seen, n);
+    assert_true(n > W * H / 3);
     tt_surface_free(S);
     if (load(&S, p, ""))
         fail_msg("%s", tt_error_message());
     assert_close(tt_surface_height(S, 25.5 * PX, 32.5 * PX), im[32 * W + 25], 1e-15);
+    assert_true(isnan(tt_surface_certainty(S, 25.5 * PX, 32.5 * PX))); /* nothing eroded */
     tt_surface_free(S);
+    certainty_channel(p, c);
 
     assert_int_not_equal(load(&S, p, "measured_tip_shape = needle\n"), TT_OK);
     assert_non_null(strstr(tt_error_message(), "measured_tip_shape"));

@@ -47,7 +47,7 @@ static int build(const char *va, const char *vb, const char *vc, tt_surface **S)
     tt_scene *s = tt_scene_alloc();
     assert_int_equal(tt_scene_load_string(s, text, "s.ini"), TT_OK);
     *S = NULL;
-    int rc = tt_config_surface_alloc(S, s, 1e-6, 1e-6);
+    int rc = tt_config_surface_alloc(S, s, 1e-6, 0.5e-6); /* the 2 x 1 map's aspect */
     tt_scene_free(s);
     return rc;
 }

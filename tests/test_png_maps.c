@@ -46,7 +46,7 @@ static tt_surface *map_of(const char *path, const char *va, const char *vb)
     tt_scene *s = tt_scene_alloc();
     assert_int_equal(tt_scene_load_string(s, text, "s.ini"), TT_OK);
     tt_surface *S = NULL;
-    int rc = tt_config_surface_alloc(&S, s, 1e-6, 1e-6);
+    int rc = tt_config_surface_alloc(&S, s, 1e-6, 0.5e-6); /* the 2 x 1 map's aspect */
     tt_scene_free(s);
     return rc ? NULL : S;
 }
@@ -119,6 +119,62 @@ static void transparency_is_refused(void **st)
     tt_scene_free(s);
 }
 
+/* The surface of text over a 1 um square; NULL when refused. */
+static tt_surface *square_of(const char *text)
+{
+    tt_scene *s = tt_scene_alloc();
+    assert_int_equal(tt_scene_load_string(s, text, "p.ini"), TT_OK);
+    tt_surface *S = NULL;
+    int rc = tt_config_surface_alloc(&S, s, 1e-6, 1e-6);
+    tt_scene_free(s);
+    return rc ? NULL : S;
+}
+
+/* A 2 x 1 map over a square scan: stretched, its pixels would be 2:1 (issue 32), so it
+ * is refused unless a pixel size places it; one too small to cover the area is refused;
+ * placed, a pixel sits where its size says, past the area too. */
+static void pixel_size_places_the_map(void **st)
+{
+    (void)st;
+    char path[256], text[1024];
+    snprintf(path, sizeof path, "%s/wide.png", dir);
+    const unsigned char grey[] = {0, 255};
+    write_raw(path, PNG_COLOR_TYPE_GRAY, 8, 0, grey);
+    snprintf(text, sizeof text, "[surface]\ntype = png\npng = %s\npng_height_range = 10 nm\n", path);
+    assert_null(square_of(text));
+    assert_non_null(strstr(tt_error_message(), "p.ini: [surface] pixel_size:"));
+    assert_non_null(strstr(tt_error_message(), "would stretch them 2:1"));
+    snprintf(text, sizeof text, "[surface]\ntype = png\npng = %s\npng_height_range = 10 nm\npixel_size = 600 nm\n",
+             path);
+    assert_null(square_of(text));
+    assert_non_null(strstr(tt_error_message(), "cover 1200 x 600 nm, less than the 1000 x 1000 nm scan area"));
+    snprintf(text, sizeof text, "[surface]\ntype = png\npng = %s\npng_height_range = 10 nm\npixel_size = 1 um\n",
+             path);
+    tt_surface *S = square_of(text);
+    if (!S)
+        fail_msg("refused: %s", tt_error_message());
+    /* pixel centres at 0.5 and 1.5 um, bilinear between: stretched, 0.75 um was 10 nm */
+    assert_close(tt_surface_height(S, 0.5e-6, 0.5e-6), 0, 1e-18);
+    assert_close(tt_surface_height(S, 0.75e-6, 0.5e-6), 2.5e-9, 1e-18);
+    assert_close(tt_surface_height(S, 1.5e-6, 0.5e-6), 10e-9, 1e-18);
+    tt_surface_free(S);
+    /* a material map likewise, by map_pixel_size */
+    const unsigned char rgb[] = {0, 0, 0, 255, 0, 0};
+    write_raw(path, PNG_COLOR_TYPE_RGB, 8, 0, rgb);
+    const char *mats = "[material a]\nyoungs_modulus = 1 GPa\nmap_value = 0\n"
+                       "[material b]\nyoungs_modulus = 50 GPa\nmap_value = #ff0000\n";
+    snprintf(text, sizeof text, "%s[surface]\nmap = png\nmap_png = %s\n", mats, path);
+    assert_null(square_of(text));
+    assert_non_null(strstr(tt_error_message(), "p.ini: [surface] map_pixel_size:"));
+    snprintf(text, sizeof text, "%s[surface]\nmap = png\nmap_png = %s\nmap_pixel_size = 1 um\n", mats, path);
+    S = square_of(text);
+    if (!S)
+        fail_msg("refused: %s", tt_error_message());
+    assert_int_equal(tt_surface_material(S, 0.9e-6, 0.5e-6), 0);
+    assert_int_equal(tt_surface_material(S, 1.1e-6, 0.5e-6), 1);
+    tt_surface_free(S);
+}
+
 static int setup(void **st)
 {
     (void)st;
@@ -128,9 +184,9 @@ static int setup(void **st)
 static int teardown(void **st)
 {
     (void)st;
-    const char *names[] = {"g16.png", "gamma.png", "alpha.png"};
+    const char *names[] = {"g16.png", "gamma.png", "alpha.png", "wide.png"};
     char p[256];
-    for (size_t i = 0; i < 3; i++) {
+    for (size_t i = 0; i < 4; i++) {
         snprintf(p, sizeof p, "%s/%s", dir, names[i]);
         unlink(p);
     }
@@ -143,6 +199,7 @@ int main(void)
         cmocka_unit_test(sixteen_bit_levels),
         cmocka_unit_test(gamma_is_ignored),
         cmocka_unit_test(transparency_is_refused),
+        cmocka_unit_test(pixel_size_places_the_map),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include "tt_test.h"
+#include "tiptap/instrument/tip.h"
 #include "tiptap/config/config.h"
 #include "tiptap/util/error.h"
 #include "tiptap/instrument/surface.h"
@@ -180,11 +181,113 @@ static void bad_input(void **st)
     assert_non_null(strstr(tt_error_message(), "[surface] map: islands need type = particles"));
 }
 
+/* A key that only another type reads is refused, naming both types (issue 32); at its
+ * default it passes, as the effective scene written back carries every key. */
+static void other_types_keys(void **st)
+{
+    (void)st;
+    make("[surface]\ntype = grating\nparticle_radius = 30 nm\n", 0);
+    assert_non_null(strstr(tt_error_message(), "[surface] particle_radius: a key of type = particles, "
+                                               "not of this surface's type = grating"));
+    make("[surface]\nmeasured_tip_shape = cone\n", 0);
+    assert_non_null(strstr(tt_error_message(), "[surface] measured_tip_shape: a key of type = measured, "
+                                               "not of this surface's type = flat"));
+    make("[surface]\ntype = steps\nseed = 4\n", 0);
+    assert_non_null(strstr(tt_error_message(), "[surface] seed: a key of type = particles or rough"));
+    tt_surface_free(make("[surface]\ntype = grating\nparticle_radius = 2e-8 m\nlevel = none\nseed = 1\n", 1));
+    tt_surface_free(make("[surface]\ntype = rough\nseed = 4\n", 1));
+    /* a later file (or --set) that changes the type replaces the sample an earlier one
+     * drew, its keys with it; a key given after the type is the user's for this type */
+    for (int later = 0; later < 2; later++) {
+        tt_scene *sc = tt_scene_alloc();
+        assert_int_equal(tt_scene_load_string(sc, later ? "[surface]\ntype = flat\n"
+                                                        : "[surface]\ntype = grating\nperiod = 300 nm\n", "a.ini"), TT_OK);
+        assert_int_equal(tt_scene_load_string(sc, later ? "[surface]\nperiod = 300 nm\n"
+                                                        : "[surface]\ntype = flat\n", "b.ini"), TT_OK);
+        tt_surface *S = NULL;
+        int rc = tt_config_surface_alloc(&S, sc, 1e-6, 1e-6);
+        if (later)
+            assert_non_null(strstr(tt_error_message(), "b.ini: [surface] period: a key of type = grating or lattice"));
+        assert_int_equal(rc != TT_OK, later);
+        tt_surface_free(S);
+        tt_scene_free(sc);
+    }
+}
+
+/* Lattices against hand-computed heights: pillars, holes and spikes on square and
+ * hexagonal lattices; a grating's critical dimension and offset. */
+static void lattices_and_offsets(void **st)
+{
+    (void)st;
+    tt_surface *S = make("[surface]\ntype = lattice\nperiod = 200 nm\nfeature_radius = 50 nm\n"
+                         "edge_width = 10 nm\nheight = 20 nm\n", 1);
+    assert_close(tt_surface_height(S, 100e-9, 100e-9), 20e-9, 1e-21);   /* a centre */
+    assert_close(tt_surface_height(S, 155e-9, 100e-9), 10e-9, 1e-18);   /* mid-wall */
+    assert_close(tt_surface_height(S, 100e-9, 39e-9), 0, 0);            /* past it */
+    assert_close(tt_surface_height(S, 300e-9, 500e-9), 20e-9, 1e-21);   /* another cell */
+    tt_surface_free(S);
+    S = make("[surface]\ntype = lattice\nfeature = hole\nperiod = 200 nm\nfeature_radius = 50 nm\n"
+             "height = 20 nm\noffset_x = 30 nm\noffset_y = -20 nm\n", 1);
+    assert_close(tt_surface_height(S, 130e-9, 80e-9), 0, 0);            /* a hole's floor */
+    assert_close(tt_surface_height(S, 100e-9, 100e-9), 0, 0);           /* 36 nm from it */
+    assert_close(tt_surface_height(S, 185e-9, 80e-9), 20e-9, 0);        /* 55 nm: the plane */
+    tt_surface_free(S);
+    /* hexagonal: rows 173.2 nm apart, the second shifted by half a period */
+    S = make("[surface]\ntype = lattice\nlattice = hexagonal\nperiod = 200 nm\nfeature_radius = 50 nm\n"
+             "height = 20 nm\n", 1);
+    const double b = 200e-9 * sqrt(3) / 2;
+    assert_close(tt_surface_height(S, 100e-9, 0.5 * b), 20e-9, 0);
+    assert_close(tt_surface_height(S, 200e-9, 1.5 * b + 49e-9), 20e-9, 0);
+    assert_close(tt_surface_height(S, 100e-9, 1.5 * b), 0, 0);
+    assert_close(tt_surface_height(S, 300e-9, 2.5 * b), 20e-9, 0);
+    tt_surface_free(S);
+    /* spikes: the cone tip's profile upside down, R = 10 nm, 25 deg, 50 nm high */
+    S = make("[surface]\ntype = lattice\nfeature = spike\nperiod = 200 nm\nheight = 50 nm\n"
+             "spike_radius = 10 nm\nspike_half_angle = 25 deg\n", 1);
+    const double R = 10e-9, th = 25 * M_PI / 180, H = 50e-9;
+    for (double rho = 0; rho < 60e-9; rho += 1e-9) {
+        double t = rho <= R * cos(th) ? R - sqrt(R * R - rho * rho) : R * (1 - sin(th)) + (rho - R * cos(th)) / tan(th);
+        assert_close(tt_surface_height(S, 100e-9 + rho, 100e-9), fmax(H - t, 0), 1e-17);
+    }
+    tt_surface_free(S);
+    /* a grating by its critical dimension, shifted: lines 60 nm wide from x = 50 nm */
+    S = make("[surface]\ntype = grating\nperiod = 200 nm\nline_width = 60 nm\noffset_x = 50 nm\n", 1);
+    assert_close(tt_surface_height(S, 49e-9, 0), 0, 0);
+    assert_close(tt_surface_height(S, 51e-9, 0), 20e-9, 0);
+    assert_close(tt_surface_height(S, 109e-9, 0), 20e-9, 0);
+    assert_close(tt_surface_height(S, 111e-9, 0), 0, 0);
+    /* the exact dilation follows the shift: a sphere's image is the unshifted one's, moved */
+    tt_surface *U = make("[surface]\ntype = grating\nperiod = 200 nm\nline_width = 60 nm\n", 1);
+    tt_tip_shape tip = {TT_TIP_SPHERE, 30e-9, 0};
+    tt_dilation *D, *E;
+    assert_int_equal(tt_dilation_alloc(&D, S, &tip, 0, 0, 1e-6, 1e-6, 1e-9), TT_OK);
+    assert_int_equal(tt_dilation_alloc(&E, U, &tip, 0, 0, 1e-6, 1e-6, 1e-9), TT_OK);
+    assert_int_equal(tt_dilation_nodes(D), 0);
+    for (double x = 100e-9; x < 500e-9; x += 0.7e-9)
+        assert_close(tt_dilation_height(D, x, 0), tt_dilation_height(E, x - 50e-9, 0), 1e-20);
+    tt_dilation_free(D);
+    tt_dilation_free(E);
+    tt_surface_free(U);
+    tt_surface_free(S);
+    make("[surface]\ntype = grating\nline_width = 60 nm\nduty = 30 %\n", 0);
+    assert_non_null(strstr(tt_error_message(), "line_width and duty both give the line's width"));
+    make("[surface]\ntype = grating\nperiod = 200 nm\nline_width = 200 nm\n", 0);
+    assert_non_null(strstr(tt_error_message(), "fills the 200 nm period"));
+    make("[surface]\ntype = lattice\nperiod = 200 nm\nfeature_radius = 95 nm\nedge_width = 5 nm\n", 0);
+    assert_non_null(strstr(tt_error_message(), "touch at the 200 nm period"));
+    make("[surface]\ntype = lattice\nfeature = spike\nperiod = 100 nm\nheight = 500 nm\n", 0);
+    assert_non_null(strstr(tt_error_message(), "more than twice the 100 nm period"));
+    make("[surface]\ntype = grating\nfeature = hole\n", 0);
+    assert_non_null(strstr(tt_error_message(), "[surface] feature: a key of type = lattice"));
+    make("[surface]\ntype = steps\noffset_y = 5 nm\n", 0);
+    assert_non_null(strstr(tt_error_message(), "[surface] offset_y: a key of type = lattice"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(shapes),     cmocka_unit_test(rough_statistics), cmocka_unit_test(material_maps),
-        cmocka_unit_test(png_maps),   cmocka_unit_test(bad_input),
+        cmocka_unit_test(png_maps),   cmocka_unit_test(bad_input), cmocka_unit_test(other_types_keys), cmocka_unit_test(lattices_and_offsets),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -24,3 +24,15 @@ expect_exact() { # name, the whole expected message, command...
   if [ "$out" != "$want" ]; then bad "$name: '$out' is not '$want'"; return; fi
   ok "$name"
 }
+
+need_python() { # modules...: exit 77 (skipped) where Debian's python3 lacks one; sets py
+  py=/usr/bin/python3
+  local missing
+  if ! missing=$(cd "$tmp" && MPLBACKEND=Agg "$py" -c "
+import importlib.util, sys
+gone = [m for m in sys.argv[1:] if importlib.util.find_spec(m.split('.')[0]) is None]
+print(' '.join(gone)); sys.exit(1 if gone else 0)" "$@"); then
+    echo "skipped: $py lacks $missing (Debian's python3-* packages: tests/vendor/README.md)"
+    exit 77
+  fi
+}

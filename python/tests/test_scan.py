@@ -62,7 +62,7 @@ def test_channels_follow_the_librarys_table():
     table = tiptap.channel_table()
     names = [n for n, _, _ in table]
     assert names[:3] == ["height", "error", "phase"] and names[7] == "amplitude"
-    assert len(table) == 26 and names[22] == "artefact"
+    assert len(table) == 28 and names[22] == "artefact" and names[26:] == ["dilation", "certainty"]
     i = names.index("dissipation_hysteresis")
     assert names[i:i + 3] == ["dissipation_hysteresis", "dissipation_damping", "dissipation_viscous"]
     assert all(table[j][1] == "J" for j in range(i, i + 3))

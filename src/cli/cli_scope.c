@@ -16,6 +16,18 @@
  * a ring stays visible): 4000 pixels wide show no more. */
 #define SCOPE_BUDGET 8000
 
+/* The followed height differs from the surface only under a shaped tip, a tilt or a
+ * drift: written then alone, so that a point tip's scope.csv keeps its columns. */
+static int followed_differs(const tt_scan_scope *sc)
+{
+    for (int r = 0; r < 2; r++)
+        for (long i = 0; i < tt_scan_scope_points(sc, r); i++)
+            if (tt_scan_scope_series(sc, r, TT_SCOPE_FOLLOWED)[i] !=
+                tt_scan_scope_series(sc, r, TT_SCOPE_SURFACE)[i])
+                return 1;
+    return 0;
+}
+
 static int write_csv(const tt_scan_scope *sc, const char *path)
 {
     tt_outfile *of;
@@ -23,8 +35,9 @@ static int write_csv(const tt_scan_scope *sc, const char *path)
     if (rc)
         return rc;
     FILE *f = tt_outfile_stream(of);
+    const int nq = followed_differs(sc) ? TT_SCOPE_COUNT : TT_SCOPE_FOLLOWED;
     fprintf(f, "direction");
-    for (int q = 0; q < TT_SCOPE_COUNT; q++) {
+    for (int q = 0; q < nq; q++) {
         const char *u = tt_scan_scope_unit(q);
         fprintf(f, ",%s%s%s", tt_scan_scope_name(q), *u ? "_" : "", u);
     }
@@ -32,7 +45,7 @@ static int write_csv(const tt_scan_scope *sc, const char *path)
     for (int r = 0; r < 2; r++)
         for (long i = 0; i < tt_scan_scope_points(sc, r); i++) {
             fprintf(f, "%s", r ? "retrace" : "trace");
-            for (int q = 0; q < TT_SCOPE_COUNT; q++)
+            for (int q = 0; q < nq; q++)
                 fprintf(f, ",%.9g", tt_scan_scope_series(sc, r, q)[i]);
             fputc('\n', f);
         }

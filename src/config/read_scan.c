@@ -1,4 +1,4 @@
-/* The configuration layer's imaging sections: [scan], [surface], [lockin], [feedback]
+/* The configuration layer's imaging sections: [scan], [lockin], [feedback] ([surface]: read_surface.c)
  * (see include/tiptap/config/config.h). */
 #include "tiptap/config/config.h"
 
@@ -31,105 +31,30 @@ int tt_config_raster(const tt_scene *s, tt_raster *r)
         return rc;
     const char *fast = tt_scene_get_string(s, "scan", NULL, "fast_axis");
     r->fast_y = fast && strcmp(fast, "y") == 0;
-    return TT_OK;
-}
-
-static int get_d(const tt_scene *s, const char *key, double *v)
-{
-    return tt_scene_get_double(s, "surface", NULL, key, v);
-}
-
-/* The height map is a regular file (a pipe or a link to /dev/zero is refused), told
- * before the run is estimated; tt_surface_alloc reads it. */
-static int check_png_file(const tt_scene *s, const char *path)
-{
-    int fd;
-    if (tt_input_open(path, "PNG map", "map", TT_PNG_MAX_BYTES, &fd, NULL) == TT_OK) {
-        close(fd);
-        return TT_OK;
-    }
-    char why[1024];
-    snprintf(why, sizeof why, "%s", tt_error_message());
-    return tt_scene_locate(s, tt_error(TT_EINVAL, "[surface] png: %s", why));
-}
-
-/* The index of an enum key's value among choices. */
-static int enum_of(const tt_scene *s, const char *key, const char *const *choices, int n)
-{
-    const char *v = tt_scene_get_string(s, "surface", NULL, key);
-    for (int i = 0; v && i < n; i++)
-        if (strcmp(v, choices[i]) == 0)
-            return i;
-    return 0;
-}
-
-/* A measured image's keys; the file itself is read by check_measured, once the scan
- * area is known. */
-static int read_measured(const tt_scene *s, tt_surface_params *p)
-{
-    static const char *const levels[] = {"none", "offset", "plane"};
-    static const char *const lines[] = {"none", "offset", "slope", "median", "median_difference"};
-    static const char *const edges[] = {"refuse", "clamp", "periodic"};
-    int rc;
-    if (!tt_scene_has(s, "surface", NULL, "image"))
-        return tt_scene_fail(s, "surface", NULL, "type",
-                             "measured needs [surface] image = a .gsf, .gwy or 16-bit .png height image");
-    if ((rc = tt_scene_get_path(s, "surface", NULL, "image", p->image, sizeof p->image)) ||
-        (rc = get_d(s, "z_scale", &p->z_scale)) || (rc = get_d(s, "z_offset", &p->z_offset)))
+    if ((rc = tt_scene_get_double(s, "scan", NULL, "angle", &r->angle)) ||
+        (rc = tt_scene_get_double(s, "scan", NULL, "offset_x", &r->offset_x)))
         return rc;
-    const char *ch = tt_scene_get_string(s, "surface", NULL, "channel");
-    snprintf(p->channel, sizeof p->channel, "%s", ch ? ch : "");
-    if (tt_scene_has(s, "surface", NULL, "pixel_size") && (rc = get_d(s, "pixel_size", &p->pixel_size)))
-        return rc;
-    /* a PNG's levels have no height of their own: the range is not left to a default */
-    if (tt_scene_has(s, "surface", NULL, "png_height_range") &&
-        (rc = get_d(s, "png_height_range", &p->png_height_range)))
-        return rc;
-    size_t n = strlen(p->image);
-    if (n > 4 && strcasecmp(p->image + n - 4, ".png") == 0 &&
-        !tt_scene_has(s, "surface", NULL, "png_height_range"))
-        return tt_scene_fail(s, "surface", NULL, "png_height_range",
-                             "a PNG's levels carry no height: expected the height of level 65535 "
-                             "(e.g. 20 nm) for %s", p->image);
-    p->level = (tt_surface_level)enum_of(s, "level", levels, 3);
-    p->line_level = (tt_surface_lines)enum_of(s, "line_level", lines, 5);
-    p->edges = (tt_surface_edges)enum_of(s, "edges", edges, 3);
-    static const char *const tips[] = {"none", "sphere", "cone"};
-    /* the enum's order is tt_tip_kind's: none is the point tip, which erodes nothing */
-    p->measured_tip = enum_of(s, "measured_tip_shape", tips, 3);
-    /* a tip's size without the shape that uses it would be ignored silently */
-    if (p->measured_tip != TT_TIP_CONE && tt_scene_has(s, "surface", NULL, "measured_tip_half_angle"))
-        return tt_scene_fail(s, "surface", NULL, "measured_tip_half_angle",
-                             "given for a tip that is no cone; expected measured_tip_shape = cone with it");
-    if (p->measured_tip == TT_TIP_POINT && tt_scene_has(s, "surface", NULL, "measured_tip_radius"))
-        return tt_scene_fail(s, "surface", NULL, "measured_tip_radius",
-                             "given without a tip; expected measured_tip_shape = sphere or cone with it");
-    if ((rc = get_d(s, "measured_tip_radius", &p->measured_tip_radius)) ||
-        (rc = get_d(s, "measured_tip_half_angle", &p->measured_tip_half_angle)))
-        return rc;
-    const char *interp = tt_scene_get_string(s, "surface", NULL, "interpolation");
-    p->bicubic = interp && strcmp(interp, "bicubic") == 0;
-    const char *c = tt_scene_get_string(s, "surface", NULL, "crop");
-    if (c) {
-        char tail;
-        if (sscanf(c, "%ld %ld %ld %ld %c", &p->crop[0], &p->crop[1], &p->crop[2], &p->crop[3], &tail) != 4 ||
-            p->crop[0] < 0 || p->crop[1] < 0 || p->crop[2] < 2 || p->crop[3] < 2)
-            return tt_scene_fail(s, "surface", NULL, "crop",
-                                 "'%s'; expected four whole numbers of pixels: left top width height "
-                                 "(width and height at least 2)", c);
-    }
-    return TT_OK;
+    return tt_scene_get_double(s, "scan", NULL, "offset_y", &r->offset_y);
 }
 
 /* The measured image read and prepared once, before the run is estimated: a bad file,
  * crop or size is refused here in one line. */
 static int check_measured(const tt_scene *s, tt_scan_params *p)
 {
+    const tt_raster *r = &p->raster;
+    if (r->angle != 0 || r->offset_x != 0 || r->offset_y != 0)
+        tt_raster_bounds(r, p->surface.visit);
+    const int eroded = p->surface.type == TT_SURFACE_MEASURED && p->surface.measured_tip != TT_TIP_POINT;
+    if ((p->channels & TT_CH_CERTAINTY) && !eroded)
+        return tt_scene_fail(s, "scan", NULL, "channels",
+                             "certainty is the certainty map of a measured image's erosion; it needs "
+                             "[surface] type = measured with a measured_tip_shape");
     if (p->surface.type != TT_SURFACE_MEASURED)
         return TT_OK;
-    /* the comparison with the input, unless the scene chose its channels */
+    /* the comparison with the input (and where the erosion is certain), unless the scene
+     * chose its channels */
     if (!tt_scene_has(s, "scan", NULL, "channels"))
-        p->channels |= TT_CH_TOPOGRAPHY | TT_CH_ARTEFACT;
+        p->channels |= TT_CH_TOPOGRAPHY | TT_CH_ARTEFACT | (eroded ? TT_CH_CERTAINTY : 0);
     return tt_scene_locate(s, tt_surface_check_measured(&p->surface, p->raster.size_x, p->raster.size_y));
 }
 
@@ -138,172 +63,6 @@ static int check_map_image(const tt_scene *s, tt_scan_params *p)
 {
     return tt_scene_locate(s, tt_surface_check_map_image(&p->surface, p->materials, p->nmaterials,
                                                          p->raster.size_x, p->raster.size_y));
-}
-
-static int read_shape(const tt_scene *s, tt_surface_params *p)
-{
-    int rc = TT_OK;
-    switch (p->type) {
-    case TT_SURFACE_STEPS:
-        if (!(rc = get_d(s, "step_height", &p->step_height)))
-            rc = get_d(s, "step_width", &p->step_width);
-        return rc;
-    case TT_SURFACE_GRATING:
-        if (!(rc = get_d(s, "period", &p->period)) && !(rc = get_d(s, "duty", &p->duty)) &&
-            !(rc = get_d(s, "height", &p->height)) && !(rc = get_d(s, "edge_width", &p->edge_width)) &&
-            2 * p->edge_width > p->period * fmin(p->duty, 1 - p->duty) * 2)
-            rc = tt_scene_fail_set(s, (const char *const[]){"surface.edge_width", "surface.period", "surface.duty", NULL},
-                                   "edge_width %g nm is wider than the line or the gap allows "
-                                   "(period %g nm, duty %g %%)",
-                                   p->edge_width * 1e9, p->period * 1e9, p->duty * 100);
-        return rc;
-    case TT_SURFACE_PARTICLES:
-        if ((rc = get_d(s, "particle_radius", &p->particle_radius)) ||
-            (rc = tt_scene_get_int(s, "surface", NULL, "particle_count", &p->particle_count)))
-            return rc;
-        return tt_scene_get_int(s, "surface", NULL, "seed", &p->seed);
-    case TT_SURFACE_ROUGH:
-        if ((rc = get_d(s, "rms", &p->rms)) || (rc = get_d(s, "correlation_length", &p->correlation_length)))
-            return rc;
-        return tt_scene_get_int(s, "surface", NULL, "seed", &p->seed);
-    case TT_SURFACE_PNG:
-        if ((rc = tt_scene_get_path(s, "surface", NULL, "png", p->png, sizeof p->png)) ||
-            (rc = check_png_file(s, p->png)))
-            return rc;
-        return get_d(s, "png_height_range", &p->png_height_range);
-    case TT_SURFACE_MEASURED:
-        return read_measured(s, p);
-    default:
-        return TT_OK;
-    }
-}
-
-/* map_materials: the background, then the other, by name. */
-static int read_map_materials(const tt_scene *s, const char *list, const tt_material *m, size_t n,
-                              tt_surface_params *p)
-{
-    const char *q = list;
-    int k = 0;
-    while (*q) {
-        while (*q == ' ' || *q == ',')
-            q++;
-        const char *e = q;
-        while (*e && *e != ',' && *e != ' ')
-            e++;
-        if (e == q)
-            break;
-        if (k >= 2)
-            return tt_scene_fail(s, "surface", NULL, "map_materials",
-                                 "names more than two materials; this map takes a background and one other");
-        size_t i = 0;
-        while (i < n && !(strlen(m[i].name) == (size_t)(e - q) && strncmp(m[i].name, q, (size_t)(e - q)) == 0))
-            i++;
-        if (i == n)
-            return tt_scene_fail(s, "surface", NULL, "map_materials", "no [material %.*s] in the scene",
-                                 (int)(e - q), q);
-        p->materials[k++] = (int)i;
-        q = e;
-    }
-    if (k < 2)
-        return tt_scene_fail(s, "surface", NULL, "map_materials",
-                             "needs two materials: the background, then the other");
-    return TT_OK;
-}
-
-static const char *const surface_types[] = {"flat", "steps", "grating", "particles", "rough", "png", "measured"};
-static const char *const surface_maps[] = {"uniform", "stripes", "disks", "checkerboard", "islands", "png",
-                                           "labels", "threshold"};
-
-/* A labels or threshold map's keys; the image itself is read by check_map_image, once the
- * scan area is known. */
-static int read_map_image(const tt_scene *s, tt_surface_params *p)
-{
-    static const char *const edges[] = {"refuse", "clamp", "periodic"};
-    int rc;
-    if (!tt_scene_has(s, "surface", NULL, "map_image"))
-        return tt_scene_fail(s, "surface", NULL, "map", "%s needs [surface] map_image = a .gsf, .gwy or grey .png image",
-                             surface_maps[p->map]);
-    if ((rc = tt_scene_get_path(s, "surface", NULL, "map_image", p->map_image, sizeof p->map_image)))
-        return rc;
-    const char *ch = tt_scene_get_string(s, "surface", NULL, "map_channel");
-    snprintf(p->map_channel, sizeof p->map_channel, "%s", ch ? ch : "");
-    if (tt_scene_has(s, "surface", NULL, "map_pixel_size") && (rc = get_d(s, "map_pixel_size", &p->map_pixel_size)))
-        return rc;
-    p->edges = (tt_surface_edges)enum_of(s, "edges", edges, 3);
-    if (p->map == TT_MAP_LABELS)
-        return TT_OK;
-    const char *t = tt_scene_get_string(s, "surface", NULL, "map_threshold");
-    char *end;
-    if (!t)
-        return tt_scene_fail(s, "surface", NULL, "map", "threshold needs [surface] map_threshold = a value "
-                             "in the image's unit (e.g. 60 deg)");
-    p->map_threshold = tt_strtod(t, &end);
-    while (*end == ' ')
-        end++;
-    if (end == t || !isfinite(p->map_threshold) || strlen(end) >= sizeof p->map_threshold_unit || strchr(end, ' '))
-        return tt_scene_fail(s, "surface", NULL, "map_threshold",
-                             "'%s'; expected a number and the image's unit (e.g. 60 deg)", t);
-    snprintf(p->map_threshold_unit, sizeof p->map_threshold_unit, "%s", end);
-    return TT_OK;
-}
-
-/* A two-material map: which materials, its period, duty and disk radius. */
-static int read_two_material_map(const tt_scene *s, const tt_material *m, size_t n,
-                                 tt_surface_params *p)
-{
-    int rc;
-    const char *list = tt_scene_get_string(s, "surface", NULL, "map_materials");
-    if (list)
-        rc = read_map_materials(s, list, m, n, p);
-    else if (n < 2)
-        rc = tt_scene_fail(s, "surface", NULL, "map", "a %s map needs two [material NAME] sections",
-                           surface_maps[p->map]);
-    else {
-        p->materials[0] = 0;
-        p->materials[1] = 1;
-        rc = TT_OK;
-    }
-    if (rc || (rc = get_d(s, "map_period", &p->map_period)) || (rc = get_d(s, "map_duty", &p->map_duty)) ||
-        (rc = get_d(s, "map_radius", &p->map_radius)))
-        return rc;
-    if (p->map == TT_MAP_DISKS && 2 * p->map_radius >= p->map_period)
-        return tt_scene_fail_set(s, (const char *const[]){"surface.map_radius", "surface.map_period", NULL},
-                                 "disks of radius %g nm overlap at period %g nm",
-                                 p->map_radius * 1e9, p->map_period * 1e9);
-    if (p->map == TT_MAP_ISLANDS && p->type != TT_SURFACE_PARTICLES)
-        return tt_scene_fail(s, "surface", NULL, "map", "islands need type = particles");
-    return TT_OK;
-}
-
-int tt_config_surface(const tt_scene *s, const tt_material *m, size_t n, tt_surface_params *p)
-{
-    memset(p, 0, sizeof *p);
-    const char *t = tt_scene_get_string(s, "surface", NULL, "type");
-    const char *mp = tt_scene_get_string(s, "surface", NULL, "map");
-    for (int i = 0; i < 7; i++) {
-        if (t && strcmp(t, surface_types[i]) == 0)
-            p->type = (tt_surface_type)i;
-        if (mp && strcmp(mp, surface_maps[i]) == 0)
-            p->map = (tt_surface_map)i;
-    }
-    if (mp && strcmp(mp, surface_maps[7]) == 0)
-        p->map = TT_MAP_THRESHOLD;
-    int rc = read_shape(s, p);
-    if (rc)
-        return rc;
-    /* two materials on one pixel value: refused before the run is estimated */
-    if (p->map == TT_MAP_PNG && !(rc = get_d(s, "map_tolerance", &p->map_tolerance)) &&
-        !(rc = tt_scene_get_path(s, "surface", NULL, "map_png", p->map_png, sizeof p->map_png)))
-        rc = tt_scene_locate(s, tt_surface_check_map_values(p, m, n));
-    if (p->map == TT_MAP_PNG)
-        return rc;
-    if ((p->map == TT_MAP_LABELS || p->map == TT_MAP_THRESHOLD) && (rc = read_map_image(s, p)))
-        return rc;
-    if (p->map == TT_MAP_LABELS)
-        return TT_OK;
-    if (p->map != TT_MAP_UNIFORM)
-        return read_two_material_map(s, m, n, p);
-    return TT_OK;
 }
 
 int tt_config_lockin(const tt_scene *s, tt_lockin_params *p)

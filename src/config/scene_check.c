@@ -150,18 +150,24 @@ int scene_check_value(const tt_scene_key *k, const char *v, char *why, size_t le
                     sym = tt_units_symbol((tt_dim)d);
                     break;
                 }
+        /* angles are written in degrees (0 deg: "above 0 deg and below 90 deg", not rad) */
+        double f = 1;
+        if (k->kind == TT_KEY_QUANTITY && (k->dims & TT_DIM_ANGLE)) {
+            sym = "deg";
+            f = 180 / M_PI;
+        }
         /* the space goes with the unit, so that a plain number ends the message */
         const char *sp = *sym ? " " : "";
         if (!lo_ok && isfinite(k->max) && k->max < 1e300)
             snprintf(why, len, "%s is out of range; expected %s %g%s%s and %s %g%s%s", v,
-                     (k->flags & TT_KEY_MIN_EXCL) ? "above" : "at least", k->min, sp, sym,
-                     (k->flags & TT_KEY_MAX_EXCL) ? "below" : "at most", k->max, sp, sym);
+                     (k->flags & TT_KEY_MIN_EXCL) ? "above" : "at least", k->min * f, sp, sym,
+                     (k->flags & TT_KEY_MAX_EXCL) ? "below" : "at most", k->max * f, sp, sym);
         else if (!lo_ok)
             snprintf(why, len, "%s is out of range; expected %s %g%s%s", v,
-                     (k->flags & TT_KEY_MIN_EXCL) ? "above" : "at least", k->min, sp, sym);
+                     (k->flags & TT_KEY_MIN_EXCL) ? "above" : "at least", k->min * f, sp, sym);
         else
             snprintf(why, len, "%s is out of range; expected %s %g%s%s", v,
-                     (k->flags & TT_KEY_MAX_EXCL) ? "below" : "at most", k->max, sp, sym);
+                     (k->flags & TT_KEY_MAX_EXCL) ? "below" : "at most", k->max * f, sp, sym);
         return -1;
     }
     return 0;

@@ -105,9 +105,24 @@ static int make_dilation(tt_scan *S, const tt_tip_shape *tip)
     double mx = fabs(S->inst.drift_x) * t, my = fabs(S->inst.drift_y) * t;
     double fast = (R->fast_y ? R->size_y : R->size_x) / (double)R->pixels;
     double slow = (R->fast_y ? R->size_x : R->size_y) / (double)R->lines;
-    double pitch = fmin(fast, slow), dx = fmax(fmin(pitch, tip->radius) / 4, pitch / 16);
-    return tt_dilation_alloc(&S->dilation, S->surface, tip, -mx, -my, R->size_x + mx,
-                             R->size_y + my, dx);
+    double pitch = fmin(fast, slow), dx = fmax(fmin(pitch, tip->radius) / 4, pitch / 16), b[4];
+    tt_raster_bounds(R, b); /* a rotated or moved scan visits another box of the sample */
+    return tt_dilation_alloc(&S->dilation, S->surface, tip, b[0] - mx, b[1] - my, b[2] + mx, b[3] + my, dx);
+}
+
+/* The certainty channel is the surface's, not the run's: filled once, at each pixel's
+ * centre, and left alone by the lines. */
+static void fill_certainty(tt_scan *S)
+{
+    const tt_raster *R = &S->raster;
+    for (int r = 0; r < 2; r++)
+        for (long line = 0; S->img[r][TT_CH_CERTAINTY_INDEX] && line < R->lines; line++)
+            for (long px = 0; px < R->pixels; px++) {
+                double x, y;
+                tt_raster_position(R, line, 0, 2 * R->pixels, 2 * px + 1, &x, &y);
+                S->img[r][TT_CH_CERTAINTY_INDEX][tt_raster_index(R, line, px)] =
+                    tt_surface_certainty(S->surface, x, y);
+            }
 }
 
 int tt_scan_alloc(tt_scan **out, const tt_scan_params *p)
@@ -143,6 +158,7 @@ int tt_scan_alloc(tt_scan **out, const tt_scan_params *p)
             for (size_t i = 0; i < n; i++)
                 S->img[r][c][i] = NAN;
         }
+    fill_certainty(S);
     S->collapse_line = S->collapse_px = -1;
     S->watch_line = -1;
     S->line_done = calloc((size_t)S->raster.lines, 1);

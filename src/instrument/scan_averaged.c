@@ -28,10 +28,13 @@ static void no_losses(pixel_acc *a)
 }
 
 /* The per-cycle channels of cycles k0 .. k0 + n - 1 into their pixels' sums: za0 and
- * dz the height command's first value and step, t0 and dt the topography's. */
-static void cycle_sums(const line_ctx *L, long k0, int n, double za0, double dz, double t0,
-                       double dt, const tt_averaged_out *o)
+ * dz the height command's first value and step; the topography and the dilation linear
+ * from the surface at the block's start a to its end b. */
+static void cycle_sums(const line_ctx *L, long k0, int n, double za0, double dz, const surf_pt *sa,
+                       const surf_pt *sb, const tt_averaged_out *o)
 {
+    const double t0 = sa->topo, dt = (sb->topo - sa->topo) / n, d0 = sa->dil,
+                 dd = (sb->dil - sa->dil) / n;
     const tt_raster *R = &L->S->raster;
     pixel_acc *pix = L->pix + (size_t)L->dir * (size_t)R->pixels;
     long p0 = tt_raster_pixel(R, L->dir, L->nc, k0), p1 = tt_raster_pixel(R, L->dir, L->nc, k0 + n - 1);
@@ -43,6 +46,7 @@ static void cycle_sums(const line_ctx *L, long k0, int n, double za0, double dz,
         a->sum[4] += n * o->indent;
         a->sum[5] += n * o->ets;
         a->sum[6] += n * t0 + dt * tri;
+        a->sum[TT_CH_DILATION_INDEX] += n * d0 + dd * tri;
         a->n += n;
         no_losses(a);
         return;
@@ -54,6 +58,7 @@ static void cycle_sums(const line_ctx *L, long k0, int n, double za0, double dz,
         a->sum[4] += o->indent;
         a->sum[5] += o->ets;
         a->sum[6] += t0 + dt * j;
+        a->sum[TT_CH_DILATION_INDEX] += d0 + dd * j;
         a->n++;
         no_losses(a);
     }
@@ -128,7 +133,7 @@ static int block(const line_ctx *L, line_state *st, avg_line *t, const surf_pt *
     if (L->phase > 0) {
         if (!(S->channels & (TT_CH_PEAK_FORCE | TT_CH_INDENTATION))) /* as untracked cycles */
             o.peak = o.indent = NAN;
-        cycle_sums(L, k0, n, za0, (st->z_to - st->z_from) / L->P, a->topo, (b->topo - a->topo) / n, &o);
+        cycle_sums(L, k0, n, za0, (st->z_to - st->z_from) / L->P, a, b, &o);
         if (o.indent > W->indent[a->mat])
             W->indent[a->mat] = o.indent;
         if (o.collapsed || o.outside) {

@@ -18,6 +18,7 @@ static const struct {
     {"harmonic5_phase", "deg"}, {"harmonic6_phase", "deg"}, {"harmonic7_phase", "deg"},
     {"harmonic8_phase", "deg"}, {"artefact", "m"},
     {"dissipation_hysteresis", "J"}, {"dissipation_damping", "J"}, {"dissipation_viscous", "J"},
+    {"dilation", "m"}, {"certainty", ""},
 };
 
 const char *tt_scan_channel_name(int i) { return i >= 0 && i < TT_CH_COUNT ? channel_info[i].name : "?"; }
@@ -57,7 +58,7 @@ int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t l
                      "unknown channel '%.*s'; channels are height, error, amplitude, phase, "
                      "peak_force, indentation, dissipation, topography, harmonic2 to harmonic%d, "
                      "harmonic2_phase to harmonic%d_phase, artefact, dissipation_hysteresis, "
-                     "dissipation_damping, dissipation_viscous",
+                     "dissipation_damping, dissipation_viscous, dilation, certainty",
                      (int)(e - p), p, TT_CH_HARMONIC_MAX, TT_CH_HARMONIC_MAX);
             return -1;
         }

@@ -34,6 +34,7 @@ int tt_scan_cycle_begin(const line_ctx *L, line_state *st, cycle_in *in)
     st->ahead[1] = c;
     in->ha = a.h;
     in->topo = a.topo;
+    in->dil = a.dil;
     in->mat = a.mat;
     in->hb = b.h;
     in->mat_next = b.mat;
@@ -157,6 +158,7 @@ int tt_scan_cycle_end(const line_ctx *L, line_state *st, const cycle_in *in, dou
         a->sum[4] += indent;
         a->sum[5] += ets;
         a->sum[6] += in->topo;
+        a->sum[TT_CH_DILATION_INDEX] += in->dil;
         a->sum[0] += in->za;
         a->n++;
         if (indent > L->W->indent[in->mat]) /* NaN when not tracked: left out */

@@ -74,9 +74,10 @@ static void line_done(const tt_scan *S, worker *W, long line, const line_state *
                 double v = cnt ? a->sum[ch] / (double)cnt : NAN;
                 if (ch == TT_CH_ARTEFACT_INDEX)
                     v = cnt ? (a->sum[0] - a->sum[6]) / (double)cnt : NAN;
-                else if (ch >= TT_CH_HARMONIC_PHASE_INDEX && ch < TT_CH_HARMONIC_PHASE_INDEX + NHARM && cnt)
+                else if (ch >= TT_CH_HARMONIC_PHASE_INDEX && ch < TT_CH_HARMONIC_PHASE_INDEX + NHARM &&
+                         cnt)
                     v = lag(a->sum[ch], a->quad[ch - TT_CH_HARMONIC_PHASE_INDEX]) * 180 / M_PI;
-                if (out->img[dir][ch])
+                if (out->img[dir][ch] && ch != TT_CH_CERTAINTY_INDEX)
                     out->img[dir][ch][out->packed ? px : tt_raster_index(R, line, px)] = v;
             }
         }

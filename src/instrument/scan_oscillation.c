@@ -128,19 +128,24 @@ static long swings_of(const double *e, long n, double h, swing *sw)
 /* The longest run of evenly spaced swings: its first and count. Periods are measured
  * between swings of one sign (two apart): a ring that has run into the surface is
  * lopsided, its swings toward the surface shorter than those away. A swing after the
- * surface moved (by more than thr since the last swing) or the material changed is
+ * surface moved (its range since the last swing above thr) or the material changed is
  * the sample's doing, not the loop's: it may start a ring (the edge that excites it),
  * not continue one, or a loop would ring at the rate of a staircase's edges or of a
- * blend's disks. */
+ * blend's disks. h is the surface the tip follows (its dilation): a blunt tip's error
+ * swings on the slopes it makes of a grating's walls, where the true surface is flat. */
 static long longest_ring(const swing *sw, long m, const double *t, const double *h,
                          const double *mat, double thr, long *first, double *work)
 {
     long best = m < 2 ? m : 2, a = 0;
     *first = 0;
     for (long b = 1; b < m; b++) {
-        int moved = fabs(h[sw[b].i] - h[sw[b - 1].i]) > thr;
-        for (long i = sw[b - 1].i; i < sw[b].i && !moved; i++)
-            moved = mat[i + 1] != mat[i];
+        double lo = h[sw[b - 1].i], hi = lo;
+        int moved = 0;
+        for (long i = sw[b - 1].i; i < sw[b].i && !moved; i++) {
+            lo = fmin(lo, h[i + 1]);
+            hi = fmax(hi, h[i + 1]);
+            moved = mat[i + 1] != mat[i] || hi - lo > thr;
+        }
         if (moved) {
             a = b;
             continue;
@@ -252,7 +257,7 @@ int tt_scan_oscillation(const tt_scan_scope *sc, const tt_loop *l, tt_oscillatio
         const double *e = tt_scan_scope_series(sc, dir, TT_SCOPE_ERROR),
                      *t = tt_scan_scope_series(sc, dir, TT_SCOPE_TIME),
                      *z = tt_scan_scope_series(sc, dir, TT_SCOPE_Z),
-                     *h = tt_scan_scope_series(sc, dir, TT_SCOPE_SURFACE),
+                     *h = tt_scan_scope_series(sc, dir, TT_SCOPE_FOLLOWED),
                      *mat = tt_scan_scope_series(sc, dir, TT_SCOPE_MATERIAL);
         double noise = noise_of(e, n, work), thr = fmax(5 * noise, 0.01 * l->setpoint);
         if (noise > o->noise)

@@ -23,11 +23,11 @@ typedef struct {
 double tt_scan_clock_at(const tt_scan *S, long line, int phase, long nc, long k);
 double tt_scan_sample_at(const tt_scan *S, double *x, double *y, double t, double *topo);
 
-/* The surface at a cycle's start: the height the apex meets, the true height and the
- * material (k < 0: none found). */
+/* The surface at a cycle's start: the height the apex meets, the true height, the
+ * dilated one (the apex's without tilt or drift) and the material (k < 0: none found). */
 typedef struct {
     long k;
-    double h, topo;
+    double h, topo, dil;
     size_t mat;
 } surf_pt;
 
@@ -59,7 +59,7 @@ typedef struct {
 typedef struct {
     long k; /* the cycle of this phase */
     int j;  /* its place in the lock-in block */
-    double ha, hb, topo, za, sa, sb;
+    double ha, hb, topo, dil, za, sa, sb;
     double zn; /* the z piezo's noise in sa, sb at the cycle's middle (0: none) */
     size_t mat, mat_next;
     int edge_next; /* the next cycle crosses an edge (edge heights or materials) */

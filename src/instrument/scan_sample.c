@@ -16,16 +16,22 @@ double tt_scan_clock_at(const tt_scan *S, long line, int phase, long nc, long k)
 /* The sample under raster position (x, y) at time t: *x, *y become the surface's point
  * the tip touches there (drift, then the dilation's contact point, where the material
  * is read); returns the height the apex meets (dilated, tilted, drifted in z) and the
- * true height under the axis in *topo. */
-double tt_scan_sample_at(const tt_scan *S, double *x, double *y, double t, double *topo)
+ * true height under the axis in *topo, the dilated one in *dil. */
+static double sample_at(const tt_scan *S, double *x, double *y, double t, double *topo, double *dil)
 {
     const tt_instrument_params *in = &S->inst;
     *x -= in->drift_x * t;
     *y -= in->drift_y * t;
     const double ax = *x, ay = *y;
     *topo = S->flat ? 0 : tt_surface_height(S->surface, ax, ay);
-    double h = S->dilation ? tt_dilation_contact(S->dilation, ax, ay, x, y) : *topo;
-    return h + in->tilt_x * ax + in->tilt_y * ay + in->drift_z * t;
+    *dil = S->dilation ? tt_dilation_contact(S->dilation, ax, ay, x, y) : *topo;
+    return *dil + in->tilt_x * ax + in->tilt_y * ay + in->drift_z * t;
+}
+
+double tt_scan_sample_at(const tt_scan *S, double *x, double *y, double t, double *topo)
+{
+    double dil;
+    return sample_at(S, x, y, t, topo, &dil);
 }
 
 /* The surface at the start of cycle k (settling: the line's first pixel). */
@@ -37,10 +43,10 @@ surf_pt tt_scan_surface_at(const line_ctx *L, long k)
     double x, y;
     tt_raster_position(&S->raster, L->line, L->dir, L->nc, kk, &x, &y);
     if (S->plain) {
-        p.h = p.topo = S->flat ? 0 : tt_surface_height(S->surface, x, y);
+        p.h = p.topo = p.dil = S->flat ? 0 : tt_surface_height(S->surface, x, y);
     } else {
         double t = tt_scan_clock_at(S, L->line, L->phase, L->nc, kk);
-        p.h = tt_scan_sample_at(S, &x, &y, t, &p.topo);
+        p.h = sample_at(S, &x, &y, t, &p.topo, &p.dil);
     }
     p.mat = S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
     return p;

@@ -21,6 +21,7 @@ static const struct {
 } info[TT_SCOPE_COUNT] = {
     {"time", "s"}, {"position", "m"}, {"z", "m"},         {"error", "m"},
     {"amplitude", "m"}, {"phase", "deg"}, {"surface", "m"}, {"pixel", ""}, {"material", ""},
+    {"followed", "m"},
 };
 
 const char *tt_scan_scope_name(int q) { return q >= 0 && q < TT_SCOPE_COUNT ? info[q].name : "?"; }
@@ -112,11 +113,9 @@ void tt_scan_scope_put(const line_ctx *L, const line_state *st, long b, double A
     long k = (b + 1) * L->P;
     if (k > L->nc)
         k = L->nc;
-    double x, y;
-    tt_raster_position(&S->raster, L->line, L->dir, L->nc, k, &x, &y);
     double **v = sc->v[L->dir];
     v[TT_SCOPE_TIME][b] = tt_scan_clock_at(S, L->line, L->phase, L->nc, k);
-    v[TT_SCOPE_POSITION][b] = S->raster.fast_y ? y : x;
+    v[TT_SCOPE_POSITION][b] = tt_raster_fast_position(&S->raster, L->dir, L->nc, k);
     /* the command at this instant: the ramp of the block now ended has reached it
      * (tt_scan_block_end moved the new output to z_to) */
     v[TT_SCOPE_Z][b] = st->z_from;
@@ -126,5 +125,6 @@ void tt_scan_scope_put(const line_ctx *L, const line_state *st, long b, double A
     const surf_pt at = tt_scan_surface_at(L, k);
     v[TT_SCOPE_SURFACE][b] = at.topo;
     v[TT_SCOPE_MATERIAL][b] = (double)at.mat;
+    v[TT_SCOPE_FOLLOWED][b] = at.h;
     v[TT_SCOPE_PIXEL][b] = (double)tt_raster_pixel(&S->raster, L->dir, L->nc, k - 1);
 }

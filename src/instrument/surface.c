@@ -163,6 +163,8 @@ static int build_rough(tt_surface *S, const tt_surface_params *sp)
     while (n < 2048 && fmax(S->sx, S->sy) / n > L / 4)
         n *= 2;
     S->gw = S->gh = n;
+    S->gsx = S->sx;
+    S->gsy = S->sy;
     S->periodic = 1;
     S->grid = fftw_alloc_real((size_t)n * n);
     fftw_complex *F = fftw_alloc_complex((size_t)n * (n / 2 + 1));
@@ -208,7 +210,7 @@ static int build_rough(tt_surface *S, const tt_surface_params *sp)
  * reduced in floating point before it becomes an int, so no distance overflows it. */
 static double grid_at(const tt_surface *S, double x, double y)
 {
-    double u = x / S->sx * S->gw - 0.5, v = y / S->sy * S->gh - 0.5;
+    double u = x / S->gsx * S->gw - 0.5, v = y / S->gsy * S->gh - 0.5;
     double fi = floor(u), fj = floor(v);
     double fu = u - fi, fv = v - fj;
     int i, j, i1, j1;
@@ -239,9 +241,10 @@ double tt_surface_height(const tt_surface *S, double x, double y)
 {
     switch (S->type) {
     case S_STEPS:
-        return S->step_h * floor(x / S->step_w);
+        return S->step_h * floor((x - S->ox) / S->step_w);
     case S_GRATING: {
         /* trapezoidal lines along y: up-edge, top, down-edge, bottom */
+        x -= S->ox;
         double u = x - S->period * floor(x / S->period), top = S->duty * S->period, e = S->edge;
         if (e > 0 && u < e)
             return S->height * u / e;
@@ -260,6 +263,8 @@ double tt_surface_height(const tt_surface *S, double x, double y)
         return grid_at(S, x, y);
     case S_MEASURED:
         return tt_surface_measured_at(S, x, y);
+    case S_LATTICE:
+        return tt_surface_lattice_at(S, x - S->ox, y - S->oy);
     default:
         return 0;
     }
@@ -286,7 +291,7 @@ int tt_surface_material(const tt_surface *S, double x, double y)
         return particle_at(S, x, y) > 0 ? S->mat[1] : S->mat[0];
     case M_PNG: {
         /* clamped before the conversion: past the area the edge pixels continue */
-        double u = x / S->sx * S->mw, v = y / S->sy * S->mh;
+        double u = x / S->msx * S->mw, v = y / S->msy * S->mh;
         int i = u < 0 ? 0 : u >= S->mw ? S->mw - 1 : (int)u;
         int j = v < 0 ? 0 : v >= S->mh ? S->mh - 1 : (int)v;
         return S->mgrid[(size_t)j * S->mw + i];
@@ -306,17 +311,21 @@ int tt_surface_flat(const tt_surface *S) { return S->type == S_FLAT; }
 int tt_surface_pieces(const tt_surface *S, double x0, double x1, tt_surface_piece_fn fn,
                       void *user)
 {
+    /* in the pattern's own frame (offset_x taken off), its pieces moved back */
+    const double s = S->ox;
+    x0 -= s;
+    x1 -= s;
     if (S->type == S_STEPS) {
         double w = S->step_w;
         for (double n = floor(x0 / w); n <= floor(x1 / w); n++)
-            fn(user, n * w, n * S->step_h, (n + 1) * w, n * S->step_h);
+            fn(user, n * w + s, n * S->step_h, (n + 1) * w + s, n * S->step_h);
         return 1;
     }
     if (S->type != S_GRATING)
         return 0;
     double p = S->period, top = S->duty * p, e = S->edge, H = S->height;
     for (double n = floor(x0 / p); n <= floor(x1 / p); n++) {
-        double o = n * p;
+        double o = n * p + s;
         if (e > 0)
             fn(user, o, 0, o + e, H);
         fn(user, o + e, H, o + top, H);
@@ -343,12 +352,17 @@ int tt_surface_alloc(tt_surface **out, const tt_surface_params *p, const tt_mate
     case S_STEPS:
         S->step_h = p->step_height;
         S->step_w = p->step_width;
+        S->ox = p->offset_x;
         break;
     case S_GRATING:
         S->period = p->period;
         S->duty = p->duty;
         S->height = p->height;
         S->edge = p->edge_width;
+        S->ox = p->offset_x;
+        break;
+    case S_LATTICE:
+        tt_surface_lattice_init(S, p);
         break;
     case S_PARTICLES:
         rc = build_particles(S, p);

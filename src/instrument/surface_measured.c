@@ -168,6 +168,13 @@ static int level_lines(tt_height_image *im, tt_surface_lines how)
 static int check_cover(const tt_surface_params *p, const tt_height_image *im, double sx, double sy)
 {
     double w = (double)im->xres * im->dx, h = (double)im->yres * im->dy;
+    const double *v = p->visit;
+    if (p->edges == TT_EDGES_REFUSE && (v[0] != 0 || v[1] != 0 || v[2] != 0 || v[3] != 0) &&
+        !(v[0] >= -1e-9 * sx && v[1] >= -1e-9 * sy && v[2] <= w * (1 + 1e-9) && v[3] <= h * (1 + 1e-9)))
+        return tt_error(TT_EINVAL, "[surface] edges: %s: the image covers 0 to %g nm by 0 to %g nm, the "
+                                   "scan (its angle and offset) visits %g to %g nm by %g to %g nm; "
+                                   "expected an image covering it, or edges = clamp or periodic",
+                        p->image, w * 1e9, h * 1e9, v[0] * 1e9, v[2] * 1e9, v[1] * 1e9, v[3] * 1e9);
     if (p->edges != TT_EDGES_REFUSE || (w >= sx * (1 - 1e-9) && h >= sy * (1 - 1e-9)))
         return TT_OK;
     return tt_error(TT_EINVAL, "[surface] edges: %s: the image covers %g x %g nm (%zu x %zu pixels of "
@@ -178,9 +185,13 @@ static int check_cover(const tt_surface_params *p, const tt_height_image *im, do
 }
 
 /* The tip that took the image eroded out of it (Villarrubia's reconstruction): the
- * greatest surface that tip could have imaged so. */
-static int erode_tip(const tt_surface_params *p, tt_height_image *im)
+ * greatest surface that tip could have imaged so; with certain, its certainty map too
+ * (W x H, the caller frees; NULL without erosion). Two heights within 1e-6 of the
+ * image's range are one contact: a float GSF rounds to 6e-8 of it. */
+static int erode_tip(const tt_surface_params *p, tt_height_image *im, unsigned char **certain)
 {
+    if (certain)
+        *certain = NULL;
     if (p->measured_tip == TT_TIP_POINT)
         return TT_OK;
     tt_tip_shape t = {(tt_tip_kind)p->measured_tip, p->measured_tip_radius, p->measured_tip_half_angle};
@@ -202,15 +213,26 @@ static int erode_tip(const tt_surface_params *p, tt_height_image *im)
         return tt_error_nomem("the eroded height image (%zu x %zu pixels)", im->xres, im->yres);
     }
     tt_erosion_erode(im->z, im->xres, im->yres, &tip, r);
+    if (certain && !(*certain = malloc(im->xres * im->yres))) {
+        tt_tip_image_free(&tip);
+        free(r);
+        return tt_error_nomem("the erosion's certainty map (%zu x %zu pixels)", im->xres, im->yres);
+    }
+    if (certain)
+        tt_erosion_certainty(im->z, r, im->xres, im->yres, &tip, 1e-6 * (hi - lo), *certain);
     tt_tip_image_free(&tip);
     free(im->z);
     im->z = r;
     return TT_OK;
 }
 
-/* The image read and prepared: cropped, levelled, scaled, the measuring tip eroded out. */
-static int prepare(const tt_surface_params *p, tt_height_image *im, double sx, double sy)
+/* The image read and prepared: cropped, levelled, scaled, the measuring tip eroded out
+ * (certain: as erode_tip's). */
+static int prepare(const tt_surface_params *p, tt_height_image *im, double sx, double sy,
+                   unsigned char **certain)
 {
+    if (certain)
+        *certain = NULL;
     int rc;
     if ((rc = read_image(p, im)) || (rc = crop(p, im)) || (rc = check_cover(p, im, sx, sy)))
         return rc;
@@ -220,7 +242,7 @@ static int prepare(const tt_surface_params *p, tt_height_image *im, double sx, d
         return rc;
     for (size_t k = 0; k < im->xres * im->yres; k++)
         im->z[k] = p->z_scale * im->z[k] + p->z_offset;
-    return erode_tip(p, im);
+    return erode_tip(p, im, certain);
 }
 
 int tt_surface_check_measured(const tt_surface_params *p, double sx, double sy)
@@ -228,7 +250,7 @@ int tt_surface_check_measured(const tt_surface_params *p, double sx, double sy)
     if (p->type != TT_SURFACE_MEASURED)
         return TT_OK;
     tt_height_image im;
-    int rc = prepare(p, &im, sx, sy);
+    int rc = prepare(p, &im, sx, sy, NULL);
     tt_height_image_free(&im);
     return rc;
 }
@@ -240,7 +262,11 @@ int tt_surface_check_measured(const tt_surface_params *p, double sx, double sy)
 int tt_surface_build_measured(tt_surface *S, const tt_surface_params *p)
 {
     tt_height_image im;
-    int rc = prepare(p, &im, S->sx, S->sy);
+    int rc = prepare(p, &im, S->sx, S->sy, &S->certain);
+    S->cert_w = im.xres;
+    S->cert_h = im.yres;
+    S->cdx = im.dx;
+    S->cdy = im.dy;
     const gsl_interp2d_type *T = p->bicubic ? gsl_interp2d_bicubic : gsl_interp2d_bilinear;
     size_t W = im.xres, H = im.yres, pad = p->edges == TT_EDGES_PERIODIC ? PAD : 0;
     if (!rc && (W < gsl_interp2d_type_min_size(T) || H < gsl_interp2d_type_min_size(T)))
@@ -295,8 +321,24 @@ double tt_surface_measured_at(const tt_surface *S, double x, double y)
     return gsl_interp2d_eval(S->interp, S->xa, S->ya, S->za, x, y, NULL, NULL);
 }
 
+double tt_surface_certainty(const tt_surface *S, double x, double y)
+{
+    if (!S->certain)
+        return NAN;
+    if (S->wrap_x > 0) {
+        x -= S->wrap_x * floor(x / S->wrap_x);
+        y -= S->wrap_y * floor(y / S->wrap_y);
+    }
+    /* the nearest pixel, clamped as the heights are */
+    double u = floor(x / S->cdx), v = floor(y / S->cdy);
+    size_t i = u < 0 ? 0 : u >= (double)S->cert_w ? S->cert_w - 1 : (size_t)u;
+    size_t j = v < 0 ? 0 : v >= (double)S->cert_h ? S->cert_h - 1 : (size_t)v;
+    return S->certain[j * S->cert_w + i];
+}
+
 void tt_surface_measured_free(tt_surface *S)
 {
+    free(S->certain);
     if (S->interp)
         gsl_interp2d_free(S->interp);
     free(S->xa);

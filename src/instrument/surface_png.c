@@ -3,6 +3,7 @@
 #include "surface_private.h"
 
 #include <fftw3.h>
+#include <math.h>
 #include <png.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -177,6 +178,33 @@ static int read_png(const char *key, const char *path, int want_rgb,
     return TT_OK;
 }
 
+/* What a PNG of w x h pixels spans (m): w and h times pixel_size when given (key), else
+ * the scan area, whose aspect must then be the image's (a stretched map misplaces every
+ * feature); an image with a pixel size smaller than the area is refused. */
+static int png_span(const char *key, const char *path, int w, int h, double pixel, double sx,
+                    double sy, double *span_x, double *span_y)
+{
+    if (pixel > 0) {
+        *span_x = w * pixel;
+        *span_y = h * pixel;
+        if (*span_x >= sx * (1 - 1e-9) && *span_y >= sy * (1 - 1e-9))
+            return TT_OK;
+        return tt_error(TT_EINVAL, "[surface] %s: %s: %d x %d pixels of %g nm cover %g x %g nm, less "
+                                   "than the %g x %g nm scan area; expected an image at least as large "
+                                   "(a larger %s or a smaller [scan] size)",
+                        key, path, w, h, pixel * 1e9, *span_x * 1e9, *span_y * 1e9, sx * 1e9, sy * 1e9, key);
+    }
+    *span_x = sx;
+    *span_y = sy;
+    double dx = sx / w, dy = sy / h;
+    if (fabs(dx / dy - 1) <= 0.01)
+        return TT_OK;
+    return tt_error(TT_EINVAL, "[surface] %s: %s: %d x %d pixels over the %g x %g nm scan area would "
+                               "stretch them %.3g:1; expected square pixels: give %s (e.g. %.3g nm), or "
+                               "a scan area of the image's aspect",
+                    key, path, w, h, sx * 1e9, sy * 1e9, fmax(dx / dy, dy / dx), key, fmin(dx, dy) * 1e9);
+}
+
 int tt_surface_build_png_height(tt_surface *S, const tt_surface_params *p)
 {
     double range = p->png_height_range;
@@ -184,6 +212,10 @@ int tt_surface_build_png_height(tt_surface *S, const tt_surface_params *p)
     unsigned short *pix = NULL;
     if ((rc = read_png("png", p->png, 0, &pix, &S->gw, &S->gh, &maxv)))
         return rc;
+    if ((rc = png_span("pixel_size", p->png, S->gw, S->gh, p->pixel_size, S->sx, S->sy, &S->gsx, &S->gsy))) {
+        free(pix);
+        return rc;
+    }
     S->grid = fftw_alloc_real((size_t)S->gw * S->gh);
     if (!S->grid) {
         free(pix);
@@ -350,6 +382,11 @@ int tt_surface_build_png_map(tt_surface *S, const tt_surface_params *p, const tt
     const char *path = p->map_png;
     if ((rc = read_png("map_png", path, 1, &pix, &S->mw, &S->mh, &maxv)))
         return rc;
+    if ((rc = png_span("map_pixel_size", path, S->mw, S->mh, p->map_pixel_size, S->sx, S->sy, &S->msx,
+                       &S->msy))) {
+        free(pix);
+        return rc;
+    }
     unsigned long long *key = malloc((nm ? nm : 1) * sizeof *key), none = ~0ULL;
     if (!key) {
         free(pix);

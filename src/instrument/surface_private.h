@@ -7,7 +7,7 @@
 
 #include "tiptap/instrument/surface.h"
 
-typedef enum { S_FLAT, S_STEPS, S_GRATING, S_PARTICLES, S_ROUGH, S_PNG, S_MEASURED } shape;
+typedef enum { S_FLAT, S_STEPS, S_GRATING, S_PARTICLES, S_ROUGH, S_PNG, S_MEASURED, S_LATTICE } shape;
 typedef enum { M_UNIFORM, M_STRIPES, M_DISKS, M_CHECKER, M_ISLANDS, M_PNG, M_LABELS, M_THRESHOLD } mapkind;
 
 struct tt_surface {
@@ -16,6 +16,10 @@ struct tt_surface {
     double sx, sy;
     /* shapes */
     double step_h, step_w, period, duty, height, edge;
+    double ox, oy;          /* steps, grating, lattice: the pattern's offset */
+    int lattice, feature;   /* lattice: tt_lattice, tt_feature */
+    double fr;              /* lattice: feature radius (pillar, hole) */
+    double spike_r, spike_a, spike_reach; /* lattice spike: apex radius, half-angle, base radius */
     double pr;              /* particle radius */
     double *px, *py;        /* particle centres */
     long np;
@@ -25,11 +29,14 @@ struct tt_surface {
     /* height grid (rough, png) */
     double *grid;
     int gw, gh, periodic;
+    double gsx, gsy;        /* the grid's span (m): the scan area, or a png's pixels times
+                             * its pixel_size */
     /* map */
     int mat[2];             /* background, second material */
     double map_period, map_duty, map_radius;
     int *mgrid;             /* png, labels, threshold material map */
     int mw, mh;
+    double msx, msy;        /* png map: its span (m), as gsx, gsy */
     double mdx, mdy;        /* labels, threshold: the image's pixel (m) */
     int medges;             /* labels, threshold: tt_surface_edges past the image */
     /* measured image (surface_measured.c): GSL's interpolation over nodes xa, ya */
@@ -38,7 +45,15 @@ struct tt_surface {
     size_t nx, ny;
     double lo_x, hi_x, lo_y, hi_y; /* the nodes' span: queries are clamped into it */
     double wrap_x, wrap_y;         /* periodic edges: the image's size (0: clamped) */
+    unsigned char *certain;        /* the erosion's certainty map, cert_w x cert_h pixels of
+                                    * cdx x cdy (NULL: no measured_tip) */
+    size_t cert_w, cert_h;
+    double cdx, cdy;
 };
+
+/* surface_lattice.c: pillars, holes or spikes on a square or hexagonal lattice. */
+void tt_surface_lattice_init(tt_surface *S, const tt_surface_params *p);
+double tt_surface_lattice_at(const tt_surface *S, double x, double y);
 
 /* surface_png.c: a PNG height map (type png) and a PNG material map (map png). */
 int tt_surface_build_png_height(tt_surface *S, const tt_surface_params *p);

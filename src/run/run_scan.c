@@ -31,13 +31,18 @@ static double display_scale(int ch, const char **unit, tt_colormap *cmap)
         *cmap = TT_CMAP_VIRIDIS;
         return 1e18;
     }
+    if (ch == TT_CH_CERTAINTY_INDEX) { /* 0 or 1 */
+        *unit = "";
+        *cmap = TT_CMAP_VIRIDIS;
+        return 1;
+    }
     /* higher harmonics are tens of picometres where the fundamental is nanometres */
-    if (ch >= TT_CH_HARMONIC_PHASE_INDEX) {
+    if (ch >= TT_CH_HARMONIC_PHASE_INDEX && ch < TT_CH_ARTEFACT_INDEX) {
         *unit = "deg";
         *cmap = TT_CMAP_VIRIDIS;
         return 1;
     }
-    if (ch >= TT_CH_HARMONIC_INDEX) {
+    if (ch >= TT_CH_HARMONIC_INDEX && ch < TT_CH_ARTEFACT_INDEX) {
         *unit = "pm";
         *cmap = TT_CMAP_VIRIDIS;
         return 1e12;
@@ -169,8 +174,8 @@ int tt_run_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const 
     for (int ch = 0; ch < TT_CH_COUNT; ch++)
         for (int r = 0; r < 2; r++)
             if (tt_scan_image(scan, ch, r))
-                fprintf(f, ",%s_%s_%s", tt_scan_channel_name(ch), r ? "retrace" : "trace",
-                        tt_scan_channel_unit(ch));
+                fprintf(f, ",%s_%s%s%s", tt_scan_channel_name(ch), r ? "retrace" : "trace",
+                        *tt_scan_channel_unit(ch) ? "_" : "", tt_scan_channel_unit(ch));
     fputc('\n', f);
     for (long px = 0; px < n; px++) {
         fprintf(f, "%.9g", (px + 0.5) * size / (double)n * 1e9);

@@ -12,6 +12,9 @@
 #include "tiptap/util/error.h"
 
 #define CHANNEL "/Measurement_000/Channel_000"
+/* The pyNSID release whose reader (pyNSID.io.hdf_utils.check_if_main) the numeric
+ * columns satisfy as main datasets, as a scan's images do (scan_hdf5.c). */
+#define NSID_VERSION "0.0.7.2"
 
 /* The grid's shape: a dimension per varied key, and one of rows when a combination
  * has several (approach curves, scans per material); *rows: that count (1: none). */
@@ -34,6 +37,36 @@ static int grid_shape(const tt_sweep *g, const tt_table *t, size_t *dims, size_t
     return TT_OK;
 }
 
+/* A scale's NSID attributes. */
+static int scale_attrs(tt_h5 *f, const char *path, const char *name, const char *unit)
+{
+    int rc;
+    if ((rc = tt_h5_attr_text(f, path, "name", name)) ||
+        (rc = tt_h5_attr_text(f, path, "units", unit)) || /* "1": a fraction, as the table's */
+        (rc = tt_h5_attr_text(f, path, "quantity", name)))
+        return rc;
+    return tt_h5_attr_text(f, path, "dimension_type", "UNKNOWN");
+}
+
+/* A text key's levels as numbers, 0 .. n - 1, a second scale of its dimension: sidpy
+ * holds numbers only, and pyNSID's reader takes a dimension's last scale. */
+static int level_scale(tt_h5 *f, const char *key, size_t n)
+{
+    char path[512], name[512];
+    snprintf(path, sizeof path, CHANNEL "/%s.level", key);
+    snprintf(name, sizeof name, "%s.level", key);
+    double *v = malloc(n * sizeof *v);
+    if (!v)
+        return tt_error_nomem("the HDF5 file's levels of %s", key);
+    for (size_t i = 0; i < n; i++)
+        v[i] = (double)i;
+    int rc = tt_h5_doubles(f, path, 1, &n, v);
+    free(v);
+    if (!rc && !(rc = tt_h5_scale(f, path, name)))
+        rc = scale_attrs(f, path, key, "1"); /* sidpy refuses a dimension without a unit */
+    return rc;
+}
+
 /* Key k's values, in level order, as a dimension scale of the channel. */
 static int key_scale(tt_h5 *f, const tt_sweep *g, size_t k)
 {
@@ -53,11 +86,10 @@ static int key_scale(tt_h5 *f, const tt_sweep *g, size_t k)
     }
     if (!rc)
         rc = unit[0] ? tt_h5_doubles(f, path, 1, &n, v) : tt_h5_texts(f, path, 1, &n, s);
-    if (!rc && !(rc = tt_h5_scale(f, path, tt_sweep_key(g, k))) &&
-        !(rc = tt_h5_attr_text(f, path, "name", tt_sweep_key(g, k))) &&
-        !(rc = tt_h5_attr_text(f, path, "units", unit)) && /* "1": a fraction, as the table's */
-        !(rc = tt_h5_attr_text(f, path, "quantity", tt_sweep_key(g, k))))
-        rc = tt_h5_attr_text(f, path, "dimension_type", "UNKNOWN");
+    if (!rc && !(rc = tt_h5_scale(f, path, tt_sweep_key(g, k))))
+        rc = scale_attrs(f, path, tt_sweep_key(g, k), unit);
+    if (!rc && !unit[0])
+        rc = level_scale(f, tt_sweep_key(g, k), n);
     free(v);
     free(s);
     return rc;
@@ -96,6 +128,9 @@ static int column(tt_h5 *f, const tt_sweep *g, const tt_table *t, size_t c, cons
     for (size_t k = 0; k < nk && !rc; k++) {
         snprintf(scale, sizeof scale, CHANNEL "/%s", tt_sweep_key(g, k));
         rc = tt_h5_attach(f, path, scale, (unsigned)k, tt_sweep_key(g, k));
+        snprintf(scale, sizeof scale, CHANNEL "/%s.level", tt_sweep_key(g, k));
+        if (!rc && !tt_sweep_unit(g, k)[0])
+            rc = tt_h5_attach(f, path, scale, (unsigned)k, tt_sweep_key(g, k));
     }
     if (!rc && rows > 1)
         rc = tt_h5_attach(f, path, CHANNEL "/row", (unsigned)nk, "row");
@@ -103,6 +138,12 @@ static int column(tt_h5 *f, const tt_sweep *g, const tt_table *t, size_t c, cons
         !(rc = tt_h5_attr_text(f, path, "units", tt_table_unit(t, c))) &&
         !(rc = tt_h5_attr_text(f, path, "data_type", "UNKNOWN")))
         rc = tt_h5_attr_text(f, path, "source", "tiptap sweep");
+    /* a number column is an NSID main dataset; a text one (regime, found) stays plain,
+     * as sidpy holds numbers only */
+    if (!rc && !text && !(rc = tt_h5_attr_text(f, path, "title", tt_table_name(t, c))) &&
+        !(rc = tt_h5_attr_text(f, path, "main_data_name", tt_table_name(t, c))) &&
+        !(rc = tt_h5_attr_text(f, path, "modality", "tapping-mode AFM (simulated)")))
+        rc = tt_h5_attr_text(f, path, "pyNSID_version", NSID_VERSION);
     free(v);
     free(s);
     free(next);
@@ -119,14 +160,14 @@ static int row_scale(tt_h5 *f, size_t rows)
         v[r] = (double)r;
     int rc = tt_h5_doubles(f, CHANNEL "/row", 1, &rows, v);
     free(v);
-    if (!rc && !(rc = tt_h5_scale(f, CHANNEL "/row", "row")) && !(rc = tt_h5_attr_text(f, CHANNEL "/row", "name", "row")) &&
-        !(rc = tt_h5_attr_text(f, CHANNEL "/row", "units", "")))
-        rc = tt_h5_attr_text(f, CHANNEL "/row", "dimension_type", "UNKNOWN");
+    if (!rc && !(rc = tt_h5_scale(f, CHANNEL "/row", "row")))
+        rc = scale_attrs(f, CHANNEL "/row", "row", "1");
     return rc;
 }
 
 /* The base scene's keys and the sweep's own as the measurement's attributes, and the
- * effective base scene. */
+ * effective base scene; the same pairs as the channel's original_metadata and the
+ * sweep's own as its metadata, the groups pyNSID's reader hands to sidpy. */
 static int about(tt_h5 *f, const tt_sweep *g, tt_sweep_kind kind, const tt_scene *base)
 {
     char count[32], varied[4096] = "";
@@ -143,6 +184,14 @@ static int about(tt_h5 *f, const tt_sweep *g, tt_sweep_kind kind, const tt_scene
         return rc;
     for (size_t i = 0; i < m.n && !rc; i++)
         rc = tt_h5_attr_text(f, "/Measurement_000", m.keys[i], m.values[i]);
+    if (!rc)
+        rc = tt_h5_group(f, CHANNEL "/original_metadata");
+    for (size_t i = 0; i < m.n && !rc; i++)
+        rc = tt_h5_attr_text(f, CHANNEL "/original_metadata", m.keys[i], m.values[i]);
+    if (!rc)
+        rc = tt_h5_group(f, CHANNEL "/metadata");
+    for (size_t i = 0; i < 4 && !rc; i++)
+        rc = tt_h5_attr_text(f, CHANNEL "/metadata", keys[i], vals[i]);
     tt_meta_free(&m);
     char *text = rc ? NULL : tt_scene_write_string(base, NULL);
     if (!rc && !text)

@@ -72,7 +72,15 @@ enum {
     TT_CH_DISSIPATION_DAMPING = 1 << 24,
     TT_CH_DISSIPATION_VISCOUS = 1 << 25,
     TT_CH_LOSSES = TT_CH_DISSIPATION_HYSTERESIS | TT_CH_DISSIPATION_DAMPING | TT_CH_DISSIPATION_VISCOUS,
-    TT_CH_COUNT = 26
+    /* the true surface dilated by the tip's shape (tip.h) under the tip's axis, m: the
+     * plain geometric image, no dynamics, tilt or z drift (topography for a point tip) */
+    TT_CH_DILATION_INDEX = 26,
+    TT_CH_DILATION = 1 << 26,
+    /* a measured surface eroded by its measuring tip: 1 where the erosion is the sample
+     * (its certainty map), 0 where only an upper bound, at the pixel's centre */
+    TT_CH_CERTAINTY_INDEX = 27,
+    TT_CH_CERTAINTY = 1 << 27,
+    TT_CH_COUNT = 28
 };
 
 /* Name ("height"), unit ("m", "deg", "N", "J") and title of channel index i. */

@@ -60,7 +60,7 @@ typedef struct {
     double decay;           /* ratio of successive swings (per half period; >= 1: growing) */
     double damping;         /* the damping ratio of the pole: -ln r / sqrt(pi^2 + ln^2 r) */
     double error_peak;      /* the largest swing of the error in it, m */
-    double z_peak_to_peak;  /* of z over it, m */
+    double z_peak_to_peak;  /* of z about the surface the tip follows over it, m */
     double threshold;       /* the swing threshold, m */
     double noise;           /* the error's block-to-block noise (rms), m */
     /* the model (measured only where a ring of two swings or more was found: else NaN) */

@@ -22,6 +22,10 @@
  *   pixel      the pixel (0 .. pixels - 1, counted along the trace) whose lock-in
  *              channels the point goes into: that of the block's last cycle
  *   material   the material under the tip (its index in the scan's materials)
+ *   followed   the height the apex meets (m): the surface as the tip's shape images it
+ *              (its dilation), with the tilt and the z drift; what z can follow, and
+ *              what the oscillation check measures z against (the surface itself for a
+ *              point tip on an untilted, undrifting sample)
  *
  * It costs nothing unless asked for: a scope passed to tt_scan_step, or attached to a
  * line of tt_scan_run, is filled; without one the line loops do not look.
@@ -51,6 +55,7 @@ enum {
     TT_SCOPE_SURFACE,
     TT_SCOPE_PIXEL,
     TT_SCOPE_MATERIAL,
+    TT_SCOPE_FOLLOWED,
     TT_SCOPE_COUNT
 };
 

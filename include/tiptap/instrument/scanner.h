@@ -21,6 +21,9 @@ typedef struct {
     double line_rate;       /* Hz: lines per second, each a trace and a retrace */
     int fast_y;             /* 1: the fast axis is y */
     int retrace;            /* 1: record the retrace too */
+    /* the scan frame on the sample: rotated by angle (rad, counter-clockwise) about the
+     * scan area's centre, then moved by offset (m); 0, 0, 0: the area [0, size]^2 */
+    double angle, offset_x, offset_y;
 } tt_raster;
 
 /* Drive cycles one way along a line. */
@@ -30,6 +33,11 @@ long tt_raster_cycles_per_direction(const tt_raster *r, double period);
  * (0 trace, 1 retrace) on a line. */
 void tt_raster_position(const tt_raster *r, long line, int dir, long nc, long k, double *x,
                         double *y);
+/* The tip's distance along the fast axis (m) from the trace's start, at the same cycle. */
+double tt_raster_fast_position(const tt_raster *r, int dir, long nc, long k);
+/* The box on the sample the scan visits: x0, y0, x1, y1 (m); the area [0, size] when the
+ * frame is neither rotated nor moved. */
+void tt_raster_bounds(const tt_raster *r, double *box);
 
 /* Pixel (0 .. pixels - 1, counted along the trace) of cycle k of direction dir. */
 long tt_raster_pixel(const tt_raster *r, int dir, long nc, long k);

@@ -22,8 +22,12 @@ TT_BEGIN_DECLS
 
 typedef enum {
     TT_SURFACE_FLAT, TT_SURFACE_STEPS, TT_SURFACE_GRATING, TT_SURFACE_PARTICLES,
-    TT_SURFACE_ROUGH, TT_SURFACE_PNG, TT_SURFACE_MEASURED
+    TT_SURFACE_ROUGH, TT_SURFACE_PNG, TT_SURFACE_MEASURED, TT_SURFACE_LATTICE
 } tt_surface_type;
+
+/* A lattice's arrangement and its features (docs/surfaces.md, "Lattices"). */
+typedef enum { TT_LATTICE_SQUARE, TT_LATTICE_HEXAGONAL } tt_lattice;
+typedef enum { TT_FEATURE_PILLAR, TT_FEATURE_HOLE, TT_FEATURE_SPIKE } tt_feature;
 
 /* A measured image's preparation (docs/surfaces.md, "Measured surfaces"). */
 typedef enum { TT_LEVEL_NONE, TT_LEVEL_OFFSET, TT_LEVEL_PLANE } tt_surface_level;
@@ -42,7 +46,12 @@ typedef enum {
 typedef struct {
     tt_surface_type type;
     double step_height, step_width;             /* steps */
-    double period, duty, height, edge_width;    /* grating */
+    double period, duty, height, edge_width;    /* grating; lattice: period, height, edge_width */
+    double offset_x, offset_y;                  /* steps, grating, lattice: the pattern's shift */
+    tt_lattice lattice;                         /* lattice */
+    tt_feature feature;
+    double feature_radius;                      /* lattice pillar, hole: top (rim) radius */
+    double spike_radius, spike_half_angle;      /* lattice spike: a sphere-capped cone */
     double particle_radius;                     /* particles */
     long particle_count;
     double rms, correlation_length;             /* rough */
@@ -51,7 +60,8 @@ typedef struct {
     double png_height_range;                    /* png; measured .png: level 65535's height */
     char image[4096];                           /* measured: .gsf, .gwy or 16-bit .png */
     char channel[256];                          /* measured .gwy: title or number ("": first) */
-    double pixel_size;                          /* measured .png: m */
+    double pixel_size;                          /* measured .png, png: m (png 0: the image spans
+                                                 * the scan area, whose aspect it must have) */
     tt_surface_level level;                     /* measured: the whole image's levelling */
     tt_surface_lines line_level;                /* measured: each row's, after level */
     long crop[4];                               /* measured: left, top, width, height in
@@ -75,8 +85,13 @@ typedef struct {
      * is; threshold: materials[0] below map_threshold, materials[1] at or above it. */
     char map_image[4096];
     char map_channel[256];                      /* .gwy: title or number ("": first) */
-    double map_pixel_size;                      /* .png: m (0: the image spans the scan area) */
+    double map_pixel_size;                      /* .png map_image, png map: m (0: the image spans
+                                                 * the scan area, whose aspect it must have) */
     double map_threshold;                       /* in map_threshold_unit */
+    double visit[4];                            /* measured, labels, threshold: the box a rotated
+                                                 * or moved scan visits (x0, y0, x1, y1, m), which
+                                                 * edges = refuse asks the image to cover; all 0:
+                                                 * the scan area */
     char map_threshold_unit[32];                /* as written: "deg", "nm", "" */
 } tt_surface_params;
 
@@ -110,6 +125,10 @@ int tt_surface_check_map_image(const tt_surface_params *p, const tt_material *ma
 int tt_surface_check_measured(const tt_surface_params *p, double size_x, double size_y);
 
 double tt_surface_height(const tt_surface *s, double x, double y);
+/* A measured surface eroded by its measuring tip (measured_tip): 1 where the erosion is
+ * certain to be the sample (tt_erosion_certainty), 0 where it is only an upper bound,
+ * at the nearest pixel of the prepared image; NAN for any other surface. */
+double tt_surface_certainty(const tt_surface *s, double x, double y);
 int tt_surface_material(const tt_surface *s, double x, double y);
 /* 1 when the whole surface is one material (no map look-ups needed). */
 int tt_surface_uniform(const tt_surface *s);
