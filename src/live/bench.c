@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <pthread.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -16,7 +17,8 @@
 
 enum {
     CURVE_POINTS = 3000, /* a force curve's rows sent at most (a screen's width, thrice) */
-    SPECTRUM_POINTS = 400 /* a spectrum's log-spaced points sent at most */
+    SPECTRUM_POINTS = 400, /* a spectrum's log-spaced points sent at most */
+    ZOOM_BINS = 2000       /* the resonance's own bins sent at most */
 };
 
 struct tt_live_bench {
@@ -187,6 +189,20 @@ static void tune_message(tt_live_buf *o, const tt_table *t, const tt_tune_result
     tt_live_json_array(o, po, n);
     tt_live_buf_printf(o, ",\"fit\":");
     tt_live_json_array(o, qo, n);
+    /* the resonance bin by bin, f0 +- 12 f0 / Q, where log-spaced points are too coarse
+     * to show its peak (a point there spans many of its widths) */
+    size_t lo = rows, hi = 0;
+    for (size_t i = 1; i < rows; i++)
+        if (fabs(f[i] - r->f0) <= 12 * r->f0 / r->Q)
+            lo = i < lo ? i : lo, hi = i;
+    size_t nz = lo <= hi && hi - lo < ZOOM_BINS ? hi + 1 - lo : 0;
+    lo = nz ? lo : 0;
+    tt_live_buf_printf(o, ",\"zoom_f\":");
+    tt_live_json_array(o, f + lo, nz);
+    tt_live_buf_printf(o, ",\"zoom_psd\":");
+    tt_live_json_array(o, p + lo, nz);
+    tt_live_buf_printf(o, ",\"zoom_fit\":");
+    tt_live_json_array(o, q + lo, nz);
     tt_live_buf_printf(o, "}");
     free(m);
 }
@@ -259,7 +275,13 @@ int tt_live_bench_run(tt_live_bench *b, int kind, tt_scene *scene)
     tt_live_buf_printf(&o, "}");
     publish(b, kind, &o, 0);
     tt_live_buf_free(&o);
-    if (pthread_create(&b->thread, NULL, bench_main, b)) {
+    /* the signals stay with the server's thread, whose poll they end (as the engine's) */
+    sigset_t all, old;
+    sigfillset(&all);
+    pthread_sigmask(SIG_BLOCK, &all, &old);
+    int failed = pthread_create(&b->thread, NULL, bench_main, b);
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    if (failed) {
         pthread_mutex_lock(&b->mu);
         b->busy = 0;
         pthread_mutex_unlock(&b->mu);

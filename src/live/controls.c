@@ -552,16 +552,15 @@ int tt_live_controls_apply(tt_live_controls *c, const char *text, size_t len, tt
     tt_scene *s = NULL;
     tt_scan_params prm, q;
     bench_values bv = {0};
-    int have_prm = 0, scan = restart || sample != c->sample || noise_off != c->noise_off;
-    for (size_t i = 0; i < NKNOBS; i++)
-        scan |= fresh[i] && !table[i].panel;
+    int have_prm = 0;
     if (!bad && (build(c, given, sample, noise_off, &s) || !(have_prm = !check(c, s, &prm, &bv)))) {
         tt_live_text(ch->why, sizeof ch->why, tt_error_message());
         bad = 1;
     }
     /* the taker (the engine) makes all it needs or refuses, and owns the scene and q
-     * either way: the controls change only when it took the change */
-    if (!bad && take && scan) {
+     * either way: the controls change only when it took the change (a bench's knob too:
+     * the engine's scene is the one exported and saved) */
+    if (!bad && take) {
         tt_scene *t = s;
         s = NULL;
         if (copy_params(&q, &prm)) {

@@ -41,8 +41,8 @@ typedef struct {
     const char *unit;  /* the unit the page writes after its number ("" for none) */
     int restarts;      /* 1: a change starts a new frame (the raster or the sample
                         * changed); 0: it applies from the next line on */
-    const char *panel; /* NULL: the scan's; "force", "tune": that bench's (the scan does not
-                        * see it: a change to it alone is not sent to the engine) */
+    const char *panel; /* NULL: the scan's; "force", "tune": that bench's panel on the page
+                        * (the engine takes it as any change: its scene is the one exported) */
 } tt_live_control;
 
 /* The console's knobs, in the page's order. */
