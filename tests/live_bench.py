@@ -6,7 +6,7 @@
   * the force panel's curve, run at the page's request, has the pull-off force and the
     jump-in that `tiptap force` gives on the same scene and ramp (the same seed: equal to
     the 6 digits tiptap force prints), both marked and read out;
-  * the thermal tune's k is within its stated uncertainty (two standard errors: the band
+  * the thermal tune runs beside the scan (its lines go on), and its k is within its stated uncertainty (two standard errors: the band
     holding 95 % of seeds) of the scene's k, and equals `tiptap tune`'s on the same scene.
 With a shots folder, docs/live-force.png and docs/live-tune.png.
 
@@ -61,9 +61,14 @@ def main(b):
     b.eval("document.getElementById('forcepanel').scrollIntoView()")
     shot(b, shots, "live-force.png")
 
-    # the thermal tune
+    # the thermal tune, on its own thread: the scan's lines go on meanwhile
+    lines0 = b.eval("tiptapLive.status.lines_done")
     b.eval("document.getElementById('runtune').click()")
+    wait_for(b, "document.getElementById('runtune').disabled", "the tune under way")
     wait_for(b, "tiptapLive.bench.tunes > 0", "the thermal tune")
+    lines1 = b.eval("tiptapLive.status.lines_done")
+    assert lines1 > lines0, "no line ran during the tune (%s, then %s)" % (lines0, lines1)
+    print("ok the scan ran %d lines while the tune ran beside it" % (lines1 - lines0))
     t = b.eval("tiptapLive.bench.tune")
     off = abs(t["k"] - k_scene) / t["k_err"]
     assert t["k_scene"] == k_scene, "the tune's scene k %s, the scene's %s" % (t["k_scene"], k_scene)
