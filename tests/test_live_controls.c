@@ -309,20 +309,27 @@ static void a_lesson_locks_and_hides(void **st)
     unlink(path);
 }
 
+/* A lesson read from text (a file written and removed). */
+static tt_live_lesson *lesson_of(const char *text)
+{
+    char path[] = "/tmp/tt-lesson-XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    fputs(text, f);
+    fclose(f);
+    tt_live_lesson *l = NULL;
+    assert_int_equal(tt_live_lesson_load(&l, path), TT_OK);
+    unlink(path);
+    return l;
+}
+
 /* Each page's instrument has a copy of the controls: a change to one is not the other's,
  * and a copy keeps the lesson's locks (borrowed: freed with the original, after it). */
 static void a_copy_is_its_own(void **st)
 {
     (void)st;
-    char path[] = "/tmp/tt-lesson-XXXXXX";
-    int fd = mkstemp(path);
-    assert_true(fd >= 0);
-    FILE *f = fdopen(fd, "w");
-    fprintf(f, "[lesson]\ntitle = T\nlock = scan_size\n[feedback]\nsetpoint = 15 nm\n");
-    fclose(f);
-    tt_live_lesson *l = NULL;
-    assert_int_equal(tt_live_lesson_load(&l, path), TT_OK);
-    unlink(path);
+    tt_live_lesson *l = lesson_of("[lesson]\ntitle = T\nlock = scan_size\n[feedback]\nsetpoint = 15 nm\n");
     tt_live_controls *c = NULL, *a = NULL, *b = NULL;
     if (tt_live_controls_alloc_lesson(&c, l, files, 2, NULL, 0, SRC "/surfaces", NULL) != TT_OK)
         fail_msg("%s", tt_error_message());
@@ -383,15 +390,7 @@ static void the_ramp_is_checked_as_tiptap_force_checks_it(void **st)
     assert_string_equal(value_of(c, "force.speed", buf, sizeof buf), "1");
     assert_int_equal(tt_live_controls_panel_hidden(c, "force"), 0);
     tt_live_controls_free(c);
-    char path[] = "/tmp/tt-lesson-XXXXXX";
-    int fd = mkstemp(path);
-    assert_true(fd >= 0);
-    FILE *f = fdopen(fd, "w");
-    fprintf(f, "[lesson]\ntitle = T\nhide = speed, range\n[noise]\nseed = 3\n");
-    fclose(f);
-    tt_live_lesson *l = NULL;
-    assert_int_equal(tt_live_lesson_load(&l, path), TT_OK);
-    unlink(path);
+    tt_live_lesson *l = lesson_of("[lesson]\ntitle = T\nhide = speed, range\n[noise]\nseed = 3\n");
     if (tt_live_controls_alloc_lesson(&c, l, files, 2, NULL, 0, SRC "/surfaces", NULL) != TT_OK)
         fail_msg("%s", tt_error_message());
     assert_int_equal(tt_live_controls_panel_hidden(c, "force"), 1);
