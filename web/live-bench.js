@@ -107,9 +107,15 @@ function drawSpectrum(id, m, fs, psd, fit, xlabel) {
   const lp = psd.map((v) => v > 0 ? Math.log10(v) : NaN), lq = fit.map((v) => v > 0 ? Math.log10(v) : NaN);
   const f0 = fs[0], f1 = fs[fs.length - 1];
   const [yl, yh] = range(lp.concat(lq));
-  const xt = [];
-  for (let d = Math.pow(10, Math.floor(Math.log10(f0))); d <= f1; d *= 10)
-    for (let k = 1; k < 10; k++) if (k * d >= f0 && k * d <= f1) xt.push([k * d, (k === 1 || f1 / f0 < 20) && k * d < f1 / 1.4 ? hz(k * d) : ""]); // none cut at the right
+  let xt = [];
+  if (f1 / f0 < 3) { // the resonance: linear ticks in kHz (log and linear alike over it)
+    const t = ticks(f0 / 1e3, f1 / 1e3, Math.max(2, Math.floor(box.w / 90)));
+    // no label so near the right end that it would be cut
+    xt = t.at.map((v) => [v * 1e3, v * 1e3 < f1 - 0.08 * (f1 - f0) ? tickText(v, t.step) + " kHz" : ""]);
+  } else {
+    for (let d = Math.pow(10, Math.floor(Math.log10(f0))); d <= f1; d *= 10)
+      for (let k = 1; k < 10; k++) if (k * d >= f0 && k * d <= f1) xt.push([k * d, k === 1 && k * d < f1 / 1.4 ? hz(k * d) : ""]); // none cut at the right
+  }
   const a = plotFrame(ctx, box, f0, f1, Math.floor(yl * 2) / 2, Math.ceil(yh * 2) / 2, true, xlabel,
     "log10 PSD (m\u00b2/Hz)", xt);
   ctx.save(); ctx.beginPath(); ctx.rect(box.x, box.y, box.w, box.h); ctx.clip();
