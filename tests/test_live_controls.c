@@ -6,6 +6,7 @@
 
 #include "tt_test.h"
 #include "tiptap/config/config.h"
+#include "tiptap/config/read_force_tune.h"
 #include "tiptap/live/controls.h"
 #include "tiptap/live/lesson.h"
 #include "tiptap/util/error.h"
@@ -308,20 +309,27 @@ static void a_lesson_locks_and_hides(void **st)
     unlink(path);
 }
 
+/* A lesson read from text (a file written and removed). */
+static tt_live_lesson *lesson_of(const char *text)
+{
+    char path[] = "/tmp/tt-lesson-XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    fputs(text, f);
+    fclose(f);
+    tt_live_lesson *l = NULL;
+    assert_int_equal(tt_live_lesson_load(&l, path), TT_OK);
+    unlink(path);
+    return l;
+}
+
 /* Each page's instrument has a copy of the controls: a change to one is not the other's,
  * and a copy keeps the lesson's locks (borrowed: freed with the original, after it). */
 static void a_copy_is_its_own(void **st)
 {
     (void)st;
-    char path[] = "/tmp/tt-lesson-XXXXXX";
-    int fd = mkstemp(path);
-    assert_true(fd >= 0);
-    FILE *f = fdopen(fd, "w");
-    fprintf(f, "[lesson]\ntitle = T\nlock = scan_size\n[feedback]\nsetpoint = 15 nm\n");
-    fclose(f);
-    tt_live_lesson *l = NULL;
-    assert_int_equal(tt_live_lesson_load(&l, path), TT_OK);
-    unlink(path);
+    tt_live_lesson *l = lesson_of("[lesson]\ntitle = T\nlock = scan_size\n[feedback]\nsetpoint = 15 nm\n");
     tt_live_controls *c = NULL, *a = NULL, *b = NULL;
     if (tt_live_controls_alloc_lesson(&c, l, files, 2, NULL, 0, SRC "/surfaces", NULL) != TT_OK)
         fail_msg("%s", tt_error_message());
@@ -345,6 +353,51 @@ static void a_copy_is_its_own(void **st)
     tt_live_controls_free(c);
 }
 
+static const char *value_of(const tt_live_controls *c, const char *name, char *buf, size_t len)
+{
+    size_t n;
+    const tt_live_control *t = tt_live_control_table(&n);
+    for (size_t i = 0; i < n; i++)
+        if (strcmp(t[i].name, name) == 0)
+            return tt_live_controls_value(c, i, buf, len);
+    fail_msg("no control %s", name);
+    return NULL;
+}
+
+/* The force bench's ramp: shown in its knobs' units, checked by tiptap force's rules (a
+ * ramp of more than 1e9 drive periods passes the schema, not tt_config_force), a refusal
+ * changing nothing; a lesson hiding both knobs hides the bench, not the tune. */
+static void the_ramp_is_checked_as_tiptap_force_checks_it(void **st)
+{
+    (void)st;
+    tt_live_controls *c = make();
+    tt_live_change ch;
+    char buf[64];
+    assert_string_equal(value_of(c, "force.speed", buf, sizeof buf), "1");
+    assert_int_equal(apply(c, "set force.range = 30 nm", &ch), TT_OK);
+    assert_string_equal(value_of(c, "force.range", buf, sizeof buf), "30");
+    assert_int_equal(ch.restart, 0);
+    tt_scene *s;
+    tt_force_params fp;
+    assert_int_equal(tt_live_controls_scene(c, &s, NULL), TT_OK);
+    assert_int_equal(tt_config_force(s, &fp), TT_OK);
+    assert_close(fp.from - fp.to, 30e-9, 1e-15);
+    tt_scene_free(s);
+    assert_int_equal(apply(c, "set force.speed = 0 um/s", &ch), TT_EINVAL);
+    assert_non_null(strstr(ch.why, "[force] speed"));
+    assert_int_equal(apply(c, "set force.speed = 1 pm/s", &ch), TT_EINVAL);
+    assert_non_null(strstr(ch.why, "[force] speed"));
+    assert_string_equal(value_of(c, "force.speed", buf, sizeof buf), "1");
+    assert_int_equal(tt_live_controls_panel_hidden(c, "force"), 0);
+    tt_live_controls_free(c);
+    tt_live_lesson *l = lesson_of("[lesson]\ntitle = T\nhide = speed, range\n[noise]\nseed = 3\n");
+    if (tt_live_controls_alloc_lesson(&c, l, files, 2, NULL, 0, SRC "/surfaces", NULL) != TT_OK)
+        fail_msg("%s", tt_error_message());
+    assert_int_equal(tt_live_controls_panel_hidden(c, "force"), 1);
+    assert_int_equal(tt_live_controls_panel_hidden(c, "tune"), 0);
+    tt_live_controls_free(c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -357,6 +410,7 @@ int main(void)
         cmocka_unit_test(hosts_and_origins),
         cmocka_unit_test(a_lesson_locks_and_hides),
         cmocka_unit_test(a_copy_is_its_own),
+        cmocka_unit_test(the_ramp_is_checked_as_tiptap_force_checks_it),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -37,7 +37,7 @@ function connect() {
   ws.onopen = () => {
     $("conn").textContent = "connected"; $("conn").className = "ok";
     // a new connection gets the controls afresh; nothing sent before waits for a reply
-    for (const el of document.querySelectorAll("#controls [data-name]")) el.dataset.pending = "";
+    for (const el of document.querySelectorAll(".knobs [data-name]")) el.dataset.pending = "";
     // a hidden tab does not look: its instrument idles until it is shown (the server
     // counts a new connection as looking)
     if (document.hidden) ws.send("hidden");
@@ -49,7 +49,8 @@ function connect() {
   ws.onmessage = (ev) => {
     let m;
     try { m = JSON.parse(ev.data); } catch (e) { return; }
-    const handle = { controls, frame, row, scope, status, reply }[m.type];
+    // the benches' messages (force, tune) are live-bench.js's
+    const handle = { controls, frame, row, scope, status, reply }[m.type] || (window.benchHandlers || {})[m.type];
     if (handle) handle(m);
   };
 }
@@ -110,8 +111,9 @@ function controls(m) {
     loadScene();
   }
   $("conn").textContent = "connected: instrument " + m.instrument + " of " + m.instruments;
-  const form = $("controls");
   for (const c of m.controls) {
+    // a bench's knobs in its own panel (live-bench.js), the scan's here
+    const form = $(c.panel ? c.panel + "controls" : "controls");
     const id = "c-" + c.name.replace(/\./g, "-");
     let el = $(id);
     const opts = c.name === "sample" ? m.samples : choices[c.name];
@@ -174,6 +176,7 @@ function controls(m) {
     document.title = ls.title + ": tiptap live";
   }
   state.lesson = ls || null;
+  if (window.benchShow) window.benchShow(m.benches || {});
   state.controlsSeen = (state.controlsSeen || 0) + 1;
   drawLoop();
 }
@@ -198,7 +201,7 @@ function reply(m) {
   // a step the server refuses ends auto-tune (its gain would never come into force)
   if (!m.ok && loop.tune) { loop.tune = null; $("autotune").textContent = "auto-tune I"; loopLog("auto-tune stopped: " + m.error); }
   // replies may coalesce (the server keeps the newest), so one answers all that are pending
-  for (const el of document.querySelectorAll("#controls [data-name]")) {
+  for (const el of document.querySelectorAll(".knobs [data-name]")) {
     if (m.ok) el.dataset.pending = "";
     else if (!(el.dataset.dirty && document.activeElement === el)) restore(el);
   }

@@ -11,6 +11,7 @@
 
 #include "live_private.h"
 #include "tiptap/config/config.h"
+#include "tiptap/config/read_force_tune.h"
 #include "tiptap/live/lesson.h"
 #include "tiptap/util/error.h"
 #include "tiptap/util/str.h"
@@ -18,19 +19,23 @@
 enum { K_SAMPLE = 0, K_NOISE = 1 }; /* the console's own knobs, first in the table */
 
 static const tt_live_control table[] = {
-    {"sample", "sample", "", 1},
-    {"noise", "noise", "", 0},
-    {"noise.seed", "noise seed", "", 0},
-    {"feedback.setpoint", "setpoint", "nm", 0},
-    {"feedback.proportional_gain", "P gain", "", 0},
-    {"feedback.integral_gain", "I gain", "Hz", 0},
-    {"scan.line_rate", "line rate", "Hz", 0},
-    {"scan.size", "scan size", "nm", 1},
-    {"scan.fast_axis", "fast axis (angle)", "", 1},
-    {"scan.pixels", "pixels", "", 1},
-    {"scan.lines", "lines", "", 1},
-    {"cantilever.free_amplitude", "free amplitude", "nm", 0},
-    {"solver.tier", "tier", "", 1},
+    {"sample", "sample", "", 1, NULL},
+    {"noise", "noise", "", 0, NULL},
+    {"noise.seed", "noise seed", "", 0, NULL},
+    {"feedback.setpoint", "setpoint", "nm", 0, NULL},
+    {"feedback.proportional_gain", "P gain", "", 0, NULL},
+    {"feedback.integral_gain", "I gain", "Hz", 0, NULL},
+    {"scan.line_rate", "line rate", "Hz", 0, NULL},
+    {"scan.size", "scan size", "nm", 1, NULL},
+    {"scan.fast_axis", "fast axis (angle)", "", 1, NULL},
+    {"scan.pixels", "pixels", "", 1, NULL},
+    {"scan.lines", "lines", "", 1, NULL},
+    {"cantilever.free_amplitude", "free amplitude", "nm", 0, NULL},
+    {"solver.tier", "tier", "", 1, NULL},
+    /* the benches' own knobs, checked with the rest (tt_config_force at each change) */
+    {"force.speed", "ramp speed", "um/s", 0, "force"},
+    {"force.range", "ramp range", "nm", 0, "force"},
+    {"tune.duration", "record", "s", 0, "tune"},
 };
 enum { NKNOBS = sizeof table / sizeof table[0], NSAMPLES_MAX = 64 };
 
@@ -40,6 +45,11 @@ enum { NKNOBS = sizeof table / sizeof table[0], NSAMPLES_MAX = 64 };
  * shows and which adds the sample's travel to the envelope tier's inputs (more cycles
  * a build, and checks at its reach; docs/dynamics.md, "Noise on the envelope tier"). */
 static const char good_noise[] = "temperature = 300 K\ndetector = 100 fm/sqrt(Hz)\n";
+
+/* The benches' knobs as the accepted scene has them (tt_live_controls_value). */
+typedef struct {
+    double speed, range, duration; /* m/s, m, s */
+} bench_values;
 
 struct tt_live_controls {
     char **files;
@@ -55,6 +65,7 @@ struct tt_live_controls {
     int scene_noise; /* the files' scene has noise of its own */
     char *given[NKNOBS]; /* the values the user gave, NULL: the scene's */
     tt_scan_params params; /* of the accepted scene */
+    bench_values bench;    /* its [force] ramp and [tune] record */
     int have_params;
     double (*memory)(void); /* the bytes this process may still take (NULL: no check) */
     tt_live_lesson *lesson; /* NULL: none */
@@ -229,13 +240,21 @@ static int check_memory(const tt_live_controls *c, const tt_scene *s, const tt_s
 
 /* What tiptap scan checks before it runs, without making the scan: every key, rule and
  * material, the rk4 setting, and the memory the console would hold. */
-static int check(const tt_live_controls *c, const tt_scene *s, tt_scan_params *p)
+static int check(const tt_live_controls *c, const tt_scene *s, tt_scan_params *p, bench_values *b)
 {
     int rc = tt_config_scan(s, p);
     if (rc)
         return rc;
-    if ((rc = tt_config_check_rk4(s, NULL, 0)) || (rc = check_memory(c, s, p)))
+    /* the force bench's ramp too, so that a refused ramp value never reaches a run; the
+     * tune's record is checked when it runs (it needs the noise, which may be off) */
+    tt_force_params fp = {0};
+    if (!(rc = tt_config_check_rk4(s, NULL, 0)) && !(rc = check_memory(c, s, p)) &&
+        !(rc = tt_config_force(s, &fp)))
+        rc = tt_scene_get_double(s, "tune", NULL, "duration", &b->duration);
+    if (rc)
         tt_config_scan_free(p);
+    b->speed = fp.speed;
+    b->range = fp.from - fp.to;
     return rc;
 }
 
@@ -285,7 +304,7 @@ int tt_live_controls_alloc_lesson(tt_live_controls **out, tt_live_lesson *lesson
     /* the files' own noise decides what "noise = on" means */
     tt_scene *s = NULL;
     c->scene_noise = 1;
-    if (!rc && !(rc = build(c, c->given, -1, 0, &s)) && !(rc = check(c, s, &c->params))) {
+    if (!rc && !(rc = build(c, c->given, -1, 0, &s)) && !(rc = check(c, s, &c->params, &c->bench))) {
         c->have_params = 1;
         c->scene_noise = has_noise(&c->params.noise);
         c->noise_off = !c->scene_noise;
@@ -293,7 +312,7 @@ int tt_live_controls_alloc_lesson(tt_live_controls **out, tt_live_lesson *lesson
         c->have_params = 0;
         tt_scene_free(s);
         s = NULL;
-        if (!(rc = build(c, c->given, -1, c->noise_off, &s)) && !(rc = check(c, s, &c->params)))
+        if (!(rc = build(c, c->given, -1, c->noise_off, &s)) && !(rc = check(c, s, &c->params, &c->bench)))
             c->have_params = 1;
     }
     tt_scene_free(s);
@@ -367,7 +386,7 @@ int tt_live_controls_copy(tt_live_controls **out, const tt_live_controls *c)
             rc = tt_error_nomem("the console's values");
     /* the parameters anew from the same scene: a copy owns its own materials */
     tt_scene *s = NULL;
-    if (!rc && !(rc = build(d, d->given, d->sample, d->noise_off, &s)) && !(rc = check(d, s, &d->params)))
+    if (!rc && !(rc = build(d, d->given, d->sample, d->noise_off, &s)) && !(rc = check(d, s, &d->params, &d->bench)))
         d->have_params = 1;
     tt_scene_free(s);
     if (rc) {
@@ -532,13 +551,15 @@ int tt_live_controls_apply(tt_live_controls *c, const char *text, size_t len, tt
     }
     tt_scene *s = NULL;
     tt_scan_params prm, q;
+    bench_values bv = {0};
     int have_prm = 0;
-    if (!bad && (build(c, given, sample, noise_off, &s) || !(have_prm = !check(c, s, &prm)))) {
+    if (!bad && (build(c, given, sample, noise_off, &s) || !(have_prm = !check(c, s, &prm, &bv)))) {
         tt_live_text(ch->why, sizeof ch->why, tt_error_message());
         bad = 1;
     }
     /* the taker (the engine) makes all it needs or refuses, and owns the scene and q
-     * either way: the controls change only when it took the change */
+     * either way: the controls change only when it took the change (a bench's knob too:
+     * the engine's scene is the one exported and saved) */
     if (!bad && take) {
         tt_scene *t = s;
         s = NULL;
@@ -573,6 +594,7 @@ int tt_live_controls_apply(tt_live_controls *c, const char *text, size_t len, tt
     if (c->have_params)
         tt_config_scan_free(&c->params);
     c->params = prm;
+    c->bench = bv;
     c->have_params = 1;
     return TT_OK;
 }
@@ -584,7 +606,8 @@ int tt_live_controls_scene(const tt_live_controls *c, tt_scene **scene, tt_scan_
     int rc = build(c, c->given, c->sample, c->noise_off, scene);
     if (rc || !p)
         return rc;
-    if ((rc = check(c, *scene, p))) {
+    bench_values bv;
+    if ((rc = check(c, *scene, p, &bv))) {
         tt_scene_free(*scene);
         *scene = NULL;
     }
@@ -623,9 +646,28 @@ const char *tt_live_controls_value(const tt_live_controls *c, size_t i, char *bu
         snprintf(buf, len, "%.6g", p->cantilever.A0 * 1e9);
     else if (strcmp(table[i].name, "solver.tier") == 0)
         snprintf(buf, len, "%s", tt_tier_name(p->solver.tier));
+    else if (strcmp(table[i].name, "force.speed") == 0)
+        snprintf(buf, len, "%.6g", c->bench.speed * 1e6);
+    else if (strcmp(table[i].name, "force.range") == 0)
+        snprintf(buf, len, "%.6g", c->bench.range * 1e9);
+    else if (strcmp(table[i].name, "tune.duration") == 0)
+        snprintf(buf, len, "%.6g", c->bench.duration);
     else
         snprintf(buf, len, "%s", c->given[i] ? c->given[i] : "");
     return buf;
+}
+
+const char *tt_live_control_panel(size_t i) { return i < NKNOBS ? table[i].panel : NULL; }
+
+int tt_live_controls_panel_hidden(const tt_live_controls *c, const char *panel)
+{
+    int any = 0, shown = 0;
+    for (size_t i = 0; i < NKNOBS; i++)
+        if (table[i].panel && strcmp(table[i].panel, panel) == 0) {
+            any = 1;
+            shown |= !(c->lesson && c->lesson->hide >> i & 1);
+        }
+    return any && !shown;
 }
 
 size_t tt_live_controls_samples(const tt_live_controls *c) { return c->nsamples; }

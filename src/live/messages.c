@@ -1,6 +1,7 @@
 /* The live console's messages to the page, as JSON (docs/live.md, "Protocol"); numbers
  * in the C locale, SI units, NaN as null. */
 #include "live_private.h"
+#include "bench_private.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -194,6 +195,10 @@ static void array(tt_live_buf *b, const double *x, size_t n)
     tt_live_buf_printf(b, "]");
 }
 
+void tt_live_json_str(tt_live_buf *b, const char *s) { str(b, s); }
+void tt_live_json_num(tt_live_buf *b, double x) { num(b, x); }
+void tt_live_json_array(tt_live_buf *b, const double *x, size_t n) { array(b, x, n); }
+
 /* What each tier means on the console, for its menu (the names are the solver's table,
  * tt_tier_name). */
 static const char *tier_hint(tt_tier t)
@@ -238,6 +243,11 @@ void tt_live_msg_controls(tt_live_buf *b, const tt_live_controls *c, int number,
                            t[i].restarts ? "true" : "false", l && l->hide >> i & 1 ? "true" : "false",
                            l && l->lock >> i & 1 ? "true" : "false");
         str(b, tt_live_controls_value(c, i, v, sizeof v));
+        tt_live_buf_printf(b, ",\"panel\":");
+        if (t[i].panel)
+            str(b, t[i].panel);
+        else
+            tt_live_buf_printf(b, "null");
         tt_live_buf_printf(b, "}");
     }
     tt_live_buf_printf(b, "],\"samples\":[");
@@ -249,6 +259,9 @@ void tt_live_msg_controls(tt_live_buf *b, const tt_live_controls *c, int number,
     tt_live_buf_printf(b, "],\"sample\":");
     str(b, si >= 0 ? tt_live_controls_sample(c, (size_t)si) : "");
     tiers(b);
+    tt_live_buf_printf(b, ",\"benches\":{\"force\":%s,\"tune\":%s}",
+                       tt_live_controls_panel_hidden(c, "force") ? "false" : "true",
+                       tt_live_controls_panel_hidden(c, "tune") ? "false" : "true");
     const tt_live_lesson *l = tt_live_controls_lesson(c);
     tt_live_buf_printf(b, ",\"lesson\":");
     if (l) {

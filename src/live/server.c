@@ -81,6 +81,9 @@ static int ws_writeable(server *s, pss *p)
     } else if (p->seen_controls != in->controls_version) {
         tt_live_msg_controls(&s->out, in->controls, in->number, s->max_inst);
         p->seen_controls = in->controls_version;
+    } else if (tt_live_bench_message(in->bench, TT_BENCH_FORCE, &p->seen_bench[TT_BENCH_FORCE], &s->out) ||
+               tt_live_bench_message(in->bench, TT_BENCH_TUNE, &p->seen_bench[TT_BENCH_TUNE], &s->out)) {
+        /* a bench's run began or ended */
     } else {
         tt_live_engine_lock(in->engine);
         const tt_live_view *v = tt_live_engine_view(in->engine);
@@ -137,8 +140,10 @@ static int take(void *user, tt_scene *scene, tt_scan_params *p, int restart)
 static int make_instrument(server *s, instrument *in)
 {
     in->generation++;
+    tt_live_bench_free(in->bench);
     tt_live_engine_free(in->engine);
     tt_live_controls_free(in->controls);
+    in->bench = NULL;
     in->engine = NULL;
     in->controls = NULL;
     in->used = 0;
@@ -147,6 +152,10 @@ static int make_instrument(server *s, instrument *in)
     int rc = tt_live_controls_copy(&in->controls, s->controls);
     if (!rc && !(rc = tt_live_controls_scene(in->controls, &scene, &prm)))
         rc = tt_live_engine_alloc(&in->engine, scene, &prm, wake, s);
+    if (!rc && (rc = tt_live_bench_alloc(&in->bench, wake, s))) {
+        tt_live_engine_free(in->engine);
+        in->engine = NULL;
+    }
     if (rc) {
         tt_live_controls_free(in->controls);
         in->controls = NULL;
@@ -197,6 +206,9 @@ static void attach(server *s, pss *p)
     in->used = 1;
     p->inst = in;
     p->seen_controls = p->seen_frame = p->seen_rows = p->seen_scope = p->seen_status = 0;
+    /* a reload sees the benches' last results again */
+    for (int k = 0; k < TT_BENCH_KINDS; k++)
+        p->seen_bench[k] = 0;
     s->last = in;
     /* a page looks (unless its tab is hidden): the engine runs (it waits, no CPU, while
      * none does) */
@@ -221,6 +233,29 @@ static void detach(server *s, pss *p)
             wait = q;
     if (wait)
         attach(s, wait);
+}
+
+/* A bench's run on the instrument's accepted scene (its sample's materials, its noise,
+ * the ramp and record in force), on the bench's thread: refused while the lesson hides
+ * the bench, while a run is under way, or when its section fails the checks. */
+static void bench(server *s, pss *p, int kind)
+{
+    instrument *in = p->inst;
+    const char *what = kind == TT_BENCH_FORCE ? "force" : "tune";
+    tt_scene *scene = NULL;
+    if (tt_live_controls_panel_hidden(in->controls, what)) {
+        char why[600];
+        snprintf(why, sizeof why, "console: the lesson %s hides the %s", tt_live_controls_lesson(in->controls)->path,
+                 kind == TT_BENCH_FORCE ? "force curve" : "thermal tune");
+        reply(p, 0, why);
+        return;
+    }
+    if (tt_live_controls_scene(in->controls, &scene, NULL) || tt_live_bench_run(in->bench, kind, scene)) {
+        reply(p, 0, tt_error_message());
+        return;
+    }
+    reply(p, 1, "");
+    wake_all(s);
 }
 
 /* A whole message from a page: checked by the controls, taken by the engine, or
@@ -278,6 +313,11 @@ static void ws_message(server *s, pss *p)
             tt_live_engine_pause(in->engine, pause);
         reply(p, 1, "");
         wake_all(s);
+        return;
+    }
+    int force = n == 5 && memcmp(p->rx, "force", 5) == 0, tune = n == 4 && memcmp(p->rx, "tune", 4) == 0;
+    if (force || tune) {
+        bench(s, p, force ? TT_BENCH_FORCE : TT_BENCH_TUNE);
         return;
     }
     tt_live_change ch;
@@ -471,6 +511,8 @@ int tt_live_serve(tt_live_controls *c, const tt_live_options *o)
             break;
     /* the engines first: their lines stop at the cancellation; then the connections */
     for (int i = 0; i < s.max_inst; i++) {
+        tt_live_bench_free(s.inst[i].bench);
+        s.inst[i].bench = NULL;
         tt_live_engine_free(s.inst[i].engine);
         tt_live_controls_free(s.inst[i].controls);
         s.inst[i].engine = NULL;

@@ -12,6 +12,7 @@
 #include <libwebsockets.h>
 #include <stdio.h>
 
+#include "bench_private.h"
 #include "live_private.h"
 #include "tiptap/live/engine.h"
 #include "tiptap/live/server.h"
@@ -36,6 +37,7 @@ typedef struct {
     int number;                 /* 1 ..: in the page's messages and export paths */
     tt_live_controls *controls; /* NULL with engine: not made yet, or its reset failed */
     tt_live_engine *engine;
+    tt_live_bench *bench;       /* its force curve and thermal tune (with engine) */
     unsigned long controls_version;
     pss *page;                  /* the page that holds it (NULL: none) */
     int used;                   /* a page has held it since it was made */
@@ -61,6 +63,7 @@ struct pss {
     int want;
     int hidden; /* the page said its tab is hidden (the Page Visibility API): it does not look */
     unsigned long seen_controls, seen_frame, seen_rows, seen_scope, seen_status;
+    unsigned long seen_bench[TT_BENCH_KINDS];
     int have_reply, reply_ok;
     unsigned dropped;
     char reply[600];

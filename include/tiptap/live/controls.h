@@ -41,6 +41,8 @@ typedef struct {
     const char *unit;  /* the unit the page writes after its number ("" for none) */
     int restarts;      /* 1: a change starts a new frame (the raster or the sample
                         * changed); 0: it applies from the next line on */
+    const char *panel; /* NULL: the scan's; "force", "tune": that bench's panel on the page
+                        * (the engine takes it as any change: its scene is the one exported) */
 } tt_live_control;
 
 /* The console's knobs, in the page's order. */
@@ -99,6 +101,11 @@ int tt_live_controls_scene(const tt_live_controls *c, tt_scene **scene, tt_scan_
  * scene's value in the knob's unit ("3000" Hz for a gain given as "3 kHz"); the
  * sample's name; "on" or "off". */
 const char *tt_live_controls_value(const tt_live_controls *c, size_t i, char *buf, size_t len);
+
+/* The bench panel knob i belongs to (NULL: the scan's), and whether the lesson hides
+ * every knob of panel (then the page does not show it and the server refuses its run). */
+const char *tt_live_control_panel(size_t i);
+int tt_live_controls_panel_hidden(const tt_live_controls *c, const char *panel);
 
 /* The bundled samples (surfaces/NAME.ini without the extension), sorted; and which one
  * the scene uses (-1: none of them). */
