@@ -7,6 +7,8 @@
 
 #include "tt_test.h"
 #include "solver/sim.h"
+#include "tiptap/config/config.h"
+#include "tiptap/config/scene.h"
 #include "tiptap/solver/noise.h"
 #include "tiptap/util/error.h"
 
@@ -114,7 +116,10 @@ static void equipartition_per_mode(void **state)
     (void)state;
     tt_cantilever c;
     assert_int_equal(tt_cantilever_init(&c, 2, 70e3, 5, 1e-10, 70e3, TT_DRIVE_BASE), TT_OK);
-    assert_int_equal(tt_cantilever_set_modes(&c, 3, NULL, NULL, NULL), TT_OK);
+    /* Q off the beam's rule, so that each mode's damping (and its force's density)
+     * differs from mode 1's: a force shared among the modes would miss by 3 and 0.5 */
+    const double Q[2] = {3 * 5 * 6.2669, 0.5 * 5 * 17.547};
+    assert_int_equal(tt_cantilever_set_modes(&c, 3, NULL, NULL, Q), TT_OK);
     c.a_d = 0; /* no drive: the thermal force alone */
     tt_sim *S = sim_of(&c);
     S->solver.tolerance = 1e-6;
@@ -127,8 +132,8 @@ static void equipartition_per_mode(void **state)
     tt_cycle cy;
     for (int k = 0; k < 200; k++)
         assert_int_equal(tt_sim_cycle(S, &cy), TT_OK);
-    /* a mode's correlation time is 2 m / c = Q_1 / (pi f_1), 1.6 cycles: 12000 cycles
-     * hold about 3700 of them, the variance good to 2.3 % (sqrt(2 / 3700)) */
+    /* a mode's correlation time is 2 m / c_n = Q_n / (pi f_n), 1.6 cycles for mode 1 and
+     * 4.8 for mode 2: 12000 cycles give each variance to 2 % or better */
     for (int k = 0; k < 12000; k++) {
         assert_int_equal(tt_sim_cycle(S, &cy), TT_OK);
         double x[TT_SIM_DIM_MAX];
@@ -165,6 +170,35 @@ static void one_mode_stays_specialised(void **state)
     tt_sim_free(S);
 }
 
+/* The scene's keys: the defaults and an override read; a further mode's key beyond
+ * `modes` refused in one line naming it. */
+static int cantilever_of(const char *text, tt_cantilever *c)
+{
+    tt_scene *s = tt_scene_alloc();
+    assert_non_null(s);
+    int rc = tt_scene_load_string(s, text, "modes.ini");
+    if (rc == TT_OK)
+        rc = tt_config_cantilever(s, c);
+    tt_scene_free(s);
+    return rc;
+}
+
+static void scene_keys(void **state)
+{
+    (void)state;
+    tt_cantilever c;
+    assert_int_equal(cantilever_of("[cantilever]\nmodes = 3\nmode2_frequency = 2 MHz\n", &c), TT_OK);
+    assert_int_equal(c.modes, 3);
+    assert_true(c.mode_f[1] == 2e6 && fabs(c.mode_k[1] / (40 * (2e6 / 300e3) * (2e6 / 300e3)) - 1) < 1e-12);
+    assert_true(fabs(c.mode_f[2] / (300e3 * 17.547) - 1) < 1e-4);
+    assert_int_equal(cantilever_of("[cantilever]\n", &c), TT_OK);
+    assert_true(c.modes == 0); /* the point mass: tt_cantilever_init's one mode */
+    assert_int_not_equal(cantilever_of("[cantilever]\nmodes = 2\nmode3_quality_factor = 900\n", &c), TT_OK);
+    assert_non_null(strstr(tt_error_message(), "mode3_quality_factor"));
+    assert_int_not_equal(cantilever_of("[cantilever]\nmodes = 3\nmode3_frequency = 1 MHz\n", &c), TT_OK);
+    assert_non_null(strstr(tt_error_message(), "mode 3's frequency"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -172,6 +206,7 @@ int main(void)
         cmocka_unit_test(free_response_is_the_transfer_function),
         cmocka_unit_test(equipartition_per_mode),
         cmocka_unit_test(one_mode_stays_specialised),
+        cmocka_unit_test(scene_keys),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
