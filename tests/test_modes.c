@@ -204,7 +204,7 @@ static void scene_keys(void **state)
     assert_int_not_equal(cantilever_of("[cantilever]\nmodes = 2\nmode3_quality_factor = 900\n", &c), TT_OK);
     assert_non_null(strstr(tt_error_message(), "mode3_quality_factor"));
     assert_int_not_equal(cantilever_of("[cantilever]\nmodes = 3\nmode3_frequency = 1 MHz\n", &c), TT_OK);
-    assert_non_null(strstr(tt_error_message(), "mode 3's frequency"));
+    assert_non_null(strstr(tt_error_message(), "[cantilever] mode3_frequency: mode 3's frequency"));
 }
 
 int main(void)

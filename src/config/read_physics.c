@@ -36,8 +36,18 @@ static int config_modes(const tt_scene *s, tt_cantilever *c)
             if ((rc = tt_scene_get_double(s, "cantilever", NULL, key, &v[j][i - 2])))
                 return rc;
         }
-    if (modes > 1 && tt_cantilever_set_modes(c, (int)modes, v[0], v[1], v[2]) != TT_OK)
-        return tt_scene_fail(s, "cantilever", NULL, "modes", "%s", tt_error_message());
+    if (modes > 1 && tt_cantilever_set_modes(c, (int)modes, v[0], v[1], v[2]) != TT_OK) {
+        /* name the key that was set: a mode's frequency (the order broken) or the mode's
+         * first key given */
+        char key[40] = "modes";
+        for (int i = 2; i <= (int)modes && !strcmp(key, "modes"); i++)
+            for (int j = 0; j < 3; j++)
+                if (!isnan(v[j][i - 2])) {
+                    snprintf(key, sizeof key, "mode%d_%s", i, what[j]);
+                    break;
+                }
+        return tt_scene_fail(s, "cantilever", NULL, key, "%s", tt_error_message());
+    }
     return TT_OK;
 }
 
