@@ -13,6 +13,44 @@
 #define TT_DRIVE_RATIO_MIN 0.1
 #define TT_DRIVE_RATIO_MAX 10.0
 
+/* [cantilever] modes and the further modes' overrides (NAN: the beam's default). */
+static int config_modes(const tt_scene *s, tt_cantilever *c)
+{
+    static const char *what[3] = {"frequency", "spring_constant", "quality_factor"};
+    double v[3][TT_CANTILEVER_MODES_MAX - 1];
+    long modes = 1;
+    int rc;
+    if (tt_scene_has(s, "cantilever", NULL, "modes") &&
+        (rc = tt_scene_get_int(s, "cantilever", NULL, "modes", &modes)))
+        return rc;
+    for (int i = 2; i <= TT_CANTILEVER_MODES_MAX; i++)
+        for (int j = 0; j < 3; j++) {
+            char key[40];
+            snprintf(key, sizeof key, "mode%d_%s", i, what[j]);
+            v[j][i - 2] = NAN;
+            if (!tt_scene_has(s, "cantilever", NULL, key))
+                continue;
+            if (i > modes)
+                return tt_scene_fail(s, "cantilever", NULL, key,
+                                     "is set but modes = %ld: expected modes = %d or more", modes, i);
+            if ((rc = tt_scene_get_double(s, "cantilever", NULL, key, &v[j][i - 2])))
+                return rc;
+        }
+    if (modes > 1 && tt_cantilever_set_modes(c, (int)modes, v[0], v[1], v[2]) != TT_OK) {
+        /* name the key that was set: a mode's frequency (the order broken) or the mode's
+         * first key given */
+        char key[40] = "modes";
+        for (int i = 2; i <= (int)modes && !strcmp(key, "modes"); i++)
+            for (int j = 0; j < 3; j++)
+                if (!isnan(v[j][i - 2])) {
+                    snprintf(key, sizeof key, "mode%d_%s", i, what[j]);
+                    break;
+                }
+        return tt_scene_fail(s, "cantilever", NULL, key, "%s", tt_error_message());
+    }
+    return TT_OK;
+}
+
 int tt_config_cantilever(const tt_scene *s, tt_cantilever *c)
 {
     double k, f0, Q, A0, fd;
@@ -46,7 +84,7 @@ int tt_config_cantilever(const tt_scene *s, tt_cantilever *c)
     tt_drive d = (drive && strcmp(drive, "force") == 0) ? TT_DRIVE_FORCE : TT_DRIVE_BASE;
     if (tt_cantilever_init(c, k, f0, Q, A0, fd, d) != TT_OK)
         return tt_scene_fail(s, "cantilever", NULL, NULL, "%s", tt_error_message());
-    return TT_OK;
+    return config_modes(s, c);
 }
 
 int tt_config_tip(const tt_scene *s, tt_tip *tip)

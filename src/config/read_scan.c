@@ -311,11 +311,17 @@ static int read_noise(const tt_scene *s, tt_scan_params *p)
 }
 
 /* The envelope and averaged tiers model the cycle map on the tip's (d, v) alone: a
- * sample whose surface is a state of its own (relaxation arms) runs every cycle. */
+ * cantilever of more than one mode, or a sample whose surface is a state of its own
+ * (relaxation arms), runs every cycle. */
 static int check_tier_arms(const tt_scene *s, const tt_scan_params *p)
 {
     if (p->solver.tier == TT_TIER_EVERY)
         return TT_OK;
+    if (p->cantilever.modes > 1)
+        return tt_scene_fail(s, "solver", NULL, "tier",
+                             "%s does not serve [cantilever] modes = %d yet (its models are of "
+                             "one mode): set tier = every",
+                             tt_tier_name(p->solver.tier), p->cantilever.modes);
     for (size_t i = 0; i < p->nmaterials; i++)
         if (p->materials[i].contact.arms > 0)
             return tt_scene_fail(s, "solver", NULL, "tier",

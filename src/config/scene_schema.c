@@ -27,6 +27,20 @@ static const tt_scene_key cantilever_keys[] = {
      "drive frequency (default: the resonance frequency)"},
     {"drive", TT_KEY_ENUM, 0, "base", 0, 0, 0, "base|force",
      "base: the base moves, as in Burnham et al. (eq. 2); force: a force on the tip"},
+    {"modes", TT_KEY_INT, 0, NULL, 1, 3, 0, NULL,
+     "flexural eigenmodes (default 1, the point mass; 2, 3: Euler-Bernoulli modes added at the tip)"},
+    {"mode2_frequency", Q(TT_DIM_FREQUENCY), NULL, 0, INF, POS, NULL,
+     "mode 2's resonance (default: 6.267 f_c, a rectangular beam's)"},
+    {"mode2_spring_constant", Q(TT_DIM_STIFFNESS), NULL, 0, INF, POS, NULL,
+     "mode 2's stiffness at the tip (default: k_c (f_2 / f_c)^2)"},
+    {"mode2_quality_factor", Q(TT_DIM_NONE), NULL, 0, INF, POS, NULL,
+     "mode 2's quality factor (default: Q_c f_2 / f_c, uniform viscous damping)"},
+    {"mode3_frequency", Q(TT_DIM_FREQUENCY), NULL, 0, INF, POS, NULL,
+     "mode 3's resonance (default: 17.55 f_c, a rectangular beam's)"},
+    {"mode3_spring_constant", Q(TT_DIM_STIFFNESS), NULL, 0, INF, POS, NULL,
+     "mode 3's stiffness at the tip (default: k_c (f_3 / f_c)^2)"},
+    {"mode3_quality_factor", Q(TT_DIM_NONE), NULL, 0, INF, POS, NULL,
+     "mode 3's quality factor (default: Q_c f_3 / f_c, uniform viscous damping)"},
 };
 
 /* Moduli up to a thousand times diamond's (1.2 TPa): far past any material, and short of

@@ -94,6 +94,9 @@ int tt_scan_set_free_amplitude(tt_scan *S, double A0)
     const tt_cantilever *c = &S->cantilever;
     tt_cantilever nc;
     int rc = tt_cantilever_init(&nc, c->k, c->f0, c->Q, A0, c->fd, c->drive);
+    /* the further modes as they were (the drive is mode 1's) */
+    if (!rc && c->modes > 1)
+        rc = tt_cantilever_set_modes(&nc, c->modes, c->mode_f + 1, c->mode_k + 1, c->mode_Q + 1);
     if (rc)
         return rc;
     S->cantilever = nc;

@@ -56,3 +56,58 @@ void tt_cantilever_response(const tt_cantilever *c, double w, double *amp, doubl
     double forcing = c->drive == TT_DRIVE_BASE ? c->m * w * w * c->a_d : c->F0;
     *amp = gain * forcing;
 }
+
+/* The clamped-free beam's modes 1..3 (cos b cosh b = -1; the slope and the base coupling
+ * of the tip-normalised mode shapes integrated numerically; docs/physics.md). */
+static const double beam_root[TT_CANTILEVER_MODES_MAX] = {1.8751040687119612, 4.6940911329741746,
+                                                          7.8547574382376126};
+static const double beam_slope[TT_CANTILEVER_MODES_MAX] = {1.3765054846725348, 4.7807784102116340,
+                                                           7.8486660464895032};
+static const double beam_gamma[TT_CANTILEVER_MODES_MAX] = {1.5659835120792515, -0.86787179022143854,
+                                                           0.50885059373221142};
+
+static int mode_known(int n) { return n >= 1 && n <= TT_CANTILEVER_MODES_MAX; }
+
+double tt_beam_root(int n) { return mode_known(n) ? beam_root[n - 1] : NAN; }
+double tt_beam_slope(int n) { return mode_known(n) ? beam_slope[n - 1] : NAN; }
+double tt_beam_base_coupling(int n) { return mode_known(n) ? beam_gamma[n - 1] / beam_gamma[0] : NAN; }
+
+static double given(const double *a, int i, double dflt)
+{
+    return a && !isnan(a[i - 1]) ? a[i - 1] : dflt;
+}
+
+int tt_cantilever_set_modes(tt_cantilever *c, int modes, const double *f, const double *k,
+                            const double *Q)
+{
+    if (!mode_known(modes))
+        return tt_error(TT_EINVAL, "cantilever modes: %d, expected 1 to %d", modes,
+                        TT_CANTILEVER_MODES_MAX);
+    c->modes = modes;
+    c->mode_k[0] = c->k;
+    c->mode_f[0] = c->f0;
+    c->mode_Q[0] = c->Q;
+    c->mode_m[0] = c->m;
+    c->mode_c[0] = c->c;
+    c->mode_base[0] = 1.0;
+    for (int i = 1; i < modes; i++) {
+        double r = beam_root[i] / beam_root[0];
+        double fi = given(f, i, c->f0 * r * r);
+        double ki = given(k, i, c->k * (fi / c->f0) * (fi / c->f0));
+        double Qi = given(Q, i, c->Q * fi / c->f0);
+        if (!(fi > c->mode_f[i - 1]) || !isfinite(fi))
+            return tt_error(TT_EINVAL, "mode %d's frequency %g Hz: expected above mode %d's (%g Hz)",
+                            i + 1, fi, i, c->mode_f[i - 1]);
+        if (!(ki > 0) || !isfinite(ki) || !(Qi > 0) || !isfinite(Qi))
+            return tt_error(TT_EINVAL, "mode %d's stiffness %g N/m and Q %g: expected both positive",
+                            i + 1, ki, Qi);
+        double w = 2 * M_PI * fi;
+        c->mode_f[i] = fi;
+        c->mode_k[i] = ki;
+        c->mode_Q[i] = Qi;
+        c->mode_m[i] = ki / (w * w);
+        c->mode_c[i] = c->mode_m[i] * w / Qi;
+        c->mode_base[i] = tt_beam_base_coupling(i + 1);
+    }
+    return TT_OK;
+}

@@ -64,13 +64,15 @@ int tt_sim_set_thermal(tt_sim *S, double temperature, int points)
         return tt_error(TT_EINVAL,
                         "[noise] points: rk4's steps_per_cycle (%d) must be a multiple of it (%d)",
                         S->solver.steps_per_cycle, points);
-    S->sys.nz_f = calloc((size_t)points + 1, sizeof *S->sys.nz_f);
+    /* a table per mode, whatever the modes now: tt_sim_set_cantilever may add some */
+    S->sys.nz_f = calloc((size_t)TT_MODES_MAX * ((size_t)points + 1), sizeof *S->sys.nz_f);
     if (!S->sys.nz_f)
         return tt_error_nomem("the thermal force, [noise] points = %d", points);
     S->sys.nz_n = points;
     S->sys.nz_dt = S->c.T / points;
     /* white noise of two-sided density 2 c kB T drawn every dt: variance 2 c kB T / dt */
     S->sys.nz_sigma = sqrt(2.0 * S->c.c * TT_BOLTZMANN * temperature / S->sys.nz_dt);
+    S->sys.nz_temp = temperature;
     S->sys.nz_cycle = 0;
     tt_step_setup(S);
     return TT_OK;
@@ -94,6 +96,14 @@ void tt_noise_cycle(tt_sim *S)
     uint64_t base = (uint64_t)S->sys.nz_cycle * (uint64_t)S->sys.nz_n;
     for (int j = 0; j <= S->sys.nz_n; j++)
         S->sys.nz_f[j] = S->sys.nz_sigma * tt_noise_gauss(S->sys.nz_key, base + (uint64_t)j);
+    /* each further mode its own Langevin force (density 2 c_i kB T), its own stream */
+    for (int i = 1; i < S->sys.modes; i++) {
+        double sig = sqrt(2.0 * S->sys.c[i] * TT_BOLTZMANN * S->sys.nz_temp / S->sys.nz_dt);
+        uint64_t key = tt_noise_mix64(S->sys.nz_key ^ (0x6a09e667f3bcc909ULL * (uint64_t)i));
+        double *f = S->sys.nz_f + i * (S->sys.nz_n + 1);
+        for (int j = 0; j <= S->sys.nz_n; j++)
+            f[j] = sig * tt_noise_gauss(key, base + (uint64_t)j);
+    }
     S->sys.nz_cycle++;
 }
 

@@ -132,7 +132,17 @@ void tt_sim_set_cantilever(tt_sim *S, const tt_cantilever *c)
 {
     /* Same drive period required: the cycle bookkeeping assumes it. */
     S->c = *c;
+    int n0 = S->sys.n, m0 = S->sys.modes;
+    double q[NQ];
+    memcpy(q, S->y + n0, sizeof q);
     tt_system_plan(S, S->sys.generic);
+    if (S->sys.n != n0) {
+        /* other modes: the new ones (and the law's states behind them) start at rest,
+         * the quadratures move to the new dimension's place */
+        for (int i = 2 * (m0 < S->sys.modes ? m0 : S->sys.modes); i < S->sys.n; i++)
+            S->y[i] = 0;
+        memcpy(S->y + S->sys.n, q, sizeof q);
+    }
     tt_step_setup(S);
     tt_sim_set_contact(S, S->sys.contact, S->sys.ci > 0 ? S->c.m * S->c.w0 / S->sys.ci : NAN);
 }
@@ -144,13 +154,24 @@ long tt_sim_cycles(const tt_sim *S) { return S->cycle; }
 
 void tt_sim_get_state(const tt_sim *S, double *d, double *v, int *contact)
 {
-    *d = S->y[Y_D];
-    *v = S->y[Y_V];
+    double dt = S->y[Y_D], vt = S->y[Y_V];
+    /* the tip: the further modes' deflections added to mode 0 */
+    for (int i = 1; i < S->sys.modes; i++) {
+        dt += S->y[2 * i];
+        vt += S->y[2 * i + 1];
+    }
+    *d = dt;
+    *v = vt;
     *contact = S->contact_state;
 }
 
 void tt_sim_set_state(tt_sim *S, double d, double v, int contact)
 {
+    /* mode 0 takes what the further modes' deflections leave of the tip's */
+    for (int i = 1; i < S->sys.modes; i++) {
+        d -= S->y[2 * i];
+        v -= S->y[2 * i + 1];
+    }
     S->y[Y_D] = d;
     S->y[Y_V] = v;
     S->contact_state = S->sys.contact ? contact : 0;

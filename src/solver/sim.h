@@ -52,6 +52,7 @@ typedef struct {
     int generic;   /* the generic kernels asked for (tt_system_plan) */
     double m[TT_MODES_MAX], k[TT_MODES_MAX], c[TT_MODES_MAX];
     double inv_m[TT_MODES_MAX]; /* 1 / m: the right-hand side multiplies rather than divides */
+    double base[TT_MODES_MAX];  /* g_i m_i w^2: a base drive's inertial force per z (i >= 1) */
     const tt_contact *contact;
     const tt_contact_law *law; /* its row: the state's rate and the surface (nlaw > 0) */
     /* the law's time-loop kernel, chosen when the contact is set (tt_sim_set_contact):
@@ -66,7 +67,7 @@ typedef struct {
      * points, linear between them; NULL when off */
     double *nz_f;
     int nz_n;
-    double nz_dt, nz_sigma;
+    double nz_dt, nz_sigma, nz_temp; /* nz_sigma: mode 0's; each mode i its own at nz_f + i (nz_n + 1) */
     uint64_t nz_key;
     long nz_cycle;       /* cycles drawn since the key was set */
     void (*rhs)(const tt_sim *S, double tau, const double *Y, int contact, double *Fo);
@@ -153,9 +154,10 @@ void tt_noise_cycle(tt_sim *S);
 /* The next of the force's points after tau, at least hmin past it (noise.c). */
 double tt_noise_next_knot(const tt_sim *S, double hmin);
 
-/* The thermal force at tau: linear between the cycle's points, so continuous. */
-static inline double noise_force(const tt_sim *S, double tau)
+/* Mode i's own Langevin force at tau (linear between the cycle's points, so continuous). */
+static inline double noise_force_mode(const tt_sim *S, double tau, int i)
 {
+    const double *nz = S->sys.nz_f;
     double u = tau / S->sys.nz_dt;
     int j = (int)u;
     if (j >= S->sys.nz_n)
@@ -163,7 +165,14 @@ static inline double noise_force(const tt_sim *S, double tau)
     if (j < 0)
         j = 0;
     double f = u - j;
-    return S->sys.nz_f[j] + f * (S->sys.nz_f[j + 1] - S->sys.nz_f[j]);
+    nz += i * (S->sys.nz_n + 1);
+    return nz[j] + f * (nz[j + 1] - nz[j]);
+}
+
+/* The thermal force at tau on mode 0 (the one-mode system's). */
+static inline double noise_force(const tt_sim *S, double tau)
+{
+    return noise_force_mode(S, tau, 0);
 }
 
 

@@ -74,9 +74,22 @@ static inline void tt_step_setup(tt_sim *S)
         S->type->setup(S->step, S);
 }
 
-/* Dense output of d and v at fraction th of the current step. */
+/* Dense output of the tip's d and v at fraction th of the current step: mode 0's, plus
+ * the further modes' deflections when there are any. */
 static inline void tt_step_dense(const tt_sim *S, double th, double *d, double *v)
 {
+    if (S->sys.modes > 1) {
+        double x[TT_SIM_DIM_MAX];
+        S->type->dense_x(S->step, S, th, x);
+        double dt = x[0], vt = x[1];
+        for (int i = 1; i < S->sys.modes; i++) {
+            dt += x[2 * i];
+            vt += x[2 * i + 1];
+        }
+        *d = dt;
+        *v = vt;
+        return;
+    }
     S->type->dense(S->step, S, th, d, v);
 }
 

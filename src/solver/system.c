@@ -44,8 +44,6 @@ void tt_system_rhs_n(const tt_sim *S, double tau, const double *Y, int contact, 
     const tt_system *sys = &S->sys;
     drive_val dv;
     drive_at(S, tau, &dv.z, &dv.zd, &dv.F, &dv.cw, &dv.sw);
-    if (S->sys.nz_f)
-        dv.F += noise_force(S, tau);
     double d, v;
     system_tip(sys, Y, &d, &v);
     const double *q = tt_system_law_state(S, Y);
@@ -58,9 +56,16 @@ void tt_system_rhs_n(const tt_sim *S, double tau, const double *Y, int contact, 
         double zi = i ? 0.0 : dv.z, zdi = i ? 0.0 : dv.zd;
         double qi = Y[2 * i], ui = Y[2 * i + 1];
         double spring = sys->k[i] * (qi - zi), damp = sys->c[i] * (ui - zdi);
+        /* the drive's force on the tip, each mode's own Langevin force, and a base
+         * drive's inertial force on the further modes (-g_i m_i z'', z'' = -w^2 z) */
+        double Fd = dv.F;
+        if (sys->nz_f)
+            Fd += noise_force_mode(S, tau, i);
+        if (i)
+            Fd += sys->base[i] * dv.z;
         Fo[2 * i] = ui;
-        Fo[2 * i + 1] = (-damp - spring - P - Fi + dv.F) * sys->inv_m[i];
-        double wd = dv.F * ui - (spring + damp) * zdi, wl = damp * (ui - zdi);
+        Fo[2 * i + 1] = (-damp - spring - P - Fi + Fd) * sys->inv_m[i];
+        double wd = Fd * ui - (spring + damp) * zdi, wl = damp * (ui - zdi);
         wdrive = i ? wdrive + wd : wd;
         wdamp = i ? wdamp + wl : wl;
     }
@@ -119,15 +124,24 @@ void tt_system_plan(tt_sim *S, int generic)
 {
     tt_system *sys = &S->sys;
     sys->generic = generic;
-    sys->modes = 1;
+    sys->modes = S->c.modes > 1 ? S->c.modes : 1;
     sys->law = sys->contact ? tt_contact_law_of(sys->contact) : NULL;
     sys->nlaw = sys->law ? (int)sys->law->state_size : 0;
     sys->n = 2 * sys->modes + sys->nlaw;
-    generic |= sys->nlaw > 0;
+    generic |= sys->nlaw > 0 || sys->modes > 1;
     sys->m[0] = S->c.m;
     sys->k[0] = S->c.k;
     sys->c[0] = S->c.c;
     sys->inv_m[0] = 1.0 / S->c.m;
+    sys->base[0] = 0.0;
+    for (int i = 1; i < sys->modes; i++) {
+        sys->m[i] = S->c.mode_m[i];
+        sys->k[i] = S->c.mode_k[i];
+        sys->c[i] = S->c.mode_c[i];
+        sys->inv_m[i] = 1.0 / S->c.mode_m[i];
+        /* a base drive only: a force drive has z = 0 */
+        sys->base[i] = S->c.mode_base[i] * S->c.mode_m[i] * S->c.wd * S->c.wd;
+    }
     /* the one-mode elastic system's specialised kernels (FFTW's codelets' idea) */
     sys->rhs = generic ? tt_system_rhs_n : tt_sim_rhs;
     sys->energy = generic ? tt_system_energy_n : tt_sim_energy;

@@ -20,6 +20,9 @@ TT_BEGIN_DECLS
 
 typedef enum { TT_DRIVE_BASE = 0, TT_DRIVE_FORCE = 1 } tt_drive;
 
+/* The flexural modes a cantilever may carry (docs/physics.md, "Eigenmodes"). */
+enum { TT_CANTILEVER_MODES_MAX = 3 };
+
 typedef struct {
     /* given */
     double k;        /* spring constant, N/m */
@@ -36,11 +39,35 @@ typedef struct {
     double F0;       /* force drive amplitude, N (force drive) */
     double phi0;     /* free phase lag of y behind the drive, rad */
     double T;        /* drive period, s */
+    /* the further flexural modes (tt_cantilever_set_modes; 0 or 1: the point mass).
+     * Each mode n is a tip-normalised Euler-Bernoulli mode, its deflection q_n added to
+     * the tip: m_n q_n'' + c_n q_n' + k_n q_n = F_tip + g_n m_n w^2 z (base drive). Index 0
+     * repeats the point mass's k, f0, Q. */
+    int modes;
+    double mode_k[TT_CANTILEVER_MODES_MAX], mode_f[TT_CANTILEVER_MODES_MAX];
+    double mode_Q[TT_CANTILEVER_MODES_MAX];
+    double mode_m[TT_CANTILEVER_MODES_MAX], mode_c[TT_CANTILEVER_MODES_MAX];
+    double mode_base[TT_CANTILEVER_MODES_MAX]; /* g_n: base drive's inertial coupling */
 } tt_cantilever;
 
 /* Fill the derived constants; TT_EINVAL with a message on non-physical input. */
 int tt_cantilever_init(tt_cantilever *c, double k, double f0, double Q, double A0, double fd,
                        tt_drive drive);
+
+/* Give the cantilever `modes` flexural modes (1 .. TT_CANTILEVER_MODES_MAX): f, k and Q
+ * of modes 2.. at index 1.. (NULL or a NAN entry: the Euler-Bernoulli default of a
+ * rectangular beam, f_n = f_1 (b_n / b_1)^2, k_n = k_1 (f_n / f_1)^2, Q_n = Q_1 f_n / f_1).
+ * Call after tt_cantilever_init; TT_EINVAL with a message on non-physical input. */
+int tt_cantilever_set_modes(tt_cantilever *c, int modes, const double *f, const double *k,
+                            const double *Q);
+
+/* Euler-Bernoulli constants of a clamped-free rectangular beam's mode n (1-based, up to
+ * TT_CANTILEVER_MODES_MAX): the root b_n of cos b cosh b = -1, the optical lever's slope
+ * per tip deflection phi_n'(L) L / phi_n(L), and the base drive's coupling
+ * Gamma_n / Gamma_1 (Gamma_n = phi_n(L) int phi_n / int phi_n^2). NAN out of range. */
+double tt_beam_root(int n);
+double tt_beam_slope(int n);
+double tt_beam_base_coupling(int n);
 
 /* Steady free response of the deflection at angular frequency w to the configured
  * drive strength: amplitude (m) and lag (rad), from the transfer function. */
