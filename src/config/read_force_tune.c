@@ -48,6 +48,11 @@ int tt_config_force(const tt_scene *s, tt_force_params *p)
     return TT_OK;
 }
 
+int tt_config_tune_duration(const tt_scene *s, double *duration)
+{
+    return tt_scene_get_double(s, "tune", NULL, "duration", duration);
+}
+
 int tt_config_tune(const tt_scene *s, tt_tune_params *p)
 {
     memset(p, 0, sizeof *p);

@@ -407,6 +407,8 @@ static const struct {
     {"creep", "a fraction such as '0.02' or a percentage such as '2 %'"},
     {"z_scale", "a number, no unit, such as '1.5'"},
     {"map_tolerance", "a number of 8-bit levels, no unit, such as '40'"},
+    {"mode2_quality_factor", "a number, no unit, such as '2500'"},
+    {"mode3_quality_factor", "a number, no unit, such as '7000'"},
 };
 
 const char *tt_scene_key_describe(const tt_scene_key *k)

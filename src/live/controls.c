@@ -250,7 +250,7 @@ static int check(const tt_live_controls *c, const tt_scene *s, tt_scan_params *p
     tt_force_params fp = {0};
     if (!(rc = tt_config_check_rk4(s, NULL, 0)) && !(rc = check_memory(c, s, p)) &&
         !(rc = tt_config_force(s, &fp)))
-        rc = tt_scene_get_double(s, "tune", NULL, "duration", &b->duration);
+        rc = tt_config_tune_duration(s, &b->duration);
     if (rc)
         tt_config_scan_free(p);
     b->speed = fp.speed;

@@ -40,5 +40,9 @@ int tt_config_force(const tt_scene *s, tt_force_params *p);
  * scene's f0 / 16 Q). TT_EINVAL with "file: [section] key: what is wrong". */
 int tt_config_tune(const tt_scene *s, tt_tune_params *p);
 
+/* [tune] duration alone, the record's length in seconds, for a caller that shows it before
+ * the noise a run needs is on (the console's tune bench). */
+int tt_config_tune_duration(const tt_scene *s, double *duration);
+
 TT_END_DECLS
 #endif
