@@ -126,7 +126,7 @@ awk '/^setting +tier +rt\/cpu_s/ { t = 1; next } /^ / { next } /^#/ || /^$/ { t 
         print $0; b = 1 }
       rows++ }
   /^setting +model +check_pass/ { w = 1; next }
-  w && /^40 Hz lines/ { if (!($(NF - 16) > 0 && $(NF - 9) > 0)) { print "why: " $0; b = 1 } whys++ }
+  w && /^40 Hz lines/ { if (!($(NF - 15) > 0 && $(NF - 8) > 0)) { print "why: " $0; b = 1 } whys++ }
   END { if (rows != 1 || whys != 1) { print rows " rows, " whys " why rows"; b = 1 } exit b }' "$out" >"$tmp/lesson.bad" &&
   ok "lesson: the 40 Hz lines' row and its counts" || bad "lesson: $(cat "$tmp/lesson.bad")"
 err=$("$tiptap" bench --lesson-lines 1 2>&1 >/dev/null)

@@ -222,57 +222,6 @@ static void revisit_on_the_second_miss(void **st)
     fixture_free(&f);
 }
 
-/* Re-anchoring on the model's own cycle (the lesson's transients, scan_envelope.c): the
- * new anchor is the old model's prediction there, bit for bit, and its Jacobians carried
- * by the second derivatives make the same quadratic polynomial, so that a cycle beyond it
- * is predicted as the old model predicts it, to rounding (a carry left out would move it
- * by H u v, about the model's error itself); a mark taken before and gone back to gives
- * the old model's predictions bit for bit. */
-static void reanchor_on_the_model_and_back(void **st)
-{
-    (void)st;
-    fixture f;
-    fixture_init(&f, 0);
-    double xa[2], xr[2], xh[2];
-    offset(&f, 0, 0, xa);
-    offset(&f, 2e-3, -1e-3, xr);
-    offset(&f, 3e-3, -1.5e-3, xh);
-    double x1[2];
-    tt_cycle cy = integrate(&f, xa, f.s, x1);
-    tt_envelope_observe(f.e, f.smp, NULL, &cy, f.obs);
-    long jac = 0;
-    assert_int_equal(tt_envelope_build(f.e, f.sim, xa, f.c0, f.s, 0, &cy, f.obs, &jac),
-                     TT_ENV_USABLE);
-    const int no = tt_envelope_size(f.e);
-    double *o_old = f.obs + no, z[2] = {0, 0}, x21[2], xr_old[2], xh_old[2], xr_new[2], xh_new[2];
-    double *oh = malloc((size_t)no * sizeof *oh);
-    assert_non_null(oh);
-    tt_envelope_predict(f.e, TT_ENV_ALL, xr, z, f.s, 0, xr_old, x21, o_old);
-    tt_envelope_predict(f.e, TT_ENV_ALL, xh, z, f.s, 0, xh_old, x21, oh);
-    const double err_old = model_error(&f, xh, f.s);
-    tt_envelope_mark(f.e);
-    tt_envelope_anchor_model(f.e, xr, z, f.s, 0);
-    tt_envelope_predict(f.e, TT_ENV_ALL, xr, z, f.s, 0, xr_new, x21, f.obs);
-    assert_true(xr_new[0] == xr_old[0] && xr_new[1] == xr_old[1]);
-    for (int i = 0; i < no; i++)
-        assert_true(f.obs[i] == o_old[i] || (isnan(f.obs[i]) && isnan(o_old[i])));
-    tt_envelope_predict(f.e, TT_ENV_ALL, xh, z, f.s, 0, xh_new, x21, f.obs);
-    const double moved = fmax(fabs(xh_new[0] - xh_old[0]) / f.c.A0,
-                              fabs(xh_new[1] - xh_old[1]) / (f.c.wd * f.c.A0));
-    const double err_new = model_error(&f, xh, f.s);
-    print_message("re-anchored 2e-3 A0 away: a cycle 1e-3 A0 beyond errs %.3g (the old model "
-                  "%.3g); the two predictions differ by %.3g\n", err_new, err_old, moved);
-    assert_true(err_old > 0 && err_new > 0);
-    assert_true(moved < 1e-3 * err_old && moved < 1e-3 * err_new);
-    tt_envelope_back(f.e);
-    tt_envelope_predict(f.e, TT_ENV_ALL, xh, z, f.s, 0, xh_new, x21, f.obs);
-    assert_true(xh_new[0] == xh_old[0] && xh_new[1] == xh_old[1]);
-    for (int i = 0; i < no; i++)
-        assert_true(f.obs[i] == oh[i] || (isnan(f.obs[i]) && isnan(oh[i])));
-    free(oh);
-    fixture_free(&f);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -280,7 +229,6 @@ int main(void)
         cmocka_unit_test(switch_takes_the_nearest_of_its_kind),
         cmocka_unit_test(full_store_replaces_the_oldest),
         cmocka_unit_test(revisit_on_the_second_miss),
-        cmocka_unit_test(reanchor_on_the_model_and_back),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

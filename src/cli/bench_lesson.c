@@ -78,14 +78,8 @@ typedef struct {
     long pixels, integrated, cycles;
 } lesson_run;
 
-/* The lesson's noise made a billion times weaker in temperature and the detector's off:
- * the envelope tier runs as with the noise (its second-order model, reach and checks),
- * while the two tiers' draws, which differ, shake the tip by 0.3 fm rms instead of 10 pm,
- * so that the quiet lines' difference is the tier's own error, not the noise's. */
-static const char *const quiet_set[] = {"noise.temperature=3e-7 K", "noise.detector=0 fm/sqrt(Hz)", NULL};
-
 static int lesson_scan(const tt_scene *base, const lesson_setting *ls, const char *tier, long n,
-                       int quiet, lesson_run *out)
+                       lesson_run *out)
 {
     memset(out, 0, sizeof *out);
     tt_scene *c = tt_scene_copy(base);
@@ -96,8 +90,6 @@ static int lesson_scan(const tt_scene *base, const lesson_setting *ls, const cha
     int rc = tt_scene_set(c, tset);
     for (size_t i = 0; ls->set[i] && !rc; i++)
         rc = tt_scene_set(c, ls->set[i]);
-    for (size_t i = 0; quiet && quiet_set[i] && !rc; i++)
-        rc = tt_scene_set(c, quiet_set[i]);
     tt_scan_params p;
     memset(&p, 0, sizeof p);
     if (!rc)
@@ -182,27 +174,6 @@ static void lesson_error(const lesson_run *a, const lesson_run *b, int phase, lo
     *rms = cnt ? sqrt(ss / (double)cnt) : 0;
 }
 
-/* The quiet lines of one setting on the default tier and every cycle: q holds the height's
- * largest and rms difference, the phase's, the default tier's share integrated (%) and
- * its real time per CPU second (median). */
-static int lesson_quiet(const tt_scene *base, const lesson_setting *ls, const char *tier,
-                        long lines, long first, double q[6])
-{
-    lesson_run fast, every = {0};
-    int rc = lesson_scan(base, ls, tier, lines, 1, &fast);
-    if (!rc)
-        rc = lesson_scan(base, ls, "every", lines, 1, &every);
-    if (!rc) {
-        lesson_error(&fast, &every, 0, first, lines, &q[0], &q[1]);
-        lesson_error(&fast, &every, 1, first, lines, &q[2], &q[3]);
-        q[4] = 100.0 * (double)fast.integrated / (double)fast.cycles;
-        q[5] = median_rt(&fast, first, lines);
-    }
-    lesson_free(&fast);
-    lesson_free(&every);
-    return rc;
-}
-
 int bench_lesson_figure(long lines, int quick)
 {
     tt_scene *base = tt_scene_alloc();
@@ -222,18 +193,15 @@ int bench_lesson_figure(long lines, int quick)
     enum { NS = sizeof settings / sizeof settings[0] };
     const size_t ns = NS;
     long why[NS][TT_ENV_STOPS] = {{0}};
-    double quiet[NS][6] = {{0}};
     for (size_t i = 0; i < ns && !rc; i++) {
         if (quick && i != ns - 1)
             continue;
         lesson_run fast, every = {0};
         tt_scan_envelope_stops_reset();
-        rc = lesson_scan(base, &settings[i], tier, lines, 0, &fast);
+        rc = lesson_scan(base, &settings[i], tier, lines, &fast);
         tt_scan_envelope_stops(why[i]);
         if (!rc)
-            rc = lesson_scan(base, &settings[i], "every", lines, 0, &every);
-        if (!rc)
-            rc = lesson_quiet(base, &settings[i], tier, lines, first, quiet[i]);
+            rc = lesson_scan(base, &settings[i], "every", lines, &every);
         if (!rc) {
             double hm, hr, pm, pr;
             lesson_error(&fast, &every, 0, first, lines, &hm, &hr);
@@ -253,18 +221,6 @@ int bench_lesson_figure(long lines, int quick)
     printf("# rt/cpu_s: a line's instrument time (trace and retrace) over its thread's CPU time; "
            "every_rt: the every-cycle tier's, same lines, same run; errors: the default tier's "
            "images against the every-cycle tier's (each draws its own noise)\n");
-    printf("# lesson, quiet lines: the same lines with the noise's temperature 1e9 times lower "
-           "and no detector noise, the default tier against every cycle (its own error)\n"
-           "%-26s %13s %13s %10s %10s\n",
-           "setting", "height_nm", "phase_deg", "integr_%", "rt/cpu_s");
-    for (size_t i = 0; i < ns && !rc; i++) {
-        if (quick && i != ns - 1)
-            continue;
-        char h[32], ph[32];
-        snprintf(h, sizeof h, "%.3g/%.2g", quiet[i][0] * 1e9, quiet[i][1] * 1e9);
-        snprintf(ph, sizeof ph, "%.3g/%.2g", quiet[i][2], quiet[i][3]);
-        printf("%-26s %13s %13s %10.1f %10.2f\n", settings[i].label, h, ph, quiet[i][4], quiet[i][5]);
-    }
     /* why the default tier integrated what it did, per line (all lines, settling too) */
     printf("# lesson, why the envelope tier integrates: its controller's counts per line "
            "(tiptap/instrument/scan_envelope_stops.h)\n%-26s", "setting");

@@ -41,7 +41,7 @@ const char *tt_scan_envelope_stop_name(int i)
     static const char *const names[TT_ENV_STOPS] = {
         "model", "check_pass", "check_error", "check_contact", "check_touch", "check_cycle",
         "shortest", "full", "full_edge", "full_change", "full_redo", "full_wait", "full_graze",
-        "end_sample", "end_reach", "build", "reanchor"};
+        "end_sample", "end_reach", "build"};
     return i >= 0 && i < TT_ENV_STOPS ? names[i] : "?";
 }
 
@@ -320,14 +320,11 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
 static void fail(const line_ctx *L, line_state *st, controller *c, long k)
 {
     snap_restore(L, &c->sn, st);
-    if (c->marked)
-        tt_envelope_back(L->W->env);
-    c->marked = 0;
     /* a stretch that the reach bound ended early is retried on a quarter of what it ran
      * (a fast transient's, a few cycles, fails as the shortest at once, rather than
      * again at the same cycle) */
     const long len = L->reach > 0 && c->ran < c->m ? c->ran : c->m;
-    c->ran = c->fresh = 0;
+    c->ran = 0;
     if (len > M_MIN) {
         c->m = len / 4 > M_MIN ? len / 4 : M_MIN;
         c->left = c->m; /* the snapshot covers the shorter stretch too */
@@ -368,44 +365,11 @@ static void fail(const line_ctx *L, line_state *st, controller *c, long k)
  * starts anew there: the noise rings the state round an orbit many times the reach
  * wide (0.7 nm on the edge sample's disks, every 100 cycles), and the models built on
  * it tile it. Never grazing (graze_possible). */
-/* A stretch past the sample's bound goes on from the model's own cycle as its anchor (tt_envelope_anchor_model: a Taylor step, the Jacobians carried by the
- * second derivatives) rather than integrating a check there: the bound keeps each
- * cycle's expansion short, and the stretch's check still closes it, against the
- * allowance of a reach from the last such anchor. The reach, which the noise's own
- * excursions end (the z piezo's is not the smooth course), still ends a stretch or
- * switches to a kept model: re-anchoring there too made the z piezo's phase noise on the
- * blend scatter past tests/test_envelope_noise.c's 4 % (1.059 +- 0.057 of every cycle's) (docs/dynamics.md, "Re-anchoring on the
- * model's own cycle"). A stretch rolled back goes back to the model it started from.
- * 1: re-anchored. */
-enum { REANCHOR_WITHIN = 4 };
-static int reanchor(const line_ctx *L, line_state *st, controller *c, const cycle_in *in,
-                    double sdot)
-{
-    tt_envelope *env = L->W->env;
-    /* only where the bound comes within a few cycles of the anchor (an oscillating loop,
-     * a fast ramp), where a check there would integrate about every other cycle; a
-     * slower course is checked as before (re-anchoring at every bound took ki 100 Hz from
-     * 0.63x real time to 0.09x, though 12.4 % of the cycles were integrated instead of
-     * 15.2 %); a model run off to where its derivatives are not finite is checked */
-    if (c->ran - c->fresh >= REANCHOR_WITHIN ||
-        !isfinite(tt_envelope_model_reach(env, st->x, in->sa, sdot)))
-        return 0;
-    c->fresh = c->ran;
-    if (!c->marked)
-        tt_envelope_mark(env);
-    c->marked = 1;
-    tt_envelope_anchor_model(env, st->x, st->x2, in->sa, sdot);
-    memset(st->x2, 0, sizeof st->x2);
-    c->smooth = sample_mid(in) - in->zn;
-    stops[TT_ENV_REANCHOR]++;
-    return 1;
-}
-
-static int model_step2(const line_ctx *L, line_state *st, controller *c,
+static int model_step2(const line_ctx *L, line_state *st, const controller *c,
                        const cycle_in *in, double sdot, double *obs)
 {
     tt_envelope *env = L->W->env;
-    if (!(fabs(sample_mid(in) - in->zn - c->smooth) <= L->edge) && !reanchor(L, st, c, in, sdot)) {
+    if (!(fabs(sample_mid(in) - in->zn - c->smooth) <= L->edge)) {
         stops[TT_ENV_END_SAMPLE]++;
         return 0;
     }
@@ -462,7 +426,6 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c)
     c->prev_branch = 0;
     c->redo = 0;
     c->rebuild = 1;
-    c->marked = 0;
     while (st->k < L->ncyc) {
         cycle_in in;
         if ((rc = tt_scan_cycle_begin(L, st, &in)))
@@ -502,8 +465,7 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c)
         c->exact = !reduced;
         if (snap) {
             c->left = c->m;
-            c->ran = c->fresh = 0;
-            c->marked = 0;
+            c->ran = 0;
             snap_take(L, st, tt_envelope_anchor_contact(L->W->env), c->left, &c->sn);
         }
     }

@@ -58,9 +58,6 @@ typedef struct {
     int free_ok;
     int prev_branch; /* the last integrated cycle could be on a branch of the grazing model */
     int exact;       /* the tip's state is an integrated cycle's end (no model cycle since) */
-    int marked;      /* the stretch re-anchored on the model's own cycle: its start's model
-                      * is marked (tt_envelope_mark), to go back to on a rollback */
-    long fresh;      /* the stretch's model cycles (ran) when it was last re-anchored */
     long same;       /* integrated cycles in a row on the last one's branch (grazing) */
     lookahead la;
     double *red, *pred; /* a check's reduced observables and their prediction */

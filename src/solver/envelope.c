@@ -32,41 +32,6 @@ static const char *plan_invalid(const tt_sim *sim, const tt_envelope_params *p)
     return NULL;
 }
 
-/* The doubles of a mark (tt_envelope_mark): J, C, Cr, x1, oa, ra, xa and xb. */
-static size_t mark_size(const tt_envelope *e)
-{
-    const size_t nx = (size_t)e->nx, ni = (size_t)e->ni, no = (size_t)e->no;
-    const size_t nr = e->m > 0 ? (size_t)e->nr : 0;
-    return nx * ni + (no + nr) * ni + 3 * nx + no + nr;
-}
-
-/* The present model to or from its mark (to_mark: 1 saves, 0 restores): the blocks, the
- * anchor's and the derivatives' places, flags and the views in use. */
-static void mark_copy(tt_envelope *e, int to_mark)
-{
-    const size_t nx = (size_t)e->nx, ni = (size_t)e->ni, no = (size_t)e->no;
-    const size_t nr = e->m > 0 ? (size_t)e->nr : 0;
-    double *const blocks[] = {e->J, e->C, e->Cr, e->x1, e->oa, e->ra, e->xa, e->xb};
-    const size_t sizes[] = {nx * ni, no * ni, nr * ni, nx, no, nr, nx, nx};
-    double *m = e->mark;
-    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; m += sizes[i], i++)
-        if (sizes[i])
-            memcpy(to_mark ? m : blocks[i], to_mark ? blocks[i] : m, sizes[i] * sizeof *m);
-    double *const real[4] = {&e->sa, &e->ta, &e->sb, &e->tb};
-    int *const flag[3] = {&e->contact, &e->touched, &e->built};
-    const double **const view[3] = {&e->Hv, &e->Hrv, &e->Ljv};
-    for (int i = 0; i < 4; i++)
-        *(to_mark ? &e->mreal[i] : real[i]) = to_mark ? *real[i] : e->mreal[i];
-    for (int i = 0; i < 3; i++) {
-        *(to_mark ? &e->mint[i] : flag[i]) = to_mark ? *flag[i] : e->mint[i];
-        *(to_mark ? &e->mview[i] : view[i]) = to_mark ? *view[i] : e->mview[i];
-    }
-}
-
-void tt_envelope_mark(tt_envelope *e) { mark_copy(e, 1); }
-
-void tt_envelope_back(tt_envelope *e) { mark_copy(e, 0); }
-
 /* The plan's buffers, each zeroed; 0 when one cannot be had. */
 static int plan_buffers(tt_envelope *e, const tt_envelope_params *p)
 {
@@ -109,8 +74,7 @@ static int plan_buffers(tt_envelope *e, const tt_envelope_params *p)
      * two more; or the covariance's */
     size_t work = (1 + 2 * ni) * nq + 2 * nq, wn = tt_envelope_noise_work(e);
     e->work = calloc(work > wn ? work : wn, sizeof *e->work);
-    e->mark = calloc(mark_size(e), sizeof *e->mark);
-    return ok && e->work && e->mark;
+    return ok && e->work;
 }
 
 int tt_envelope_alloc(tt_envelope **out, const tt_sim *sim, const tt_envelope_params *p)
@@ -193,7 +157,6 @@ void tt_envelope_free(tt_envelope *e)
     free(e->H);
     free(e->Hr);
     free(e->work);
-    free(e->mark);
     tt_envelope_models_free(e);
     free(e);
 }
@@ -279,10 +242,8 @@ static void carry(tt_envelope *e, const double *u)
         }
 }
 
-/* The anchor moved to the cycle from x0 ending in x1 with the observables obs, touched
- * or not, its Jacobians carried there at second order. */
-static void set_anchor(tt_envelope *e, const double *x0, double s, double sdot,
-                       const double *x1, int touched, const double *obs)
+void tt_envelope_anchor(tt_envelope *e, const double *x0, double s, double sdot,
+                        const double *x1, const tt_cycle *cy, const double *obs)
 {
     if (e->second && e->built) {
         double u[NIN_MAX];
@@ -293,23 +254,9 @@ static void set_anchor(tt_envelope *e, const double *x0, double s, double sdot,
     e->sa = s + 0.5 * sdot * e->T;
     e->ta = sdot * e->T;
     memcpy(e->x1, x1, (size_t)e->nx * sizeof *x1);
-    e->touched = touched;
+    e->touched = tt_envelope_touched(cy);
     memcpy(e->oa, obs, (size_t)e->no * sizeof *obs);
     reduce(e, e->oa, e->ra);
-}
-
-void tt_envelope_anchor(tt_envelope *e, const double *x0, double s, double sdot,
-                        const double *x1, const tt_cycle *cy, const double *obs)
-{
-    set_anchor(e, x0, s, sdot, x1, tt_envelope_touched(cy), obs);
-}
-
-void tt_envelope_anchor_model(tt_envelope *e, const double *x0, const double *x2, double s,
-                              double sdot)
-{
-    double x1[TT_SIM_DIM_MAX], x21[TT_SIM_DIM_MAX];
-    tt_envelope_predict(e, TT_ENV_ALL, x0, x2, s, sdot, x1, x21, e->work);
-    set_anchor(e, x0, s, sdot, x1, e->touched, e->work);
 }
 
 /* One perturbed cycle from x0 + dx with the sample at s + ds mid-cycle travelling dt more

@@ -85,11 +85,6 @@ struct tt_envelope {
     long clock;
     tt_envelope_miss miss[MISSES];
     int nmiss; /* misses recorded (the ring holds the last MISSES) */
-    /* the present model as tt_envelope_mark left it: J, C, Cr, x1, oa, ra, xa, xb in one
-     * block, and the rest */
-    double *mark, mreal[4];
-    int mint[3];
-    const double *mview[3];
 };
 
 /* The place of the input pair (i, j), i <= j, among the npair second derivatives. */

@@ -28,8 +28,6 @@ typedef enum {
     TT_ENV_END_REACH,      /* stretches ended early: the inputs past the second-order
                             * model's reach, no kept model near */
     TT_ENV_BUILD,          /* models built (each 7 to 22 more cycles, not the run's) */
-    TT_ENV_REANCHOR,       /* stretches carried on past the sample's bound from the
-                            * model's own cycle as the anchor */
     TT_ENV_STOPS
 } tt_envelope_stop;
 

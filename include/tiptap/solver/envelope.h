@@ -108,18 +108,6 @@ tt_envelope_outcome tt_envelope_build(tt_envelope *e, tt_sim *sim, const double 
  * second order carried there). */
 void tt_envelope_anchor(tt_envelope *e, const double *x0, double s, double sdot,
                         const double *x1, const tt_cycle *cy, const double *obs);
-/* Re-anchor on the model's own cycle from x0 (x2: its second-order part, as for
- * tt_envelope_predict) with the sample at s moving at sdot: the predicted end state and
- * observables become the anchor's and the Jacobians are carried there at second order
- * (a Taylor step; no cycle integrated). Second order only. */
-void tt_envelope_anchor_model(tt_envelope *e, const double *x0, const double *x2, double s,
-                              double sdot);
-/* The present model (anchor, Jacobians, which derivatives are in use) saved, and put
- * back as saved: a stretch rolled back after re-anchoring on the model's own cycles goes
- * back to the model it started from. The mark is one, kept in the plan; a kept model
- * the mark uses must not be replaced in between (tt_envelope_keep). */
-void tt_envelope_mark(tt_envelope *e);
-void tt_envelope_back(tt_envelope *e);
 
 /* What a prediction gives: every observable (size), the reduced ones (m + TT_ENV_EXTRA),
  * or the probes alone. */
