@@ -105,9 +105,9 @@ static void cycles_equal_on_either_plan(void **state)
 static void state_of_dimension_n(void **state)
 {
     (void)state;
-    tt_contact *ct;
+    tt_contact *ct, *ct_b;
     tt_sim *a = standard(&ct, TT_DRIVE_BASE, TT_METHOD_DOPRI5);
-    tt_sim *b = standard(&ct, TT_DRIVE_BASE, TT_METHOD_DOPRI5);
+    tt_sim *b = standard(&ct_b, TT_DRIVE_BASE, TT_METHOD_DOPRI5);
     assert_int_equal(tt_sim_dim(a), 2);
     double x[TT_SIM_DIM_MAX] = {16e-9, -0.01}, y[TT_SIM_DIM_MAX], d, v;
     int contact;
@@ -126,6 +126,7 @@ static void state_of_dimension_n(void **state)
     tt_sim_free(a);
     tt_sim_free(b);
     tt_contact_free(ct);
+    tt_contact_free(ct_b);
 }
 
 int main(void)
