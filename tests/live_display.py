@@ -132,7 +132,8 @@ def fields(b, url):
     new_scope(b, "a line at 1500 Hz on the second page")
     b.session = a
     frame_a = b.eval("tiptapLive.status.frame * 1e6 + tiptapLive.status.line")
-    wait_for(b, "tiptapLive.status.frame * 1e6 + tiptapLive.status.line > %d" % frame_a, "a line more on the first page")
+    # (!==: the line after a pass's last is line 0 of the next pass, in the same frame)
+    wait_for(b, "tiptapLive.status.frame * 1e6 + tiptapLive.status.line !== %d" % frame_a, "a line more on the first page")
     assert in_force(b, "feedback.integral_gain") == ki0 and field(b, KI) == ki0, (in_force(b, "feedback.integral_gain"), field(b, KI))
     scenes = [b.call("Runtime.evaluate", {"expression": "fetch('/export/%d/scene.ini').then(r => r.text())" % n,
                                           "awaitPromise": True, "returnByValue": True})["result"]["value"]
@@ -189,7 +190,7 @@ def hidden_tab(b, url):
     print("ok a hidden tab's instrument idles: no line in 3 s (line %d); '%s'" % (line0 % 1e6, state))
     b.call("Target.activateTarget", {"targetId": b.targets[other]}, session=False)
     wait_for(b, "!document.hidden && !tiptapLive.status.idle && "
-                "tiptapLive.status.frame * 1e6 + tiptapLive.status.line > %d" % line0, "a line once shown")
+                "tiptapLive.status.frame * 1e6 + tiptapLive.status.line !== %d" % line0, "a line once shown")
     print("ok shown, it runs: line %d" % (at() % 1e6))
     b.call("Target.activateTarget", {"targetId": b.targets[a]}, session=False)
     wait_for(b, "document.hidden && tiptapLive.status.idle", "idle again once behind the first tab")
@@ -309,10 +310,16 @@ def images(b):
 
 def new_scope(b, what):
     """Waits for the scope of a line that started after the change just accepted, on the
-    scan's own tier (the line under way, if any, ran at the settings before)."""
-    seen = b.eval("tiptapLive.status.frame * 1e6 + tiptapLive.status.line")
-    wait_for(b, "tiptapLive.scope.frame * 1e6 + tiptapLive.scope.line > %d && "
-                "tiptapLive.scope.tier !== 'averaged'" % seen, what)
+    scan's own tier (the line under way, if any, ran at the settings before). The console
+    runs its lines over and over in one frame, so the line after the last is line 0 of the
+    next pass: a new line is one of a later frame, or one neither the line under way nor
+    the one before it (whose scope may still be on its way)."""
+    s = js(b, "({frame: tiptapLive.status.frame, line: tiptapLive.status.line, "
+              "lines: tiptapLive.frame ? tiptapLive.frame.lines : 0, n: tiptapLive.scopes})")
+    before = (s["line"] - 1) % s["lines"] if s["lines"] else s["line"] - 1
+    wait_for(b, "tiptapLive.scopes > %d && tiptapLive.scope.tier !== 'averaged' && "
+                "(tiptapLive.scope.frame > %d || (tiptapLive.scope.line !== %d && tiptapLive.scope.line !== %d))"
+             % (s["n"], s["frame"], s["line"], before), what)
 
 
 def orange(b):
