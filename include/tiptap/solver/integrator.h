@@ -134,6 +134,8 @@ const tt_sample *tt_sim_probes(const tt_sim *sim);
  * the interaction damping coefficient. The drive frequency must stay the same. */
 void tt_sim_set_cantilever(tt_sim *sim, const tt_cantilever *c);
 const tt_cantilever *tt_sim_cantilever(const tt_sim *sim);
+/* The method and tolerance it integrates with. */
+const tt_solver *tt_sim_solver(const tt_sim *sim);
 
 /* Track the deflection's extremes in each cycle (costs a little; off by default). */
 void tt_sim_track_extremes(tt_sim *sim, int on);
