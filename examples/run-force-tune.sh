@@ -17,6 +17,6 @@ t=$(realpath ../build/tiptap)
      END { printf "loop_energy_aJ = %.4g\n", w }' visco-${s%:*}.csv >>visco-${s%:*}.txt
  done)
 (cd force-volume && $t force ../../surfaces/polymer-blend.ini scene.ini --volume -o maps -j 2 -q >run.txt)
-(cd thermal-tune && for l in soft medium stiff; do
+(cd thermal-tune && for l in soft medium stiff beam; do
    $t tune $l.ini -o $l.csv --plot $l.png -q >$l.txt
  done)

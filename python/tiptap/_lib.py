@@ -236,6 +236,15 @@ typedef struct {
 int tt_run_force(const tt_scene *s, tt_table **out, tt_force_summary *sum, tt_progress_fn progress,
                  void *user);
 typedef struct {
+    double f0, f0_err;
+    double Q, Q_err;
+    double k, k_err;
+    double chi;
+    double noise_factor;
+    double chi2_dof;
+    double fit_low, fit_high;
+} tt_tune_mode;
+typedef struct {
     double temperature;
     double fs, bin_width;
     long segments;
@@ -251,6 +260,8 @@ typedef struct {
     double variance_err;
     double noise_factor;
     long cycles;
+    int modes;
+    tt_tune_mode mode[3];
 } tt_tune_result;
 int tt_run_tune(const tt_scene *s, tt_table **out, tt_tune_result *r, tt_progress_fn progress, void *user);
 

@@ -18,14 +18,17 @@ static void help(void)
            "spectral density and a damped-oscillator fit: resonance f, quality factor Q and\n"
            "spring constant k = chi^2 kB T / <x^2> by equipartition, each with its statistical\n"
            "standard error for the record's length.\n\n"
-           "  -o, --output FILE  CSV: f_Hz, psd_m2_per_Hz (one-sided), fit_m2_per_Hz\n"
-           "      --plot FILE    PNG: the spectrum and the fit, log-log, and a zoom on the peak\n"
+           "  -o, --output FILE  CSV: f_Hz, psd_m2_per_Hz (one-sided), fit_m2_per_Hz; with\n"
+           "                     [cantilever] modes above 1 also modeN_m2_per_Hz, each mode's fit\n"
+           "      --plot FILE    PNG: the spectrum and the fit, log-log, and a zoom on each peak\n"
            CLI_HELP_SET
            "  -q, --quiet        no progress on stderr\n\n"
            "stdout: f, Q, k with their errors, chi (the optical-lever correction: 1 for the\n"
-           "point-mass lever; docs/force-and-tune.md gives a beam's), the floor, the fit's\n"
-           "chi2 per degree of freedom, the record's <x^2> with its error, and kB T / k times\n"
-           "the factor the thermal force's interpolation gives it (noise_factor).\n");
+           "point-mass lever, phi_n'(L) L / 1.5 for a beam's mode n, whose record is the\n"
+           "slope-calibrated lever's sum chi_n q_n), the floor, the fit's chi2 per degree\n"
+           "of freedom, the record's <x^2> with its error, and kB T / k times the factor\n"
+           "the thermal force's interpolation gives it (noise_factor); modeN_ lines for\n"
+           "modes 2.. (docs/force-and-tune.md, \"Several modes\").\n");
 }
 
 static int write_csv(const char *path, const tt_table *t)
@@ -35,10 +38,16 @@ static int write_csv(const char *path, const tt_table *t)
     if (rc)
         return rc;
     FILE *f = tt_outfile_stream(of);
-    fprintf(f, "f_Hz,psd_m2_per_Hz,fit_m2_per_Hz\n");
-    const double *a = tt_table_numbers(t, 0), *b = tt_table_numbers(t, 1), *c = tt_table_numbers(t, 2);
-    for (size_t i = 0; i < tt_table_rows(t); i++)
-        fprintf(f, "%.9g,%.9g,%.9g\n", a[i], b[i], c[i]);
+    const size_t cols = tt_table_columns(t);
+    fprintf(f, "f_Hz,psd_m2_per_Hz,fit_m2_per_Hz");
+    for (size_t j = 3; j < cols; j++)
+        fprintf(f, ",%s_m2_per_Hz", tt_table_name(t, j));
+    fprintf(f, "\n");
+    for (size_t i = 0; i < tt_table_rows(t); i++) {
+        for (size_t j = 0; j < cols; j++)
+            fprintf(f, j ? ",%.9g" : "%.9g", tt_table_numbers(t, j)[i]);
+        fprintf(f, "\n");
+    }
     return tt_outfile_close(of, 1);
 }
 
@@ -84,6 +93,66 @@ static int plot(const char *path, const tt_table *t, const tt_tune_result *r, do
     return rc;
 }
 
+/* Several modes: the whole spectrum with each mode's fit marked, then a zoom on each peak. */
+static int plot_modes(const char *path, const tt_table *t, const tt_tune_result *r, const tt_cantilever *c)
+{
+    char title[256];
+    snprintf(title, sizeof title, "Thermal tune of %d modes at %.4g K through the optical lever", r->modes,
+             r->temperature);
+    tt_figure *f = tt_figure_alloc(1 + r->modes, title);
+    size_t n = tt_table_rows(t), cols = tt_table_columns(t);
+    double *buf = f ? malloc((n ? n : 1) * cols * sizeof *buf) : NULL;
+    int rc = buf ? TT_OK : tt_error_nomem("the plot %s", path);
+    for (size_t j = 0; rc == TT_OK && j < cols; j++)
+        for (size_t i = 0; i < n; i++) {
+            double v = tt_table_numbers(t, j)[i];
+            /* kHz, and densities in fm/sqrt(Hz), the unit of detector floors */
+            buf[j * n + i] = j == 0 ? v * 1e-3 : sqrt(v) * 1e15;
+        }
+    const char *ylab = "detector noise density (fm/sqrt(Hz))";
+    if (rc == TT_OK) {
+        tt_figure_axes(f, 0, "frequency (kHz)", ylab);
+        tt_figure_log(f, 0, 1, 1);
+        tt_figure_line(f, 0, buf, buf + n, n, "Welch spectrum", 1);
+        tt_figure_line(f, 0, buf, buf + 2 * n, n, "fit: every mode and the floor", 2);
+    }
+    for (int m = 0; rc == TT_OK && m < r->modes; m++) {
+        const tt_tune_mode *md = &r->mode[m];
+        double ks = m ? c->mode_k[m] : c->k;
+        char lab[200];
+        snprintf(lab, sizeof lab, "mode %d: f = %.6g +- %.2g kHz, Q = %.4g +- %.2g, k = %.4g +- %.2g N/m (scene %.4g)",
+                 m + 1, md->f0 * 1e-3, md->f0_err * 1e-3, md->Q, md->Q_err, md->k, md->k_err, ks);
+        tt_figure_line(f, 0, buf, buf + (size_t)(3 + m) * n, n, lab, (3 + m) | TT_PLOT_DASHED);
+        tt_figure_axes(f, 1 + m, "frequency (kHz)", ylab);
+        tt_figure_log(f, 1 + m, 0, 1);
+        tt_figure_xlim(f, 1 + m, md->fit_low * 1e-3, md->f0 * (1 + fmin(0.95, 10 / md->Q)) * 1e-3);
+        tt_figure_line(f, 1 + m, buf, buf + n, n, "Welch spectrum", 1 | TT_PLOT_POINTS);
+        snprintf(lab, sizeof lab, "fit of mode %d (chi = %.4g)", m + 1, md->chi);
+        tt_figure_line(f, 1 + m, buf, buf + 2 * n, n, lab, 2);
+    }
+    if (rc == TT_OK)
+        rc = tt_figure_write_png(f, path, 1000, 500 * (1 + r->modes));
+    free(buf);
+    tt_figure_free(f);
+    return rc;
+}
+
+/* Modes 2..: their figures after mode 1's lines. */
+static void print_modes(const tt_tune_result *r, const tt_cantilever *c)
+{
+    printf("modes = %d\n", r->modes);
+    for (int m = 1; m < r->modes; m++) {
+        const tt_tune_mode *md = &r->mode[m];
+        printf("mode%d_f_Hz = %.8g\nmode%d_f_err_Hz = %.3g\nmode%d_Q = %.6g\nmode%d_Q_err = %.3g\n"
+               "mode%d_k_N_per_m = %.6g\nmode%d_k_err_N_per_m = %.3g\nmode%d_k_scene_N_per_m = %.6g\n"
+               "mode%d_chi = %.6g\nmode%d_noise_factor = %.6g\nmode%d_chi2_dof = %.4g\n"
+               "mode%d_fit_low_Hz = %.6g\nmode%d_fit_high_Hz = %.6g\n",
+               m + 1, md->f0, m + 1, md->f0_err, m + 1, md->Q, m + 1, md->Q_err, m + 1, md->k, m + 1, md->k_err,
+               m + 1, c->mode_k[m], m + 1, md->chi, m + 1, md->noise_factor, m + 1, md->chi2_dof, m + 1,
+               md->fit_low, m + 1, md->fit_high);
+    }
+}
+
 int cmd_tune(int argc, char **argv)
 {
     static const cli_spec spec = {"tune", CLI_OPT_OUTPUT | CLI_OPT_PLOT | CLI_OPT_SET | CLI_OPT_QUIET,
@@ -107,9 +176,16 @@ int cmd_tune(int argc, char **argv)
     if (rc == TT_OK)
         rc = write_csv(args.output, t);
     if (rc == TT_OK && args.plot)
-        rc = plot(args.plot, t, &r, k_scene);
+        rc = r.modes > 1 ? plot_modes(args.plot, t, &r, &lever) : plot(args.plot, t, &r, k_scene);
     if (rc == TT_OK) {
         const double kT = 1.380649e-23 * r.temperature;
+        /* what equipartition gives the record without the floor: each mode's kB T / k_n
+         * through its chi_n^2 and its interpolation factor */
+        double equi = kT / k_scene * r.noise_factor;
+        for (int m = 0; r.modes > 1 && m < r.modes; m++) {
+            const tt_tune_mode *md = &r.mode[m];
+            equi = (m ? equi : 0) + md->chi * md->chi * kT / lever.mode_k[m] * md->noise_factor;
+        }
         printf("temperature_K = %.6g\nsample_rate_Hz = %.6g\nbin_width_Hz = %.6g\nsegments = %ld\n"
                "averages = %.6g\nf0_Hz = %.8g\nf0_err_Hz = %.3g\nQ = %.6g\nQ_err = %.3g\n"
                "k_N_per_m = %.6g\nk_err_N_per_m = %.3g\nchi = %.6g\nfloor_m2_per_Hz = %.6g\n"
@@ -118,7 +194,9 @@ int cmd_tune(int argc, char **argv)
                "fit_low_Hz = %.6g\nfit_high_Hz = %.6g\n",
                r.temperature, r.fs, r.bin_width, r.segments, r.averages, r.f0, r.f0_err, r.Q, r.Q_err,
                r.k, r.k_err, r.chi, r.white, r.white_err, r.chi2_dof, r.variance, r.variance_err,
-               kT / k_scene * r.noise_factor, r.noise_factor, r.fit_low, r.fit_high);
+               equi, r.noise_factor, r.fit_low, r.fit_high);
+        if (r.modes > 1)
+            print_modes(&r, &lever);
         if (!args.quiet)
             fprintf(stderr, "run_time_s = %.3f\noutput = %s%s%s\n", cli_now() - t0, args.output,
                     args.plot ? ", plot " : "", args.plot ? args.plot : "");

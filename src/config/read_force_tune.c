@@ -70,6 +70,15 @@ int tt_config_tune(const tt_scene *s, tt_tune_params *p)
         return tt_scene_fail(s, "noise", NULL, "temperature",
                              "tiptap tune needs the thermal force: a temperature above 0 K, such as 300 K");
     const double fs = (double)p->samples_per_cycle * c.fd, cycles = ceil(p->duration * c.fd);
+    /* every mode's peak and its fit's window below Nyquist: 2.5 samples a period of the
+     * highest mode (unfolded, the images are a correction, not the peak) */
+    if (c.modes > 1 && fs < 2.5 * c.mode_f[c.modes - 1]) {
+        double need = ceil(2.5 * c.mode_f[c.modes - 1] / c.fd);
+        return tt_scene_fail(s, "tune", NULL, "samples_per_cycle",
+                             "%ld samples a drive period put Nyquist at %.4g kHz, below mode %d's "
+                             "%.4g kHz with room for its peak: at least %.0f",
+                             p->samples_per_cycle, 0.5e-3 * fs, c.modes, 1e-3 * c.mode_f[c.modes - 1], need);
+    }
     const double n = cycles * (double)p->samples_per_cycle;
     if (n > TUNE_MAX_SAMPLES)
         return tt_scene_fail(s, "tune", NULL, "duration",

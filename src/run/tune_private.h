@@ -26,8 +26,22 @@ typedef struct {
 double tune_model(const tune_fit *m, double f);
 
 /* Fit psd over bins [k0, k1] (bin width df, averages the Welch estimate's), with the
- * floor when floor is set; m holds the starting values and dt. TT_ENUM when it fails. */
+ * floor when floor is set, over bg[0 .. k1 - k0] (a fixed density the model sits on: the
+ * other modes' and a floor fitted elsewhere; NULL: none); m holds the starting values
+ * and dt. TT_ENUM when it fails. */
 int tune_fit_psd(const double *psd, size_t k0, size_t k1, double df, double averages, int floor,
-                 tune_fit *m);
+                 const double *bg, tune_fit *m);
+
+/* The fit's first guesses from the spectrum's bins [lo_bin, hi_bin): the highest bin,
+ * the width at half its height above the floor W, the level there. */
+void tune_first_guess(const double *psd, size_t lo_bin, size_t hi_bin, double df, double W, tune_fit *m);
+
+/* Fit each of `modes` peaks on its own window, the other modes' fitted densities and the
+ * floor held under it, sweeping the modes three times; f_guess[i]: where mode i's peak
+ * is looked for (within a factor 1.3). fit[i] holds dt and fs on entry (W the floor's
+ * first guess), the fit on return, k0[i] .. k1[i] its window; with floor set the highest
+ * mode's window runs on to 0.95 of Nyquist and fits the floor. A status. */
+int tune_fit_modes(const double *psd, size_t nb, double df, double averages, int with_floor, int modes,
+                   const double *f_guess, tune_fit *fit, size_t *k0, size_t *k1);
 
 #endif

@@ -82,6 +82,7 @@ typedef struct {
     size_t k0, k1;
     double df, sqrt_avg;
     const double *ref;      /* the previous model at the bins: the weights */
+    const double *bg;       /* the fixed density under the model (NULL: none) */
     tune_fit base;
     int nparam;
 } fit_data;
@@ -104,6 +105,8 @@ static int residuals(const gsl_vector *p, void *data, gsl_vector *r)
     unpack(d, p, &m);
     for (size_t k = d->k0; k <= d->k1; k++) {
         double M = tune_model(&m, (double)k * d->df);
+        if (d->bg)
+            M += d->bg[k - d->k0];
         gsl_vector_set(r, k - d->k0, (d->psd[k] - M) / d->ref[k - d->k0] * d->sqrt_avg);
     }
     return GSL_SUCCESS;
@@ -115,7 +118,7 @@ static int residuals(const gsl_vector *p, void *data, gsl_vector *r)
 #define HANN_BIN_CORRELATION (35.0 / 18.0)
 
 int tune_fit_psd(const double *psd, size_t k0, size_t k1, double df, double averages, int floor,
-                 tune_fit *m)
+                 const double *bg, tune_fit *m)
 {
     const size_t nb = k1 - k0 + 1, np = floor ? 4 : 3;
     if (k1 <= k0 || nb < np + 2)
@@ -130,7 +133,7 @@ int tune_fit_psd(const double *psd, size_t k0, size_t k1, double df, double aver
         rc = tt_error_nomem("the tune's fit");
         goto done;
     }
-    fit_data d = {psd, k0, k1, df, sqrt(averages), ref, *m, (int)np};
+    fit_data d = {psd, k0, k1, df, sqrt(averages), ref, bg, *m, (int)np};
     gsl_vector_set(p, 0, log(m->P));
     gsl_vector_set(p, 1, log(m->f0));
     gsl_vector_set(p, 2, log(m->Q));
@@ -143,7 +146,8 @@ int tune_fit_psd(const double *psd, size_t k0, size_t k1, double df, double aver
         tune_fit cur;
         unpack(&d, p, &cur);
         for (size_t k = k0; k <= k1; k++)
-            ref[k - k0] = pass == 0 ? fmax(psd[k], 1e-300) : tune_model(&cur, (double)k * df);
+            ref[k - k0] = pass == 0 ? fmax(psd[k], 1e-300)
+                                    : tune_model(&cur, (double)k * df) + (bg ? bg[k - k0] : 0);
         int info;
         gsl_multifit_nlinear_init(p, &fdf, ws);
         int st = gsl_multifit_nlinear_driver(200, 1e-10, 1e-10, 1e-10, NULL, NULL, &info, ws);
@@ -173,4 +177,21 @@ done:
     gsl_vector_free(p);
     gsl_matrix_free(cov);
     return rc;
+}
+
+void tune_first_guess(const double *psd, size_t lo_bin, size_t hi_bin, double df, double W, tune_fit *m)
+{
+    size_t kp = lo_bin;
+    for (size_t k = lo_bin; k < hi_bin; k++)
+        if (psd[k] > psd[kp])
+            kp = k;
+    size_t lo = kp, hi = kp;
+    while (lo > 1 && psd[lo] - W > 0.5 * (psd[kp] - W))
+        lo--;
+    while (hi + 1 < hi_bin && psd[hi] - W > 0.5 * (psd[kp] - W))
+        hi++;
+    m->f0 = (double)kp * df;
+    m->Q = fmax(1, m->f0 / (fmax(1, (double)(hi - lo)) * df));
+    m->P = fmax(psd[kp] - W, 1e-300) / (m->Q * m->Q);
+    m->W = W;
 }

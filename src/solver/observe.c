@@ -63,6 +63,16 @@ static void observe_at(tt_sim *S, double ts, tt_sample *smp)
     }
 }
 
+/* Each mode's deflection at time ts of the current step into q (the base at z). */
+static void observe_modes(const tt_sim *S, double ts, double *q, double z)
+{
+    double x[TT_SIM_DIM_MAX], h = S->step_h, f = h > 0 ? (ts - S->step_tau) / h : 0;
+    S->type->dense_x(S->step, S, f < 0 ? 0 : f, x);
+    q[0] = x[0] - z;
+    for (int i = 1; i < S->sys.modes; i++)
+        q[i] = x[2 * i];
+}
+
 /* Samples at k T / n inside (t0, t0 + th h]; k = 0 is taken at the cycle start. Then
  * the probes inside it. */
 static void observe_samples(tt_sim *S, double th)
@@ -73,7 +83,11 @@ static void observe_samples(tt_sim *S, double th)
         double ts = c->T * S->next_sample / S->nsamp;
         if (ts > end)
             break;
-        observe_at(S, ts, &S->samples[S->next_sample++]);
+        observe_at(S, ts, &S->samples[S->next_sample]);
+        if (S->mode_samples)
+            observe_modes(S, ts, S->mode_samples + (size_t)S->next_sample * (size_t)S->sys.modes,
+                          S->samples[S->next_sample].z);
+        S->next_sample++;
     }
     /* a probe needs the tip's position only: no drive evaluation */
     while (S->next_probe < S->nprobe) {

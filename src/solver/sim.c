@@ -110,6 +110,10 @@ void tt_sim_set_sampling(tt_sim *S, int n, tt_sample *buf)
 
 const tt_sample *tt_sim_samples(const tt_sim *S) { return S->nsamp ? S->samples : NULL; }
 
+void tt_sim_set_mode_sampling(tt_sim *S, double *buf) { S->mode_samples = buf; }
+
+const tt_solver *tt_sim_solver(const tt_sim *S) { return &S->solver; }
+
 void tt_sim_set_probes(tt_sim *S, int n, const double *tau, tt_sample *buf)
 {
     S->nprobe = buf && tau ? n : 0;

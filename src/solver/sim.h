@@ -101,6 +101,7 @@ struct tt_sim {
     int nsamp;
     tt_sample *samples;
     int next_sample;
+    double *mode_samples; /* each mode's deflection at each sample (tt_sim_set_mode_sampling) */
     /* probes: the state at further times within each cycle (tt_sim_set_probes) */
     int nprobe, next_probe;
     const double *probe_tau;

@@ -116,6 +116,10 @@ void tt_sim_set_sample(tt_sim *sim, double s, double sdot);
 void tt_sim_set_sampling(tt_sim *sim, int n, tt_sample *buf);
 /* The buffer the samples go to (NULL: none). */
 const tt_sample *tt_sim_samples(const tt_sim *sim);
+/* With the samples, each mode's own deflection at each (mode 0's d - z, the further
+ * modes' q_n) into buf[k * modes + i] for sample k, mode i: what an optical lever weighs
+ * mode by mode (the thermal tune). buf holds n * modes doubles (NULL: none). */
+void tt_sim_set_mode_sampling(tt_sim *sim, double *buf);
 
 /* Record the state at n more times within each cycle, tau[0] < ... < tau[n-1] in
  * [0, T) from the cycle's start, into buf (buf or tau NULL: none): the envelope tier's
@@ -130,6 +134,8 @@ const tt_sample *tt_sim_probes(const tt_sim *sim);
  * the interaction damping coefficient. The drive frequency must stay the same. */
 void tt_sim_set_cantilever(tt_sim *sim, const tt_cantilever *c);
 const tt_cantilever *tt_sim_cantilever(const tt_sim *sim);
+/* The method and tolerance it integrates with. */
+const tt_solver *tt_sim_solver(const tt_sim *sim);
 
 /* Track the deflection's extremes in each cycle (costs a little; off by default). */
 void tt_sim_track_extremes(tt_sim *sim, int on);
