@@ -85,6 +85,21 @@ static void slope_projects_every_law(void **st)
     assert_close(ratio, 0.698, 1e-3);
     tt_contact_free(c);
     tt_contact_free(flat);
+    /* relaxation arms: the glassy response of a surface at rest, cos a P(delta cos a) */
+    tt_contact_params sl = hz;
+    sl.arms = 1;
+    sl.arm_modulus[0] = 2e9;
+    sl.arm_time[0] = 1e-6;
+    c = local(&sl, cs, R);
+    assert_int_equal(tt_contact_alloc(&flat, &sl), TT_OK);
+    assert_int_equal((int)tt_contact_law_of(c)->state_size, 1);
+    double q0 = 0, q1 = 0;
+    double Pz = tt_contact_force(c, 0, d, 0, 1, &q0).conservative;
+    double Pn = tt_contact_force(flat, 0, d * cs, 0, 1, &q1).conservative;
+    assert_true(Pz > 0);
+    assert_close(Pz, cs * Pn, 1e-12 * Pn);
+    tt_contact_free(c);
+    tt_contact_free(flat);
     tt_contact_params rows[4] = {params(TT_CONTACT_MAUGIS, 0.05), params(TT_CONTACT_DMT, 0.05),
                                  params(TT_CONTACT_JKR, 0.05), params(TT_CONTACT_HERTZ, 0)};
     rows[3].film_thickness = 20e-9;
