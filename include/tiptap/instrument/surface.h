@@ -16,6 +16,7 @@
 #include <stddef.h>
 
 #include "tiptap/export.h"
+#include "tiptap/physics/contact.h"
 #include "tiptap/physics/material.h"
 
 TT_BEGIN_DECLS
@@ -134,6 +135,16 @@ int tt_surface_material(const tt_surface *s, double x, double y);
 int tt_surface_uniform(const tt_surface *s);
 /* 1 when the topography is flat everywhere. */
 int tt_surface_flat(const tt_surface *s);
+
+/* The contact law's local geometry (tt_contact_geometry) for a tip of apex radius R (m)
+ * touching the surface at (x, y), the contact point tt_dilation_contact gives: the
+ * slope's cosine and the principal normal curvatures from central differences of the
+ * height, step (m) apart (the surface's own scale: a fraction of its features' radius
+ * or its pixel), so a sphere of radius r reads 1/r to O(step^2 / r^2). A flat reads
+ * exactly cos a = 1 and R_eff = R. A wall or kink inside the stencil reads as a steep
+ * slope: the edge contact is not modelled (docs/surfaces.md). */
+tt_contact_geometry tt_surface_contact_geometry(const tt_surface *s, double x, double y,
+                                                double step, double R);
 
 /* Surfaces that vary along x only and are made of straight pieces (steps, grating):
  * calls fn(user, xa, ha, xb, hb) for each piece of the profile, from (xa, ha) to

@@ -110,6 +110,39 @@ int tt_contact_alloc_custom(tt_contact **out,
                             double (*energy)(double delta, int in_contact, void *user), void *user,
                             double jumpin, double jumpout);
 
+/* The contact law's local geometry where the tip meets the sample (docs/surfaces.md,
+ * "The contact law's geometry at the contact point"): the cosine of the surface's slope
+ * there (the contact normal's angle a to z) and the effective radius R_eff, 1/R_eff =
+ * 1/R + 1/r for a feature of curvature radius r there (r > 0 convex, < 0 concave). */
+typedef struct {
+    double cos_slope; /* cos a, in (0, 1]; 1 on a flat */
+    double R_eff;     /* m (> 0); the tip's radius on a flat */
+} tt_contact_geometry;
+
+/* The largest effective radius, in tip radii, a concave feature gives: a hollow as
+ * curved as the tip (1/r = -1/R) would make R_eff infinite (a conforming contact no law
+ * in the table describes), so R_eff is clamped here. */
+#define TT_CONTACT_CONCAVE_MAX 10.0
+
+/* The geometry for a tip of radius R (m) on a surface of slope angle a (cos_slope) whose
+ * principal normal curvatures there are k1, k2 (1/m, positive convex): 1/R_eff =
+ * sqrt((1/R + k1) (1/R + k2)), Hertz's equivalent radius of an elliptic contact (exact
+ * for a sphere, k1 = k2 = 1/r), each factor at least 1 / (TT_CONTACT_CONCAVE_MAX R). */
+tt_contact_geometry tt_contact_geometry_of(double R, double cos_slope, double k1, double k2);
+
+/* The force law of p pressed on a feature of geometry g (NULL or a flat's: the same
+ * law tt_contact_alloc builds, byte for byte): the penetration along the normal is
+ * delta cos a and the load returned is the normal load's z part, P(delta cos a) cos a,
+ * of the law at R_eff (Burnham et al. eq. 4 to 7 with R -> R_eff). Hertz, its
+ * Kelvin-Voigt sample and relaxation arms are that exactly as Hertz at R_eff cos^5 a;
+ * the film's series at R_eff with each term's cos a power; Maugis-Dugdale, DMT and JKR
+ * rebuild their table at R_eff (lambda ~ R^(1/3), xi0 / d* ~ R^(-1/3)) and scale F* by
+ * cos a and d* by 1 / cos a. The contact radius stays the normal contact's, except on
+ * the Hertz rows (sqrt(R_eff cos^5 a delta)). Fails as tt_contact_alloc does, or with
+ * TT_EINVAL for g outside its ranges. */
+int tt_contact_alloc_local(tt_contact **out, const tt_contact_params *p,
+                           const tt_contact_geometry *g);
+
 void tt_contact_free(tt_contact *c);
 
 const tt_contact_summary *tt_contact_summary_of(const tt_contact *c);
