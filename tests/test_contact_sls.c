@@ -113,6 +113,17 @@ static tt_sim *cantilever(const tt_contact *c, double s, tt_method m)
     return S;
 }
 
+/* The arm's state that holds the free surface at depression u0, the tip out of
+ * contact: chi_f = K_1 q / K_g. */
+static void press_surface(tt_sim *S, double u0)
+{
+    double x[3];
+    int contact;
+    tt_sim_get_x(S, x, &contact);
+    x[2] = chi_of(u0) * (K_E + K_1) / K_1;
+    tt_sim_set_x(S, x, 0);
+}
+
 /* A surface pressed in and left alone, the tip oscillating far above it: its
  * depression u follows u^(3/2) = u0^(3/2) exp(-t / tau_c) (chi_f decays so), sampled
  * through two cycles, on each method. */
@@ -125,12 +136,7 @@ static void free_surface_recovers(void **state)
         tt_sim *S = cantilever(c, 200e-9, methods[k]);
         assert_int_equal(tt_sim_dim(S), 3);
         const double Kg = K_E + K_1, tc = TAU * Kg / K_E, u0 = 1.5e-9;
-        /* the arm's state that holds the free surface at u0: chi_f = K_1 q / K_g */
-        double x[3];
-        int contact;
-        tt_sim_get_x(S, x, &contact);
-        x[2] = chi_of(u0) * Kg / K_1;
-        tt_sim_set_x(S, x, 0);
+        press_surface(S, u0);
         enum { NS = 64 };
         tt_sample smp[NS];
         tt_sim_set_sampling(S, NS, smp);
@@ -150,6 +156,51 @@ static void free_surface_recovers(void **state)
         tt_sim_free(S);
         tt_contact_free(c);
     }
+}
+
+/* dopri5's free flight advances the arm's state exactly (exp(A tau), src/solver/
+ * flight.c): a surface recovering under the tip far above follows u^(3/2) = u0^(3/2)
+ * exp(-t / tau_c) to 1e-9 in the flight's few steps a cycle, and ends where dopri5's
+ * own steps put it (the flight kept off by tracking the extremes) within their
+ * tolerance. */
+static void flight_recovery_exact(void **state)
+{
+    (void)state;
+    const double Kg = K_E + K_1, tc = TAU * Kg / K_E, u0 = 1.5e-9;
+    double end[2], worst[2] = {0, 0};
+    long steps[2] = {0, 0};
+    for (int k = 0; k < 2; k++) {
+        tt_contact *c = sls(K_1, TAU);
+        tt_sim *S = cantilever(c, 200e-9, TT_METHOD_DOPRI5);
+        tt_sim_track_extremes(S, k);
+        tt_sim_reset_free(S);
+        press_surface(S, u0);
+        enum { NS = 64 };
+        tt_sample smp[NS];
+        tt_sim_set_sampling(S, NS, smp);
+        for (int cyc = 0; cyc < 2; cyc++) {
+            tt_cycle out;
+            assert_int_equal(tt_sim_cycle(S, &out), TT_OK);
+            steps[k] += out.steps;
+            for (int i = 0; i < NS; i++) {
+                double e = pow(u0, 1.5) * exp(-smp[i].t / tc);
+                worst[k] = fmax(worst[k], fabs(pow(smp[i].u, 1.5) - e) / e);
+            }
+        }
+        double x[3];
+        int contact;
+        tt_sim_get_x(S, x, &contact);
+        end[k] = x[2];
+        tt_sim_free(S);
+        tt_contact_free(c);
+    }
+    if (!(worst[0] < 1e-9))
+        fail_msg("the flight's recovery off its exponential by %.3g (relative)", worst[0]);
+    /* the flight's steps are T / 8 at most (one free period is one drive period here) */
+    if (!(steps[0] <= 2 * 9 && steps[0] < steps[1]))
+        fail_msg("%ld flight steps against dopri5's %ld in two cycles", steps[0], steps[1]);
+    if (!(fabs(end[0] - end[1]) <= 1e-9 * end[1]))
+        fail_msg("the flight's state %.17g against dopri5's %.17g", end[0], end[1]);
 }
 
 /* One arm of zero modulus and a relaxation time past any run is the Hertz law: each
@@ -282,6 +333,7 @@ int main(void)
         cmocka_unit_test(relaxation_under_held_indentation),
         cmocka_unit_test(creep_under_held_load),
         cmocka_unit_test(free_surface_recovers),
+        cmocka_unit_test(flight_recovery_exact),
         cmocka_unit_test(zero_arm_is_elastic),
         cmocka_unit_test(energy_balance_closes),
         cmocka_unit_test(bad_arms_refused),

@@ -5,6 +5,8 @@
  * (the generic solve, eigenvalues and Lyapunov equation against the one-mode closed
  * forms at n = 2, and against a known spectrum and the equation's residual at n = 4). */
 #include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -16,6 +18,8 @@
 #include "tiptap/solver/shooting.h"
 #include "tiptap/util/error.h"
 #include "solver/shooting_linalg.h"
+
+#include <gsl/gsl_errno.h>
 
 static tt_sim *free_sim(tt_cantilever *c, double Q, double fd_ratio)
 {
@@ -310,6 +314,53 @@ static void algebra_n4_known_spectrum(void **state)
         assert_true(M[i * n + i] > 1);
 }
 
+/* The generic eigenvalues on a worker thread leave GSL's process-wide error handler
+ * alone (src/solver/shooting_linalg.c): the handler this thread installs is the one it
+ * reads back every time while the worker computes, and the spectrum is right. */
+static atomic_int_fast8_t eigen_done;
+static void handler_mark(const char *reason, const char *file, int line, int err)
+{
+    (void)reason, (void)file, (void)line, (void)err;
+}
+
+static void *eigen_worker(void *arg)
+{
+    int *bad = arg;
+    /* a 3 x 3 upper triangle: its eigenvalues are its diagonal */
+    const double J[9] = {0.5, 1, 2, 0, -0.25, 3, 0, 0, 0.125};
+    for (int it = 0; it < 20000; it++) {
+        double re[3], im[3];
+        if (tt_shoot_eigen(3, J, re, im, 1) != 1)
+            (*bad)++;
+        double s = re[0] + re[1] + re[2], p = re[0] * re[1] * re[2];
+        if (fabs(s - 0.375) > 1e-14 || fabs(p + 0.015625) > 1e-15)
+            (*bad)++;
+    }
+    atomic_store(&eigen_done, 1);
+    return NULL;
+}
+
+static void eigen_leaves_error_handler(void **st)
+{
+    (void)st;
+    gsl_error_handler_t *old = gsl_set_error_handler(handler_mark);
+    int bad = 0;
+    long seen = 0, other = 0;
+    atomic_store(&eigen_done, 0);
+    pthread_t th;
+    assert_int_equal(pthread_create(&th, NULL, eigen_worker, &bad), 0);
+    while (!atomic_load(&eigen_done)) {
+        other += gsl_set_error_handler(handler_mark) != handler_mark;
+        seen++;
+    }
+    assert_int_equal(pthread_join(th, NULL), 0);
+    gsl_set_error_handler(old);
+    assert_int_equal(bad, 0);
+    assert_true(seen > 0);
+    if (other)
+        fail_msg("GSL's error handler changed %ld times in %ld looks", other, seen);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -320,6 +371,7 @@ int main(void)
         cmocka_unit_test(bistable_scene_shows_both_branches),
         cmocka_unit_test(generic_algebra_equals_closed_forms_at_n2),
         cmocka_unit_test(algebra_n4_known_spectrum),
+        cmocka_unit_test(eigen_leaves_error_handler),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

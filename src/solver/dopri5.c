@@ -172,10 +172,14 @@ static void dopri5_dense(const void *state, const tt_sim *S, double th, double *
     *v = out[1];
 }
 
-/* The system's n components at fraction th (a flight step carries no law states). */
+/* The system's n components at fraction th (a flight step's own, exact). */
 static void dopri5_dense_x(const void *state, const tt_sim *S, double th, double *x)
 {
     const dopri5_state *st = state;
+    if (S->step_long) {
+        tt_flight_dense_x(st->fl, S, th, x);
+        return;
+    }
     double th1 = 1 - th;
     for (int i = 0; i < S->sys.n; i++)
         x[i] = st->rcont[0][i] +

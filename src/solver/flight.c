@@ -6,8 +6,9 @@
 
 #include "flight.h"
 
-/* Gauss-Legendre nodes per step and rungs of the step ladder. */
-enum { FL_N = 6, FL_RUNGS = 12 };
+/* Gauss-Legendre nodes per step, rungs of the step ladder, and the most law states the
+ * flight advances (a Maxwell sample's arms). */
+enum { FL_N = 6, FL_RUNGS = 12, FL_NL = TT_CONTACT_ARMS_MAX };
 
 /* The free oscillator's propagator and the drive's rotation at the nodes and the end
  * (index FL_N) of a flight step of length h. */
@@ -15,6 +16,7 @@ typedef struct {
     double h;
     double e[FL_N + 1], cd[FL_N + 1], sd[FL_N + 1]; /* exp(-sig tau), cos, sin(wdm tau) */
     double cw[FL_N + 1], sw[FL_N + 1];              /* cos, sin(w tau) */
+    double E[FL_N + 1][FL_NL * FL_NL];              /* the law states' exp(A tau) */
     int ok;
 } fl_cache;
 
@@ -31,6 +33,8 @@ struct tt_flight {
     double hr[FL_RUNGS]; /* the rungs' step lengths, h0 2^(-r/4) */
     double Dr, Di;    /* steady drive response d_p = Dr cos(w t) - Di sin(w t) */
     double margin;    /* hand over to dopri5 within this penetration of jump-in */
+    int nlaw;         /* the law's states, advanced by exp(A tau) (0: an elastic law) */
+    double A[FL_NL][FL_NL]; /* their rate out of contact, dq/dt = A q */
     double vinv[FL_N][FL_N]; /* node values to monomial coefficients in theta */
     fl_cache lad[FL_RUNGS], scr; /* propagators per ladder rung, and a scratch one */
     /* the current flight step: q(theta) = sum b_k theta^k and the homogeneous part's
@@ -82,6 +86,87 @@ static void flight_vandermonde(tt_flight *fl)
             fl->vinv[k][j] = V[k][FL_N + j];
 }
 
+/* E = exp(A tau) for the law states' n x n rate matrix (row-major, FL_NL wide): Taylor's
+ * series to degree 16 on A tau scaled to a norm below 1/2 (remainder below 1e-20), then
+ * squared back. */
+static void fl_expm(int n, const double A[FL_NL][FL_NL], double tau, double *E)
+{
+    double nrm = 0;
+    for (int i = 0; i < n; i++) {
+        double r = 0;
+        for (int j = 0; j < n; j++)
+            r += fabs(A[i][j] * tau);
+        nrm = fmax(nrm, r);
+    }
+    int sq = 0;
+    while (nrm > 0.5 && sq < 64) {
+        nrm *= 0.5;
+        sq++;
+    }
+    double f = ldexp(tau, -sq), T[FL_NL * FL_NL], P[FL_NL * FL_NL];
+    for (int i = 0; i < n * n; i++)
+        E[i] = T[i] = i % (n + 1) == 0;
+    for (int k = 1; k <= 16; k++) {
+        for (int i = 0; i < n; i++)
+            for (int j = 0; j < n; j++) {
+                double acc = 0;
+                for (int l = 0; l < n; l++)
+                    acc += T[i * n + l] * A[l][j];
+                P[i * n + j] = acc * f / k;
+            }
+        for (int i = 0; i < n * n; i++) {
+            T[i] = P[i];
+            E[i] += P[i];
+        }
+    }
+    for (int s = 0; s < sq; s++) {
+        for (int i = 0; i < n; i++)
+            for (int j = 0; j < n; j++) {
+                double acc = 0;
+                for (int l = 0; l < n; l++)
+                    acc += E[i * n + l] * E[l * n + j];
+                P[i * n + j] = acc;
+            }
+        memcpy(E, P, sizeof(double) * (size_t)(n * n));
+    }
+}
+
+/* The law states' rate out of contact as a matrix, read off the law's rate at unit
+ * states: a Maxwell sample's arms relax towards the free surface, tau_i dq_i/dt =
+ * chi_f - q_i with chi_f = sum K_j q_j / K_g (src/physics/contact_sls.c), linear in q.
+ * Returns 0 (the flight not taken) unless the rate is linear and the load out of contact
+ * does not depend on the state, which the flight's force assumes. */
+static int flight_law_setup(tt_flight *fl, const tt_sim *S)
+{
+    const tt_system *sys = &S->sys;
+    int n = sys->nlaw;
+    fl->nlaw = n;
+    if (!n)
+        return 1;
+    if (n > FL_NL || sys->modes != 1 || !sys->law->rate || !sys->contact)
+        return 0;
+    const double sc = S->c.A0 > 0 ? S->c.A0 : 1e-9;
+    double q[FL_NL] = {0}, r[FL_NL], p, sum[FL_NL] = {0};
+    for (int j = 0; j < n; j++) {
+        for (int i = 0; i < n; i++)
+            q[i] = i == j ? sc : 0.0;
+        sys->law->rate(sys->contact, -sc, 0.0, 0, q, r, &p);
+        for (int i = 0; i < n; i++)
+            fl->A[i][j] = r[i] / sc;
+    }
+    for (int i = 0; i < n; i++)
+        q[i] = sc * (i + 1);
+    sys->law->rate(sys->contact, -sc, 0.0, 0, q, r, &p);
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++)
+            sum[i] += fl->A[i][j] * q[j];
+    for (int i = 0; i < n; i++)
+        if (!(fabs(r[i] - sum[i]) <= 1e-12 * (fabs(r[i]) + fabs(sum[i])) + 1e-300))
+            return 0;
+    double P0 = sys->force(sys->contact, sys->ci, -sc, 0.0, 0, NULL).conservative;
+    return sys->force(sys->contact, sys->ci, -sc, 0.0, 0, q).conservative == P0;
+}
+
 /* The free flight's constants for the current cantilever. Out of contact Burnham et al.
  * eq. 2 is m d'' + c d' + k d = k z + c z' + F - P_vdw(d - s): its drive part has the
  * steady solution d_p = Re(D e^(i w t)), D = (k a + F0 + i c w a) / (k - m w^2 + i c w),
@@ -91,10 +176,10 @@ static void flight_setup(void *state, const tt_sim *S)
     tt_flight *fl = state;
     const tt_cantilever *c = &S->c;
     double zeta = 0.5 * c->c / (c->m * c->w0);
-    /* the flight's steps are exact for the noiseless one-mode oscillator only: a
-     * sample with internal states (its surface recovering) hands them all to dopri5 */
-    fl->ok = S->solver.method == TT_METHOD_DOPRI5 && S->sys.n == 2 && zeta < 0.8 &&
-             !S->track_extremes && !S->sys.nz_f;
+    /* the flight's steps are exact for the noiseless one-mode oscillator, and for the
+     * law states of a sample whose surface recovers by a linear law (exp(A tau)) */
+    fl->ok = S->solver.method == TT_METHOD_DOPRI5 && S->sys.modes == 1 && zeta < 0.8 &&
+             !S->track_extremes && !S->sys.nz_f && flight_law_setup(fl, S);
     fl->sig = 0.5 * c->c / c->m;
     fl->w02 = c->k / c->m;
     fl->wdm = sqrt(fmax(fl->w02 - fl->sig * fl->sig, 0.0));
@@ -142,6 +227,8 @@ static void fl_fill(const tt_flight *fl, const tt_sim *S, fl_cache *F, double h)
         F->sd[j] = sin(fl->wdm * tau);
         F->cw[j] = cos(S->c.wd * tau);
         F->sw[j] = sin(S->c.wd * tau);
+        if (fl->nlaw)
+            fl_expm(fl->nlaw, fl->A, tau, F->E[j]);
     }
     F->h = h;
     F->ok = 1;
@@ -191,7 +278,7 @@ static inline void fl_node(const tt_flight *fl, const fl_cache *F, int j, double
  * at h = T/8. */
 static inline void flight_quadrature(tt_sim *S, double h, const double *cw, const double *sw,
                                      const double *dp, const double *dpd, const double *xj,
-                                     const double *xdj, const double *N)
+                                     const double *xdj, const double *N, const double *L)
 {
     const tt_cantilever *c = &S->c;
     const double w = c->wd, *y0 = S->y;
@@ -215,9 +302,13 @@ static inline void flight_quadrature(tt_sim *S, double h, const double *cw, cons
         q[Y_IC] += W * y * cw[j];
         q[Y_IS] += W * y * sw[j];
         q[Y_IY] += W * y;
+        if (L)
+            q[Y_WVISC] += W * L[j];
     }
+    /* the quadratures follow the law's states (sim.h's layout) */
+    const int off = S->sys.n - 2;
     for (int i = Y_WDRIVE; i < NY; i++)
-        y1[i] = y0[i] + h * q[i];
+        y1[off + i] = y0[off + i] + h * q[i];
 }
 
 /* Keep the step for its dense output and the hand-over check: the penetration and its
@@ -260,6 +351,28 @@ static inline void flight_nodes(const tt_flight *fl, const tt_sim *S, double h, 
     }
     *x0 = y0[Y_D] - (Dr * c0w - Di * s0w);
     *x0d = y0[Y_V] + w * (Dr * s0w + Di * c0w);
+}
+
+/* The law states over a flight step: exact, q(tau) = exp(A tau) q0, at the end into y1
+ * and at the nodes for the power their dashpots take there (L), which the quadrature
+ * books as the viscous loss. */
+static void flight_law_step(const tt_flight *fl, tt_sim *S, const fl_cache *F, double *L)
+{
+    const int n = fl->nlaw;
+    const double *q0 = S->y + 2;
+    double q[FL_NL], dq[FL_NL];
+    for (int j = 0; j <= FL_N; j++) {
+        for (int i = 0; i < n; i++) {
+            double acc = 0;
+            for (int k = 0; k < n; k++)
+                acc += F->E[j][i * n + k] * q0[k];
+            q[i] = acc;
+        }
+        if (j == FL_N)
+            memcpy(S->y1 + 2, q, sizeof(double) * (size_t)n);
+        else
+            S->sys.law->rate(S->sys.contact, -1.0, 0.0, 0, q, dq, &L[j]);
+    }
 }
 
 /* One exponential step of length h from (tau, y) out of contact, into y1 with the
@@ -340,7 +453,10 @@ static double flight_step(tt_flight *fl, tt_sim *S, double h, const fl_cache *F)
     for (int k = 0; k < FL_N; k++)
         pe += a[k];
     double err = h * fabs(fl_force(S, y1[Y_D] - sj[FL_N]) - pe) * sc;
-    flight_quadrature(S, h, cw, sw, dp, dpd, xj, xdj, N);
+    double Lw[FL_N];
+    if (fl->nlaw)
+        flight_law_step(fl, S, F, Lw);
+    flight_quadrature(S, h, cw, sw, dp, dpd, xj, xdj, N, fl->nlaw ? Lw : NULL);
     flight_keep(fl, S, h, dp, dpd, sj, xj, xdj);
     return isfinite(err) ? err : INFINITY;
 }
@@ -365,6 +481,26 @@ void tt_flight_dense(const tt_flight *fl, const tt_sim *S, double th, double *d,
     phase_sincos(S->c.wd * (S->step_tau + tau), &sn, &cs);
     *d = fl->Dr * cs - fl->Di * sn + x;
     *v = -S->c.wd * (fl->Dr * sn + fl->Di * cs) + xd;
+}
+
+void tt_flight_dense_x(const tt_flight *fl, const tt_sim *S, double th, double *x)
+{
+    const int n = S->sys.n;
+    if (th == 0 || th == 1) {
+        memcpy(x, th == 0 ? S->y0 : S->y1, sizeof(double) * (size_t)n);
+        return;
+    }
+    tt_flight_dense(fl, S, th, &x[0], &x[1]);
+    if (fl->nlaw) {
+        double E[FL_NL * FL_NL];
+        fl_expm(fl->nlaw, fl->A, th * S->step_h, E);
+        for (int i = 0; i < fl->nlaw; i++) {
+            double acc = 0;
+            for (int k = 0; k < fl->nlaw; k++)
+                acc += E[i * fl->nlaw + k] * S->y0[2 + k];
+            x[2 + i] = acc;
+        }
+    }
 }
 
 /* Whether the current flight step comes within fl_margin of jump-in: at its start, nodes

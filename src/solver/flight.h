@@ -15,5 +15,7 @@ extern const tt_step_type tt_step_flight;
 int tt_flight_advance(tt_flight *fl, tt_sim *S, double T);
 /* Dense output of the current step, a flight step. */
 void tt_flight_dense(const tt_flight *fl, const tt_sim *S, double th, double *d, double *v);
+/* ... and the system's n components (the law's states exact, exp(A tau)). */
+void tt_flight_dense_x(const tt_flight *fl, const tt_sim *S, double th, double *x);
 
 #endif

@@ -84,26 +84,29 @@ int tt_shoot_eigen(int n, const double *J, double *re, double *im, int generic)
     }
     for (int i = 0; i < n; i++)
         re[i] = im[i] = NAN;
-    gsl_matrix *A = gsl_matrix_alloc((size_t)n, (size_t)n);
-    gsl_vector_complex *ev = gsl_vector_complex_alloc((size_t)n);
-    gsl_eigen_nonsymm_workspace *w = gsl_eigen_nonsymm_alloc((size_t)n);
-    int ok = A && ev && w;
+    /* GSL's error handler is process-wide, so toggling it off around the call raced
+     * between threads (the scan's workers each shoot). It is not needed: the QR
+     * iteration's non-convergence is a return code (GSL_EMAXITER, never through the
+     * handler), and the handler's other paths are size mismatches, which views of our
+     * own n x n and n buffers cannot have. Only the workspace's allocation can reach it
+     * (out of memory), as any GSL allocation in the library does. */
+    double *buf = malloc((size_t)n * ((size_t)n + 2) * sizeof *buf);
+    gsl_eigen_nonsymm_workspace *w = buf ? gsl_eigen_nonsymm_alloc((size_t)n) : NULL;
+    int ok = w != NULL;
     if (ok) {
-        memcpy(A->data, J, (size_t)n * (size_t)n * sizeof *J); /* rows, contiguous */
-        /* its error handler off: a failure (no convergence) is a return code here, not
-         * an abort; GSL's handler is process-wide, and nothing else in the library sets it */
-        gsl_error_handler_t *old = gsl_set_error_handler_off();
-        ok = gsl_eigen_nonsymm(A, ev, w) == GSL_SUCCESS;
-        gsl_set_error_handler(old);
+        memcpy(buf, J, (size_t)n * (size_t)n * sizeof *J); /* rows, contiguous */
+        gsl_matrix_view A = gsl_matrix_view_array(buf, (size_t)n, (size_t)n);
+        gsl_vector_complex_view ev = gsl_vector_complex_view_array(buf + n * n, (size_t)n);
+        ok = gsl_eigen_nonsymm(&A.matrix, &ev.vector, w) == GSL_SUCCESS;
+        for (int i = 0; ok && i < n; i++) {
+            gsl_complex z = gsl_vector_complex_get(&ev.vector, (size_t)i);
+            re[i] = GSL_REAL(z);
+            im[i] = GSL_IMAG(z);
+        }
     }
-    for (int i = 0; ok && i < n; i++) {
-        gsl_complex z = gsl_vector_complex_get(ev, (size_t)i);
-        re[i] = GSL_REAL(z);
-        im[i] = GSL_IMAG(z);
-    }
-    gsl_eigen_nonsymm_free(w);
-    gsl_vector_complex_free(ev);
-    gsl_matrix_free(A);
+    if (w)
+        gsl_eigen_nonsymm_free(w);
+    free(buf);
     return ok;
 }
 
