@@ -7,16 +7,7 @@ tiptap=$(realpath "$1")
 src=$2
 source "$(dirname "$0")/tt_cli.sh"
 
-cat >"$tmp/s.ini" <<'INI'
-[cantilever]
-quality_factor = 100
-[scan]
-size = 500 nm
-pixels = 8
-lines = 4
-line_rate = 40 Hz
-settle_cycles = 1000
-INI
+small_scan "500 nm" 8 4
 "$tiptap" scan "$src/surfaces/png-map.ini" "$tmp/s.ini" -o "$tmp/out" -q || bad "scan ran"
 for ch in height amplitude phase peak_force indentation dissipation; do
   for d in trace retrace; do
