@@ -8,16 +8,7 @@ tiptap=$(realpath "$1")
 src=$2
 source "$(dirname "$0")/tt_cli.sh"
 
-cat >"$tmp/s.ini" <<'INI'
-[cantilever]
-quality_factor = 100
-[scan]
-size = 1 um
-pixels = 16
-lines = 16
-line_rate = 40 Hz
-settle_cycles = 1000
-INI
+small_scan "1 um" 16 16
 "$tiptap" scan "$src/surfaces/polymer-blend.ini" "$tmp/s.ini" -o "$tmp/first" -q 2>/dev/null || bad "first scan ran"
 
 # the disks' phase is 54-58 deg at their centres, the matrix's 106 deg: 80 deg splits them

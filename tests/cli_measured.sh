@@ -8,16 +8,7 @@ tiptap=$(realpath "$1")
 src=$2
 source "$(dirname "$0")/tt_cli.sh"
 
-cat >"$tmp/s.ini" <<'INI'
-[cantilever]
-quality_factor = 100
-[scan]
-size = 300 nm
-pixels = 16
-lines = 4
-line_rate = 40 Hz
-settle_cycles = 1000
-INI
+small_scan "300 nm" 16 4
 "$tiptap" scan "$src/surfaces/rough.ini" "$tmp/s.ini" -o "$tmp/first" -q || bad "first scan ran"
 
 # the first scan's height, levelled, re-imaged at a lower setpoint

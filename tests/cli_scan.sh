@@ -7,16 +7,7 @@ tiptap=$(realpath "$1")
 src=$2
 source "$(dirname "$0")/tt_cli.sh"
 
-cat >"$tmp/s.ini" <<'INI'
-[cantilever]
-quality_factor = 100
-[scan]
-size = 500 nm
-pixels = 8
-lines = 4
-line_rate = 40 Hz
-settle_cycles = 1000
-INI
+small_scan "500 nm" 8 4
 "$tiptap" scan "$src/surfaces/png-map.ini" "$tmp/s.ini" -o "$tmp/out" -q || bad "scan ran"
 for ch in height amplitude phase peak_force indentation dissipation; do
   for d in trace retrace; do
@@ -56,6 +47,16 @@ mkdir "$tmp/nan" && printf 'position_nm,height_trace_m,height_retrace_m\n10,nan,
 # the effective scene runs again from anywhere and gives the same height image
 (cd / && "$tiptap" scan "$tmp/out/scene.ini" -o "$tmp/again" -q) || bad "effective scene re-runs"
 cmp -s "$tmp/out/height_trace.gsf" "$tmp/again/height_trace.gsf" && ok "effective scene reproduces the image" || bad "re-run differs"
+# every channel, and the scene it writes is the one it read (a fixed point)
+same=1
+for f in "$tmp"/out/*.gsf "$tmp/out/scene.ini"; do cmp -s "$f" "$tmp/again/$(basename "$f")" || { same=0; echo "re-run differs: $(basename "$f")"; }; done
+[ $same -eq 1 ] && ok "effective scene reproduces every channel and itself" || bad "re-run of the effective scene differs"
+# of [surface], only the png type's keys and the map's: no other type's defaults
+awk '/^\[surface\]/{f=1;next} /^\[/{f=0} f' "$tmp/out/scene.ini" >"$tmp/surface.keys"
+grep -q "^png = .*logo-height.png$" "$tmp/surface.keys" && grep -q "^png_height_range = " "$tmp/surface.keys" &&
+  grep -q "^map_png = " "$tmp/surface.keys" &&
+  ! grep -qE "^(particle_radius|step_height|rms|period|duty|lattice|image|seed) = " "$tmp/surface.keys" &&
+  ok "effective scene: the surface type's keys only" || bad "effective scene's [surface]: $(cat "$tmp/surface.keys")"
 # results do not depend on the number of threads
 "$tiptap" scan "$src/surfaces/png-map.ini" "$tmp/s.ini" -o "$tmp/one" -q -j 1 || bad "one thread"
 same=1

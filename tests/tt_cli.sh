@@ -1,5 +1,6 @@
 # Shared by the tests/cli_*.sh scripts (sourced, not run): a scratch folder removed at
-# exit, ok/bad reporting that sets the exit status, and checks of refused commands.
+# exit, ok/bad reporting that sets the exit status, checks of refused commands and a
+# small scan's scene.
 tmp=$(mktemp -d)
 trap '[ -n "${TT_KEEP_TMP:-}" ] || rm -rf "$tmp"' EXIT
 fail=0
@@ -35,4 +36,17 @@ print(' '.join(gone)); sys.exit(1 if gone else 0)" "$@"); then
     echo "skipped: $py lacks $missing (Debian's python3-* packages: tests/vendor/README.md)"
     exit 77
   fi
+}
+
+small_scan() { # size, pixels, lines: $tmp/s.ini, a scan of a few seconds (Q 100 settles fast)
+  cat >"$tmp/s.ini" <<INI
+[cantilever]
+quality_factor = 100
+[scan]
+size = $1
+pixels = $2
+lines = $3
+line_rate = 40 Hz
+settle_cycles = 1000
+INI
 }

@@ -331,6 +331,22 @@ static const char *const surface_types[] = {"flat", "steps", "grating", "particl
                                             "lattice"};
 enum { NTYPES = sizeof surface_types / sizeof *surface_types };
 
+/* Whether the scene's type reads a [surface] key: the effective scene leaves the other
+ * types' keys out (particle_radius on a grating), which nothing would read. Keys of no
+ * type (the material map's) apply to every type. */
+int scene_surface_key_applies(const tt_scene *s, const char *key)
+{
+    const char *t = tt_scene_get_string(s, "surface", NULL, "type");
+    unsigned type = 0;
+    for (unsigned i = 0; i < NTYPES; i++)
+        if (t && strcmp(t, surface_types[i]) == 0)
+            type = i;
+    for (size_t i = 0; i < sizeof type_keys / sizeof *type_keys; i++)
+        if (strcmp(type_keys[i].key, key) == 0)
+            return (type_keys[i].types & (1u << type)) != 0;
+    return 1;
+}
+
 /* Whether a given key holds its default: compared as the getters read it (20 nm and
  * 2e-8 m are one value), against a scene of defaults alone. */
 static int holds_default(const tt_scene *s, const tt_scene *defaults, const char *key)

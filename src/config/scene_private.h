@@ -86,6 +86,8 @@ int scene_parse_bool(const char *v, int *out);
 int scene_list_add(char *buf, size_t len, size_t *used, const char *item);
 /* Whether v is one of choices, "a|b|c". */
 int scene_enum_has(const char *choices, const char *v);
+/* Whether the scene's surface type reads KEY of [surface] (read_surface.c). */
+int scene_surface_key_applies(const tt_scene *s, const char *key);
 /* Check one value against its key description; on failure (-1) write why. */
 int scene_check_value(const tt_scene_key *k, const char *v, char *why, size_t len);
 /* Check a section header: a known section, with a name exactly when it takes one. */

@@ -1,5 +1,5 @@
 /* The effective scene: every key of the scene written back as scene text, defaults
- * included and paths made absolute, so that the file reproduces the run from anywhere
+ * included (of [surface], only the chosen type's) and paths made absolute, so that the file reproduces the run from anywhere
  * (see include/tiptap/config/scene.h). */
 #include "scene_private.h"
 
@@ -39,7 +39,7 @@ int tt_scene_write(const tt_scene *s, FILE *out, const char *sections)
 {
     size_t n;
     const tt_scene_section *sec = tt_scene_schema(&n);
-    fprintf(out, "; effective scene written by tiptap: every key, defaults included\n");
+    fprintf(out, "; effective scene written by tiptap: every key the surface type reads, defaults included\n");
     for (size_t i = 0; i < n; i++) {
         if (!wanted(sections, sec[i].name))
             continue;
@@ -54,6 +54,11 @@ int tt_scene_write(const tt_scene *s, FILE *out, const char *sections)
                 const entry *e = scene_find_entry(s, sec[i].name, name, sec[i].keys[k].key);
                 const char *v = e ? e->value : sec[i].keys[k].def;
                 if (!e && default_yields(s, sec[i].name, name, sec[i].keys[k].key))
+                    continue;
+                /* another surface type's key is read by nothing: written, it is only
+                 * noise, and given with a value it would be refused on reading back */
+                if (strcmp(sec[i].name, "surface") == 0 &&
+                    !scene_surface_key_applies(s, sec[i].keys[k].key))
                     continue;
                 char path[4096], abs[4096];
                 if (e && (sec[i].keys[k].flags & TT_KEY_PATH) &&
