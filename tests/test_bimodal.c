@@ -10,6 +10,8 @@
 
 #include "tt_test.h"
 #include "solver/sim.h"
+#include "tiptap/config/config.h"
+#include "tiptap/config/scene.h"
 #include "tiptap/instrument/lockin.h"
 #include "tiptap/physics/contact.h"
 #include "tiptap/util/error.h"
@@ -213,10 +215,30 @@ static void energy_balance_of_both_modes(void **state)
                  e2, e1 + e2);
 }
 
+/* [cantilever] of a scene's text through the configuration layer. */
+static int scene_cantilever(const char *text, tt_cantilever *c)
+{
+    tt_scene *s = tt_scene_alloc();
+    assert_non_null(s);
+    int rc = tt_scene_load_string(s, text, "bimodal.ini");
+    rc = rc ? rc : tt_config_cantilever(s, c);
+    tt_scene_free(s);
+    return rc;
+}
+
 static void keys_and_refusals(void **state)
 {
     (void)state;
     tt_cantilever c;
+    assert_int_equal(scene_cantilever("[cantilever]\nmodes = 2\nmode2_free_amplitude = 1 nm\n"
+                                      "mode2_drive_frequency = 1.9 MHz\n", &c), TT_OK);
+    assert_true(c.A2 == 1e-9 && c.fd2 == 1.9e6 && fabs(c.ratio2 - 1.9e6 / 300e3) < 1e-15);
+    /* one line naming the key: no mode 2, or a frequency without an amplitude */
+    assert_int_not_equal(scene_cantilever("[cantilever]\nmode2_free_amplitude = 1 nm\n", &c), TT_OK);
+    assert_non_null(strstr(tt_error_message(), "[cantilever] mode2_free_amplitude: drives mode 2"));
+    assert_int_not_equal(scene_cantilever("[cantilever]\nmodes = 2\nmode2_drive_frequency = 2 MHz\n", &c),
+                         TT_OK);
+    assert_non_null(strstr(tt_error_message(), "mode2_drive_frequency: is set but mode2_free_amplitude"));
     assert_int_equal(tt_cantilever_init(&c, 40, 300e3, 400, 20e-9, 300e3, TT_DRIVE_BASE), TT_OK);
     /* one mode: no mode 2 to drive */
     assert_int_equal(tt_cantilever_set_drive2(&c, 1e-9, NAN), TT_EINVAL);

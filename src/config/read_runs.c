@@ -50,6 +50,12 @@ int tt_config_approach_alloc(tt_approach **out, tt_setup *st, const tt_scene *s,
                              tt_approach_params *p)
 {
     *out = NULL;
+    /* a steady point is a periodic orbit of the first drive's period, which mode 2's
+     * drive (incommensurate) does not have; its lock-in is the scan's alone */
+    if (tt_setup_cantilever(st)->A2 > 0)
+        return tt_scene_fail(s, "cantilever", NULL, "mode2_free_amplitude",
+                             "approach curves do not serve mode 2's drive yet (bimodal "
+                             "imaging is tiptap scan's): leave it out here");
     int rc = tt_config_approach_setup(st, s, p);
     return rc ? rc : tt_scene_locate(s, tt_approach_alloc(out, tt_setup_sim(st), p));
 }
