@@ -414,11 +414,8 @@ int tt_run_sweep_check(const tt_sweep *grid, tt_sweep_kind kind, size_t i)
     if (rc)
         return rc;
     if ((rc = tt_config_cantilever(scene, &cant)) ||
-        /* a steady point is a periodic orbit of the first drive's period (read_runs.c) */
-        (cant.A2 > 0 &&
-         (rc = tt_scene_fail(scene, "cantilever", NULL, "mode2_free_amplitude",
-                             "%s sweeps do not serve mode 2's drive yet (a scan sweep does)",
-                             kind == TT_SWEEP_SETPOINT ? "setpoint" : "steady and approach"))) ||
+        (rc = tt_config_one_drive(scene, kind == TT_SWEEP_SETPOINT ? "setpoint sweeps"
+                                                                   : "steady and approach sweeps")) ||
         (rc = tt_solver_from_scene(&solver, scene)) ||
         (rc = tt_config_materials(scene, &mats, &nm)) ||
         (rc = tt_config_material_index(scene, "approach", mats, nm, &mat)) ||
