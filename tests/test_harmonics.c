@@ -43,7 +43,7 @@ static void steady_lockin(tt_scene *sc, double s, double A[4], double *phase2)
     tt_sim_reset_free(tt_setup_sim(su));
     tt_sim_set_sampling(tt_setup_sim(su), N, smp);
     tt_sim_set_sample(tt_setup_sim(su), s, 0);
-    tt_lockin_params lp = {tt_setup_cantilever(su)->fd, N, P, 3, 0, 1};
+    tt_lockin_params lp = {tt_setup_cantilever(su)->fd, N, P, 3, 0, 1, 0};
     tt_lockin *l;
     assert_int_equal(tt_lockin_alloc(&l, &lp), TT_OK);
     for (int b = 0; b < 500; b++) { /* 2000 cycles: about 60 ring-down times at Q 100 */

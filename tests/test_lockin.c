@@ -12,7 +12,7 @@ static void demodulates_exactly(void **st)
     int Ns[] = {8, 32, 100};
     for (int a = 0; a < 3; a++)
         for (int P = 1; P <= 3; P++) {
-            tt_lockin_params p = {1e5, Ns[a], P, 3, 0, 1};
+            tt_lockin_params p = {1e5, Ns[a], P, 3, 0, 1, 0};
             tt_lockin *l;
             assert_int_equal(tt_lockin_alloc(&l, &p), TT_OK);
             int n = Ns[a] * P;
@@ -43,7 +43,7 @@ static void components_as_samples(void **st)
     int Ns[] = {8, 32, 100};
     for (int a = 0; a < 3; a++)
         for (int P = 1; P <= 3; P++) {
-            tt_lockin_params p = {1e5, Ns[a], P, 3, 2e-5, 2};
+            tt_lockin_params p = {1e5, Ns[a], P, 3, 2e-5, 2, 0};
             tt_lockin *ls, *lc;
             assert_int_equal(tt_lockin_alloc(&ls, &p), TT_OK);
             assert_int_equal(tt_lockin_alloc(&lc, &p), TT_OK);
@@ -82,7 +82,7 @@ static void filter_step_response(void **st)
      * (the negative binomial series of the cascade's transfer function) */
     for (int order = 1; order <= 4; order++) {
         double f = 1e5, tau = 50e-6;
-        tt_lockin_params p = {f, 16, 1, 1, tau, order};
+        tt_lockin_params p = {f, 16, 1, 1, tau, order, 0};
         tt_lockin *l;
         assert_int_equal(tt_lockin_alloc(&l, &p), TT_OK);
         tt_lockin_reset(l, 0, 0);
@@ -107,7 +107,7 @@ static void filter_step_response(void **st)
 static void reset_starts_settled(void **st)
 {
     (void)st;
-    tt_lockin_params p = {3e5, 32, 4, 1, 100e-6, 2};
+    tt_lockin_params p = {3e5, 32, 4, 1, 100e-6, 2, 0};
     tt_lockin *l;
     assert_int_equal(tt_lockin_alloc(&l, &p), TT_OK);
     tt_lockin_reset(l, 1.5, M_PI / 2);

@@ -62,7 +62,8 @@ def test_channels_follow_the_librarys_table():
     table = tiptap.channel_table()
     names = [n for n, _, _ in table]
     assert names[:3] == ["height", "error", "phase"] and names[7] == "amplitude"
-    assert len(table) == 28 and names[22] == "artefact" and names[26:] == ["dilation", "certainty"]
+    assert len(table) == 30 and names[22] == "artefact" and names[26:28] == ["dilation", "certainty"]
+    assert names[28:] == ["amplitude_2", "phase_2"] and table[29][1] == "deg"
     i = names.index("dissipation_hysteresis")
     assert names[i:i + 3] == ["dissipation_hysteresis", "dissipation_damping", "dissipation_viscous"]
     assert all(table[j][1] == "J" for j in range(i, i + 3))

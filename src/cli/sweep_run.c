@@ -60,6 +60,8 @@ static const char point_columns[] =
     "cycles,period,found";
 static const char point_columns_viscous[] =
     ",dissipated_hysteresis_aJ,dissipated_damping_aJ,dissipated_viscous_aJ";
+static const char scan_columns_bimodal[] =
+    ",amplitude_2_mean_nm,phase_2_mean_deg,phase_2_std_deg,phase_2_contrast_deg";
 static const char scan_columns[] =
     "folder,lines_done,energy_balance,error_estimate_height_nm,error_estimate_phase_deg,material,"
     "pixels,height_mean_nm,height_std_nm,phase_mean_deg,"
@@ -81,6 +83,7 @@ static const csv_format point_format[] = {
 static const csv_format scan_format[] = {
     {1, 's'}, {1, 'd'}, {1, '3'}, {1e9, '3'}, {1, '3'}, {1, 's'}, {1, 'd'}, {1e9, 'g'}, {1e9, 'g'},
     {1, 'g'}, {1, 'g'}, {1e9, 'g'}, {1, 'g'},
+    {1e9, 'g'}, {1, 'g'}, {1, 'g'}, {1, 'g'}, /* bimodal grids: mode 2's lock-in */
 };
 
 static const csv_format *sweep_format(tt_sweep_kind kind, size_t j)
@@ -103,7 +106,9 @@ void sweep_header(const sweep_job *job, char *buf, size_t len)
     if (used < len)
         snprintf(buf + used, len - used, ",%s%s%s\n", job->kind == TT_SWEEP_SETPOINT ? "setpoint_nm," : "",
                  job->kind == TT_SWEEP_SCAN ? scan_columns : point_columns,
-                 job->kind != TT_SWEEP_SCAN && tt_sweep_viscous(job->grid) ? point_columns_viscous : "");
+                 job->kind != TT_SWEEP_SCAN && tt_sweep_viscous(job->grid) ? point_columns_viscous
+                 : job->kind == TT_SWEEP_SCAN && tt_sweep_bimodal(job->grid) ? scan_columns_bimodal
+                                                                               : "");
 }
 
 /* The table's rows as CSV: the combination, the varied keys (SI numbers, or the text),

@@ -51,6 +51,31 @@ static int config_modes(const tt_scene *s, tt_cantilever *c)
     return TT_OK;
 }
 
+/* [cantilever] mode2_free_amplitude and mode2_drive_frequency: bimodal AM-AM (mode 2
+ * driven open loop beside mode 1). */
+static int config_drive2(const tt_scene *s, tt_cantilever *c)
+{
+    double A2 = NAN, f2 = NAN;
+    int rc;
+    int has_f = tt_scene_has(s, "cantilever", NULL, "mode2_drive_frequency");
+    if (!tt_scene_has(s, "cantilever", NULL, "mode2_free_amplitude")) {
+        if (has_f)
+            return tt_scene_fail(s, "cantilever", NULL, "mode2_drive_frequency",
+                                 "is set but mode2_free_amplitude is not: expected both");
+        return TT_OK;
+    }
+    if (c->modes < 2)
+        return tt_scene_fail(s, "cantilever", NULL, "mode2_free_amplitude",
+                             "drives mode 2: expected modes = 2 or more");
+    if ((rc = tt_scene_get_double(s, "cantilever", NULL, "mode2_free_amplitude", &A2)) ||
+        (has_f && (rc = tt_scene_get_double(s, "cantilever", NULL, "mode2_drive_frequency", &f2))))
+        return rc;
+    if (tt_cantilever_set_drive2(c, A2, f2) != TT_OK)
+        return tt_scene_fail(s, "cantilever", NULL, has_f ? "mode2_drive_frequency" : "mode2_free_amplitude",
+                             "%s", tt_error_message());
+    return TT_OK;
+}
+
 int tt_config_cantilever(const tt_scene *s, tt_cantilever *c)
 {
     double k, f0, Q, A0, fd;
@@ -84,7 +109,8 @@ int tt_config_cantilever(const tt_scene *s, tt_cantilever *c)
     tt_drive d = (drive && strcmp(drive, "force") == 0) ? TT_DRIVE_FORCE : TT_DRIVE_BASE;
     if (tt_cantilever_init(c, k, f0, Q, A0, fd, d) != TT_OK)
         return tt_scene_fail(s, "cantilever", NULL, NULL, "%s", tt_error_message());
-    return config_modes(s, c);
+    rc = config_modes(s, c);
+    return rc ? rc : config_drive2(s, c);
 }
 
 int tt_config_tip(const tt_scene *s, tt_tip *tip)

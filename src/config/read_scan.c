@@ -310,6 +310,22 @@ static int read_noise(const tt_scene *s, tt_scan_params *p)
     return TT_OK;
 }
 
+/* Bimodal imaging's needs: mode 2's channels a drive of mode 2, and the second lock-in
+ * its mixing's sum frequency (2 f2) below the samples' Nyquist frequency. */
+static int check_bimodal(const tt_scene *s, const tt_scan_params *p)
+{
+    const tt_cantilever *c = &p->cantilever;
+    if ((p->channels & (TT_CH_AMPLITUDE2 | TT_CH_PHASE2)) && !(c->A2 > 0))
+        return tt_scene_fail(s, "scan", NULL, "channels",
+                             "amplitude_2 and phase_2 need mode 2 driven: expected [cantilever] "
+                             "mode2_free_amplitude (and modes = 2 or more)");
+    if (c->A2 > 0 && !(p->lockin.samples_per_period > 4 * c->ratio2))
+        return tt_scene_fail(s, "lockin", NULL, "samples_per_period",
+                             "%d: mode 2's drive at %g times the first needs more than %g",
+                             p->lockin.samples_per_period, c->ratio2, 4 * c->ratio2);
+    return TT_OK;
+}
+
 /* The envelope and averaged tiers model the cycle map on the tip's (d, v) alone: a
  * cantilever of more than one mode, or a sample whose surface is a state of its own
  * (relaxation arms), runs every cycle. */
@@ -350,7 +366,7 @@ int tt_config_scan(const tt_scene *s, tt_scan_params *p)
         (rc = tt_config_surface(s, m, n, &p->surface)) || (rc = check_particles(s, p)) ||
         (rc = check_measured(s, p)) || (rc = check_map_image(s, p)) ||
         (rc = tt_config_tip_shape(s, &p->tip)) || (rc = tt_config_instrument(s, &p->instrument)) ||
-        (rc = check_tier_arms(s, p))) {
+        (rc = check_tier_arms(s, p)) || (rc = check_bimodal(s, p))) {
         tt_config_scan_free(p);
         return rc;
     }

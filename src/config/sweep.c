@@ -50,6 +50,14 @@ int tt_sweep_viscous(const tt_sweep *sw)
     return viscous;
 }
 
+int tt_sweep_bimodal(const tt_sweep *sw)
+{
+    for (size_t k = 0; k < sw->naxes; k++)
+        if (strcmp(sw->axes[k].key, "cantilever.mode2_free_amplitude") == 0)
+            return 1;
+    return tt_scene_has(sw->base, "cantilever", NULL, "mode2_free_amplitude");
+}
+
 int tt_sweep_alloc(tt_sweep **out, const tt_scene *base)
 {
     *out = calloc(1, sizeof **out);

@@ -23,6 +23,10 @@ struct tt_lockin {
     double rawX[MAXH], rawY[MAXH], mean;
     int nc;                 /* components per period: 1 + 2 harmonics */
     double *R;              /* nc x samples_per_period: one period's samples to them */
+    /* the second reference (ratio2 > 0): its cascade stepped per sample, the block's sums
+     * of its products and the last block's raw result */
+    double alpha2, X2[MAXORDER], Y2[MAXORDER], sumX2, sumY2, rawX2, rawY2;
+    long n2;
 };
 
 /* The matrix of tt_lockin_transform: the mean, then per harmonic (2 / N) cos and sin of
@@ -81,6 +85,16 @@ int tt_lockin_alloc(tt_lockin **out, const tt_lockin_params *p)
     double Tb = p->periods_per_block / p->drive_frequency;
     /* exact discretisation of a first-order section for a block-held input */
     l->alpha = p->time_constant > 0 ? 1 - exp(-Tb / p->time_constant) : 1.0;
+    if (p->ratio2 > 0) {
+        if (!isfinite(p->ratio2) || 2 * p->ratio2 >= p->samples_per_period / 2.0) {
+            tt_lockin_free(l);
+            return tt_error(TT_EINVAL, "lock-in: a second reference at %g times the drive needs more "
+                                       "than %g samples per period (its mixing's sum frequency below "
+                                       "the samples' Nyquist frequency)", p->ratio2, 4 * p->ratio2);
+        }
+        double ts = 1 / (p->drive_frequency * p->samples_per_period);
+        l->alpha2 = p->time_constant > 0 ? 1 - exp(-ts / p->time_constant) : 1.0;
+    }
     *out = l;
     return TT_OK;
 }
@@ -119,6 +133,13 @@ void tt_lockin_copy(tt_lockin *dst, const tt_lockin *src)
     memcpy(dst->rawX, src->rawX, sizeof dst->rawX);
     memcpy(dst->rawY, src->rawY, sizeof dst->rawY);
     dst->mean = src->mean;
+    memcpy(dst->X2, src->X2, sizeof dst->X2);
+    memcpy(dst->Y2, src->Y2, sizeof dst->Y2);
+    dst->sumX2 = src->sumX2;
+    dst->sumY2 = src->sumY2;
+    dst->rawX2 = src->rawX2;
+    dst->rawY2 = src->rawY2;
+    dst->n2 = src->n2;
 }
 
 /* One block's raw results (the fundamental and harmonics: in-phase X, quadrature Y)
@@ -138,6 +159,51 @@ static void filter(tt_lockin *l, const double *X, const double *Y)
     }
 }
 
+/* The block's end for the second reference: its raw result, the mean of the block's
+ * products (kept from the last block when none came). */
+static void second_close(tt_lockin *l)
+{
+    if (l->n2 > 0) {
+        l->rawX2 = l->sumX2 / (double)l->n2;
+        l->rawY2 = l->sumY2 / (double)l->n2;
+    }
+    l->sumX2 = l->sumY2 = 0;
+    l->n2 = 0;
+}
+
+void tt_lockin_second_period(tt_lockin *l, const double *samples, double turns)
+{
+    const int N = l->p.samples_per_period, order = l->p.filter_order;
+    const double a = l->alpha2, step = l->p.ratio2 / N;
+    for (int q = 0; q < N; q++) {
+        /* the phase in turns reduced before the angle: exact for any period count */
+        double t = turns + step * q;
+        double ang = 2 * M_PI * (t - floor(t));
+        double x = 2 * samples[q] * cos(ang), y = 2 * samples[q] * sin(ang);
+        l->sumX2 += x;
+        l->sumY2 += y;
+        for (int k = 0; k < order; k++) {
+            l->X2[k] += a * (x - l->X2[k]);
+            l->Y2[k] += a * (y - l->Y2[k]);
+            x = l->X2[k];
+            y = l->Y2[k];
+        }
+    }
+    l->n2 += N;
+}
+
+void tt_lockin_reset_second(tt_lockin *l, double amplitude, double phase)
+{
+    for (int k = 0; k < MAXORDER; k++) {
+        l->X2[k] = amplitude * cos(phase);
+        l->Y2[k] = amplitude * sin(phase);
+    }
+    l->rawX2 = amplitude * cos(phase);
+    l->rawY2 = amplitude * sin(phase);
+    l->sumX2 = l->sumY2 = 0;
+    l->n2 = 0;
+}
+
 int tt_lockin_push(tt_lockin *l, const double *samples)
 {
     memcpy(l->in, samples, (size_t)l->n * sizeof(double));
@@ -152,6 +218,7 @@ int tt_lockin_push(tt_lockin *l, const double *samples)
         Y[h - 1] = -l->out[bin][1] * scale;
     }
     filter(l, X, Y);
+    second_close(l);
     return TT_OK;
 }
 
@@ -190,6 +257,7 @@ int tt_lockin_push_components(tt_lockin *l, const double *c)
         Y[h] /= P;
     }
     filter(l, X, Y);
+    second_close(l);
     return TT_OK;
 }
 
@@ -214,3 +282,18 @@ double tt_lockin_phase(const tt_lockin *l, int h)
 double tt_lockin_raw_amplitude(const tt_lockin *l, int h) { return hypot(l->rawX[h - 1], l->rawY[h - 1]); }
 double tt_lockin_raw_phase(const tt_lockin *l, int h) { return lag(l->rawX[h - 1], l->rawY[h - 1]); }
 double tt_lockin_mean(const tt_lockin *l) { return l->mean; }
+
+double tt_lockin_second_amplitude(const tt_lockin *l)
+{
+    int o = l->p.filter_order - 1;
+    return hypot(l->X2[o], l->Y2[o]);
+}
+
+double tt_lockin_second_phase(const tt_lockin *l)
+{
+    int o = l->p.filter_order - 1;
+    return lag(l->X2[o], l->Y2[o]);
+}
+
+double tt_lockin_second_raw_amplitude(const tt_lockin *l) { return hypot(l->rawX2, l->rawY2); }
+double tt_lockin_second_raw_phase(const tt_lockin *l) { return lag(l->rawX2, l->rawY2); }

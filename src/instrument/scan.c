@@ -70,6 +70,14 @@ static int take_params(tt_scan *S, const tt_scan_params *p)
         return rc;
     S->lockin = p->lockin;
     S->lockin.drive_frequency = p->cantilever.fd;
+    S->lockin.ratio2 = p->cantilever.A2 > 0 ? p->cantilever.ratio2 : 0.0;
+    if ((S->channels & (TT_CH_AMPLITUDE2 | TT_CH_PHASE2)) && !(S->lockin.ratio2 > 0))
+        return tt_error(TT_EINVAL, "[scan] channels: amplitude_2 and phase_2 need mode 2 driven "
+                                   "([cantilever] mode2_free_amplitude)");
+    if (S->lockin.ratio2 > 0 && S->solver.tier != TT_TIER_EVERY)
+        return tt_error(TT_EINVAL, "[solver] tier: %s does not serve mode 2's drive (bimodal "
+                                   "imaging runs every cycle): set tier = every",
+                        tt_tier_name(S->solver.tier));
     S->lockin.harmonics = 1;
     for (int c = 0; c < TT_CH_COUNT; c++)
         if ((S->channels & (1u << c)) && tt_scan_channel_harmonic(c) > S->lockin.harmonics)

@@ -18,7 +18,7 @@ static const struct {
     {"harmonic5_phase", "deg"}, {"harmonic6_phase", "deg"}, {"harmonic7_phase", "deg"},
     {"harmonic8_phase", "deg"}, {"artefact", "m"},
     {"dissipation_hysteresis", "J"}, {"dissipation_damping", "J"}, {"dissipation_viscous", "J"},
-    {"dilation", "m"}, {"certainty", ""},
+    {"dilation", "m"}, {"certainty", ""}, {"amplitude_2", "m"}, {"phase_2", "deg"},
 };
 
 const char *tt_scan_channel_name(int i) { return i >= 0 && i < TT_CH_COUNT ? channel_info[i].name : "?"; }
@@ -27,7 +27,8 @@ int tt_scan_channel_count(void) { return TT_CH_COUNT; }
 
 int tt_scan_channel_harmonic(int i)
 {
-    if (i == 1 || i == 2 || i == 7)
+    /* mode 2's lock-in outputs come per block too (the first harmonic of its drive) */
+    if (i == 1 || i == 2 || i == 7 || i == TT_CH_AMPLITUDE2_INDEX || i == TT_CH_PHASE2_INDEX)
         return 1;
     if (i >= TT_CH_HARMONIC_INDEX && i < TT_CH_HARMONIC_INDEX + NHARM)
         return i - TT_CH_HARMONIC_INDEX + 2;
@@ -58,7 +59,7 @@ int tt_scan_channels_parse(const char *text, unsigned *mask, char *why, size_t l
                      "unknown channel '%.*s'; channels are height, error, amplitude, phase, "
                      "peak_force, indentation, dissipation, topography, harmonic2 to harmonic%d, "
                      "harmonic2_phase to harmonic%d_phase, artefact, dissipation_hysteresis, "
-                     "dissipation_damping, dissipation_viscous, dilation, certainty",
+                     "dissipation_damping, dissipation_viscous, dilation, certainty, amplitude_2, phase_2",
                      (int)(e - p), p, TT_CH_HARMONIC_MAX, TT_CH_HARMONIC_MAX);
             return -1;
         }

@@ -138,6 +138,10 @@ int tt_scan_block_end(const line_ctx *L, line_state *st, long b)
     a->sum[2] += ph * 180 / M_PI * P;
     a->sum[7] += A * P;
     a->nblk += P;
+    if (S->lockin.ratio2 > 0) {
+        a->sum[TT_CH_AMPLITUDE2_INDEX] += tt_lockin_second_amplitude(li) * P;
+        a->sum[TT_CH_PHASE2_INDEX] += tt_lockin_second_phase(li) * 180 / M_PI * P;
+    }
     for (int h = 2; h <= S->lockin.harmonics; h++) {
         double Ah = tt_lockin_amplitude(li, h), phh = tt_lockin_phase(li, h);
         a->sum[TT_CH_HARMONIC_INDEX + h - 2] += Ah * P;

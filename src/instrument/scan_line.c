@@ -50,6 +50,8 @@ static void engage(tt_scan *S, worker *W, long line, long nc, uint64_t kz, line_
                   (double)S->settle_cycles * S->cantilever.T + 1 / R->line_rate);
     tt_sim_reset_free(W->sim);
     tt_lockin_reset(W->lockin, S->cantilever.A0, S->cantilever.phi0);
+    if (S->lockin.ratio2 > 0)
+        tt_lockin_reset_second(W->lockin, S->cantilever.A2, S->cantilever.phi2);
 }
 
 /* A line finished: its state kept for the next (continuous lines), its pixels' means
@@ -190,6 +192,11 @@ static void block_samples(const line_ctx *L, const line_state *st, int j)
     if (sd > 0)
         for (int q = 0; q < N; q++)
             y[q] += sd * tt_noise_gauss(L->kd, (uint64_t)st->cycles * (uint64_t)N + (uint64_t)q);
+    /* mode 2's lock-in on the same deflection, on the sim's clock of its drive (the cycle
+     * just integrated) */
+    if (L->S->lockin.ratio2 > 0)
+        tt_lockin_second_period(L->W->lockin, y,
+                                tt_cantilever_drive2_turns(&L->S->cantilever, tt_sim_cycles(L->W->sim) - 1));
 }
 
 /* The every-cycle tier's cycles of one phase: each integrated. */

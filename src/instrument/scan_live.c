@@ -97,6 +97,8 @@ int tt_scan_set_free_amplitude(tt_scan *S, double A0)
     /* the further modes as they were (the drive is mode 1's) */
     if (!rc && c->modes > 1)
         rc = tt_cantilever_set_modes(&nc, c->modes, c->mode_f + 1, c->mode_k + 1, c->mode_Q + 1);
+    if (!rc && c->A2 > 0) /* and mode 2's drive */
+        rc = tt_cantilever_set_drive2(&nc, c->A2, c->fd2);
     if (rc)
         return rc;
     S->cantilever = nc;

@@ -209,9 +209,10 @@ static const char *gb(double bytes, char *buf, size_t len)
 }
 
 /* The memory the console holds for a scene, from tiptap scan's estimate (config.h): up
- * to three scans with the page's copy of their images (five channels, both ways): the
- * running one, a change's waiting for the line's end and the next change's being built;
- * the preview's twin of the scan; and two scope records, the scan's and the preview's.
+ * to three scans with the page's copy of their images (five channels, seven in a bimodal
+ * scene, both ways): the running one, a change's waiting for the line's end and the next
+ * change's being built; the preview's twin of the scan; and two scope records, the
+ * scan's and the preview's.
  * More than the machine has is refused before anything is made. */
 static int check_memory(const tt_live_controls *c, const tt_scene *s, const tt_scan_params *p)
 {
@@ -220,7 +221,9 @@ static int check_memory(const tt_live_controls *c, const tt_scene *s, const tt_s
     tt_estimate e;
     tt_config_scan_estimate(p, &e);
     double image = (double)p->raster.pixels * (double)p->raster.lines * sizeof(double);
-    double scan = e.bytes + 2 * TT_LIVE_NCH * image + e.thread_bytes;
+    /* mode 2's two images only in a bimodal scene */
+    int nch = p->cantilever.A2 > 0 ? TT_LIVE_NCH : TT_LIVE_AMPLITUDE2;
+    double scan = e.bytes + 2 * nch * image + e.thread_bytes;
     double need = 3 * scan + (p->solver.tier == TT_TIER_AVERAGED ? 0 : e.bytes) + 2 * e.scope_bytes;
     double avail = c->memory();
     if (need <= avail)

@@ -62,10 +62,11 @@ static void fresh_free(fresh *f)
 
 /* The scan of scene, made as tiptap scan makes it (tt_run_scan_begin: its checks and
  * refusals), and the page's empty images of it (the channels it records of height,
- * error, phase, amplitude and peak force). */
+ * error, phase, amplitude and peak force; mode 2's amplitude and phase). */
 static int fresh_alloc(fresh *f, const tt_scene *scene)
 {
-    static const char *const names[TT_LIVE_NCH] = {"height", "error", "phase", "amplitude", "peak_force"};
+    static const char *const names[TT_LIVE_NCH] = {"height",     "error",       "phase",  "amplitude",
+                                                   "peak_force", "amplitude_2", "phase_2"};
     memset(f, 0, sizeof *f);
     int rc = tt_run_scan_begin(scene, &f->run);
     if (rc)
@@ -97,7 +98,8 @@ static int fresh_alloc(fresh *f, const tt_scene *scene)
  * empty rows; f is left empty. */
 static void frame_publish(tt_live_engine *e, fresh *f)
 {
-    static const char *const names[TT_LIVE_NCH] = {"height", "error", "phase", "amplitude", "peak_force"};
+    static const char *const names[TT_LIVE_NCH] = {"height",     "error",       "phase",  "amplitude",
+                                                   "peak_force", "amplitude_2", "phase_2"};
     const tt_scan *s = e->run.scan;
     pthread_mutex_lock(&e->mu);
     frame_free(e);

@@ -111,3 +111,54 @@ int tt_cantilever_set_modes(tt_cantilever *c, int modes, const double *f, const 
     }
     return TT_OK;
 }
+
+void tt_cantilever_response_modes(const tt_cantilever *c, double w, double *re, double *im)
+{
+    /* mode n: m_n q'' + c_n q' + k_n q = f_n, f_n = g_n m_n w^2 (base, g_1 = 1: the point
+     * mass's deflection from the base) or 1 (a force on the tip) */
+    int modes = c->modes > 1 ? c->modes : 1;
+    double sr = 0, si = 0;
+    for (int i = 0; i < modes; i++) {
+        double m = i ? c->mode_m[i] : c->m, k = i ? c->mode_k[i] : c->k;
+        double cc = i ? c->mode_c[i] : c->c, g = i ? c->mode_base[i] : 1.0;
+        double f = c->drive == TT_DRIVE_BASE ? g * m * w * w : 1.0;
+        double dr = k - m * w * w, di = cc * w, den = dr * dr + di * di;
+        sr += f * dr / den;
+        si -= f * di / den;
+    }
+    *re = sr;
+    *im = si;
+}
+
+int tt_cantilever_set_drive2(tt_cantilever *c, double A2, double fd2)
+{
+    if (c->modes < 2)
+        return tt_error(TT_EINVAL, "mode 2's drive needs modes = 2 or more (modes is %d)",
+                        c->modes > 1 ? c->modes : 1);
+    if (isnan(fd2))
+        fd2 = c->mode_f[1];
+    if (!(A2 > 0) || !isfinite(A2))
+        return tt_error(TT_EINVAL, "mode 2's free amplitude %g m: expected positive", A2);
+    if (!(fd2 > 0) || !isfinite(fd2) || fd2 == c->fd)
+        return tt_error(TT_EINVAL, "mode 2's drive frequency %g Hz: expected positive and apart "
+                                   "from the first drive's %g Hz", fd2, c->fd);
+    double re, im, w = 2 * M_PI * fd2;
+    tt_cantilever_response_modes(c, w, &re, &im);
+    /* the reference is the drive's force on mode 2: the base's sign follows g_2's */
+    double sign = c->drive == TT_DRIVE_BASE && c->mode_base[1] < 0 ? -1.0 : 1.0;
+    double gain = hypot(re, im), lag = -atan2(sign * im, sign * re);
+    c->A2 = A2;
+    c->fd2 = fd2;
+    c->wd2 = w;
+    c->ratio2 = fd2 / c->fd;
+    c->a_d2 = c->drive == TT_DRIVE_BASE ? sign * A2 / gain : 0.0;
+    c->F02 = c->drive == TT_DRIVE_FORCE ? A2 / gain : 0.0;
+    c->phi2 = lag < -M_PI / 2 ? lag + 2 * M_PI : lag;
+    return TT_OK;
+}
+
+double tt_cantilever_drive2_turns(const tt_cantilever *c, long n)
+{
+    double t = c->ratio2 * (double)n;
+    return t - floor(t);
+}

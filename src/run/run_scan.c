@@ -48,7 +48,9 @@ static double display_scale(int ch, const char **unit, tt_colormap *cmap)
         return 1e12;
     }
     switch (ch) {
-    case 2: *unit = "deg"; *cmap = TT_CMAP_VIRIDIS; return 1;
+    case 2: case TT_CH_PHASE2_INDEX: *unit = "deg"; *cmap = TT_CMAP_VIRIDIS; return 1;
+    /* mode 2's amplitude: a fraction of a nanometre, on the phase's map to read beside it */
+    case TT_CH_AMPLITUDE2_INDEX: *unit = "pm"; *cmap = TT_CMAP_VIRIDIS; return 1e12;
     case 3: *unit = "nN"; *cmap = TT_CMAP_VIRIDIS; return 1e9;
     case 5: *unit = "aJ"; *cmap = TT_CMAP_VIRIDIS; return 1e18;
     case 1: *unit = "nm"; *cmap = TT_CMAP_DIVERGING; return 1e9;

@@ -44,13 +44,16 @@ static const run_column point_columns[NPOINT_VISCOUS] = {
 };
 
 enum { FOLDER, LINES, BALANCE, EST_H, EST_P, MATERIAL, PIXELS, HMEAN, HSTD, PMEAN, PSTD, HCONTRAST,
-       PCONTRAST, NSCAN };
+       PCONTRAST, NSCAN, A2MEAN = NSCAN, P2MEAN, P2STD, P2CONTRAST, NSCAN_BIMODAL };
 
-static const run_column scan_columns[NSCAN] = {
+static const run_column scan_columns[NSCAN_BIMODAL] = {
     {"folder", "", 1}, {"lines_done", "", 0}, {"energy_balance", "", 0},
     {"error_estimate_height", "m", 0}, {"error_estimate_phase", "deg", 0}, {"material", "", 1},
     {"pixels", "", 0}, {"height_mean", "m", 0}, {"height_std", "m", 0}, {"phase_mean", "deg", 0},
     {"phase_std", "deg", 0}, {"height_contrast", "m", 0}, {"phase_contrast", "deg", 0},
+    /* bimodal grids only (tt_sweep_bimodal): mode 2's lock-in */
+    {"amplitude_2_mean", "m", 0}, {"phase_2_mean", "deg", 0}, {"phase_2_std", "deg", 0},
+    {"phase_2_contrast", "deg", 0},
 };
 
 int tt_run_sweep_columns(const tt_sweep *grid, tt_sweep_kind kind, tt_table **out)
@@ -66,7 +69,8 @@ int tt_run_sweep_columns(const tt_sweep *grid, tt_sweep_kind kind, tt_table **ou
     if (!rc && kind == TT_SWEEP_SETPOINT)
         rc = tt_table_add(t, "setpoint", "m", 0);
     const run_column *c = kind == TT_SWEEP_SCAN ? scan_columns : point_columns;
-    size_t n = kind == TT_SWEEP_SCAN ? NSCAN : tt_sweep_viscous(grid) ? NPOINT_VISCOUS : NPOINT;
+    size_t n = kind == TT_SWEEP_SCAN ? (tt_sweep_bimodal(grid) ? NSCAN_BIMODAL : NSCAN)
+                                     : tt_sweep_viscous(grid) ? NPOINT_VISCOUS : NPOINT;
     for (size_t i = 0; i < n && !rc; i++)
         rc = tt_table_add(t, c[i].name, c[i].unit, c[i].text);
     if (rc) {
@@ -331,6 +335,9 @@ int tt_run_sweep_scan_rows(const tt_sweep *grid, size_t i, const tt_scene *scene
     long xr = tt_scan_xres(scan), yr = tt_scan_yres(scan);
     size_t n = (size_t)(xr * yr);
     const double *h = tt_scan_image(scan, 0, 0), *ph = tt_scan_image(scan, 2, 0);
+    const double *a2 = tt_scan_image(scan, TT_CH_AMPLITUDE2_INDEX, 0);
+    const double *ph2 = tt_scan_image(scan, TT_CH_PHASE2_INDEX, 0);
+    const size_t ncol = tt_sweep_bimodal(grid) ? NSCAN_BIMODAL : NSCAN;
     tt_material *mats = NULL;
     size_t nm = 0;
     tt_surface *surf = NULL;
@@ -349,24 +356,29 @@ int tt_run_sweep_scan_rows(const tt_sweep *grid, size_t i, const tt_scene *scene
                 tt_dilation_contact(dil, px, py, &px, &py);
             mat[y * xr + x] = tt_surface_material(surf, px, py);
         }
-    double h0 = NAN, p0 = NAN;
+    double h0 = NAN, p0 = NAN, q0 = NAN;
     for (int m = -1; m < (int)nm && !rc; m++) {
-        double hm, hs, pm = NAN, ps = NAN;
-        size_t cnt, c;
+        double hm, hs, pm = NAN, ps = NAN, am = NAN, as, qm = NAN, qs = NAN;
+        size_t cnt, c, c2;
         image_stats(h, mat, n, m, &hm, &hs, &cnt);
         if (ph)
             image_stats(ph, mat, n, m, &pm, &ps, &cnt);
+        if (a2)
+            image_stats(a2, mat, n, m, &am, &as, &c2);
+        if (ph2)
+            image_stats(ph2, mat, n, m, &qm, &qs, &c2);
         if (m >= 0 && cnt == 0)
             continue;
         if (m >= 0 && isnan(h0))
-            h0 = hm, p0 = pm;
+            h0 = hm, p0 = pm, q0 = qm;
         if ((rc = keys_row(t, grid, i, &c)) || (rc = tt_table_set_text(t, c + FOLDER, folder)) ||
             (rc = tt_table_set_text(t, c + MATERIAL, m < 0 ? "all" : mats[m].name)))
             break;
-        const double v[NSCAN] = {NAN, (double)tt_scan_lines_done(scan), tt_scan_error_estimate(scan),
+        const double v[NSCAN_BIMODAL] = {NAN, (double)tt_scan_lines_done(scan), tt_scan_error_estimate(scan),
                                  est ? est->height_max : NAN, est ? est->phase_max : NAN, NAN,
-                                 (double)cnt, hm, hs, pm, ps, m < 0 ? NAN : hm - h0, m < 0 ? NAN : pm - p0};
-        for (size_t k = 0; k < NSCAN; k++)
+                                 (double)cnt, hm, hs, pm, ps, m < 0 ? NAN : hm - h0, m < 0 ? NAN : pm - p0,
+                                 am, qm, qs, m < 0 ? NAN : qm - q0};
+        for (size_t k = 0; k < ncol; k++)
             if (k != FOLDER && k != MATERIAL)
                 tt_table_set(t, c + k, v[k]);
     }
@@ -401,7 +413,10 @@ int tt_run_sweep_check(const tt_sweep *grid, tt_sweep_kind kind, size_t i)
     int rc = tt_sweep_scene(grid, i, &scene);
     if (rc)
         return rc;
-    if ((rc = tt_config_cantilever(scene, &cant)) || (rc = tt_solver_from_scene(&solver, scene)) ||
+    if ((rc = tt_config_cantilever(scene, &cant)) ||
+        (rc = tt_config_one_drive(scene, kind == TT_SWEEP_SETPOINT ? "setpoint sweeps"
+                                                                   : "steady and approach sweeps")) ||
+        (rc = tt_solver_from_scene(&solver, scene)) ||
         (rc = tt_config_materials(scene, &mats, &nm)) ||
         (rc = tt_config_material_index(scene, "approach", mats, nm, &mat)) ||
         (rc = tt_config_approach(scene, &ap)) ||

@@ -52,6 +52,8 @@ static void cycle_begin(tt_sim *S)
         S->type->cycle(S->step, S->c.T);
     if (S->sys.nz_f)
         tt_noise_cycle(S);
+    if (S->c.A2 > 0)
+        S->sys.th2 = 2 * M_PI * tt_cantilever_drive2_turns(&S->c, S->cycle);
 }
 
 /* Take the step the method computed: up to a contact event on it, or in full. */

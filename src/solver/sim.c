@@ -212,6 +212,20 @@ void tt_sim_reset_free(tt_sim *S)
     memset(S->y, 0, sizeof S->y);
     S->y[Y_D] = z + y;
     S->y[Y_V] = ydot; /* z' = 0 at t = 0 */
+    if (c->A2 > 0 && S->sys.modes > 1) {
+        /* mode 2 on its own free response to its drive at this cycle's start (the other
+         * modes' share of it, a few parts in Q_2 of A2, rings in) */
+        double th = 2 * M_PI * tt_cantilever_drive2_turns(c, S->cycle);
+        double m = c->mode_m[1], w = c->wd2, dr = c->mode_k[1] - m * w * w, di = c->mode_c[1] * w;
+        double f = c->drive == TT_DRIVE_BASE ? c->mode_base[1] * m * w * w * c->a_d2 : c->F02;
+        double gain = f / hypot(dr, di), lag = atan2(di, dr);
+        S->y[2] = gain * cos(th - lag);
+        S->y[3] = -gain * w * sin(th - lag);
+        /* mode 0 moves with the base's second sinusoid too */
+        S->y[Y_D] += c->a_d2 * cos(th);
+        S->y[Y_V] -= c->a_d2 * w * sin(th);
+        S->sys.th2 = th;
+    }
     S->contact_state = 0;
     S->tau = 0;
     /* the step controllers' memory too: a run from the free state must not depend on

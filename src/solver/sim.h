@@ -53,6 +53,8 @@ typedef struct {
     double m[TT_MODES_MAX], k[TT_MODES_MAX], c[TT_MODES_MAX];
     double inv_m[TT_MODES_MAX]; /* 1 / m: the right-hand side multiplies rather than divides */
     double base[TT_MODES_MAX];  /* g_i m_i w^2: a base drive's inertial force per z (i >= 1) */
+    double base2[TT_MODES_MAX]; /* g_i m_i w2^2: the same for mode 2's drive */
+    double th2;                 /* mode 2's drive phase at the cycle's start, rad */
     const tt_contact *contact;
     const tt_contact_law *law; /* its row: the state's rate and the surface (nlaw > 0) */
     /* the law's time-loop kernel, chosen when the contact is set (tt_sim_set_contact):
@@ -223,6 +225,25 @@ static inline void drive_at(const tt_sim *S, double tau, double *z, double *zd, 
         *zd = 0;
         *F = c->F0 * cs;
     }
+    if (c->A2 > 0) {
+        /* mode 2's drive, on the clock of whole periods of the first (sim.c) */
+        phase_sincos(c->wd2 * tau + S->sys.th2, &sn, &cs);
+        *z += c->a_d2 * cs;
+        *zd -= c->a_d2 * c->wd2 * sn;
+        *F += c->F02 * cs;
+    }
+}
+
+/* Mode 2's base drive alone at tau (0 without it): the further modes' inertial force
+ * is g_n m_n w^2 z per frequency. */
+static inline double drive2_z(const tt_sim *S, double tau)
+{
+    const tt_cantilever *c = &S->c;
+    if (!(c->A2 > 0) || c->drive != TT_DRIVE_BASE)
+        return 0.0;
+    double sn, cs;
+    phase_sincos(c->wd2 * tau + S->sys.th2, &sn, &cs);
+    return c->a_d2 * cs;
 }
 
 /* The drive at one time: radau's Newton iteration reuses it at its stage times. */

@@ -50,7 +50,7 @@ void tt_system_rhs_n(const tt_sim *S, double tau, const double *Y, int contact, 
     double delta, deltad;
     tt_contact_forces f = tip_forces(S, tau, d, v, contact, q, &delta, &deltad);
     double P = f.conservative, Fi = f.dissipative;
-    double wdrive = 0, wdamp = 0;
+    double wdrive = 0, wdamp = 0, z2 = drive2_z(S, tau);
     for (int i = 0; i < sys->modes; i++) {
         /* mode 0 moves against the base (z, z'); the deflection modes against rest */
         double zi = i ? 0.0 : dv.z, zdi = i ? 0.0 : dv.zd;
@@ -62,7 +62,7 @@ void tt_system_rhs_n(const tt_sim *S, double tau, const double *Y, int contact, 
         if (sys->nz_f)
             Fd += noise_force_mode(S, tau, i);
         if (i)
-            Fd += sys->base[i] * dv.z;
+            Fd += z2 == 0.0 ? sys->base[i] * dv.z : sys->base[i] * (dv.z - z2) + sys->base2[i] * z2;
         Fo[2 * i] = ui;
         Fo[2 * i + 1] = (-damp - spring - P - Fi + Fd) * sys->inv_m[i];
         double wd = Fd * ui - (spring + damp) * zdi, wl = damp * (ui - zdi);
@@ -133,7 +133,7 @@ void tt_system_plan(tt_sim *S, int generic)
     sys->k[0] = S->c.k;
     sys->c[0] = S->c.c;
     sys->inv_m[0] = 1.0 / S->c.m;
-    sys->base[0] = 0.0;
+    sys->base[0] = sys->base2[0] = 0.0;
     for (int i = 1; i < sys->modes; i++) {
         sys->m[i] = S->c.mode_m[i];
         sys->k[i] = S->c.mode_k[i];
@@ -141,6 +141,7 @@ void tt_system_plan(tt_sim *S, int generic)
         sys->inv_m[i] = 1.0 / S->c.mode_m[i];
         /* a base drive only: a force drive has z = 0 */
         sys->base[i] = S->c.mode_base[i] * S->c.mode_m[i] * S->c.wd * S->c.wd;
+        sys->base2[i] = S->c.mode_base[i] * S->c.mode_m[i] * S->c.wd2 * S->c.wd2;
     }
     /* the one-mode elastic system's specialised kernels (FFTW's codelets' idea) */
     sys->rhs = generic ? tt_system_rhs_n : tt_sim_rhs;

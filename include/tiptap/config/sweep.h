@@ -67,6 +67,11 @@ size_t tt_sweep_levels(const tt_sweep *sw, size_t k);
  * film_thickness; the sweep's rows then carry the loss per mechanism. */
 int tt_sweep_viscous(const tt_sweep *sw);
 
+/* 1 when the grid's scenes drive mode 2 (bimodal AM-AM): the base scene sets
+ * [cantilever] mode2_free_amplitude, or a varied key is it; a scan sweep's rows then
+ * carry mode 2's amplitude and phase. */
+int tt_sweep_bimodal(const tt_sweep *sw);
+
 /* "cantilever.free_amplitude=10 nm, approach.material=disk" for messages. */
 void tt_sweep_label(const tt_sweep *sw, size_t i, char *buf, size_t len);
 

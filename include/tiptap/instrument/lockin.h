@@ -25,6 +25,7 @@ typedef struct {
     int harmonics;           /* harmonics kept, >= 1 (1: the fundamental only) */
     double time_constant;    /* s; 0: no filter (each block's raw result) */
     int filter_order;        /* 1 to 8 */
+    double ratio2;           /* a second reference at ratio2 times drive_frequency (0: none) */
 } tt_lockin_params;
 
 typedef struct tt_lockin tt_lockin;
@@ -56,6 +57,23 @@ void tt_lockin_transform(const tt_lockin *l, const double *samples, double *c);
 /* Feed one block as its periods' components, periods_per_block x components: the same
  * filter step as tt_lockin_push of its samples. */
 int tt_lockin_push_components(tt_lockin *l, const double *c);
+
+/* The second reference (bimodal imaging: mode 2's drive, ratio2 times the drive
+ * frequency, in general no whole number of its periods in a block). It demodulates as an
+ * analogue lock-in does, sample by sample: the samples times 2 cos and 2 sin of the
+ * reference's phase, each product through the same cascade of first-order sections
+ * stepped at the sample interval, so that the first drive's deflection, mixed to
+ * |ratio2 - h| times the drive frequency, is attenuated by the filter's roll-off
+ * (docs/physics.md, "Bimodal imaging"); with time_constant 0 it is the plain mean of the
+ * block's products. Feed each period with the reference's phase at its first sample,
+ * in turns, before the block's tt_lockin_push (or _push_components), which closes the
+ * block's raw result. */
+void tt_lockin_second_period(tt_lockin *l, const double *samples, double turns);
+void tt_lockin_reset_second(tt_lockin *l, double amplitude, double phase);
+double tt_lockin_second_amplitude(const tt_lockin *l);
+double tt_lockin_second_phase(const tt_lockin *l);
+double tt_lockin_second_raw_amplitude(const tt_lockin *l);
+double tt_lockin_second_raw_phase(const tt_lockin *l);
 
 /* Filtered outputs for harmonic h (1 = fundamental, up to harmonics). */
 double tt_lockin_amplitude(const tt_lockin *l, int h);

@@ -80,7 +80,13 @@ enum {
      * (its certainty map), 0 where only an upper bound, at the pixel's centre */
     TT_CH_CERTAINTY_INDEX = 27,
     TT_CH_CERTAINTY = 1 << 27,
-    TT_CH_COUNT = 28
+    /* Bimodal AM-AM ([cantilever] mode2_free_amplitude): the second lock-in's amplitude
+     * (m) and lag (deg) at mode 2's drive frequency */
+    TT_CH_AMPLITUDE2_INDEX = 28,
+    TT_CH_AMPLITUDE2 = 1 << 28,
+    TT_CH_PHASE2_INDEX = 29,
+    TT_CH_PHASE2 = 1 << 29,
+    TT_CH_COUNT = 30
 };
 
 /* Name ("height"), unit ("m", "deg", "N", "J") and title of channel index i. */

@@ -33,9 +33,10 @@
 extern "C" {
 #endif
 
-/* The channels the console images, in this order, where the scene records them. */
+/* The channels the console images, in this order, where the scene records them (mode
+ * 2's, after the one-mode five, only in a bimodal scene). */
 enum { TT_LIVE_HEIGHT, TT_LIVE_ERROR, TT_LIVE_PHASE, TT_LIVE_AMPLITUDE, TT_LIVE_PEAK_FORCE,
-       TT_LIVE_NCH };
+       TT_LIVE_AMPLITUDE2, TT_LIVE_PHASE2, TT_LIVE_NCH };
 /* row_tier's flag: the line came from the averaged preview (the low bits: its tt_tier). */
 enum { TT_LIVE_PREVIEW = 0x10 };
 /* The scope's series on the page (a subset of the scan's record). */

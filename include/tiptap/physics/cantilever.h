@@ -48,6 +48,14 @@ typedef struct {
     double mode_Q[TT_CANTILEVER_MODES_MAX];
     double mode_m[TT_CANTILEVER_MODES_MAX], mode_c[TT_CANTILEVER_MODES_MAX];
     double mode_base[TT_CANTILEVER_MODES_MAX]; /* g_n: base drive's inertial coupling */
+    /* mode 2's own drive, bimodal AM-AM (tt_cantilever_set_drive2; A2 = 0: none): a
+     * second sinusoid of the same kind as the first (base or force) at fd2 */
+    double A2;        /* the free deflection's amplitude at fd2, m */
+    double fd2, wd2;  /* Hz, rad/s */
+    double ratio2;    /* fd2 / fd: mode 2's drive periods per period of the first */
+    double a_d2;      /* base amplitude, m, signed so that its force on mode 2 is +cos */
+    double F02;       /* force amplitude, N (force drive) */
+    double phi2;      /* the free deflection's lag behind that force, rad */
 } tt_cantilever;
 
 /* Fill the derived constants; TT_EINVAL with a message on non-physical input. */
@@ -60,6 +68,21 @@ int tt_cantilever_init(tt_cantilever *c, double k, double f0, double Q, double A
  * Call after tt_cantilever_init; TT_EINVAL with a message on non-physical input. */
 int tt_cantilever_set_modes(tt_cantilever *c, int modes, const double *f, const double *k,
                             const double *Q);
+
+/* Drive mode 2 as well (bimodal AM-AM, docs/physics.md "Bimodal imaging"): a second
+ * sinusoid of the first drive's kind at fd2 (NAN: mode 2's resonance) whose free
+ * deflection, all modes summed, has amplitude A2 (m) at fd2. Needs modes >= 2; call after
+ * tt_cantilever_set_modes; TT_EINVAL with a message on non-physical input. */
+int tt_cantilever_set_drive2(tt_cantilever *c, double A2, double fd2);
+
+/* The second drive's phase at the start of drive period n of the first, in turns in
+ * [0, 1): frac(n fd2 / fd), the one clock the equation of motion and the second lock-in
+ * share. */
+double tt_cantilever_drive2_turns(const tt_cantilever *c, long n);
+
+/* The free deflection's complex response at angular frequency w to a unit drive of the
+ * cantilever's kind (base: 1 m; force: 1 N), every mode summed: y = Re(R e^{i w t}). */
+void tt_cantilever_response_modes(const tt_cantilever *c, double w, double *re, double *im);
 
 /* Euler-Bernoulli constants of a clamped-free rectangular beam's mode n (1-based, up to
  * TT_CANTILEVER_MODES_MAX): the root b_n of cos b cosh b = -1, the optical lever's slope
