@@ -328,7 +328,10 @@ static int check_bimodal(const tt_scene *s, const tt_scan_params *p)
 
 /* The envelope and averaged tiers model the cycle map on the tip's (d, v) alone: a
  * cantilever of more than one mode, or a sample whose surface is a state of its own
- * (relaxation arms), runs every cycle. */
+ * (relaxation arms), runs every cycle. The envelope's plan is made with the scan thread's
+ * sim before any material's law is set (dimension 2), so an arm's state would stand
+ * outside its model, its thermal covariance is of (d, d') and the averaged flow has no
+ * surface lag (examples/viscoelastic-blend/README.md, Relaxation arms). */
 static int check_tier_arms(const tt_scene *s, const tt_scan_params *p)
 {
     if (p->solver.tier == TT_TIER_EVERY)
@@ -342,7 +345,8 @@ static int check_tier_arms(const tt_scene *s, const tt_scan_params *p)
         if (p->materials[i].contact.arms > 0)
             return tt_scene_fail(s, "solver", NULL, "tier",
                                  "%s does not serve [material %s]'s relaxation arms yet (the "
-                                 "surface's state): set tier = every",
+                                 "surface's state is outside its model of the tip's (d, v)): "
+                                 "set tier = every",
                                  tt_tier_name(p->solver.tier), p->materials[i].name);
     return TT_OK;
 }

@@ -112,8 +112,10 @@ int tt_envelope_alloc(tt_envelope **out, const tt_sim *sim, const tt_envelope_pa
         return tt_error_nomem("the envelope tier's cycle map (%d samples, %d models kept)", n,
                               p->kept);
     }
+    /* the modes' (d, d') pairs, then the law's states, lengths (contact_sls.c's q_i) */
+    const int nmode = 2 * (c->modes > 1 ? c->modes : 1);
     for (int i = 0; i < e->nx; i++)
-        e->xs[i] = i % 2 ? e->V : e->L;
+        e->xs[i] = i < nmode && i % 2 ? e->V : e->L;
     for (int i = 0; i < n; i++)
         e->oscale[i] = c->A0;
     /* the peak force and the greatest indentation are outputs, averaged into pixels and
