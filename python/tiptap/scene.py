@@ -311,8 +311,9 @@ class Scene:
             return text(lib.tt_scene_origin(self._p))
 
     def text(self, sections=None):
-        """The effective scene as INI text: every key, defaults included, paths absolute
-        (what `tiptap scan` writes as scene.ini). sections: e.g. "cantilever|tip"."""
+        """The effective scene as INI text: every key, defaults included (of [surface], only
+        the chosen type's and the map's), paths absolute (what `tiptap scan` writes as
+        scene.ini). sections: e.g. "cantilever|tip"."""
         sec = c_bytes(sections, "sections") if sections else ffi.NULL
         with self._lock:
             t = lib.tt_scene_write_string(self._p, sec)
