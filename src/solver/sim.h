@@ -207,9 +207,10 @@ static inline void phase_sincos(double x, double *sn, double *cs)
     }
 }
 
-/* Base position and velocity, drive force. */
-static inline void drive_at(const tt_sim *S, double tau, double *z, double *zd, double *F,
-                            double *cw, double *sw)
+/* Base position and velocity, drive force, of the first drive alone: the one-mode
+ * kernels' (mode 2's drive needs modes >= 2, which the generic kernels serve). */
+static inline void drive1_at(const tt_sim *S, double tau, double *z, double *zd, double *F,
+                             double *cw, double *sw)
 {
     const tt_cantilever *c = &S->c;
     double sn, cs;
@@ -225,6 +226,15 @@ static inline void drive_at(const tt_sim *S, double tau, double *z, double *zd, 
         *zd = 0;
         *F = c->F0 * cs;
     }
+}
+
+/* Base position and velocity, drive force: both drives. */
+static inline void drive_at(const tt_sim *S, double tau, double *z, double *zd, double *F,
+                            double *cw, double *sw)
+{
+    const tt_cantilever *c = &S->c;
+    double sn, cs;
+    drive1_at(S, tau, z, zd, F, cw, sw);
     if (c->A2 > 0) {
         /* mode 2's drive, on the clock of whole periods of the first (sim.c) */
         phase_sincos(c->wd2 * tau + S->sys.th2, &sn, &cs);

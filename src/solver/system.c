@@ -6,7 +6,7 @@
 void tt_sim_rhs(const tt_sim *S, double tau, const double *Y, int contact, double *Fo)
 {
     drive_val dv;
-    drive_at(S, tau, &dv.z, &dv.zd, &dv.F, &dv.cw, &dv.sw);
+    drive1_at(S, tau, &dv.z, &dv.zd, &dv.F, &dv.cw, &dv.sw);
     /* the thermal force acts as a force on the tip: its work is booked with the drive's */
     if (S->sys.nz_f)
         dv.F += noise_force(S, tau);
@@ -18,7 +18,7 @@ void tt_sim_rhs(const tt_sim *S, double tau, const double *Y, int contact, doubl
 double tt_sim_energy(const tt_sim *S, double tau, const double *Y, int contact)
 {
     double z, zd, Fd, cw, sw;
-    drive_at(S, tau, &z, &zd, &Fd, &cw, &sw);
+    drive1_at(S, tau, &z, &zd, &Fd, &cw, &sw);
     double d = Y[Y_D], v = Y[Y_V];
     double U = S->sys.contact ? tt_contact_energy(S->sys.contact, d - (S->sys.s0 + S->sys.sdot * tau), contact) : 0;
     return 0.5 * S->c.m * v * v + 0.5 * S->c.k * (d - z) * (d - z) + U;
