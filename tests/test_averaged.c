@@ -192,12 +192,9 @@ static void low_q_falls_back(void **state)
     tt_scene *s1, *s2;
     const char *q = "[cantilever]\nquality_factor = 10\n[scan]\nline_rate = 40 Hz\n";
     tt_scan *a = scan_with(q, "averaged", &s1), *e = scan_with(q, "envelope", &s2);
-    long n = tt_scan_xres(a) * tt_scan_yres(a);
     assert_int_equal(tt_scan_cycles_integrated(a), tt_scan_cycles_integrated(e));
     assert_true(tt_scan_cycles_integrated(a) < tt_scan_cycles(a));
-    for (int r = 0; r < 2; r++)
-        for (int c = 0; c < 3; c++)
-            assert_memory_equal(tt_scan_image(a, c, r), tt_scan_image(e, c, r), (size_t)n * sizeof(double));
+    tt_scan_assert_identical(a, e, 3);
     tt_scan_free(a);
     tt_scan_free(e);
     tt_scene_free(s1);
@@ -208,38 +205,16 @@ static void low_q_falls_back(void **state)
 static void threads_agree(void **state)
 {
     (void)state;
-    tt_scene *sc = tt_scene_alloc();
-    assert_int_equal(tt_scene_load_string(sc, base, "base"), TT_OK);
-    assert_int_equal(tt_scene_load_string(sc,
-                                          "[scan]\nlines = 2\n[surface]\ntype = steps\n"
-                                          "step_height = 1 nm\nstep_width = 300 nm\n"
-                                          "[solver]\ntier = averaged\n",
-                                          "extra"),
-                     TT_OK);
-    tt_scan *a, *b;
-    assert_int_equal(tt_config_scan_alloc(&a, sc), TT_OK);
-    assert_int_equal(tt_config_scan_alloc(&b, sc), TT_OK);
-    assert_int_equal(tt_scan_run(a, 1, NULL, NULL), TT_OK);
-    assert_int_equal(tt_scan_run(b, 2, NULL, NULL), TT_OK);
-    long n = tt_scan_xres(a) * tt_scan_yres(a);
-    for (int r = 0; r < 2; r++)
-        for (int c = 0; c < 3; c++)
-            assert_memory_equal(tt_scan_image(a, c, r), tt_scan_image(b, c, r),
-                                (size_t)n * sizeof(double));
-    tt_scan_free(a);
-    tt_scan_free(b);
-    tt_scene_free(sc);
+    tt_scan_assert_threads_agree(base,
+                                 "[scan]\nlines = 2\n[surface]\ntype = steps\n"
+                                 "step_height = 1 nm\nstep_width = 300 nm\n"
+                                 "[solver]\ntier = averaged\n",
+                                 3, 0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(free_oscillator),
-        cmocka_unit_test(table),
-        cmocka_unit_test(against_every),
-        cmocka_unit_test(collapse_reported),
-        cmocka_unit_test(low_q_falls_back),
-        cmocka_unit_test(threads_agree),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TT_TEST_MAIN(cmocka_unit_test(free_oscillator),
+             cmocka_unit_test(table),
+             cmocka_unit_test(against_every),
+             cmocka_unit_test(collapse_reported),
+             cmocka_unit_test(low_q_falls_back),
+             cmocka_unit_test(threads_agree))

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 
 #include "tt_test.h"
+#include "tt_sim_test.h"
 #include "solver/sim.h"
 #include "tiptap/config/config.h"
 #include "tiptap/config/scene.h"
@@ -27,16 +28,6 @@ static tt_cantilever bimodal(double k, double f0, double Q, double A0, double A2
     if (A2 > 0)
         assert_int_equal(tt_cantilever_set_drive2(&c, A2, NAN), TT_OK);
     return c;
-}
-
-static tt_sim *sim_of(const tt_cantilever *c)
-{
-    tt_solver s;
-    tt_solver_default(&s);
-    s.tolerance = 1e-10;
-    tt_sim *S;
-    assert_int_equal(tt_sim_alloc(&S, c, &s), TT_OK);
-    return S;
 }
 
 typedef struct {
@@ -100,7 +91,7 @@ static void free_mode2_is_its_oscillator(void **state)
     double Aosc = F2 * c.mode_Q[1] / c.mode_k[1];
     /* the other mode's share at w2 is a part in |g_2| Q_2 of it */
     assert_true(fabs(Aosc / A2 - 1) < 2.0 / (fabs(c.mode_base[1]) * c.mode_Q[1]));
-    tt_sim *S = sim_of(&c), *S1 = sim_of(&c1);
+    tt_sim *S = tt_test_sim(&c, 1e-10), *S1 = tt_test_sim(&c1, 1e-10);
     run_out o = run(S, &c, 600), o1 = run(S1, &c1, 600);
     tt_sim_free(S);
     tt_sim_free(S1);
@@ -171,7 +162,7 @@ static void gradient_moves_mode2_phase(void **state)
         tt_contact *ct;
         assert_int_equal(tt_contact_alloc_custom(&ct, gradient_load, gradient_energy, g, 1, -1),
                          TT_OK);
-        tt_sim *S = sim_of(&c);
+        tt_sim *S = tt_test_sim(&c, 1e-10);
         tt_sim_set_contact(S, ct, NAN);
         tt_sim_set_sample(S, 10e-9, 0);
         run_out o = run(S, &c, 600);
@@ -195,7 +186,7 @@ static void energy_balance_of_both_modes(void **state)
     tt_contact_params p = {TT_CONTACT_MAUGIS, 1e9, 10e-9, 0.1, 0.3e-9, NAN, 0, 0, 0, {0}, {0}};
     tt_contact *ct;
     assert_int_equal(tt_contact_alloc(&ct, &p), TT_OK);
-    tt_sim *S = sim_of(&c);
+    tt_sim *S = tt_test_sim(&c, 1e-10);
     tt_sim_set_contact(S, ct, 30);
     tt_sim_set_sample(S, 15e-9, 0);
     run_out o = run(S, &c, 800);
@@ -235,10 +226,10 @@ static void keys_and_refusals(void **state)
     assert_true(c.A2 == 1e-9 && c.fd2 == 1.9e6 && fabs(c.ratio2 - 1.9e6 / 300e3) < 1e-15);
     /* one line naming the key: no mode 2, or a frequency without an amplitude */
     assert_int_not_equal(scene_cantilever("[cantilever]\nmode2_free_amplitude = 1 nm\n", &c), TT_OK);
-    assert_non_null(strstr(tt_error_message(), "[cantilever] mode2_free_amplitude: drives mode 2"));
+    assert_message_has("[cantilever] mode2_free_amplitude: drives mode 2");
     assert_int_not_equal(scene_cantilever("[cantilever]\nmodes = 2\nmode2_drive_frequency = 2 MHz\n", &c),
                          TT_OK);
-    assert_non_null(strstr(tt_error_message(), "mode2_drive_frequency: is set but mode2_free_amplitude"));
+    assert_message_has("mode2_drive_frequency: is set but mode2_free_amplitude");
     assert_int_equal(tt_cantilever_init(&c, 40, 300e3, 400, 20e-9, 300e3, TT_DRIVE_BASE), TT_OK);
     /* one mode: no mode 2 to drive */
     assert_int_equal(tt_cantilever_set_drive2(&c, 1e-9, NAN), TT_EINVAL);
@@ -256,13 +247,7 @@ static void keys_and_refusals(void **state)
     tt_lockin_free(li);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(keys_and_refusals),
-        cmocka_unit_test(free_mode2_is_its_oscillator),
-        cmocka_unit_test(gradient_moves_mode2_phase),
-        cmocka_unit_test(energy_balance_of_both_modes),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TT_TEST_MAIN(cmocka_unit_test(keys_and_refusals),
+             cmocka_unit_test(free_mode2_is_its_oscillator),
+             cmocka_unit_test(gradient_moves_mode2_phase),
+             cmocka_unit_test(energy_balance_of_both_modes))

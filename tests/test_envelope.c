@@ -154,40 +154,17 @@ static void high_q(void **st)
 static void threads_agree(void **st)
 {
     (void)st;
-    tt_scene *sc = tt_scene_alloc();
-    assert_int_equal(tt_scene_load_string(sc, base, "base"), TT_OK);
-    assert_int_equal(tt_scene_load_string(sc,
-                                          "[scan]\nlines = 2\nline_rate = 20 Hz\n"
-                                          "[surface]\ntype = steps\nstep_height = 1 nm\n"
-                                          "step_width = 300 nm\n[solver]\ntier = envelope\n",
-                                          "extra"),
-                     TT_OK);
-    tt_scan *a, *b;
-    assert_int_equal(tt_config_scan_alloc(&a, sc), TT_OK);
-    assert_int_equal(tt_config_scan_alloc(&b, sc), TT_OK);
-    assert_int_equal(tt_scan_run(a, 1, NULL, NULL), TT_OK);
-    assert_int_equal(tt_scan_run(b, 2, NULL, NULL), TT_OK);
-    assert_true(tt_scan_cycles_integrated(a) < tt_scan_cycles(a));
-    long n = tt_scan_xres(a) * tt_scan_yres(a);
-    for (int r = 0; r < 2; r++)
-        for (int c = 0; c < 3; c++)
-            assert_memory_equal(tt_scan_image(a, c, r), tt_scan_image(b, c, r),
-                                (size_t)n * sizeof(double));
-    tt_scan_free(a);
-    tt_scan_free(b);
-    tt_scene_free(sc);
+    tt_scan_assert_threads_agree(base,
+                                 "[scan]\nlines = 2\nline_rate = 20 Hz\n"
+                                 "[surface]\ntype = steps\nstep_height = 1 nm\n"
+                                 "step_width = 300 nm\n[solver]\ntier = envelope\n",
+                                 3, 1);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(uniform_sample),
-        cmocka_unit_test(height_and_material_edges),
-        cmocka_unit_test(bistable),
-        cmocka_unit_test(grazing_touches),
-        cmocka_unit_test(high_q),
-        cmocka_unit_test(low_q),
-        cmocka_unit_test(threads_agree),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TT_TEST_MAIN(cmocka_unit_test(uniform_sample),
+             cmocka_unit_test(height_and_material_edges),
+             cmocka_unit_test(bistable),
+             cmocka_unit_test(grazing_touches),
+             cmocka_unit_test(high_q),
+             cmocka_unit_test(low_q),
+             cmocka_unit_test(threads_agree))

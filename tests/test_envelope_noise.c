@@ -308,34 +308,15 @@ static void thermal_silicon(void **st)
 static void threads_agree(void **st)
 {
     (void)st;
-    tt_scene *sc = tt_scene_alloc();
-    assert_int_equal(tt_scene_load_string(sc, base, "base"), TT_OK);
-    assert_int_equal(tt_scene_load_string(sc,
-                                          "[scan]\nline_rate = 20 Hz\n[noise]\nseed = 3\n"
-                                          "temperature = 300 K\ndetector = 100 fm/sqrt(Hz)\n"
-                                          "z_piezo = 0.3 pm/sqrt(Hz)\n",
-                                          "extra"),
-                     TT_OK);
-    tt_scan *a, *b;
-    assert_int_equal(tt_config_scan_alloc(&a, sc), TT_OK);
-    assert_int_equal(tt_config_scan_alloc(&b, sc), TT_OK);
-    assert_int_equal(tt_scan_run(a, 1, NULL, NULL), TT_OK);
-    assert_int_equal(tt_scan_run(b, 2, NULL, NULL), TT_OK);
-    assert_true(tt_scan_cycles_integrated(a) < tt_scan_cycles(a));
-    tt_scan_assert_identical(a, b, CH);
-    tt_scan_free(a);
-    tt_scan_free(b);
-    tt_scene_free(sc);
+    tt_scan_assert_threads_agree(base,
+                                 "[scan]\nline_rate = 20 Hz\n[noise]\nseed = 3\n"
+                                 "temperature = 300 K\ndetector = 100 fm/sqrt(Hz)\n"
+                                 "z_piezo = 0.3 pm/sqrt(Hz)\n",
+                                 CH, 1);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(model_equipartition),
-        cmocka_unit_test(statistics_match),
-        cmocka_unit_test(z_piezo_blend),
-        cmocka_unit_test(thermal_silicon),
-        cmocka_unit_test(threads_agree),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TT_TEST_MAIN(cmocka_unit_test(model_equipartition),
+             cmocka_unit_test(statistics_match),
+             cmocka_unit_test(z_piezo_blend),
+             cmocka_unit_test(thermal_silicon),
+             cmocka_unit_test(threads_agree))

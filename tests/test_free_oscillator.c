@@ -2,6 +2,7 @@
  * both drives, below, at and above resonance, from Q = 1 (liquid) to 1e4 (vacuum); and
  * the energy balance of a free cycle. */
 #include "tt_test.h"
+#include "tt_sim_test.h"
 #include "tiptap/util/error.h"
 #include "tiptap/solver/integrator.h"
 
@@ -9,13 +10,7 @@ static void check_free(tt_drive drive, double Q, double fd_ratio, tt_method meth
 {
     tt_cantilever c;
     assert_int_equal(tt_cantilever_init(&c, 40, 300e3, Q, 20e-9, 300e3 * fd_ratio, drive), TT_OK);
-    tt_solver s;
-    tt_solver_default(&s);
-    s.method = method;
-    s.tolerance = 1e-10;
-    s.steps_per_cycle = 512;
-    tt_sim *sim;
-    assert_int_equal(tt_sim_alloc(&sim, &c, &s), TT_OK);
+    tt_sim *sim = tt_test_sim_on(&c, method, 1e-10, 512);
     /* Start from rest-free state far from steady, let it settle, then compare. */
     tt_cycle cy;
     int settled;
@@ -94,11 +89,7 @@ static void reset_free_is_already_steady(void **st)
      * cycles. */
     tt_cantilever c;
     tt_cantilever_init(&c, 2, 70e3, 1e4, 5e-9, 70e3 * 1.00002, TT_DRIVE_BASE);
-    tt_solver s;
-    tt_solver_default(&s);
-    s.tolerance = 1e-10;
-    tt_sim *sim;
-    assert_int_equal(tt_sim_alloc(&sim, &c, &s), TT_OK);
+    tt_sim *sim = tt_test_sim(&c, 1e-10);
     tt_cycle cy;
     assert_int_equal(tt_sim_cycle(sim, &cy), TT_OK);
     assert_close(cy.amplitude, 5e-9, 5e-16);

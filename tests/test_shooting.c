@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "tt_test.h"
+#include "tt_sim_test.h"
 #include "tiptap/config/config.h"
 #include "tiptap/config/setup.h"
 #include "tiptap/config/standard.h"
@@ -25,12 +26,7 @@ static tt_sim *free_sim(tt_cantilever *c, double Q, double fd_ratio)
 {
     assert_int_equal(tt_cantilever_init(c, 40, 300e3, Q, 20e-9, 300e3 * fd_ratio, TT_DRIVE_BASE),
                      TT_OK);
-    tt_solver s;
-    tt_solver_default(&s);
-    s.tolerance = 1e-10;
-    tt_sim *sim;
-    assert_int_equal(tt_sim_alloc(&sim, c, &s), TT_OK);
-    return sim;
+    return tt_test_sim(c, 1e-10);
 }
 
 /* From rest, Newton lands on y = A cos(w t - lag) of the transfer function of
@@ -361,17 +357,11 @@ static void eigen_leaves_error_handler(void **st)
         fail_msg("GSL's error handler changed %ld times in %ld looks", other, seen);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(free_fixed_point_is_the_analytic_steady_state),
-        cmocka_unit_test(free_multipliers_are_analytic),
-        cmocka_unit_test(standard_scene_agrees_with_settling),
-        cmocka_unit_test(three_modes_converge_on_a_noisy_map),
-        cmocka_unit_test(bistable_scene_shows_both_branches),
-        cmocka_unit_test(generic_algebra_equals_closed_forms_at_n2),
-        cmocka_unit_test(algebra_n4_known_spectrum),
-        cmocka_unit_test(eigen_leaves_error_handler),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TT_TEST_MAIN(cmocka_unit_test(free_fixed_point_is_the_analytic_steady_state),
+             cmocka_unit_test(free_multipliers_are_analytic),
+             cmocka_unit_test(standard_scene_agrees_with_settling),
+             cmocka_unit_test(three_modes_converge_on_a_noisy_map),
+             cmocka_unit_test(bistable_scene_shows_both_branches),
+             cmocka_unit_test(generic_algebra_equals_closed_forms_at_n2),
+             cmocka_unit_test(algebra_n4_known_spectrum),
+             cmocka_unit_test(eigen_leaves_error_handler))

@@ -116,16 +116,10 @@ static void too_few_samples_refused(void **state)
     int rc;
     tune2(1, "duration = 0.4 s\n", "", &rc);
     assert_int_equal(rc, TT_EINVAL);
-    assert_non_null(strstr(tt_error_message(), "[tune] samples_per_cycle"));
-    assert_non_null(strstr(tt_error_message(), "at least 16"));
+    assert_message_has("[tune] samples_per_cycle");
+    assert_message_has("at least 16");
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(each_mode_recovered),
-        cmocka_unit_test(mode2_scatter_matches_uncertainty),
-        cmocka_unit_test(too_few_samples_refused),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TT_TEST_MAIN(cmocka_unit_test(each_mode_recovered),
+             cmocka_unit_test(mode2_scatter_matches_uncertainty),
+             cmocka_unit_test(too_few_samples_refused))

@@ -234,6 +234,19 @@ static int cell(double u, int n, double *t)
     return i;
 }
 
+/* The force's harmonics, mean, peak and shift from one row of the table's columns (a
+ * looked-up or a directly integrated one). */
+static void from_columns(const tt_averaged *a, const double *v, tt_averaged_force *f)
+{
+    for (int h = 0; h < a->H; h++) {
+        f->gc[h] = v[h ? C_HARM + 2 * (h - 1) : C_GC];
+        f->gs[h] = v[h ? C_HARM + 2 * (h - 1) + 1 : C_GS];
+    }
+    f->mean = v[C_MEAN];
+    f->peak = v[C_PEAK];
+    f->shift = v[C_SHIFT];
+}
+
 static void lookup(const tt_averaged *a, double B, double x, tt_averaged_force *f)
 {
     const int nc = a->ncol;
@@ -269,13 +282,7 @@ static void lookup(const tt_averaged *a, double B, double x, tt_averaged_force *
         f->d_b[k] = vb[k] / a->db;
         f->d_x[k] = vx[k] * dxi;
     }
-    for (int h = 0; h < a->H; h++) {
-        f->gc[h] = v[h ? C_HARM + 2 * (h - 1) : C_GC];
-        f->gs[h] = v[h ? C_HARM + 2 * (h - 1) + 1 : C_GS];
-    }
-    f->mean = v[C_MEAN];
-    f->peak = v[C_PEAK];
-    f->shift = v[C_SHIFT];
+    from_columns(a, v, f);
 }
 
 /* Direct quadrature with central differences for the derivatives (the stuck branch,
@@ -293,13 +300,7 @@ static void direct_force(const tt_averaged *a, double B, double x, int stuck, tt
     direct(a, B, x - e, stuck, m);
     for (int k = 0; k < 3; k++)
         f->d_x[k] = (p[k] - m[k]) / (2 * e);
-    for (int h = 0; h < a->H; h++) {
-        f->gc[h] = v[h ? C_HARM + 2 * (h - 1) : C_GC];
-        f->gs[h] = v[h ? C_HARM + 2 * (h - 1) + 1 : C_GS];
-    }
-    f->mean = v[C_MEAN];
-    f->peak = v[C_PEAK];
-    f->shift = v[C_SHIFT];
+    from_columns(a, v, f);
     f->outside = 0;
 }
 
