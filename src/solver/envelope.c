@@ -19,13 +19,16 @@ const char *tt_envelope_outcome_name(tt_envelope_outcome o)
 /* Why a plan cannot be made (NULL: it can). */
 static const char *plan_invalid(const tt_sim *sim, const tt_envelope_params *p)
 {
-    if (tt_sim_dim(sim) < 1 || tt_sim_dim(sim) > TT_SIM_DIM_MAX)
+    const int nx = p->dim > 0 ? p->dim : tt_sim_dim(sim);
+    if (nx < 1 || nx > TT_SIM_DIM_MAX || p->dim < 0)
         return "a state of 1 to TT_SIM_DIM_MAX components";
     if (p->samples < 1 || p->probes < 0 || p->reduced < 0 || p->kept < 0)
         return "samples > 0 and probes, reduced and kept >= 0";
     if (p->reduced > 0 && !p->reduce)
         return "the reduction's rows";
-    if (p->psd > 0 && tt_sim_dim(sim) != 2)
+    /* the Langevin force acts on the tip's velocity alone: a law's states after (d, d')
+     * take no forcing of their own (envelope_noise.c), further modes would */
+    if (p->psd > 0 && (nx < 2 || tt_sim_cantilever(sim)->modes > 1))
         return "thermal noise on a one-mode state (its flow is (d, d')'s)";
     if (p->sd > 0 && p->reduced == 0)
         return "detector noise on reduced samples";
@@ -88,7 +91,7 @@ int tt_envelope_alloc(tt_envelope **out, const tt_sim *sim, const tt_envelope_pa
         return tt_error_nomem("the envelope tier's cycle map");
     const tt_cantilever *c = tt_sim_cantilever(sim);
     const int n = p->samples;
-    e->nx = tt_sim_dim(sim);
+    e->nx = p->dim > 0 ? p->dim : tt_sim_dim(sim);
     e->ni = e->nx + 2;
     e->npair = e->ni * (e->ni + 1) / 2;
     e->n = n;

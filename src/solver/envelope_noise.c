@@ -79,10 +79,13 @@ static void flow_free(tt_envelope *e)
  * e1 Phi(t_q, t) b), b = (0, 1/m) and Phi(t_q, t) = Phi(t_q, 0) Phi(t, 0)^-1: the
  * trapezoid rule on the samples (the integrand is nearly periodic out of contact, where
  * it is then exact to rounding). Plus the detector's block; factored into e->Lj. One
- * mode: the plan allows thermal noise on n = 2 only. */
+ * mode: a law's states after (d, d') (relaxation arms) take no force, and the kick's
+ * effect on them is the map's response to the tip's state it is equivalent to at the
+ * cycle's start, Phi(t, 0)^-1 b through J's (d, d') columns: the tip's flow alone is
+ * measured (the surface moves with the tip only in contact, a tenth of the cycle). */
 int tt_envelope_thermal_covariance(tt_envelope *e)
 {
-    const int n = e->n, m = e->m, nn = e->nn;
+    const int n = e->n, m = e->m, nn = e->nn, nx = e->nx;
     double *A = e->work;
     memset(A, 0, tt_envelope_noise_work(e) * sizeof *A);
     double *S = A + nn * nn, *w = S + 2 * m; /* suffix sums of R_q e1 Phi(t_q, 0) */
@@ -96,8 +99,12 @@ int tt_envelope_thermal_covariance(tt_envelope *e)
         const double a0 = -P[1] / (e->mass * det), a1 = P[0] / (e->mass * det);
         w[0] = J[0] * a0 + J[1] * a1;
         w[1] = J[2] * a0 + J[3] * a1;
+        /* a law's states take the kick through the map's (d, d') columns: the force does
+         * not act on them, but what it does to the tip moves the surface */
+        for (int i = 2; i < nx; i++)
+            w[i] = e->J[i * e->ni] * a0 + e->J[i * e->ni + 1] * a1;
         for (int i = 0; i < m; i++)
-            w[2 + i] = S[2 * i] * a0 + S[2 * i + 1] * a1;
+            w[nx + i] = S[2 * i] * a0 + S[2 * i + 1] * a1;
         const double wt = (p == 0 || p == n ? 0.5 : 1.0) * e->T / n * e->psd;
         for (int i = 0; i < nn; i++)
             for (int k = 0; k <= i; k++)
