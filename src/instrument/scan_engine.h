@@ -145,8 +145,14 @@ void tt_scan_worker_free(worker *W);
  * piezo noise: the travel; thermal or z piezo: second order) and its noise. */
 int tt_scan_worker_retune(tt_scan *S, worker *W);
 /* Material mat's force law on W's sim and, on the envelope tier, the plan for the
- * state's dimension it gives (relaxation arms add states). */
-void tt_scan_worker_contact(const tt_scan *S, worker *W, size_t mat);
+ * state's dimension it gives (relaxation arms add states); inline, as the line's files
+ * call it and scan_worker.c calls them. */
+static inline void tt_scan_worker_contact(const tt_scan *S, worker *W, size_t mat)
+{
+    tt_sim_set_contact(W->sim, S->contacts[mat], S->Qi[mat]);
+    if (W->env)
+        W->env = W->envs[tt_sim_dim(W->sim)];
+}
 /* Whether a solver setting runs on the averaged tier here, and on the envelope tier
  * (the averaged tier's fallback included). */
 int tt_scan_averaged_usable(const tt_scan *S, const tt_solver *solver);

@@ -100,13 +100,6 @@ static tt_envelope_params envelope_plan(const tt_scan *S, const worker *W)
     return p;
 }
 
-void tt_scan_worker_contact(const tt_scan *S, worker *W, size_t mat)
-{
-    tt_sim_set_contact(W->sim, S->contacts[mat], S->Qi[mat]);
-    if (W->env)
-        W->env = W->envs[tt_sim_dim(W->sim)];
-}
-
 /* The plans, one per state dimension the sim takes (its own now, and each material's
  * law's after the modes'), all made up front: a line never allocates. */
 static int envelope_plans(const tt_scan *S, worker *W)
