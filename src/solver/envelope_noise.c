@@ -9,6 +9,7 @@
 
 #include "tiptap/util/error.h"
 #include "envelope_private.h"
+#include "shooting_linalg.h"
 
 /* The lower Cholesky factor L (by rows) of a symmetric positive semidefinite n x n
  * matrix A: a pivot at rounding's level of its diagonal leaves its column zero, as a
@@ -79,41 +80,14 @@ static void flow_free(tt_envelope *e)
     }
 }
 
-/* a = P^-1 b, b = (0, 1/m, 0, ...), P nx x nx by rows (M: scratch of nx^2): Gaussian
- * elimination with partial pivoting. 0: singular. */
+/* a = P^-1 b, b = (0, 1/m, 0, ...), P nx x nx by rows (M: scratch of nx^2): shooting's
+ * elimination. 0: singular. */
 static int kick_at_start(int nx, const double *P, double mass, double *M, double *a)
 {
+    double b[TT_SIM_DIM_MAX] = {0};
+    b[1] = 1 / mass;
     memcpy(M, P, (size_t)(nx * nx) * sizeof *M);
-    for (int i = 0; i < nx; i++)
-        a[i] = i == 1 ? 1 / mass : 0;
-    for (int k = 0; k < nx; k++) {
-        int piv = k;
-        for (int i = k + 1; i < nx; i++)
-            if (fabs(M[i * nx + k]) > fabs(M[piv * nx + k]))
-                piv = i;
-        if (!(fabs(M[piv * nx + k]) > 0))
-            return 0;
-        for (int c = 0; c < nx && piv != k; c++) {
-            const double t = M[k * nx + c];
-            M[k * nx + c] = M[piv * nx + c];
-            M[piv * nx + c] = t;
-        }
-        const double ta = a[k];
-        a[k] = a[piv];
-        a[piv] = ta;
-        for (int i = k + 1; i < nx; i++) {
-            const double f = M[i * nx + k] / M[k * nx + k];
-            for (int c = k; c < nx; c++)
-                M[i * nx + c] -= f * M[k * nx + c];
-            a[i] -= f * a[k];
-        }
-    }
-    for (int k = nx - 1; k >= 0; k--) {
-        for (int c = k + 1; c < nx; c++)
-            a[k] -= M[k * nx + c] * a[c];
-        a[k] /= M[k * nx + k];
-    }
-    return 1;
+    return tt_shoot_solve(nx, M, b, a, 1);
 }
 
 /* The kick's weights w at sample p (a: Phi(t_p, 0)^-1 b, nx of them): the end state's,
