@@ -29,7 +29,7 @@ static const char *plan_invalid(const tt_sim *sim, const tt_envelope_params *p)
     /* the Langevin force acts on the tip's velocity alone: a law's states after (d, d')
      * take no forcing of their own (envelope_noise.c), further modes would */
     if (p->psd > 0 && (nx < 2 || nx > 2 + TT_CONTACT_ARMS_MAX || tt_sim_cantilever(sim)->modes > 1))
-        return "thermal noise on a one-mode state (its flow is (d, d')'s)";
+        return "thermal noise on one mode, with at most TT_CONTACT_ARMS_MAX law states (the samples carry no more)";
     if (p->sd > 0 && p->reduced == 0)
         return "detector noise on reduced samples";
     return NULL;
