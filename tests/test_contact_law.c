@@ -189,7 +189,7 @@ static void sim_force_is_the_rows(void **st)
     tt_sim_set_contact(sim, c, Qi);
     tt_sim_set_sample(sim, 0, sdot);
     const double ci = cl.m * cl.w0 / Qi, delta = 1e-9, v = 0.3;
-    tt_sample smp = {0, 0, delta, v, 0, 1, 0, NAN};
+    tt_sample smp = {.d = delta, .v = v, .contact = 1, .f = NAN};
     double a, load = p.K * sqrt(p.R * delta) * delta;
     assert_close(tt_sim_force(sim, &smp, &a), load + ci * (v - sdot), 1e-12 * load);
     assert_close(a, sqrt(p.R * delta), 1e-20);

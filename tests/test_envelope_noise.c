@@ -130,6 +130,9 @@ static const char *silicon = "[material silicon]\nreduced_modulus = 100 GPa\n"
                              "adhesion_energy = 20 mJ/m^2\ninteratomic_distance = 0.3 nm\n"
                              "[surface]\ntype = flat\nmap = stripes\nmap_materials = silicon, silicon\n";
 static const char *thermal = "temperature = 300 K\n";
+static const char *arms = "[material polymer]\nadhesion_energy = 0 J/m^2\nyoungs_modulus = 500 MPa\n"
+                          "poisson_ratio = 0.4\narm1_modulus = 500 MPa\narm1_relaxation_time = 1 us\n";
+static const char *arms_noise = "temperature = 300 K\ndetector = 100 fm/sqrt(Hz)\n";
 
 enum { CH = 3, PX = 64, MAXU = 2 * 2 * 16, BANDS = 3 };
 
@@ -303,6 +306,20 @@ static void thermal_silicon(void **st)
     compare_tiers("thermal noise, silicon", silicon, thermal, 10, 0, 0.3);
 }
 
+/* examples/viscoelastic-blend/arms.ini's standard linear solid (the surface's
+ * depression a state after (d, d'), on the plan of dimension 3) with its thermal and
+ * detector noise, over 6 seeds: the thermal force kicks the tip alone and the surface
+ * follows through the whole state's flow (envelope_noise.c), so the noise's sd and
+ * spectrum agree within their sampling error and 3 %, its mean within 0.3 of its sd
+ * (as on silicon: the linear-noise approximation's mean shift). Measured over 16
+ * seeds: the sd 2.4 % high in height and error, 5.4 +- 1.5 % in phase (the scene
+ * without the arm: -0.6 +- 1.5 %), a bias not found yet (docs/dynamics.md). */
+static void thermal_arms(void **st)
+{
+    (void)st;
+    compare_tiers("thermal and detector noise, SLS", arms, arms_noise, 6, 0.03, 0.3);
+}
+
 /* The same noise on one thread as on two: the draws are a function of (seed, line,
  * cycle), not of the thread. */
 static void threads_agree(void **st)
@@ -319,4 +336,5 @@ TT_TEST_MAIN(cmocka_unit_test(model_equipartition),
              cmocka_unit_test(statistics_match),
              cmocka_unit_test(z_piezo_blend),
              cmocka_unit_test(thermal_silicon),
+             cmocka_unit_test(thermal_arms),
              cmocka_unit_test(threads_agree))

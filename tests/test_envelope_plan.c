@@ -157,6 +157,15 @@ static void a_plan_out_of_range_is_einval(void **st)
     p.sd = 0;
     p.reduced = 2; /* rows promised, none given */
     assert_int_equal(tt_envelope_alloc(&e, f.sim, &p), TT_EINVAL);
+    p.reduced = 0;
+    p.dim = TT_SIM_DIM_MAX + 1; /* a law's states past what a state holds */
+    assert_int_equal(tt_envelope_alloc(&e, f.sim, &p), TT_EINVAL);
+    assert_non_null(strstr(tt_error_message(), "components"));
+    p.dim = 3; /* a plan for an arm's state, the thermal noise on it too */
+    p.psd = 1e-30;
+    assert_int_equal(tt_envelope_alloc(&e, f.sim, &p), TT_OK);
+    assert_int_equal(tt_envelope_noise_size(e), 3);
+    tt_envelope_free(e);
     tt_error_clear();
     tt_sim_free(f.sim);
 }

@@ -326,12 +326,10 @@ static int check_bimodal(const tt_scene *s, const tt_scan_params *p)
     return TT_OK;
 }
 
-/* The envelope and averaged tiers model the cycle map on the tip's (d, v) alone: a
- * cantilever of more than one mode, or a sample whose surface is a state of its own
- * (relaxation arms), runs every cycle. The envelope's plan is made with the scan thread's
- * sim before any material's law is set (dimension 2), so an arm's state would stand
- * outside its model, its thermal covariance is of (d, d') and the averaged flow has no
- * surface lag (examples/viscoelastic-blend/README.md, Relaxation arms). */
+/* The envelope and averaged tiers model one mode: a cantilever of more than one runs
+ * every cycle. A sample whose surface is a state of its own (relaxation arms) runs on
+ * the envelope tier, whose plans follow the law's states (scan_worker.c), but not on
+ * the averaged tier, whose slow flow has no surface lag. */
 static int check_tier_arms(const tt_scene *s, const tt_scan_params *p)
 {
     if (p->solver.tier == TT_TIER_EVERY)
@@ -341,12 +339,14 @@ static int check_tier_arms(const tt_scene *s, const tt_scan_params *p)
                              "%s does not serve [cantilever] modes = %d yet (its models are of "
                              "one mode): set tier = every",
                              tt_tier_name(p->solver.tier), p->cantilever.modes);
-    for (size_t i = 0; i < p->nmaterials; i++)
+    /* the envelope tier's plans follow the law's states (scan_worker.c); the averaged
+     * tier's tables are of a force law of the tip's state alone */
+    for (size_t i = 0; i < p->nmaterials && p->solver.tier == TT_TIER_AVERAGED; i++)
         if (p->materials[i].contact.arms > 0)
             return tt_scene_fail(s, "solver", NULL, "tier",
-                                 "%s does not serve [material %s]'s relaxation arms yet (the "
-                                 "surface's state is outside its model of the tip's (d, v)): "
-                                 "set tier = every",
+                                 "%s does not serve [material %s]'s relaxation arms (its "
+                                 "tables are of a force of the tip's (d, v) alone, the "
+                                 "surface's state outside them): set tier = envelope or every",
                                  tt_tier_name(p->solver.tier), p->materials[i].name);
     return TT_OK;
 }

@@ -71,7 +71,7 @@ int tt_scan_integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_
     tt_scan *S = L->S;
     tt_sim *sim = L->W->sim;
     if (in->mat != st->current) {
-        tt_sim_set_contact(sim, S->contacts[in->mat], S->Qi[in->mat]);
+        tt_scan_worker_contact(S, L->W, in->mat);
         st->current = in->mat;
     }
     tt_sim_set_sample(sim, in->sa, (in->sb - in->sa) / S->cantilever.T);

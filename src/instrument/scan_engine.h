@@ -36,7 +36,13 @@ typedef struct {
     /* the envelope tier (NULL: every cycle): its model, a snapshot of the lock-in and
      * of the block's periods (y) to roll back to, and two observable vectors */
     tt_envelope *env;
-    tt_graze *graze; /* the touch branch of a grazing tip (the free one: env) */
+    /* its plans by the state's dimension, one per dimension of the materials' laws
+     * (relaxation arms add theirs): env is the one for the sim's law, chosen with it
+     * (tt_scan_worker_contact) */
+    tt_envelope *envs[TT_SIM_DIM_MAX + 1];
+    tt_graze *graze; /* the touch branch of a grazing tip (the free one: env), for the
+                      * dimension it was made at (graze_dim) */
+    int graze_dim;
     tt_lockin *lockin_save;
     double *y_save, *obs;
     /* the greatest indentation of the trace and retrace cycles, per material */
@@ -138,6 +144,15 @@ void tt_scan_worker_free(worker *W);
  * the envelope tier's model made anew where the noise changes its inputs or order (z
  * piezo noise: the travel; thermal or z piezo: second order) and its noise. */
 int tt_scan_worker_retune(tt_scan *S, worker *W);
+/* Material mat's force law on W's sim and, on the envelope tier, the plan for the
+ * state's dimension it gives (relaxation arms add states); inline, as the line's files
+ * call it and scan_worker.c calls them. */
+static inline void tt_scan_worker_contact(const tt_scan *S, worker *W, size_t mat)
+{
+    tt_sim_set_contact(W->sim, S->contacts[mat], S->Qi[mat]);
+    if (W->env)
+        W->env = W->envs[tt_sim_dim(W->sim)];
+}
 /* Whether a solver setting runs on the averaged tier here, and on the envelope tier
  * (the averaged tier's fallback included). */
 int tt_scan_averaged_usable(const tt_scan *S, const tt_solver *solver);

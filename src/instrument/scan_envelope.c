@@ -141,7 +141,7 @@ static void snap_restore(const line_ctx *L, const snapshot *sn, line_state *st)
     if (sn->p0 <= sn->p1)
         memcpy(L->pix + (size_t)L->dir * (size_t)S->raster.pixels + sn->p0, sn->pix,
                (size_t)(sn->p1 - sn->p0 + 1) * sizeof *sn->pix);
-    tt_sim_set_contact(W->sim, S->contacts[st->current], S->Qi[st->current]);
+    tt_scan_worker_contact(S, W, st->current);
     tt_sim_set_x(W->sim, st->x, sn->contact);
 }
 
@@ -217,6 +217,12 @@ static check_outcome check(const line_ctx *L, line_state *st, const cycle_in *in
         stops[TT_ENV_CHECK_CYCLE]++;
         return CHECK_FAILED;
     }
+    if (L->W->env != env) {
+        /* the cycle took the tip onto a law of another dimension: that plan's model is
+         * built there anew */
+        c->rebuild = 1;
+        return CHECK_MODEL_OFF;
+    }
     double err = tt_envelope_error(env, TT_ENV_ALL, xp, pred, st->x, obs) * tt_scan_env_drift(L, c->m);
     if (!(err <= L->tol + L->rel * tt_envelope_reach(env, x0, in->sa, sdot)) || c1 != c0 || tt_envelope_touched(&cy) != tt_envelope_anchor_touched(env)) {
         stops[c1 != c0 ? TT_ENV_CHECK_CONTACT
@@ -252,7 +258,7 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
                 double *obs, int *rc)
 {
     tt_sim *sim = L->W->sim;
-    tt_envelope *env = L->W->env;
+    tt_envelope *const was = L->W->env;
     double x0[TT_SIM_DIM_MAX];
     int c0, c1;
     tt_sim_get_x(sim, x0, &c0);
@@ -260,6 +266,11 @@ static int full(const line_ctx *L, line_state *st, controller *c, const cycle_in
     stops[TT_ENV_FULL]++;
     if ((*rc = tt_scan_env_integrate(L, st, in, &cy, obs, &c1, c)))
         return 0;
+    /* the plan of the law the cycle ended on (another dimension's after a material
+     * edge, whose model is built anew: the edge is no calm cycle) */
+    tt_envelope *env = L->W->env;
+    if (env != was)
+        c->rebuild = 1;
     int touch = tt_envelope_touched(&cy);
     /* a tip that touches in one cycle and not in the next, both on a branch, grazes */
     const int calm = !edge && !in->edge_next;
@@ -488,7 +499,9 @@ int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out,
                           long *integrated, double *worst, int *clamped)
 {
     controller c = {.m = M_MIN, .wait = WAIT_MIN};
-    tt_envelope_reset(W->env); /* a line's cycles depend on no other line's */
+    for (int n = 0; n <= TT_SIM_DIM_MAX; n++) /* a line's cycles depend on no other line's */
+        if (W->envs[n])
+            tt_envelope_reset(W->envs[n]);
     c.sn.pix = calloc((size_t)S->raster.pixels, sizeof *c.sn.pix);
     c.red = malloc(2 * (size_t)tt_envelope_size(W->env) * sizeof *c.red);
     c.pred = c.red ? c.red + tt_envelope_size(W->env) : NULL;

@@ -20,7 +20,8 @@
  * change contact are integrated, each one. */
 int tt_scan_graze_possible(const line_ctx *L, const line_state *st)
 {
-    return L->W->graze && !tt_envelope_noise_size(L->W->env) && !(L->S->zn.sd > 0) &&
+    return L->W->graze && tt_sim_dim(L->W->sim) == L->W->graze_dim &&
+           !tt_envelope_noise_size(L->W->env) && !(L->S->zn.sd > 0) &&
            isfinite(tt_contact_jumpin(L->S->contacts[st->current]));
 }
 

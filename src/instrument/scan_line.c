@@ -29,7 +29,7 @@ static void engage(tt_scan *S, worker *W, long line, long nc, uint64_t kz, line_
     else
         h0 = tt_scan_sample_at(S, &x, &y, tt_scan_clock_at(S, line, 0, nc, W->k0), &topo);
     st->current = S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
-    tt_sim_set_contact(W->sim, S->contacts[st->current], S->Qi[st->current]);
+    tt_scan_worker_contact(S, W, st->current);
     st->fb = W->fb;
     st->z_from = W->z_from;
     st->z_to = W->z_to;

@@ -17,7 +17,8 @@ void tt_scan_worker_free(worker *W)
     tt_lockin_free(W->lockin);
     free(W->samples);
     free(W->y);
-    tt_envelope_free(W->env);
+    for (int n = 0; n <= TT_SIM_DIM_MAX; n++)
+        tt_envelope_free(W->envs[n]);
     tt_graze_free(W->graze);
     tt_lockin_free(W->lockin_save);
     free(W->y_save);
@@ -99,11 +100,32 @@ static tt_envelope_params envelope_plan(const tt_scan *S, const worker *W)
     return p;
 }
 
+/* The plans, one per state dimension the sim takes (its own now, and each material's
+ * law's after the modes'), all made up front: a line never allocates. */
+static int envelope_plans(const tt_scan *S, worker *W)
+{
+    tt_envelope_params plan = envelope_plan(S, W);
+    const int n0 = tt_sim_dim(W->sim), modes = 2 * (S->cantilever.modes > 1 ? S->cantilever.modes : 1);
+    for (size_t i = 0; i <= S->nmaterials; i++) {
+        const int n = i == 0 ? n0
+                             : modes + (int)tt_contact_law_of(S->contacts[i - 1])->state_size;
+        if (n < 1 || n > TT_SIM_DIM_MAX)
+            return tt_error(TT_EINVAL, "[material %s]: a state of %d components (at most %d)",
+                            S->names[i - 1], n, TT_SIM_DIM_MAX);
+        plan.dim = n;
+        int rc = W->envs[n] ? TT_OK : tt_envelope_alloc(&W->envs[n], W->sim, &plan);
+        if (rc)
+            return rc;
+    }
+    W->env = W->envs[n0];
+    return TT_OK;
+}
+
 static int envelope_alloc(tt_scan *S, worker *W)
 {
     size_t n = (size_t)S->lockin.samples_per_period * (size_t)S->lockin.periods_per_block;
-    const tt_envelope_params plan = envelope_plan(S, W);
-    int rc = tt_envelope_alloc(&W->env, W->sim, &plan);
+    int rc = envelope_plans(S, W);
+    W->graze_dim = tt_sim_dim(W->sim);
     if (!rc) {
         const int m = tt_lockin_components(W->lockin);
         double *scale = calloc(2 * ((size_t)m + TT_ENV_EXTRA), sizeof *scale);
@@ -167,7 +189,10 @@ int tt_scan_worker_retune(tt_scan *S, worker *W)
     /* the model's plan follows the noise: made anew for the new noise (a line's model
      * starts afresh anyway, tt_envelope_reset) */
     if (W->env) {
-        tt_envelope_free(W->env);
+        for (int n = 0; n <= TT_SIM_DIM_MAX; n++) {
+            tt_envelope_free(W->envs[n]);
+            W->envs[n] = NULL;
+        }
         tt_graze_free(W->graze); /* envelope_alloc makes a new one when the tier returns */
         tt_lockin_free(W->lockin_save);
         free(W->y_save);

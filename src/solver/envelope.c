@@ -19,14 +19,17 @@ const char *tt_envelope_outcome_name(tt_envelope_outcome o)
 /* Why a plan cannot be made (NULL: it can). */
 static const char *plan_invalid(const tt_sim *sim, const tt_envelope_params *p)
 {
-    if (tt_sim_dim(sim) < 1 || tt_sim_dim(sim) > TT_SIM_DIM_MAX)
+    const int nx = p->dim > 0 ? p->dim : tt_sim_dim(sim);
+    if (nx < 1 || nx > TT_SIM_DIM_MAX || p->dim < 0)
         return "a state of 1 to TT_SIM_DIM_MAX components";
     if (p->samples < 1 || p->probes < 0 || p->reduced < 0 || p->kept < 0)
         return "samples > 0 and probes, reduced and kept >= 0";
     if (p->reduced > 0 && !p->reduce)
         return "the reduction's rows";
-    if (p->psd > 0 && tt_sim_dim(sim) != 2)
-        return "thermal noise on a one-mode state (its flow is (d, d')'s)";
+    /* the Langevin force acts on the tip's velocity alone: a law's states after (d, d')
+     * take no forcing of their own (envelope_noise.c), further modes would */
+    if (p->psd > 0 && (nx < 2 || nx > 2 + TT_CONTACT_ARMS_MAX || tt_sim_cantilever(sim)->modes > 1))
+        return "thermal noise on one mode, with at most TT_CONTACT_ARMS_MAX law states (the samples carry no more)";
     if (p->sd > 0 && p->reduced == 0)
         return "detector noise on reduced samples";
     return NULL;
@@ -66,8 +69,11 @@ static int plan_buffers(tt_envelope *e, const tt_envelope_params *p)
         ok = ok && e->Lj && e->Lf;
     }
     if (p->psd > 0) {
-        e->trk = calloc(8 * (size_t)e->n, sizeof *e->trk);
-        e->phi = calloc(4 * ((size_t)e->n + 1), sizeof *e->phi);
+        /* the state at the samples of the 2 nx cycles perturbed in each component, the
+         * flow's nx x nx Jacobian at each sample and the end */
+        const size_t nx2 = (size_t)e->nx * (size_t)e->nx;
+        e->trk = calloc(2 * nx2 * (size_t)e->n, sizeof *e->trk);
+        e->phi = calloc(nx2 * ((size_t)e->n + 1), sizeof *e->phi);
         ok = ok && e->trk && e->phi;
     }
     /* a build's outputs (the anchor's and two per input) and the second differences'
@@ -88,7 +94,7 @@ int tt_envelope_alloc(tt_envelope **out, const tt_sim *sim, const tt_envelope_pa
         return tt_error_nomem("the envelope tier's cycle map");
     const tt_cantilever *c = tt_sim_cantilever(sim);
     const int n = p->samples;
-    e->nx = tt_sim_dim(sim);
+    e->nx = p->dim > 0 ? p->dim : tt_sim_dim(sim);
     e->ni = e->nx + 2;
     e->npair = e->ni * (e->ni + 1) / 2;
     e->n = n;
@@ -263,7 +269,8 @@ void tt_envelope_anchor(tt_envelope *e, const double *x0, double s, double sdot,
 
 /* One perturbed cycle from x0 + dx with the sample at s + ds mid-cycle travelling dt more
  * within it (dx: the state's, then ds, dt): end state and observables; its outcome (the
- * anchor's branch: touch, end contact flag). trk: the tip's (d, d') at the samples. */
+ * anchor's branch: touch, end contact flag). trk: the state at the samples (the tip's
+ * (d, d'), then the law's states). */
 static tt_envelope_outcome perturbed(tt_envelope *e, tt_sim *sim, const double *x0, int c0,
                                      double s, double sdot, const double *dx, int c1,
                                      double *x1, double *obs, double *trk)
@@ -286,8 +293,10 @@ static tt_envelope_outcome perturbed(tt_envelope *e, tt_sim *sim, const double *
     const tt_sample *smp = tt_sim_samples(sim);
     tt_envelope_observe(e, smp, tt_sim_probes(sim), &cy, obs);
     for (int q = 0; trk && q < e->n; q++) {
-        trk[2 * q] = smp[q].d;
-        trk[2 * q + 1] = smp[q].v;
+        trk[nx * q] = smp[q].d;
+        trk[nx * q + 1] = smp[q].v;
+        for (int i = 2; i < nx; i++)
+            trk[nx * q + i] = smp[q].q[i - 2];
     }
     return TT_ENV_USABLE;
 }
@@ -373,11 +382,11 @@ tt_envelope_outcome tt_envelope_build(tt_envelope *e, tt_sim *sim, const double 
         dm[j] = -h[j];
         /* the states along the cycles perturbed in d and d' give the flow's Jacobian for
          * the thermal noise's covariance */
-        double *tp = e->trk && j < 2 ? e->trk + (size_t)(4 * j) * (size_t)e->n : NULL;
+        double *tp = e->trk && j < nx ? e->trk + (size_t)(2 * nx * j) * (size_t)e->n : NULL;
         double *a = pp + (size_t)j * (size_t)nq, *b = pm + (size_t)j * (size_t)nq;
         how = perturbed(e, sim, x0, c0, s, sdot, dp, c1, a, a + nx, tp);
         if (how == TT_ENV_USABLE)
-            how = perturbed(e, sim, x0, c0, s, sdot, dm, c1, b, b + nx, tp ? tp + 2 * e->n : NULL);
+            how = perturbed(e, sim, x0, c0, s, sdot, dm, c1, b, b + nx, tp ? tp + nx * e->n : NULL);
         *cycles += 2;
         for (int i = 0; i < nx && how == TT_ENV_USABLE; i++)
             e->J[i * ni + j] = (a[i] - b[i]) / (2 * h[j]);

@@ -66,8 +66,9 @@ struct tt_envelope {
     int m, nr;
     double *R, *ra, *Cr;
     /* noise: the thermal force's two-sided PSD and the detector's per-sample rms; the
-     * tip's states at the samples of the four cycles perturbed in d and d' (the flow's
-     * Jacobian along the cycle; one mode); the lower Cholesky factor, by rows, of the
+     * states at the samples of the 2 nx cycles perturbed in each state component (the
+     * flow's Jacobian along the cycle; one mode, a law's states after it); the lower
+     * Cholesky factor, by rows, of the
      * joint covariance of the end state's and the reduced samples' noise per cycle (nn
      * = nx + m) */
     double psd, sd;

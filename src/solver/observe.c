@@ -58,6 +58,8 @@ static void observe_at(tt_sim *S, double ts, tt_sample *smp)
         double x[TT_SIM_DIM_MAX], delta;
         const double *q = law_state_at(S, f, x);
         double u = S->sys.law->surface(S->sys.contact, q);
+        for (int i = 0; i < S->sys.nlaw && i < (int)(sizeof smp->q / sizeof *smp->q); i++)
+            smp->q[i] = q[i];
         smp->u = smp->contact ? fmax(u, smp->d - smp->s) : u;
         smp->f = ts_force(S, f, smp->d, smp->v, smp->contact, &delta);
     }

@@ -62,8 +62,11 @@ typedef struct {
                             * the Jacobians carried to each new anchor */
     int kept;              /* second order: room for this many models kept for recall
                             * (tt_envelope_keep); 0: none */
-    double psd;            /* the thermal force's two-sided PSD, N^2/Hz (0: none; one mode) */
+    double psd;            /* the thermal force's two-sided PSD, N^2/Hz (0: none; one mode,
+                            * with or without a law's states after its (d, d')) */
     double sd;             /* the detector's rms noise per sample, m (0: none; needs m) */
+    int dim;               /* the state's components (0: the sim's now, tt_sim_dim): a plan
+                            * for a law whose states the sim takes on later */
 } tt_envelope_params;
 
 /* What a build made of the model: usable, or why not (the caller integrates every cycle
@@ -80,9 +83,9 @@ typedef enum {
 /* The outcome's name, for messages ("usable", "cycle failed", ...). */
 const char *tt_envelope_outcome_name(tt_envelope_outcome o);
 
-/* A plan for the sim's state (tt_sim_dim components) on its cantilever. TT_EINVAL for a
- * parameter out of range (thermal noise with n > 2, detector noise without a
- * reduction), TT_ENOMEM when the buffers cannot be had. */
+/* A plan for the sim's state (tt_sim_dim components, or p->dim) on its cantilever.
+ * TT_EINVAL for a parameter out of range (thermal noise on more than one mode, detector
+ * noise without a reduction), TT_ENOMEM when the buffers cannot be had. */
 int tt_envelope_alloc(tt_envelope **out, const tt_sim *sim, const tt_envelope_params *p);
 void tt_envelope_free(tt_envelope *e);
 /* Observables per cycle: samples + TT_ENV_EXTRA + probes. */

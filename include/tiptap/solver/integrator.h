@@ -96,6 +96,9 @@ typedef struct {
      * law), and the tip-sample force there, N (NAN for an elastic law, which
      * tt_sim_force computes from d - s alone) */
     double u, f;
+    /* and the law's states there (not written for an
+     * elastic law): the envelope tier's thermal noise measures their flow */
+    double q[TT_CONTACT_ARMS_MAX];
 } tt_sample;
 
 typedef struct tt_sim tt_sim;
