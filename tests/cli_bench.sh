@@ -132,5 +132,8 @@ awk '/^setting +tier +rt\/cpu_s/ { t = 1; next } /^ / { next } /^#/ || /^$/ { t 
 err=$("$tiptap" bench --lesson-lines 1 2>&1 >/dev/null)
 [ "$err" = "tiptap bench: --lesson-lines: '1' is not a whole number from 2 to 64" ] && ok "--lesson-lines 1 refused" ||
   bad "--lesson-lines 1: '$err'"
+err=$("$tiptap" bench --lesson-setting 8 2>&1 >/dev/null)
+[ "$err" = "tiptap bench: --lesson-setting: '8' is not a whole number from 1 to 7" ] && ok "--lesson-setting 8 refused" ||
+  bad "--lesson-setting 8: '$err'"
 
 exit $fail

@@ -93,8 +93,9 @@ int bench_noise_figure(const bench_sample *s, const bench_run *ref, int seeds);
 
 /* The lesson figure: the teaching scene (bench_lesson_scene) at each of the lesson's
  * settings, lines 0 to lines - 1 stepped one at a time on the default tier and on the
- * every-cycle tier (quick: the last, 40 Hz lines, only). */
+ * every-cycle tier (quick: the last, 40 Hz lines, only; only > 0: that setting alone,
+ * counted from 1). */
 const char *bench_lesson_scene(void);
-int bench_lesson_figure(long lines, int quick);
+int bench_lesson_figure(long lines, int quick, int only);
 
 #endif

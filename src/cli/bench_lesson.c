@@ -174,7 +174,7 @@ static void lesson_error(const lesson_run *a, const lesson_run *b, int phase, lo
     *rms = cnt ? sqrt(ss / (double)cnt) : 0;
 }
 
-int bench_lesson_figure(long lines, int quick)
+int bench_lesson_figure(long lines, int quick, int only)
 {
     tt_scene *base = tt_scene_alloc();
     int rc = base ? tt_scene_load_string(base, bench_lesson_scene(), "lesson scene (bench)")
@@ -194,7 +194,7 @@ int bench_lesson_figure(long lines, int quick)
     const size_t ns = NS;
     long why[NS][TT_ENV_STOPS] = {{0}};
     for (size_t i = 0; i < ns && !rc; i++) {
-        if (quick && i != ns - 1)
+        if (only ? (int)i != only - 1 : quick && i != ns - 1)
             continue;
         lesson_run fast, every = {0};
         tt_scan_envelope_stops_reset();
@@ -228,7 +228,7 @@ int bench_lesson_figure(long lines, int quick)
         printf(" %s", tt_scan_envelope_stop_name(k));
     printf("\n");
     for (size_t i = 0; i < ns && !rc; i++) {
-        if (quick && i != ns - 1)
+        if (only ? (int)i != only - 1 : quick && i != ns - 1)
             continue;
         printf("%-26s", settings[i].label);
         for (int k = 0; k < TT_ENV_STOPS; k++)

@@ -17,7 +17,8 @@ static void help(void)
 {
     printf("Usage: tiptap bench [--cycles N] [--seeds N] [--quick] [--no-steady] [--no-imaging]\n"
            "                    [--no-noise] [--no-scenes] [--no-lesson] [--lesson-only]\n"
-           "                    [--lesson-lines N] [--print-scene] [--print-blend-scene]\n"
+           "                    [--lesson-lines N] [--lesson-setting N] [--print-scene]\n"
+           "                    [--print-blend-scene]\n"
            "Benchmark on the standard tapping scene (300 kHz, Q 400, 40 N/m, 20 nm free\n"
            "amplitude, polymer with adhesion, 16 nm rest separation).\n\n"
            "Prints, for each solver setting: simulated cantilever cycles per wall-clock\n"
@@ -67,6 +68,9 @@ static void help(void)
            "  --lesson-lines N\n"
            "                  lines per lesson setting (2 to 64; default 7, 2 with --quick,\n"
            "                  which runs only the 40 Hz lines' setting)\n"
+           "  --lesson-setting N\n"
+           "                  the lesson figure's Nth setting alone (1 to 7, in the order\n"
+           "                  above: a figure a loaded machine can finish)\n"
            "  --print-scene   print the standard scene and exit\n"
            "  --print-blend-scene\n"
            "                  print the README main job's scene and exit\n");
@@ -229,10 +233,11 @@ int cmd_bench(int argc, char **argv)
                                          {"no-lesson", no_argument, NULL, 'l'},
                                          {"lesson-only", no_argument, NULL, 'L'},
                                          {"lesson-lines", required_argument, NULL, 'm'},
+                                         {"lesson-setting", required_argument, NULL, 'g'},
                                          {NULL, 0, NULL, 0}};
     static const cli_spec spec = {"bench", 0, opts, "", help};
     cli_args args = {0}; /* no --set: nothing to free */
-    long n = -1, seeds = -1, lesson_lines = -1;
+    long n = -1, seeds = -1, lesson_lines = -1, only = 0;
     int steady = 1, imaging = 1, noise = 1, scenes = 1, lesson = 1, quick = 0, print_scene = 0;
     int c;
     while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) {
@@ -254,6 +259,10 @@ int cmd_bench(int argc, char **argv)
         case 'L': steady = imaging = noise = scenes = 0; break;
         case 'm':
             if (cli_whole("bench", "--lesson-lines", optarg, 2, 64, NULL, &lesson_lines))
+                return CLI_USAGE;
+            break;
+        case 'g':
+            if (cli_whole("bench", "--lesson-setting", optarg, 1, 7, NULL, &only))
                 return CLI_USAGE;
             break;
         case 'p': print_scene = 1; break;
@@ -291,7 +300,7 @@ int cmd_bench(int argc, char **argv)
         rc = bench_images(scene, &lines, imaging, noise, scenes, (int)seeds);
     /* seven lines: the first engages and settles, six are the figures' median */
     if (!rc && lesson)
-        rc = bench_lesson_figure(lesson_lines > 0 ? lesson_lines : quick ? 2 : 7, quick);
+        rc = bench_lesson_figure(lesson_lines > 0 ? lesson_lines : quick ? 2 : 7, quick, (int)only);
     tt_setup_free(st);
     tt_scene_free(scene);
     return rc ? cli_fail(rc, NULL) : CLI_OK;

@@ -117,6 +117,8 @@ static void snap_take(const line_ctx *L, const line_state *st, int contact, long
     sn->contact = contact;
     tt_lockin_copy(W->lockin_save, W->lockin);
     memcpy(W->y_save, W->y, (size_t)L->P * (size_t)L->N * sizeof *W->y);
+    if (W->indent)
+        memcpy(sn->indent, W->indent, L->S->nmaterials * sizeof *W->indent);
     sn->p0 = 1;
     sn->p1 = 0;
     if (L->phase == 0 || st->k >= L->ncyc)
@@ -138,6 +140,10 @@ static void snap_restore(const line_ctx *L, const snapshot *sn, line_state *st)
     *st = sn->st;
     tt_lockin_copy(W->lockin, W->lockin_save);
     memcpy(W->y, W->y_save, (size_t)L->P * (size_t)L->N * sizeof *W->y);
+    /* a rolled-back stretch's greatest indentation is not the line's: its cycles run
+     * again */
+    if (W->indent)
+        memcpy(W->indent, sn->indent, S->nmaterials * sizeof *W->indent);
     if (sn->p0 <= sn->p1)
         memcpy(L->pix + (size_t)L->dir * (size_t)S->raster.pixels + sn->p0, sn->pix,
                (size_t)(sn->p1 - sn->p0 + 1) * sizeof *sn->pix);
@@ -224,13 +230,24 @@ static check_outcome check(const line_ctx *L, line_state *st, const cycle_in *in
         return CHECK_MODEL_OFF;
     }
     double err = tt_envelope_error(env, TT_ENV_ALL, xp, pred, st->x, obs) * tt_scan_env_drift(L, c->m);
-    if (!(err <= L->tol + L->rel * tt_envelope_reach(env, x0, in->sa, sdot)) || c1 != c0 || tt_envelope_touched(&cy) != tt_envelope_anchor_touched(env)) {
+    /* a grown bound's stretch is held to what one within the fixed reach may err */
+    const double far = tt_envelope_reach(env, x0, in->sa, sdot);
+    const double allow = L->tol + L->rel * (c->bound > 1 ? fmin(far, L->reach) : far);
+    if (!(err <= allow) || c1 != c0 || tt_envelope_touched(&cy) != tt_envelope_anchor_touched(env)) {
+        c->bound = fmax(1, 0.5 * c->bound);
         stops[c1 != c0 ? TT_ENV_CHECK_CONTACT
               : tt_envelope_touched(&cy) != tt_envelope_anchor_touched(env) ? TT_ENV_CHECK_TOUCH
                                                                            : TT_ENV_CHECK_ERROR]++;
         return CHECK_FAILED;
     }
     stops[TT_ENV_CHECK_PASS]++;
+    /* A stretch the bounds ended whose error is an eighth of what a stretch within the
+     * fixed bounds may err (the second-order model's error grows with the cube of the
+     * reach) lets the next one run twice as far, as a step-size controller does: where
+     * the loop's oscillation moves the sample past the fixed 20 pm in a cycle, the bound,
+     * not an error, had stopped the model (docs/dynamics.md, "Why it integrates") */
+    if (c->bounded && err <= 0.125 * (L->tol + L->rel * L->reach))
+        c->bound = fmin(BOUND_MAX, 2 * c->bound);
     c->smooth = sample_mid(in) - in->zn;
     if (far_off(L, x0, in, tt_envelope_touched(&cy), c0) && !recall(L, st, c, in, x0, c0, &cy) &&
         worth_a_model(L, st, in, x0)) {
@@ -376,17 +393,20 @@ static void fail(const line_ctx *L, line_state *st, controller *c, long k)
  * starts anew there: the noise rings the state round an orbit many times the reach
  * wide (0.7 nm on the edge sample's disks, every 100 cycles), and the models built on
  * it tile it. Never grazing (graze_possible). */
-static int model_step2(const line_ctx *L, line_state *st, const controller *c,
+static int model_step2(const line_ctx *L, line_state *st, controller *c,
                        const cycle_in *in, double sdot, double *obs)
 {
     tt_envelope *env = L->W->env;
-    if (!(fabs(sample_mid(in) - in->zn - c->smooth) <= L->edge)) {
+    if (!(fabs(sample_mid(in) - in->zn - c->smooth) <= L->edge * c->bound)) {
         stops[TT_ENV_END_SAMPLE]++;
+        c->bounded = 1;
         return 0;
     }
-    if (!(tt_envelope_reach(env, st->x, in->sa, sdot) <= L->reach)) {
-        if (!tt_envelope_switch(env, st->x, in->sa, sdot, (int)st->current, L->reach)) {
+    const double reach = L->reach * c->bound;
+    if (!(tt_envelope_reach(env, st->x, in->sa, sdot) <= reach)) {
+        if (!tt_envelope_switch(env, st->x, in->sa, sdot, (int)st->current, reach)) {
             stops[TT_ENV_END_REACH]++;
+            c->bounded = 1;
             return 0;
         }
         memset(st->x2, 0, sizeof st->x2);
@@ -477,6 +497,7 @@ static int run_phase(const line_ctx *L, line_state *st, controller *c)
         if (snap) {
             c->left = c->m;
             c->ran = 0;
+            c->bounded = 0;
             snap_take(L, st, tt_envelope_anchor_contact(L->W->env), c->left, &c->sn);
         }
     }
@@ -498,15 +519,17 @@ static int envelope_phase(const line_ctx *L, line_state *st, void *tier)
 int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
                           long *integrated, double *worst, int *clamped)
 {
-    controller c = {.m = M_MIN, .wait = WAIT_MIN};
+    controller c = {.m = M_MIN, .wait = WAIT_MIN, .bound = 1};
     for (int n = 0; n <= TT_SIM_DIM_MAX; n++) /* a line's cycles depend on no other line's */
         if (W->envs[n])
             tt_envelope_reset(W->envs[n]);
     c.sn.pix = calloc((size_t)S->raster.pixels, sizeof *c.sn.pix);
+    c.sn.indent = malloc((S->nmaterials ? S->nmaterials : 1) * sizeof *c.sn.indent);
     c.red = malloc(2 * (size_t)tt_envelope_size(W->env) * sizeof *c.red);
     c.pred = c.red ? c.red + tt_envelope_size(W->env) : NULL;
-    if (!c.sn.pix || !c.red) {
+    if (!c.sn.pix || !c.red || !c.sn.indent) {
         free(c.sn.pix);
+        free(c.sn.indent);
         free(c.red);
         return tt_error_nomem("the envelope tier's pixels of a line ([scan] pixels = %ld)", S->raster.pixels);
     }
@@ -515,6 +538,7 @@ int tt_scan_line_envelope(tt_scan *S, worker *W, long line, const line_out *out,
     tt_graze_disarm(W->graze, W->sim);
     free(c.seen);
     free(c.sn.pix);
+    free(c.sn.indent);
     free(c.red);
     return rc;
 }

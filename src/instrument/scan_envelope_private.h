@@ -13,7 +13,9 @@ enum {
     M_MIN = 4,       /* a stretch's first length, and the least after a failure */
     M_MAX = 1024,    /* its longest: the checks then cost about a thousandth of the cycles */
     WAIT_MIN = 16,   /* quiet integrated cycles before the model is tried */
-    WAIT_MAX = 128  /* the same after repeated failures (doubling) */
+    WAIT_MAX = 128, /* the same after repeated failures (doubling) */
+    BOUND_MAX = 64  /* the most the sample's bound and the reach grow by (1.3 nm and
+                     * 3.8 nm on the standard cantilever) */
 };
 
 /* A point the line can return to: its state after a cycle, the lock-in's filter, the
@@ -23,6 +25,7 @@ typedef struct {
     int contact;
     long p0, p1; /* saved pixels, p0 <= p1 (none: p0 > p1) */
     pixel_acc *pix;
+    double *indent; /* the worker's greatest indentations (per material) */
 } snapshot;
 
 /* The last branch called in the grazing mode and its inputs (valid while the models
@@ -57,10 +60,14 @@ typedef struct {
                       * with probes (free_ok) and the touch one fitted */
     int free_ok;
     int prev_branch; /* the last integrated cycle could be on a branch of the grazing model */
+    int bounded;     /* the stretch was ended by the sample's bound or the reach */
     int exact;       /* the tip's state is an integrated cycle's end (no model cycle since) */
     long same;       /* integrated cycles in a row on the last one's branch (grazing) */
     lookahead la;
     double *red, *pred; /* a check's reduced observables and their prediction */
+    double bound;    /* the second-order model's bounds on the sample's travel and its
+                      * reach, as multiples of L->edge and L->reach: grown where the
+                      * checks pass well within their allowance, shrunk where one fails */
     double smooth;   /* the sample's smooth course (its position mid-cycle less the z
                       * piezo's noise) where the model was last anchored on a cycle */
     snapshot sn;
