@@ -4,8 +4,10 @@
 # headless Chromium at 1024 x 768 (tests/live_bench.py) a refused ramp value restores its
 # field, the force panel's pull-off and jump-in equal `tiptap force`'s on the same scene and
 # ramp, the tune's k is within its stated uncertainty of the scene's and equals `tiptap
-# tune`'s. Skipped (77) where Chromium or python3 is missing. With TT_LIVE_SHOTS=DIR the
-# screenshots are kept there.
+# tune`'s; on the same scene as a beam of two modes (tests/live_bench_modes.py) the tune
+# sends and shows both, each mode's f, Q and k equal to `tiptap tune`'s. Skipped (77)
+# where Chromium or python3 is missing. With TT_LIVE_SHOTS=DIR the screenshots are kept
+# there.
 # usage: cli_live_bench.sh path/to/tiptap source_dir
 set -u
 tiptap=$(realpath "$1")
@@ -62,4 +64,15 @@ shots=$(realpath "$shots")
   "${pulloff}e-9" "${jumpin}e-9" "$k" "$ktune") || fail=1
 kill -INT "$pid"; wait "$pid"
 [ $? -eq 130 ] && ok "the server stopped on Ctrl-C" || bad "the server's exit; $(cat "$tmp/err")"
+
+# two modes (the every-cycle tier scans them): Nyquist must clear mode 2's 1.88 MHz, 16
+# samples a 300 kHz period
+two="--set cantilever.modes=2 --set tune.samples_per_cycle=16 --set solver.tier=every"
+"$tiptap" tune $scene $two -q -o "$tmp/tune2.csv" >"$tmp/tune2.txt" || bad "tiptap tune of two modes failed"
+live_start $scene $two --set scan.lines=16 --set scan.line_rate=8Hz
+[ -n "$port" ] || { bad "the two-mode server did not start: $(cat "$tmp/err")"; exit 1; }
+(cd "$here" && /usr/bin/python3 live_bench_modes.py "$chromium" "http://127.0.0.1:$port/" "$shots" \
+  "$tmp/tune2.txt") || fail=1
+kill -INT "$pid"; wait "$pid"
+[ $? -eq 130 ] && ok "the two-mode server stopped on Ctrl-C" || bad "the server's exit; $(cat "$tmp/err")"
 exit $fail

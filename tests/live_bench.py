@@ -7,8 +7,10 @@
     jump-in that `tiptap force` gives on the same scene and ramp (the same seed: equal to
     the 6 digits tiptap force prints), both marked and read out;
   * the thermal tune runs beside the scan (its lines go on), and its k is within its stated uncertainty (two standard errors: the band
-    holding 95 % of seeds) of the scene's k, and equals `tiptap tune`'s on the same scene.
-With a shots folder, docs/live-force.png and docs/live-tune.png.
+    holding 95 % of seeds) of the scene's k, and equals `tiptap tune`'s on the same scene;
+    a lever of one mode sends one mode and draws one zoom (tests/live_bench_modes.py:
+    several).
+With a shots folder, docs/live-force.png (docs/live-tune.png: tests/live_bench_modes.py).
 
 usage: live_bench.py CHROMIUM URL SHOTS_DIR PULLOFF_N JUMPIN_N K_SCENE K_TUNE"""
 import sys
@@ -75,12 +77,12 @@ def main(b):
     assert off <= 2, "k = %s +- %s N/m, %.2f standard errors from the scene's %s" % (t["k"], t["k_err"], off, k_scene)
     assert close(t["k"], k_tune), "k %s, tiptap tune's %s" % (t["k"], k_tune)
     assert len(t["f"]) > 50 and t["f0"] > 0 and t["Q_err"] > 0, t
+    assert len(t["modes"]) == 1 and t["modes"][0]["k"] == t["k"], t["modes"]
+    assert not b.eval("!!document.getElementById('tunezoom2')"), "a second zoom for one mode"
     read = b.eval("document.getElementById('tuneread').textContent")
     assert "k = " in read and "Q = " in read and "\u00b1" in read, read
     print("ok the tune's k = %.4g +- %.2g N/m is %.2f standard errors from the scene's %g N/m and equals "
           "tiptap tune's %.6g; read out: %s" % (t["k"], t["k_err"], off, k_scene, k_tune, read))
-    b.eval("document.getElementById('tunepanel').scrollIntoView()")
-    shot(b, shots, "live-tune.png")
 
 
 run(main, chromium, url, 1024, 768)

@@ -99,9 +99,17 @@ function hz(f) {
   return f >= 1e6 ? f / 1e6 + " MHz" : f >= 1e3 ? f / 1e3 + " kHz" : f + " Hz";
 }
 
-// the spectrum (blue) and the fit (red) on log-log axes between f0 and f1, with f0
-// marked and the fit's window shaded; ticks at 1..9 times the decades, the decades named
-function drawSpectrum(id, m, fs, psd, fit, xlabel) {
+// each mode's colour: its window's shade, its resonance's mark, its figures' text
+const MODE_COLOUR = ["#2e7d32", "#6a1b9a", "#ef6c00"];
+function shade(colour) {
+  const n = parseInt(colour.slice(1), 16);
+  return "rgba(" + (n >> 16) + "," + ((n >> 8) & 255) + "," + (n & 255) + ",0.09)";
+}
+
+// the spectrum (blue) and the fit (red) on log-log axes between f0 and f1, each of
+// modes' resonances marked and its fit's window shaded in its colour (the mode's number
+// by its mark when there are several); ticks at 1..9 times the decades, the decades named
+function drawSpectrum(id, modes, fs, psd, fit, xlabel, several) {
   const { ctx, W, H } = canvasCtx($(id));
   const box = { x: 52, y: 6, w: W - 52 - 10, h: H - 6 - 40 };
   const lp = psd.map((v) => v > 0 ? Math.log10(v) : NaN), lq = fit.map((v) => v > 0 ? Math.log10(v) : NaN);
@@ -119,38 +127,66 @@ function drawSpectrum(id, m, fs, psd, fit, xlabel) {
   const a = plotFrame(ctx, box, f0, f1, Math.floor(yl * 2) / 2, Math.ceil(yh * 2) / 2, true, xlabel,
     "log10 PSD (m\u00b2/Hz)", xt);
   ctx.save(); ctx.beginPath(); ctx.rect(box.x, box.y, box.w, box.h); ctx.clip();
-  const wl = a.X(Math.max(m.fit_low, f0)), wh = a.X(Math.min(m.fit_high, f1));
-  ctx.fillStyle = "rgba(46,125,50,0.08)";
-  if (wh > wl) ctx.fillRect(wl, box.y, wh - wl, box.h);
+  for (const md of modes) {
+    const wl = a.X(Math.max(md.fit_low, f0)), wh = a.X(Math.min(md.fit_high, f1));
+    ctx.fillStyle = shade(md.colour);
+    if (wh > wl) ctx.fillRect(wl, box.y, wh - wl, box.h);
+  }
   polyline(ctx, fs.map((f, i) => [a.X(f), a.Y(lp[i])]), "#1565c0", 1.4);
   polyline(ctx, fs.map((f, i) => [a.X(f), a.Y(lq[i])]), "#c62828", 1.8);
-  polyline(ctx, [[a.X(m.f0), box.y], [a.X(m.f0), box.y + box.h]], "#2e7d32", 1, [3, 2]);
+  for (const md of modes) {
+    polyline(ctx, [[a.X(md.f0), box.y], [a.X(md.f0), box.y + box.h]], md.colour, 1, [3, 2]);
+    if (!several) continue;
+    // one row each (marks may lie close on a log axis), left of a mark near the right edge
+    const px = a.X(md.f0), right = px > box.x + 0.7 * box.w;
+    ctx.fillStyle = md.colour; ctx.font = FONT_PX + "px DejaVu Sans, sans-serif";
+    ctx.textAlign = right ? "right" : "left"; ctx.textBaseline = "top";
+    ctx.fillText("mode " + md.n, px + (right ? -4 : 4), box.y + 4 + (md.n - 1) * (FONT_PX + 4));
+  }
   ctx.restore();
 }
 
+// the zoom canvases, one a mode (tunezoom: mode 1's; the others made here, after it)
+function zoomCanvas(n) {
+  const id = n === 1 ? "tunezoom" : "tunezoom" + n;
+  if (!$(id)) {
+    const c = document.createElement("canvas");
+    c.id = id;
+    c.title = "mode " + n + "'s resonance bin by bin, f0 +- 12 f0/Q, and the fit";
+    $("tuneplots").appendChild(c);
+  }
+  return id;
+}
+
 function drawTune(m) {
-  drawSpectrum("tuneplot", m, m.f, m.psd, m.fit, "frequency (the whole record's spectrum)");
-  if (m.zoom_f.length > 1)
-    drawSpectrum("tunezoom", m, m.zoom_f, m.zoom_psd, m.zoom_fit, "frequency (the resonance, bin by bin)");
-  const sig = Math.abs(m.k - m.k_scene) / m.k_err;
+  const modes = m.modes.map((md, i) => Object.assign({ n: i + 1, colour: MODE_COLOUR[i % MODE_COLOUR.length] }, md));
+  const several = modes.length > 1;
+  drawSpectrum("tuneplot", modes, m.f, m.psd, m.fit, "frequency (the whole record's spectrum)", several);
+  for (let n = 2; $("tunezoom" + n); n++) $("tunezoom" + n).hidden = n > modes.length; // a scene with fewer modes since
+  for (const md of modes)
+    if (md.zoom_f.length > 1)
+      drawSpectrum(zoomCanvas(md.n), [md], md.zoom_f, md.zoom_psd, md.zoom_fit,
+        "frequency (" + (several ? "mode " + md.n + "'s" : "the") + " resonance, bin by bin)", false);
   $("tuneinfo").textContent = "at " + fmt(m.temperature, "K") + ", " + m.averages.toFixed(1) + " averages, bins of " +
-    fmt(m.bin_width, "Hz");
+    fmt(m.bin_width, "Hz") + (several ? ", " + modes.length + " modes" : "");
   $("tuneread").innerHTML = "";
-  const parts = [
-    ["f = " + withErr(m.f0, m.f0_err, "kHz", 1e3), "#2e7d32"],
-    ["Q = " + withErr(m.Q, m.Q_err, "", 1), "#222"],
-    ["k = " + withErr(m.k, m.k_err, "N/m", 1) + " (the scene's " + fmt(m.k_scene, "N/m") + ": " +
-      (isFinite(sig) ? sig.toFixed(1) : "?") + " standard errors off)", "#222"],
-  ];
-  for (const [t, colour] of parts) {
-    const s = document.createElement("span");
-    s.textContent = t + "; "; s.style.color = colour;
-    $("tuneread").appendChild(s);
+  for (const md of modes) {
+    const sig = Math.abs(md.k - md.k_scene) / md.k_err;
+    const line = document.createElement("span");
+    line.className = "tunemode";
+    line.style.color = md.colour;
+    line.textContent = (several ? "mode " + md.n + ": " : "") + "f = " + withErr(md.f0, md.f0_err, "kHz", 1e3) +
+      "; Q = " + withErr(md.Q, md.Q_err, "", 1) + "; k = " + withErr(md.k, md.k_err, "N/m", 1) + " (the scene's " +
+      fmt(md.k_scene, "N/m") + ": " + (isFinite(sig) ? sig.toFixed(1) : "?") + " standard errors off)" +
+      (several ? ", chi = " + md.chi.toFixed(4) : "") + ". ";
+    $("tuneread").appendChild(line);
   }
   const note = document.createElement("span");
   note.className = "small";
-  note.textContent = "spectrum (blue) and the damped oscillator fitted to it (red) over the shaded window; " +
-    "k by equipartition, chi = " + m.chi + ", fit chi\u00b2/dof " + (m.chi2_dof != null ? m.chi2_dof.toFixed(2) : "?") + ".";
+  note.textContent = "spectrum (blue) and the damped oscillator" + (several ? "s" : "") + " fitted to it (red) over the shaded window" +
+    (several ? "s, each mode's peak on its own window over the others' fits and the floor" : "") +
+    "; k by equipartition, " + (several ? "each mode's chi its slope at the tip against the end load's" : "chi = " + m.chi) +
+    ", fit chi\u00b2/dof " + modes.map((md) => md.chi2_dof != null ? md.chi2_dof.toFixed(2) : "?").join(", ") + ".";
   $("tuneread").appendChild(note);
 }
 

@@ -150,9 +150,36 @@ static void force_message(tt_live_buf *o, const tt_table *t, const tt_force_summ
     free(room);
 }
 
+/* Mode m's resonance bin by bin, f0 +- 12 f0 / Q, where log-spaced points are too coarse
+ * to show its peak (a point there spans many of its widths): its figures, its scene's k
+ * and its bins as one object of the message's "modes". */
+static void tune_mode(tt_live_buf *o, const tt_tune_mode *md, double k_scene, const double *f, const double *p,
+                      const double *q, size_t rows)
+{
+    size_t lo = rows, hi = 0;
+    for (size_t i = 1; i < rows; i++)
+        if (fabs(f[i] - md->f0) <= 12 * md->f0 / md->Q)
+            lo = i < lo ? i : lo, hi = i;
+    size_t nz = lo <= hi && hi - lo < ZOOM_BINS ? hi + 1 - lo : 0;
+    lo = nz ? lo : 0;
+    tt_live_buf_printf(o, "{\"f0\":");
+    tt_live_json_num(o, md->f0);
+    field(o, "f0_err", md->f0_err), field(o, "Q", md->Q), field(o, "Q_err", md->Q_err);
+    field(o, "k", md->k), field(o, "k_err", md->k_err), field(o, "k_scene", k_scene), field(o, "chi", md->chi);
+    field(o, "chi2_dof", md->chi2_dof), field(o, "fit_low", md->fit_low), field(o, "fit_high", md->fit_high);
+    tt_live_buf_printf(o, ",\"zoom_f\":");
+    tt_live_json_array(o, f + lo, nz);
+    tt_live_buf_printf(o, ",\"zoom_psd\":");
+    tt_live_json_array(o, p + lo, nz);
+    tt_live_buf_printf(o, ",\"zoom_fit\":");
+    tt_live_json_array(o, q + lo, nz);
+    tt_live_buf_printf(o, "}");
+}
+
 /* The spectrum on log-spaced points (each the mean of the bins it covers: the fit where
- * every bin has one), the fit's figures and the scene's k beside them. */
-static void tune_message(tt_live_buf *o, const tt_table *t, const tt_tune_result *r, double k_scene)
+ * every bin has one), mode 1's figures beside the scene's k, and every mode's figures and
+ * resonance in "modes" (the fit column: the whole model in each mode's window). */
+static void tune_message(tt_live_buf *o, const tt_table *t, const tt_tune_result *r, const tt_cantilever *c)
 {
     size_t rows = tt_table_rows(t);
     double *m = calloc(3 * SPECTRUM_POINTS, sizeof *m);
@@ -160,7 +187,7 @@ static void tune_message(tt_live_buf *o, const tt_table *t, const tt_tune_result
     size_t n = 0;
     head(o, TT_BENCH_TUNE, "done", NULL);
     field(o, "f0", r->f0), field(o, "f0_err", r->f0_err), field(o, "Q", r->Q), field(o, "Q_err", r->Q_err);
-    field(o, "k", r->k), field(o, "k_err", r->k_err), field(o, "k_scene", k_scene), field(o, "chi", r->chi);
+    field(o, "k", r->k), field(o, "k_err", r->k_err), field(o, "k_scene", c->k), field(o, "chi", r->chi);
     field(o, "temperature", r->temperature), field(o, "averages", r->averages);
     field(o, "fit_low", r->fit_low), field(o, "fit_high", r->fit_high), field(o, "floor", r->white);
     field(o, "chi2_dof", r->chi2_dof), field(o, "bin_width", r->bin_width);
@@ -189,21 +216,12 @@ static void tune_message(tt_live_buf *o, const tt_table *t, const tt_tune_result
     tt_live_json_array(o, po, n);
     tt_live_buf_printf(o, ",\"fit\":");
     tt_live_json_array(o, qo, n);
-    /* the resonance bin by bin, f0 +- 12 f0 / Q, where log-spaced points are too coarse
-     * to show its peak (a point there spans many of its widths) */
-    size_t lo = rows, hi = 0;
-    for (size_t i = 1; i < rows; i++)
-        if (fabs(f[i] - r->f0) <= 12 * r->f0 / r->Q)
-            lo = i < lo ? i : lo, hi = i;
-    size_t nz = lo <= hi && hi - lo < ZOOM_BINS ? hi + 1 - lo : 0;
-    lo = nz ? lo : 0;
-    tt_live_buf_printf(o, ",\"zoom_f\":");
-    tt_live_json_array(o, f + lo, nz);
-    tt_live_buf_printf(o, ",\"zoom_psd\":");
-    tt_live_json_array(o, p + lo, nz);
-    tt_live_buf_printf(o, ",\"zoom_fit\":");
-    tt_live_json_array(o, q + lo, nz);
-    tt_live_buf_printf(o, "}");
+    tt_live_buf_printf(o, ",\"modes\":[");
+    for (int k = 0; k < r->modes; k++) {
+        tt_live_buf_printf(o, k ? "," : "");
+        tune_mode(o, &r->mode[k], k ? c->mode_k[k] : c->k, f, p, q, rows);
+    }
+    tt_live_buf_printf(o, "]}");
     free(m);
 }
 
@@ -229,9 +247,10 @@ static void *bench_main(void *arg)
     } else {
         tt_tune_result r;
         tt_cantilever lever;
-        double k = tt_config_cantilever(b->scene, &lever) == TT_OK ? lever.k : NAN;
+        if (tt_config_cantilever(b->scene, &lever) != TT_OK)
+            lever = (tt_cantilever){.k = NAN}; /* (tt_run_tune refuses it with its line) */
         if ((rc = tt_run_tune(b->scene, &t, &r, NULL, NULL)) == TT_OK)
-            tune_message(&o, t, &r, k);
+            tune_message(&o, t, &r, &lever);
     }
     if (rc || o.failed) {
         const char *why = rc ? tt_error_message() : "console: the result is too large to send";
