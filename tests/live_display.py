@@ -5,7 +5,8 @@ value in force (a refused value put back, a change in force shown in a focused f
 unsent text kept and marked stale); two pages are two instruments (a gain changed on one
 does not reach the other, nor its exported scene); an image's colour range (1 to 99 %, frame, manual) and line flatten
 (offset, slope) give the pixels they say, read back from the canvas; the scope's hold,
-cursor read-out, zoom, time axis and stored reference.
+cursor read-out, zoom, time axis and stored reference, whose legend names the gains its line ran
+with (a line under way at a change arrives after it).
 
 usage: live_display.py CHROMIUM URL SHOTS_DIR
 Prints 'ok ...' / 'FAIL ...' lines; exits 1 on the first failure."""
@@ -433,9 +434,25 @@ def scope(b):
     stored = b.eval("tiptapLive.reference.line")
     assert stored == line, (stored, line)
     b.eval("document.getElementById('hold').click()")  # released
+    # the change sent while a line runs: that line arrives after 2 kHz is in force, and a
+    # legend must name the gains it ran with (the scope message's), not those in force
+    ki_old = in_force(b, "feedback.integral_gain")
+    b.eval("window.scopeLog = []; window.scopeWas = scope; window.scope = (m) => { "
+           "scopeWas(m); scopeLog.push([m.line, m.tier, m.ki, m.gains]); }")
+    wait_for(b, "tiptapLive.status.running", "a line under way")
     b.eval("tiptapSet('feedback.integral_gain', '2000')")
     wait_for(b, "tiptapLive.lastReply.ok", "2 kHz accepted")
     new_scope(b, "a scope at 2 kHz")
+    log = js(b, "scopeLog")
+    b.eval("window.scope = scopeWas")
+    own = [l for l in log if l[1] != "averaged"]
+    new = next(i for i, l in enumerate(own) if l[2] == 2000)
+    old = own[:new]
+    assert old and all(l[2] == float(ki_old) and l[3].startswith("I gain %s Hz," % ki_old) for l in old), (ki_old, log)
+    assert all(l[2] == 2000 and l[3] == "I gain 2000 Hz, P gain 0" for l in own[new:]), log
+    assert all(l[2] == 2000 for l in log if l[1] == "averaged"), log
+    print("ok a scope's gains are the line's: line %d, under way at the change, came as '%s' with 2 kHz "
+          "in force; line %d as '%s'" % (old[0][0], old[0][3], own[new][0], own[new][3]))
     n0 = orange(b)
     assert b.eval("tiptapLive.reference.line") == stored and n0 > 100, n0
     mouse(b, "mouseMoved", px, py)
@@ -507,9 +524,11 @@ def lag(b):
 def screenshots(b):
     # the figure for docs/live.md: a reference at 1 kHz, the scope at 2 kHz, zoomed on an edge
     b.eval("window.scrollTo(0, 0)")
-    seen = b.eval("tiptapLive.scopes")
-    wait_for(b, "tiptapLive.scopes > %d + 1 && !tiptapLive.status.oscillating" % seen, "a scope at 1 kHz")
+    # (a line that started at 1 kHz: the one under way at the change ran at 100 Hz)
+    new_scope(b, "a scope at 1 kHz")
+    wait_for(b, "!tiptapLive.status.oscillating", "no ring")
     b.eval("document.getElementById('storeref').click()")
+    assert b.eval("tiptapLive.reference.gains").startswith("I gain 1000 Hz,"), b.eval("tiptapLive.reference.gains")
     b.eval("tiptapSet('feedback.integral_gain', '2000')")
     wait_for(b, "tiptapLive.lastReply.ok && tiptapLive.controls.find(c => c.name === "
                 "'feedback.integral_gain').value === '2000'", "2 kHz accepted")

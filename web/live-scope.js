@@ -11,8 +11,10 @@ const panels = [
 ];
 const colours = { trace: "#1565c0", retrace: "#c62828", surface: "#888", reftrace: "#ef6c00", refretrace: "#2e7d32" };
 function scope(m) {
-  // the gains in force when the line arrived, for a reference's legend
-  m.gains = "I gain " + inForce("feedback.integral_gain") + " Hz, P gain " + inForce("feedback.proportional_gain");
+  // the gains the line ran with (the server's), for a reference's legend: a line under way
+  // when a change came arrives after the change is in force
+  const g = (x) => (x == null ? "?" : Number(x.toPrecision(6)));
+  m.gains = "I gain " + g(m.ki) + " Hz, P gain " + g(m.kp);
   state.scope = m;
   state.scopes++;
   // the block's delay is the record's point spacing

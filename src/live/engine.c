@@ -239,7 +239,7 @@ static int run_line(tt_live_engine *e, long line, double changed_at)
         return rc;
     }
     tt_live_publish_row(e, e->run.scan, e->line_buf, line, (int)e->params.solver.tier);
-    tt_live_publish_scope(e, e->scope, line, (int)e->params.solver.tier);
+    tt_live_publish_scope(e, e->run.scan, e->scope, line, (int)e->params.solver.tier);
     tt_live_judge_loop(e);
     if (changed_at > 0)
         e->v.accurate_ms = 1e3 * (t1 - changed_at);
@@ -420,7 +420,7 @@ static void preview_line(tt_live_engine *e, unsigned long change, double at)
     pthread_mutex_lock(&e->mu);
     if (e->v.frame == frame && e->row_version[line] < change) {
         tt_live_publish_row(e, e->pscan, e->pline, line, TT_TIER_AVERAGED | TT_LIVE_PREVIEW);
-        tt_live_publish_scope(e, e->pscope, line, TT_TIER_AVERAGED);
+        tt_live_publish_scope(e, e->pscan, e->pscope, line, TT_TIER_AVERAGED);
         e->v.preview_ms = 1e3 * (tt_clock(TT_CLOCK_WALL) - at);
     }
     pthread_mutex_unlock(&e->mu);

@@ -84,7 +84,7 @@ struct tt_live_engine {
 };
 
 /* A scope record, decimated for a screen, into the view (under mu). */
-void tt_live_publish_scope(tt_live_engine *e, const tt_scan_scope *sc, long line, int tier);
+void tt_live_publish_scope(tt_live_engine *e, const tt_scan *s, const tt_scan_scope *sc, long line, int tier);
 /* Line `line`'s pixels from scan s (buf: a line's room) into the published rows, as
  * tier's (under mu). */
 void tt_live_publish_row(tt_live_engine *e, const tt_scan *s, double *buf, long line, int tier);

@@ -11,8 +11,8 @@
 #include "tiptap/io/decimate.h"
 #include "tiptap/util/error.h"
 
-/* A scope record, decimated for a screen, into the view (under mu). */
-void tt_live_publish_scope(tt_live_engine *e, const tt_scan_scope *sc, long line, int tier)
+/* A scope record of scan s, decimated for a screen, into the view (under mu). */
+void tt_live_publish_scope(tt_live_engine *e, const tt_scan *s, const tt_scan_scope *sc, long line, int tier)
 {
     static const int q[TT_LIVE_NS] = {TT_SCOPE_POSITION, TT_SCOPE_Z, TT_SCOPE_ERROR,
                                       TT_SCOPE_AMPLITUDE, TT_SCOPE_PHASE, TT_SCOPE_SURFACE};
@@ -50,6 +50,11 @@ void tt_live_publish_scope(tt_live_engine *e, const tt_scan_scope *sc, long line
     e->v.scope_line = line;
     e->v.scope_tier = tier;
     e->v.scope_rate = tt_scan_scope_rate(sc);
+    /* the line's own gains: a line under way when a change came arrives after it */
+    tt_loop loop;
+    tt_scan_loop(s, &loop);
+    e->v.scope_kp = loop.kp;
+    e->v.scope_ki = loop.ki;
     e->v.scope_version = e->v.version;
 }
 

@@ -382,6 +382,10 @@ void tt_live_msg_scope(tt_live_buf *b, const tt_live_view *v)
     tt_live_buf_printf(b, "{\"type\":\"scope\",\"frame\":%ld,\"line\":%ld,\"tier\":\"%s\",\"rate\":",
                        v->frame, v->scope_line, tt_tier_name((tt_tier)v->scope_tier));
     num(b, v->scope_rate);
+    tt_live_buf_printf(b, ",\"kp\":");
+    num(b, v->scope_kp);
+    tt_live_buf_printf(b, ",\"ki\":");
+    num(b, v->scope_ki);
     for (int r = 0; r < 2; r++) {
         tt_live_buf_printf(b, ",\"%s\":{\"t0\":", r ? "retrace" : "trace");
         num(b, v->scope_t0[r]);

@@ -80,6 +80,7 @@ typedef struct {
     const double *scope[2][TT_LIVE_NS];
     double scope_t0[2], scope_t1[2]; /* instrument time of its first and last point, s */
     double scope_rate;                /* points per second of the record (lock-in blocks) */
+    double scope_kp, scope_ki;        /* the gains the line ran with (m/m, 1/s) */
     /* the loop */
     unsigned long status_version;
     double realtime;       /* instrument time / wall time of the last line's work, >= 1: keeps up */
