@@ -1,0 +1,107 @@
+/* The contact law's local geometry in a scan ([tip] contact_geometry = local): the
+ * geometry where the tip touches, quantised into a key, and each thread's laws built
+ * for the keys it meets (see scan_private.h, docs/surfaces.md). */
+#include "scan_private.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "tiptap/util/error.h"
+
+/* The quantisation: -ln cos a in steps of GEO_DC and ln (R_eff / R) in steps of GEO_DR,
+ * each law built at its step's centre, so that a law's force is within half a step of
+ * the exact geometry's: Hertz's cos^2.5 a and an adhesive law's ~R_eff each within 1 %
+ * (measured: docs/surfaces.md). Bin (0, 0) is the material's flat law itself. */
+#define GEO_DC 0.008
+#define GEO_DR 0.02
+/* cos a at least 0.1 (84 deg) and R_eff at least R / 100: a wall or a corner inside the
+ * stencil reads a slope and a curvature no law describes (docs/surfaces.md), and
+ * these bound its thresholds to ten times the flat's */
+#define GEO_COS_MIN 0.1
+#define GEO_R_MIN 0.01
+
+/* Laws kept per thread, least recently used replaced: a law is 307 kB with its tables,
+ * so 128 hold 39 MB a thread. */
+enum { GEO_KEPT = 128 };
+
+typedef struct {
+    size_t mat;
+    uint32_t key;
+    unsigned long used; /* the look-up that last chose it (0: empty) */
+    tt_contact *law;
+} geo_law;
+
+struct tt_scan_laws {
+    geo_law law[GEO_KEPT];
+    unsigned long clock;
+    long built;
+};
+
+uint32_t tt_scan_geometry_key(const tt_scan *S, double x, double y, size_t mat)
+{
+    const double R = S->contact_R[mat];
+    tt_contact_geometry g = tt_surface_contact_geometry(S->surface, x, y, S->geo_step * R, R);
+    if (g.cos_slope == 1.0 && g.R_eff == R)
+        return 0;
+    double c = -log(fmax(g.cos_slope, GEO_COS_MIN)), r = log(fmax(g.R_eff / R, GEO_R_MIN));
+    long kc = lround(c / GEO_DC), kr = lround(r / GEO_DR);
+    return (uint32_t)kc | (uint32_t)(uint16_t)(int16_t)kr << 16;
+}
+
+/* The geometry at a key's bin centre: the same law whichever thread builds it. */
+tt_contact_geometry tt_scan_geometry_of_key(uint32_t key, double R)
+{
+    const int kc = (int)(key & 0xffffu), kr = (int16_t)(uint16_t)(key >> 16);
+    return (tt_contact_geometry){exp(-kc * GEO_DC), R * exp(kr * GEO_DR)};
+}
+
+/* The kept law for (mat, key), or a slot to build it in (the empty or least recently
+ * used one, never the law on the sim: it was the last chosen). */
+static geo_law *find(struct tt_scan_laws *C, size_t mat, uint32_t key)
+{
+    geo_law *old = &C->law[0];
+    for (int i = 0; i < GEO_KEPT; i++) {
+        geo_law *e = &C->law[i];
+        if (e->law && e->mat == mat && e->key == key)
+            return e;
+        if (e->used < old->used)
+            old = e;
+    }
+    return old;
+}
+
+int tt_scan_geometry_use(const tt_scan *S, worker *W, size_t mat, uint32_t key)
+{
+    if (key == 0) {
+        tt_scan_worker_contact(S, W, mat);
+        return TT_OK;
+    }
+    if (!W->laws && !(W->laws = calloc(1, sizeof *W->laws)))
+        return tt_error_nomem("a scan thread's contact laws");
+    struct tt_scan_laws *C = W->laws;
+    geo_law *e = find(C, mat, key);
+    if (!(e->law && e->mat == mat && e->key == key)) {
+        const tt_contact_geometry g = tt_scan_geometry_of_key(key, S->contact_R[mat]);
+        tt_contact *law;
+        int rc = tt_contact_alloc_local(&law, &S->contact_p[mat], &g);
+        if (rc)
+            return tt_error(rc, "[material %s] at cos a %g, R_eff %g nm: %s", S->names[mat],
+                            g.cos_slope, g.R_eff * 1e9, tt_error_message());
+        tt_contact_free(e->law);
+        *e = (geo_law){mat, key, 0, law};
+        C->built++;
+    }
+    e->used = ++C->clock;
+    tt_sim_set_contact(W->sim, e->law, S->Qi[mat]);
+    return TT_OK;
+}
+
+long tt_scan_geometry_built(const worker *W) { return W->laws ? W->laws->built : 0; }
+
+void tt_scan_geometry_free(worker *W)
+{
+    for (int i = 0; W->laws && i < GEO_KEPT; i++)
+        tt_contact_free(W->laws->law[i].law);
+    free(W->laws);
+    W->laws = NULL;
+}
