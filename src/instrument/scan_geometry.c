@@ -9,11 +9,12 @@
 #include "tiptap/util/error.h"
 
 /* The quantisation: -ln cos a in steps of GEO_DC and ln (R_eff / R) in steps of GEO_DR,
- * each law built at its step's centre, so that a law's force is within half a step of
- * the exact geometry's: Hertz's cos^2.5 a and an adhesive law's ~R_eff each within 1 %
- * (measured: docs/surfaces.md). Bin (0, 0) is the material's flat law itself. */
-#define GEO_DC 0.008
-#define GEO_DR 0.02
+ * each law built at its step's centre, half a step at most from the geometry: Hertz's
+ * cos^2.5 a within 0.5 % and sqrt(R_eff) within 0.25 %, an adhesive law's ~R_eff within
+ * 0.5 %, together within 1 % (measured: docs/surfaces.md). Bin (0, 0) is the
+ * material's flat law itself. */
+#define GEO_DC 0.004
+#define GEO_DR 0.01
 /* cos a at least 0.1 (84 deg) and R_eff at least R / 100: a wall or a corner inside the
  * stencil reads a slope and a curvature no law describes (docs/surfaces.md), and
  * these bound its thresholds to ten times the flat's */
