@@ -55,15 +55,15 @@ static void flank_presses_as_cos_2_5_of_the_modulus(void **st)
     }
     print_message("flank peak force: local %.4g N, modulus x cos^2.5 a %.4g N (worst %.2g), "
                   "axis %.4g N (least %.3g off); %ld laws built\n",
-                  Fl[18], Fs[18], worst, Fa[18], least_axis, tt_scan_contact_laws_built(loc));
+                  Fl[18], Fs[18], worst, Fa[18], least_axis, tt_scan_contact_laws_built(loc, NULL));
     assert_true(worst < 0.01);
     assert_true(least_axis > 0.05);
     /* the floor before the flank: the flat law itself, every channel bit for bit */
     for (int c = 0; c < 4; c++)
         if (tt_scan_image(axis, c, 0))
             assert_memory_equal(tt_scan_image(axis, c, 0), tt_scan_image(loc, c, 0), 8 * sizeof(double));
-    assert_true(tt_scan_contact_laws_built(loc) > 0);
-    assert_int_equal(tt_scan_contact_laws_built(axis), 0);
+    assert_true(tt_scan_contact_laws_built(loc, NULL) > 0);
+    assert_int_equal(tt_scan_contact_laws_built(axis, NULL), 0);
     tt_scan_free(axis);
     tt_scan_free(loc);
     tt_scan_free(flat);
@@ -85,7 +85,7 @@ static void flat_sample_is_the_same(void **st)
     for (int c = 0; c < 4; c++)
         if (tt_scan_image(a, c, 0))
             assert_memory_equal(tt_scan_image(a, c, 0), tt_scan_image(l, c, 0), 10 * sizeof(double));
-    assert_int_equal(tt_scan_contact_laws_built(l), 0);
+    assert_int_equal(tt_scan_contact_laws_built(l, NULL), 0);
     tt_scan_free(a);
     tt_scan_free(l);
     tt_scene_free(sa);

@@ -290,7 +290,9 @@ int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done,
     }
     for (int i = 0; i < threads; i++) {
         merge_indent(S, &W[i]);
-        S->laws_built += tt_scan_geometry_built(&W[i]);
+        long tables;
+        S->laws_built += tt_scan_geometry_built(&W[i], &tables);
+        S->tables_built += tables;
     }
     for (int i = 0; i < threads; i++)
         tt_scan_worker_free(&W[i]);
@@ -364,9 +366,12 @@ long tt_scan_averaged_collapsed(const tt_scan *S, long *line, long *pixel)
     return S->collapsed;
 }
 double tt_scan_error_estimate(const tt_scan *S) { return S->worst_residual; }
-long tt_scan_contact_laws_built(const tt_scan *S)
+long tt_scan_contact_laws_built(const tt_scan *S, long *tables)
 {
-    return S->laws_built + (S->step ? tt_scan_geometry_built(S->step) : 0);
+    long t = 0, n = S->step ? tt_scan_geometry_built(S->step, &t) : 0;
+    if (tables)
+        *tables = S->tables_built + t;
+    return S->laws_built + n;
 }
 int tt_scan_clamped(const tt_scan *S) { return S->clamped; }
 const tt_dilation *tt_scan_dilation(const tt_scan *S) { return S->dilation; }

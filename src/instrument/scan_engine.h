@@ -108,7 +108,8 @@ struct tt_scan {
     long integrated; /* cycles integrated (the envelope tier skips some) */
     double worst_residual;
     int clamped;
-    long laws_built; /* [tip] contact_geometry = local: laws the runs' threads built */
+    long laws_built, tables_built; /* [tip] contact_geometry = local: laws and tables
+                                    * the runs' threads built */
     /* the averaged tier: each material's table, and the pixels where the tip collapsed
      * onto the sample or left the table (first: the first such line and pixel) */
     tt_averaged **avg;
@@ -161,9 +162,10 @@ static inline void tt_scan_worker_contact(const tt_scan *S, worker *W, size_t ma
     if (W->env)
         W->env = W->envs[tt_sim_dim(W->sim)];
 }
-/* [tip] contact_geometry = local: the laws a worker built for the geometries it met,
- * and its laws freed (scan_geometry.c). */
-long tt_scan_geometry_built(const worker *W);
+/* [tip] contact_geometry = local: the laws a worker built for the geometries it met
+ * (in *tables, if not NULL, the tables among them built at their R_eff), and its laws
+ * freed (scan_geometry.c). */
+long tt_scan_geometry_built(const worker *W, long *tables);
 void tt_scan_geometry_free(worker *W);
 /* Whether a solver setting runs on the averaged tier here, and on the envelope tier
  * (the averaged tier's fallback included). */

@@ -22,8 +22,9 @@
 #define GEO_R_MIN 0.01
 
 /* Laws kept per thread, least recently used replaced: a law is 307 kB with its tables,
- * so 128 hold 39 MB a thread. */
-enum { GEO_KEPT = 128 };
+ * so 128 laws and 16 tables at their R_eff (from which a slope's law is a copy, not a
+ * rebuild: tt_contact_alloc_tilted) hold 44 MB a thread. */
+enum { GEO_KEPT = 128, GEO_TABLES = 16 };
 
 typedef struct {
     size_t mat;
@@ -34,8 +35,9 @@ typedef struct {
 
 struct tt_scan_laws {
     geo_law law[GEO_KEPT];
+    geo_law table[GEO_TABLES]; /* keyed by the R_eff part of the key alone */
     unsigned long clock;
-    long built;
+    long built, tables;
 };
 
 uint32_t tt_scan_geometry_key(const tt_scan *S, double x, double y, size_t mat)
@@ -56,19 +58,46 @@ tt_contact_geometry tt_scan_geometry_of_key(uint32_t key, double R)
     return (tt_contact_geometry){exp(-kc * GEO_DC), R * exp(kr * GEO_DR)};
 }
 
-/* The kept law for (mat, key), or a slot to build it in (the empty or least recently
- * used one, never the law on the sim: it was the last chosen). */
-static geo_law *find(struct tt_scan_laws *C, size_t mat, uint32_t key)
+/* The kept law for (mat, key) among n, or a slot to build it in (the empty or least
+ * recently used one, never the law on the sim: it was the last chosen). */
+static geo_law *find(geo_law *kept, int n, size_t mat, uint32_t key)
 {
-    geo_law *old = &C->law[0];
-    for (int i = 0; i < GEO_KEPT; i++) {
-        geo_law *e = &C->law[i];
+    geo_law *old = &kept[0];
+    for (int i = 0; i < n; i++) {
+        geo_law *e = &kept[i];
         if (e->law && e->mat == mat && e->key == key)
             return e;
         if (e->used < old->used)
             old = e;
     }
     return old;
+}
+
+/* Material mat's law for a flat at the key's R_eff (the material's own at R), kept
+ * among the last GEO_TABLES used. */
+static int flat_at(const tt_scan *S, struct tt_scan_laws *C, size_t mat, uint32_t key,
+                   const tt_contact **out)
+{
+    const uint32_t rkey = key & 0xffff0000u;
+    if (rkey == 0) {
+        *out = S->contacts[mat];
+        return TT_OK;
+    }
+    geo_law *e = find(C->table, GEO_TABLES, mat, rkey);
+    if (!(e->law && e->mat == mat && e->key == rkey)) {
+        const tt_contact_geometry g = tt_scan_geometry_of_key(rkey, S->contact_R[mat]);
+        tt_contact *law;
+        int rc = tt_contact_alloc_local(&law, &S->contact_p[mat], &g);
+        if (rc)
+            return tt_error(rc, "[material %s] at R_eff %g nm: %s", S->names[mat], g.R_eff * 1e9,
+                            tt_error_message());
+        tt_contact_free(e->law);
+        *e = (geo_law){mat, rkey, 0, law};
+        C->tables++;
+    }
+    e->used = ++C->clock;
+    *out = e->law;
+    return TT_OK;
 }
 
 int tt_scan_geometry_use(const tt_scan *S, worker *W, size_t mat, uint32_t key)
@@ -80,14 +109,15 @@ int tt_scan_geometry_use(const tt_scan *S, worker *W, size_t mat, uint32_t key)
     if (!W->laws && !(W->laws = calloc(1, sizeof *W->laws)))
         return tt_error_nomem("a scan thread's contact laws");
     struct tt_scan_laws *C = W->laws;
-    geo_law *e = find(C, mat, key);
+    geo_law *e = find(C->law, GEO_KEPT, mat, key);
     if (!(e->law && e->mat == mat && e->key == key)) {
-        const tt_contact_geometry g = tt_scan_geometry_of_key(key, S->contact_R[mat]);
-        tt_contact *law;
-        int rc = tt_contact_alloc_local(&law, &S->contact_p[mat], &g);
+        const tt_contact *flat = NULL;
+        tt_contact *law = NULL;
+        int rc = flat_at(S, C, mat, key, &flat);
+        if (!rc && (rc = tt_contact_alloc_tilted(&law, flat, tt_scan_geometry_of_key(key, 1).cos_slope)))
+            tt_error(rc, "[material %s]: %s", S->names[mat], tt_error_message());
         if (rc)
-            return tt_error(rc, "[material %s] at cos a %g, R_eff %g nm: %s", S->names[mat],
-                            g.cos_slope, g.R_eff * 1e9, tt_error_message());
+            return rc;
         tt_contact_free(e->law);
         *e = (geo_law){mat, key, 0, law};
         C->built++;
@@ -97,12 +127,19 @@ int tt_scan_geometry_use(const tt_scan *S, worker *W, size_t mat, uint32_t key)
     return TT_OK;
 }
 
-long tt_scan_geometry_built(const worker *W) { return W->laws ? W->laws->built : 0; }
+long tt_scan_geometry_built(const worker *W, long *tables)
+{
+    if (tables)
+        *tables = W->laws ? W->laws->tables : 0;
+    return W->laws ? W->laws->built : 0;
+}
 
 void tt_scan_geometry_free(worker *W)
 {
     for (int i = 0; W->laws && i < GEO_KEPT; i++)
         tt_contact_free(W->laws->law[i].law);
+    for (int i = 0; W->laws && i < GEO_TABLES; i++)
+        tt_contact_free(W->laws->table[i].law);
     free(W->laws);
     W->laws = NULL;
 }
