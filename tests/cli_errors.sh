@@ -42,6 +42,10 @@ expect_exact "out of range, exact text" \
 expect_error "angle out of range in degrees" \
   "[tip] half_angle: 0 deg is out of range; expected above 0 deg and below 90 deg" \
   "$tiptap" scan "$tmp/good.ini" -o "$tmp/never" --set tip.shape=cone --set "tip.half_angle=0 deg"
+# the contact law's local geometry runs every cycle: the reduced tiers refuse it by name
+expect_error "local geometry on the envelope tier" \
+  "[tip] contact_geometry: local runs on the every-cycle tier only (the envelope tier keys its models on the material" \
+  "$tiptap" scan "$tmp/good.ini" -o "$tmp/never" --set tip.contact_geometry=local
 expect_exact "out of range without a unit, exact text" \
   "tiptap: --set: [scan] pixels: 1 is out of range; expected at least 2 and at most 16384" \
   "$tiptap" scan "$tmp/good.ini" -o "$tmp/never" --set scan.pixels=1

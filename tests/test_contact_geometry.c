@@ -213,6 +213,37 @@ static void surface_reads_a_particle(void **st)
     tt_surface_free(S);
 }
 
+/* A flat's law at R_eff tilted (its table copied and scaled) is the law built for the
+ * slope and R_eff, every load bit for bit, for every row. */
+static void tilted_is_the_local_law(void **st)
+{
+    (void)st;
+    tt_contact_params rows[6] = {params(TT_CONTACT_MAUGIS, 0.05), params(TT_CONTACT_DMT, 0.05),
+                                 params(TT_CONTACT_JKR, 0.05), params(TT_CONTACT_HERTZ, 0),
+                                 params(TT_CONTACT_HERTZ, 0), params(TT_CONTACT_MAUGIS, 0.05)};
+    rows[0].viscosity = 1;
+    rows[4].film_thickness = 20e-9;
+    rows[5].lambda = 2;
+    const double radii[2] = {R, 0.6 * R}, slopes[3] = {1.0, cos(30 * DEG), cos(70 * DEG)};
+    for (int m = 0; m < 6; m++)
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 3; j++) {
+                tt_contact *base = local(&rows[m], 1.0, radii[i]), *want = local(&rows[m], slopes[j], radii[i]);
+                tt_contact *got;
+                assert_int_equal(tt_contact_alloc_tilted(&got, base, slopes[j]), TT_OK);
+                for (double d = -1e-9; d < 2e-9; d += 0.013e-9)
+                    for (int in = 0; in < 2; in++)
+                        assert_true(tt_contact_load(got, d, in, NULL, NULL) == tt_contact_load(want, d, in, NULL, NULL));
+                assert_true(tt_contact_jumpin(got) == tt_contact_jumpin(want));
+                assert_true(tt_contact_jumpout(got) == tt_contact_jumpout(want));
+                assert_true(tt_contact_force(got, 0, 1e-9, 1e-3, 1, NULL).viscous ==
+                            tt_contact_force(want, 0, 1e-9, 1e-3, 1, NULL).viscous);
+                tt_contact_free(base);
+                tt_contact_free(want);
+                tt_contact_free(got);
+            }
+}
+
 static void bad_geometry_is_refused(void **st)
 {
     (void)st;
@@ -234,6 +265,7 @@ int main(void)
         cmocka_unit_test(slope_projects_every_law),
         cmocka_unit_test(tables_at_the_effective_radius),
         cmocka_unit_test(surface_reads_a_particle),
+        cmocka_unit_test(tilted_is_the_local_law),
         cmocka_unit_test(bad_geometry_is_refused),
     };
     return cmocka_run_group_tests(t, NULL, NULL);

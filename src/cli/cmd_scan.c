@@ -293,6 +293,12 @@ static void scan_summary(void *user, const tt_scan *scan, const tt_run_scan_resu
                 tt_scan_instrument_time(scan) * (double)tt_scan_lines_done(scan) /
                     (double)tt_scan_lines(scan) / wall,
                 tt_scan_error_estimate(scan));
+        long tables = 0, laws = tt_scan_contact_laws_built(scan, &tables);
+        if (p->local_geometry)
+            fprintf(stderr, "contact_laws_built = %ld (contact_geometry = local: a law per "
+                            "material, slope and radius met, per thread; %ld tables rebuilt "
+                            "at their R_eff, the rest copied)\n",
+                    laws, tables);
         int rk4 = p->solver.method == TT_METHOD_RK4, avg = tt_scan_averaged_tier(p);
         if (have_est) {
             const tt_scan_error *e = &r->est;

@@ -351,6 +351,22 @@ static int check_tier_arms(const tt_scene *s, const tt_scan_params *p)
     return TT_OK;
 }
 
+/* [tip] contact_geometry: local keys each cycle's law by the geometry, which only the
+ * every-cycle tier follows (the envelope and averaged tiers key their models and tables
+ * on the material). */
+static int read_contact_geometry(const tt_scene *s, tt_scan_params *p)
+{
+    const char *g = tt_scene_get_string(s, "tip", NULL, "contact_geometry");
+    p->local_geometry = g && strcmp(g, "local") == 0;
+    if (p->local_geometry && p->solver.tier != TT_TIER_EVERY)
+        return tt_scene_fail(s, "tip", NULL, "contact_geometry",
+                             "local runs on the every-cycle tier only (the %s tier keys its "
+                             "models on the material, not on the law of each slope): expected "
+                             "[solver] tier = every",
+                             tt_tier_name(p->solver.tier));
+    return TT_OK;
+}
+
 int tt_config_scan(const tt_scene *s, tt_scan_params *p)
 {
     memset(p, 0, sizeof *p);
@@ -370,7 +386,8 @@ int tt_config_scan(const tt_scene *s, tt_scan_params *p)
         (rc = tt_config_surface(s, m, n, &p->surface)) || (rc = check_particles(s, p)) ||
         (rc = check_measured(s, p)) || (rc = check_map_image(s, p)) ||
         (rc = tt_config_tip_shape(s, &p->tip)) || (rc = tt_config_instrument(s, &p->instrument)) ||
-        (rc = check_tier_arms(s, p)) || (rc = check_bimodal(s, p))) {
+        (rc = check_tier_arms(s, p)) || (rc = check_bimodal(s, p)) ||
+        (rc = read_contact_geometry(s, p))) {
         tt_config_scan_free(p);
         return rc;
     }

@@ -63,6 +63,10 @@ static const tt_scene_key tip_keys[] = {
      "contact mechanics keeps R_tip"},
     {"half_angle", Q(TT_DIM_ANGLE), "20 deg", 0, M_PI / 2, TT_KEY_MIN_EXCL | TT_KEY_MAX_EXCL, NULL,
      "cone: half-angle of the cone, tangent to the apex sphere"},
+    {"contact_geometry", TT_KEY_ENUM, 0, "axis", 0, 0, 0, "axis|local",
+     "tiptap scan: the contact law's geometry: axis: each material's law for a flat; local: the "
+     "law rebuilt for the slope and curvature where the tip touches (tier = every; "
+     "docs/surfaces.md)"},
 };
 
 /* A relaxation arm's two keys (docs/physics.md, the generalised Maxwell sample). */

@@ -20,13 +20,15 @@ static int build_contacts(tt_scan *S, const tt_material *m, size_t n)
     S->contacts = calloc(n, sizeof *S->contacts);
     S->Qi = calloc(n, sizeof *S->Qi);
     S->contact_R = calloc(n, sizeof *S->contact_R);
+    S->contact_p = calloc(n, sizeof *S->contact_p);
     S->names = calloc(n, sizeof *S->names);
     S->indent = calloc(n, sizeof *S->indent);
-    if (!S->contacts || !S->Qi || !S->contact_R || !S->names || !S->indent)
+    if (!S->contacts || !S->Qi || !S->contact_R || !S->contact_p || !S->names || !S->indent)
         return tt_error_nomem("the force laws of %zu materials", n);
     for (size_t i = 0; i < n; i++) {
         S->Qi[i] = m[i].Qi;
         S->contact_R[i] = m[i].contact.R;
+        S->contact_p[i] = m[i].contact;
         S->indent[i] = -INFINITY;
         snprintf(S->names[i], sizeof S->names[i], "%s", m[i].name);
         if (tt_contact_alloc(&S->contacts[i], &m[i].contact)) {
@@ -97,6 +99,14 @@ static int take_params(tt_scan *S, const tt_scan_params *p)
                tt_piezo_ideal(&in->piezo);
     if (p->nmaterials < 1)
         return tt_error(TT_EINVAL, "a scan needs at least one material");
+    if (p->local_geometry && S->solver.tier != TT_TIER_EVERY)
+        return tt_error(TT_EINVAL, "[tip] contact_geometry: local runs on the every-cycle tier "
+                                   "only: expected [solver] tier = every (it is %s)",
+                        tt_tier_name(S->solver.tier));
+    /* the differences a twentieth of the tip's radius apart: finer than the contact
+     * (a Hertz contact 1 nm deep under 10 nm is 3 nm across), and a sphere of r read to
+     * about (R / 20 r)^2 (docs/surfaces.md) */
+    S->geo_step = 1.0 / 20;
     return TT_OK;
 }
 
@@ -115,7 +125,8 @@ static int make_dilation(tt_scan *S, const tt_tip_shape *tip)
     double slow = (R->fast_y ? R->size_x : R->size_y) / (double)R->lines;
     double pitch = fmin(fast, slow), dx = fmax(fmin(pitch, tip->radius) / 4, pitch / 16), b[4];
     tt_raster_bounds(R, b); /* a rotated or moved scan visits another box of the sample */
-    return tt_dilation_alloc(&S->dilation, S->surface, tip, b[0] - mx, b[1] - my, b[2] + mx, b[3] + my, dx);
+    return tt_dilation_alloc_contacts(&S->dilation, S->surface, tip, b[0] - mx, b[1] - my, b[2] + mx,
+                                      b[3] + my, dx, S->local);
 }
 
 /* The certainty channel is the surface's, not the run's: filled once, at each pixel's
@@ -149,6 +160,7 @@ int tt_scan_alloc(tt_scan **out, const tt_scan_params *p)
     }
     S->uniform = tt_surface_uniform(S->surface);
     S->flat = tt_surface_flat(S->surface);
+    S->local = p->local_geometry && !S->flat; /* a flat's geometry is the flat law's */
     if (p->tip.kind != TT_TIP_POINT && !S->flat && (rc = make_dilation(S, &p->tip))) {
         tt_scan_free(S);
         return rc;
@@ -199,6 +211,7 @@ void tt_scan_free(tt_scan *S)
     free(S->contacts);
     free(S->Qi);
     free(S->contact_R);
+    free(S->contact_p);
     free(S->names);
     free(S->indent);
     free(S);
@@ -275,8 +288,12 @@ int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done,
             rc = tt_error(TT_EINTR, "interrupted after %ld of %ld lines", S->lines_done,
                           S->raster.lines);
     }
-    for (int i = 0; i < threads; i++)
+    for (int i = 0; i < threads; i++) {
         merge_indent(S, &W[i]);
+        long tables;
+        S->laws_built += tt_scan_geometry_built(&W[i], &tables);
+        S->tables_built += tables;
+    }
     for (int i = 0; i < threads; i++)
         tt_scan_worker_free(&W[i]);
     free(W);
@@ -349,6 +366,13 @@ long tt_scan_averaged_collapsed(const tt_scan *S, long *line, long *pixel)
     return S->collapsed;
 }
 double tt_scan_error_estimate(const tt_scan *S) { return S->worst_residual; }
+long tt_scan_contact_laws_built(const tt_scan *S, long *tables)
+{
+    long t = 0, n = S->step ? tt_scan_geometry_built(S->step, &t) : 0;
+    if (tables)
+        *tables = S->tables_built + t;
+    return S->laws_built + n;
+}
 int tt_scan_clamped(const tt_scan *S) { return S->clamped; }
 const tt_dilation *tt_scan_dilation(const tt_scan *S) { return S->dilation; }
 size_t tt_scan_materials(const tt_scan *S) { return S->nmaterials; }

@@ -36,6 +36,7 @@ int tt_scan_cycle_begin(const line_ctx *L, line_state *st, cycle_in *in)
     in->topo = a.topo;
     in->dil = a.dil;
     in->mat = a.mat;
+    in->geo = a.geo;
     in->hb = b.h;
     in->mat_next = b.mat;
     in->edge_next = c.mat != b.mat || fabs(c.h - b.h) > L->edge;
@@ -70,9 +71,12 @@ int tt_scan_integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_
 {
     tt_scan *S = L->S;
     tt_sim *sim = L->W->sim;
-    if (in->mat != st->current) {
-        tt_scan_worker_contact(S, L->W, in->mat);
+    if (in->mat != st->current || in->geo != st->geo) {
+        int rc = tt_scan_geometry_use(S, L->W, in->mat, in->geo);
+        if (rc)
+            return rc;
         st->current = in->mat;
+        st->geo = in->geo;
     }
     tt_sim_set_sample(sim, in->sa, (in->sb - in->sa) / S->cantilever.T);
     int rc = tt_sim_cycle(sim, cy);

@@ -47,6 +47,9 @@ typedef struct {
     double *y_save, *obs;
     /* the greatest indentation of the trace and retrace cycles, per material */
     double *indent;
+    /* [tip] contact_geometry = local: the laws this thread built for the geometries it
+     * met (scan_geometry.c; NULL until the first) */
+    struct tt_scan_laws *laws;
     /* the averaged tier (averaged: on): its slow state where the last line ended */
     int averaged;
     tt_averaged_state avg;
@@ -74,6 +77,10 @@ struct tt_scan {
     tt_contact **contacts; /* every material's force law, shared by the threads */
     double *Qi;
     double *contact_R;     /* each force law's radius, m */
+    tt_contact_params *contact_p; /* each material's law's parameters */
+    int local;             /* each cycle's law built for the geometry where the tip
+                            * touches (a surface that is not flat) */
+    double geo_step;       /* the geometry's differences apart, of the law's radius */
     char (*names)[128];    /* each material's name, for messages */
     double *indent;        /* the greatest indentation recorded in each material, m */
     tt_raster raster;
@@ -101,6 +108,8 @@ struct tt_scan {
     long integrated; /* cycles integrated (the envelope tier skips some) */
     double worst_residual;
     int clamped;
+    long laws_built, tables_built; /* [tip] contact_geometry = local: laws and tables
+                                    * the runs' threads built */
     /* the averaged tier: each material's table, and the pixels where the tip collapsed
      * onto the sample or left the table (first: the first such line and pixel) */
     tt_averaged **avg;
@@ -153,6 +162,11 @@ static inline void tt_scan_worker_contact(const tt_scan *S, worker *W, size_t ma
     if (W->env)
         W->env = W->envs[tt_sim_dim(W->sim)];
 }
+/* [tip] contact_geometry = local: the laws a worker built for the geometries it met
+ * (in *tables, if not NULL, the tables among them built at their R_eff), and its laws
+ * freed (scan_geometry.c). */
+long tt_scan_geometry_built(const worker *W, long *tables);
+void tt_scan_geometry_free(worker *W);
 /* Whether a solver setting runs on the averaged tier here, and on the envelope tier
  * (the averaged tier's fallback included). */
 int tt_scan_averaged_usable(const tt_scan *S, const tt_solver *solver);

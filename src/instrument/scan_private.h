@@ -29,6 +29,7 @@ typedef struct {
     long k;
     double h, topo, dil;
     size_t mat;
+    uint32_t geo; /* the contact's geometry (tt_scan_geometry_key; 0: a flat's) */
 } surf_pt;
 
 /* What a line carries from cycle to cycle, and from line to line (continuous lines):
@@ -40,6 +41,7 @@ typedef struct {
     tt_piezo pz;
     double zn;        /* the z piezo's noise at cycle k's start, m (drawn in cycle_begin) */
     size_t current;   /* the material on the sim */
+    uint32_t geo;     /* and the geometry of its law (0: the flat's) */
     double x[TT_SIM_DIM_MAX];  /* the tip's state at cycle k's start (tt_sim_dim of it):
                                 * the sim's, or the model's */
     double x2[TT_SIM_DIM_MAX]; /* the second-order part of a model's x (0 after an
@@ -62,6 +64,7 @@ typedef struct {
     double ha, hb, topo, dil, za, sa, sb;
     double zn; /* the z piezo's noise in sa, sb at the cycle's middle (0: none) */
     size_t mat, mat_next;
+    uint32_t geo; /* the geometry at the cycle's start */
     int edge_next; /* the next cycle crosses an edge (edge heights or materials) */
 } cycle_in;
 
@@ -104,6 +107,14 @@ int tt_scan_integrate(const line_ctx *L, line_state *st, const cycle_in *in, tt_
  * feedback and the block's outputs into the pixel of its last cycle; on to the next. */
 int tt_scan_cycle_end(const line_ctx *L, line_state *st, const cycle_in *in, double peak,
                       double indent, double ets);
+
+/* [tip] contact_geometry = local (scan_geometry.c): the key of the geometry where the
+ * tip touches at (x, y), material mat's law's slope and effective radius quantised (0:
+ * within the flat's bin); the geometry a key's law is built for; that key's law of mat
+ * on W's sim (0: the material's own), built per thread and kept among the last used. */
+uint32_t tt_scan_geometry_key(const tt_scan *S, double x, double y, size_t mat);
+tt_contact_geometry tt_scan_geometry_of_key(uint32_t key, double R);
+int tt_scan_geometry_use(const tt_scan *S, worker *W, size_t mat, uint32_t key);
 
 /* The surface at the start of cycle k of the phase (scan_sample.c). */
 surf_pt tt_scan_surface_at(const line_ctx *L, long k);

@@ -49,5 +49,6 @@ surf_pt tt_scan_surface_at(const line_ctx *L, long k)
         p.h = sample_at(S, &x, &y, t, &p.topo, &p.dil);
     }
     p.mat = S->uniform ? 0 : (size_t)tt_surface_material(S->surface, x, y);
+    p.geo = S->local ? tt_scan_geometry_key(S, x, y, p.mat) : 0;
     return p;
 }

@@ -24,6 +24,7 @@ void tt_scan_worker_free(worker *W)
     free(W->y_save);
     free(W->obs);
     free(W->indent);
+    tt_scan_geometry_free(W);
 }
 
 /* The averaged tier takes the drive, the damping and the tip-sample force for small

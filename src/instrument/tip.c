@@ -21,7 +21,9 @@ struct tt_dilation {
     long nx, ny;
     double *grid; /* nx * ny apex heights, row j at y0 + j dx */
     int16_t *touch; /* nx * ny pairs: the node offset (a, b) where the tip touches;
-                     * NULL for a surface of one material (no material is read) */
+                     * NULL for a surface of one material unless contacts (asked for
+                     * by a scan that reads the contact's geometry there) */
+    int contacts;
 };
 
 /* ---- exact: profiles along x made of straight pieces ---- */
@@ -307,7 +309,7 @@ static int build_grid(tt_dilation *D)
     double *M = o ? local_max(D, g, m) : NULL;
     double *G = M ? tile_max(g, D->nx + 2 * m, D->ny + 2 * m) : NULL;
     D->grid = G ? malloc((size_t)D->nx * (size_t)D->ny * sizeof *D->grid) : NULL;
-    if (D->grid && !tt_surface_uniform(D->surface)) {
+    if (D->grid && (D->contacts || !tt_surface_uniform(D->surface))) {
         D->touch = malloc((size_t)D->nx * (size_t)D->ny * 2 * sizeof *D->touch);
         if (!D->touch) {
             free(D->grid);
@@ -327,6 +329,13 @@ static int build_grid(tt_dilation *D)
 int tt_dilation_alloc(tt_dilation **out, const tt_surface *s, const tt_tip_shape *t, double x0,
                       double y0, double x1, double y1, double spacing)
 {
+    return tt_dilation_alloc_contacts(out, s, t, x0, y0, x1, y1, spacing, 0);
+}
+
+int tt_dilation_alloc_contacts(tt_dilation **out, const tt_surface *s, const tt_tip_shape *t,
+                               double x0, double y0, double x1, double y1, double spacing,
+                               int contacts)
+{
     *out = NULL;
     if (t->kind == TT_TIP_POINT)
         return tt_error(TT_EINVAL, "[tip] shape: a point tip dilates nothing");
@@ -335,6 +344,7 @@ int tt_dilation_alloc(tt_dilation **out, const tt_surface *s, const tt_tip_shape
         return tt_error(TT_ENOMEM, "out of memory");
     D->surface = s;
     D->tip = *t;
+    D->contacts = contacts;
     D->x0 = x0;
     D->y0 = y0;
     piece_ctx probe = {t, 0, 0, 0, 0, 0};

@@ -4,6 +4,7 @@
 #include "tiptap/physics/contact.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 #include "contact_private.h"
 #include "tiptap/util/error.h"
@@ -62,5 +63,32 @@ int tt_contact_alloc_local(tt_contact **out, const tt_contact_params *p,
     } else if (!hertz_row) {
         table_along_normal(c, cs);
     }
+    return TT_OK;
+}
+
+int tt_contact_alloc_tilted(tt_contact **out, const tt_contact *base, double cs)
+{
+    *out = NULL;
+    if (!(cs > 0 && cs <= 1) || base->custom)
+        return tt_error(TT_EINVAL, "contact: a slope needs cos a in (0, 1] and a table law, got %g", cs);
+    const tt_contact_params *p = &base->p;
+    /* the rows tt_contact_alloc_local builds from its parameters at R_eff: Hertz at
+     * R_eff cos^5 a anew (no table), the film and the tables from base's own */
+    if ((p->w == 0 || p->model == TT_CONTACT_HERTZ) && !(p->film_thickness > 0)) {
+        tt_contact_params q = *p;
+        q.R = p->R * cs * cs * cs * cs * cs;
+        return tt_contact_alloc(out, &q);
+    }
+    struct tt_contact *c = malloc(sizeof *c);
+    if (!c)
+        return tt_error_nomem("a contact force law");
+    *c = *base;
+    if (c->hertz) {
+        for (int k = 0; k < 5; k++)
+            c->film_k[k] *= pow(cs, 0.5 * (5 + k));
+    } else {
+        table_along_normal(c, cs);
+    }
+    *out = c;
     return TT_OK;
 }

@@ -149,6 +149,9 @@ typedef struct {
     tt_scan_noise noise;
     int continuous;               /* lines as an instrument runs them: each starts where
                                    * the last retrace ended (one thread) */
+    int local_geometry;           /* [tip] contact_geometry = local: each cycle's law built
+                                   * for the slope and curvature where the tip touches,
+                                   * quantised (docs/surfaces.md); every-cycle tier only */
 } tt_scan_params;
 
 typedef struct tt_scan tt_scan;
@@ -310,6 +313,10 @@ typedef struct {
 int tt_scan_estimate_error(tt_scan *s, tt_scan_error *e);
 /* Whether the z piezo hit its range limits during the scan. */
 int tt_scan_clamped(const tt_scan *s);
+/* [tip] contact_geometry = local: the force laws built for the geometries the tip met,
+ * over every thread (each builds its own; 0 for axis or a flat sample), and in *tables
+ * (if not NULL) the adhesive tables rebuilt at an R_eff among them (the rest copies). */
+long tt_scan_contact_laws_built(const tt_scan *s, long *tables);
 /* The tip's dilation of the surface, made when the scan is (NULL for a point tip or a
  * flat surface). */
 const tt_dilation *tt_scan_dilation(const tt_scan *s);

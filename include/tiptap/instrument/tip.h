@@ -58,6 +58,11 @@ typedef struct tt_dilation tt_dilation;
  * point tip (nothing to dilate) or out of memory. */
 int tt_dilation_alloc(tt_dilation **out, const tt_surface *s, const tt_tip_shape *t, double x0,
                       double y0, double x1, double y1, double spacing);
+/* As tt_dilation_alloc, with the contact points kept (contacts 1) for a surface of one
+ * material too: a scan that reads the contact law's geometry there needs them. */
+int tt_dilation_alloc_contacts(tt_dilation **out, const tt_surface *s, const tt_tip_shape *t,
+                               double x0, double y0, double x1, double y1, double spacing,
+                               int contacts);
 void tt_dilation_free(tt_dilation *d);
 
 /* The apex height h_app(x, y) (m). */
@@ -68,8 +73,8 @@ double tt_dilation_height(const tt_dilation *d, double x, double y);
  * dilations give the analytic point (at a wall's top corner, just inside the top, so a
  * material map aligned with the wall reads the top's); grids the offset to it found at
  * the nearest node, added to (x, y), so within half a step of the true point, and
- * (x, y) itself for a surface of one material (no offsets kept) or where the apex
- * touches. */
+ * (x, y) itself for a surface of one material (no offsets kept, unless
+ * tt_dilation_alloc_contacts asked for them) or where the apex touches. */
 double tt_dilation_contact(const tt_dilation *d, double x, double y, double *xc, double *yc);
 
 /* The grid: its step (m) and nodes; 0 and 0 when the dilation is exact (steps, grating). */

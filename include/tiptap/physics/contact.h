@@ -143,6 +143,13 @@ tt_contact_geometry tt_contact_geometry_of(double R, double cos_slope, double k1
 int tt_contact_alloc_local(tt_contact **out, const tt_contact_params *p,
                            const tt_contact_geometry *g);
 
+/* base, a law built for a flat (tt_contact_alloc, or tt_contact_alloc_local with cos a
+ * = 1), on a slope of cosine cos_slope in (0, 1]: the law tt_contact_alloc_local builds
+ * for base's parameters at (cos_slope, base's radius), bit for bit, its table copied
+ * and scaled rather than rebuilt (a copy of 307 kB against about 2 ms for a
+ * Maugis-Dugdale table). */
+int tt_contact_alloc_tilted(tt_contact **out, const tt_contact *base, double cos_slope);
+
 void tt_contact_free(tt_contact *c);
 
 const tt_contact_summary *tt_contact_summary_of(const tt_contact *c);
