@@ -6,7 +6,9 @@
 # noise set moving the images more than the detector's noise alone, the default tier's
 # noise statistics those of every cycle within their sampling error, the averaged row
 # either measured or 'not available', and the blend figure's scene the README main
-# job's (scans/quick.ini with surfaces/polymer-blend.ini).
+# job's (scans/quick.ini with surfaces/polymer-blend.ini); the lesson's row on the
+# envelope tier and, with --lesson-tier averaged, on the averaged tier with its colder
+# run's errors.
 # usage: cli_bench.sh path/to/tiptap source_dir
 set -u
 tiptap=$1
@@ -135,5 +137,19 @@ err=$("$tiptap" bench --lesson-lines 1 2>&1 >/dev/null)
 err=$("$tiptap" bench --lesson-setting 8 2>&1 >/dev/null)
 [ "$err" = "tiptap bench: --lesson-setting: '8' is not a whole number from 1 to 7" ] && ok "--lesson-setting 8 refused" ||
   bad "--lesson-setting 8: '$err'"
+err=$("$tiptap" bench --lesson-tier every 2>&1 >/dev/null)
+[ "$err" = "tiptap bench: --lesson-tier: 'every' is not envelope or averaged" ] && ok "--lesson-tier every refused" ||
+  bad "--lesson-tier every: '$err'"
+
+# The lesson on the averaged tier (the 40 Hz lines, two lines): its row with the colder
+# run's errors, finite and at most the noisy run's by a fifth plus 1 nm and 20 deg.
+"$tiptap" bench --lesson-only --lesson-tier averaged --lesson-setting 7 --lesson-lines 2 >"$tmp/avg.txt" 2>&1
+awk '/^40 Hz lines/ { split($(NF - 4), h, "/"); split($(NF - 1), c, "/"); split($NF, q, "/")
+      if (!($(NF - 8) == "averaged" && $(NF - 7) > 2 && $(NF - 6) == 0.0 && c[1] >= c[2] && c[2] > 0 &&
+            c[1] <= 1.2 * h[1] + 1 && q[1] >= q[2] && q[1] < 360)) { print $0; b = 1 }
+      rows++ }
+  /why the envelope tier/ { print "the envelope counts on the averaged tier"; b = 1 }
+  END { if (rows != 1) { print rows " rows"; b = 1 } exit b }' "$tmp/avg.txt" >"$tmp/avg.bad" &&
+  ok "lesson on the averaged tier: the 40 Hz lines' row with its colder errors" || bad "lesson averaged: $(cat "$tmp/avg.bad")"
 
 exit $fail

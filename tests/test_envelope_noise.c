@@ -11,6 +11,7 @@
 
 #include "tt_test.h"
 #include "tt_scan_test.h"
+#include "tt_noise_compare.h"
 #include "tiptap/solver/envelope.h"
 #include "tiptap/solver/noise.h"
 
@@ -74,12 +75,7 @@ static void free_equipartition(double Q)
     const double want[2] = {TT_BOLTZMANN * T / c.k, TT_BOLTZMANN * T / c.m};
     const double *bat[2] = {bd, bv};
     for (int i = 0; i < 2; i++) {
-        double m = 0, v = 0;
-        for (int b = 0; b < NB; b++)
-            m += bat[i][b] / NB;
-        for (int b = 0; b < NB; b++)
-            v += (bat[i][b] - m) * (bat[i][b] - m);
-        double se = sqrt(v / (NB - 1) / NB);
+        double se, m = nc_batch_mean(bat[i], NB, &se);
         print_message("Q %g: <%s^2> / (kB T / %s) = %.4f +- %.4f\n", Q, i ? "d'" : "d", i ? "m" : "k",
                       m / want[i], se / want[i]);
         assert_true(se < 0.03 * want[i]);
@@ -97,14 +93,6 @@ static void model_equipartition(void **st)
     free_equipartition(400);
 }
 
-static const char *base =
-    "[cantilever]\nspring_constant = 40 N/m\nresonance_frequency = 300 kHz\nquality_factor = 400\n"
-    "free_amplitude = 20 nm\n"
-    "[material polymer]\nyoungs_modulus = 1 GPa\nadhesion_energy = 40 mJ/m^2\n"
-    "interaction_quality_factor = 5\n"
-    "[scan]\nsize = 1 um\npixels = 64\nlines = 2\nline_rate = 8 Hz\nsettle_cycles = 3000\n"
-    "channels = height, error, phase\n"
-    "[feedback]\nsetpoint = 80 %\nintegral_gain = 3000 Hz\n";
 
 /* The full noise set of tiptap bench (the z piezo's at its default bandwidth), and the z
  * piezo's alone. */
@@ -134,146 +122,13 @@ static const char *arms = "[material polymer]\nadhesion_energy = 0 J/m^2\nyoungs
                           "poisson_ratio = 0.4\narm1_modulus = 500 MPa\narm1_relaxation_time = 1 us\n";
 static const char *arms_noise = "temperature = 300 K\ndetector = 100 fm/sqrt(Hz)\n";
 
-enum { CH = 3, PX = 64, MAXU = 2 * 2 * 16, BANDS = 3 };
-
-/* One scan on a tier: the base plus sample, with noise (seed > 0) or without. */
-static tt_scan *noisy(const char *sample, const char *noise, const char *tier, int seed,
-                      long *integrated, long *cycles)
-{
-    char extra[1024];
-    snprintf(extra, sizeof extra, "%s[solver]\ntier = %s\n[noise]\nseed = %d\n%s", sample, tier,
-             seed > 0 ? seed : 1, seed > 0 ? noise : "");
-    tt_scene *sc;
-    tt_scan *s = tt_run_scan(base, extra, &sc);
-    tt_scene_free(sc);
-    if (integrated) {
-        *integrated += tt_scan_cycles_integrated(s);
-        *cycles += tt_scan_cycles(s);
-    }
-    return s;
-}
-
-/* Per unit (a line in one direction at one seed) and channel: the variance and the mean
- * of (noisy - noiseless) over the line's pixels, and its periodogram summed in BANDS
- * bands of the line's frequencies (1-3, 4-11 and 12-32 periods a line). */
-typedef struct {
-    int units;
-    double var[CH][MAXU], mean[CH][MAXU], band[CH][BANDS][MAXU];
-} unit_stats;
-
-static void line_stats(const double *a, const double *b, unit_stats *u, int c, int k)
-{
-    static const int lo[BANDS] = {1, 4, 12}, hi[BANDS] = {3, 11, 32};
-    double d[PX], m = 0, q = 0;
-    for (int i = 0; i < PX; i++)
-        m += (d[i] = a[i] - b[i]) / PX;
-    for (int i = 0; i < PX; i++)
-        q += (d[i] - m) * (d[i] - m) / (PX - 1);
-    u->var[c][k] = q;
-    u->mean[c][k] = m;
-    for (int bd = 0; bd < BANDS; bd++) {
-        double p = 0;
-        for (int f = lo[bd]; f <= hi[bd]; f++) {
-            double re = 0, im = 0;
-            for (int i = 0; i < PX; i++) {
-                re += d[i] * cos(2 * M_PI * f * i / PX);
-                im += d[i] * sin(2 * M_PI * f * i / PX);
-            }
-            p += re * re + im * im;
-        }
-        u->band[c][bd][k] = p;
-    }
-}
-
-/* The units of seeds 1 to seeds on a tier. */
-static void units_of(const char *sample, const char *noise, const char *tier, int seeds,
-                     unit_stats *u, long *integrated, long *cycles)
-{
-    tt_scan *clean = noisy(sample, noise, tier, 0, NULL, NULL);
-    assert_int_equal(tt_scan_xres(clean), PX);
-    u->units = 4 * seeds;
-    assert_true(u->units <= MAXU);
-    for (int s = 0; s < seeds; s++) {
-        tt_scan *sc = noisy(sample, noise, tier, s + 1, integrated, cycles);
-        for (int c = 0; c < CH; c++)
-            for (int r = 0; r < 2; r++)
-                for (long l = 0; l < 2; l++)
-                    line_stats(tt_scan_image(sc, c, r) + l * PX, tt_scan_image(clean, c, r) + l * PX,
-                               u, c, (s * 2 + r) * 2 + (int)l);
-        tt_scan_free(sc);
-    }
-    tt_scan_free(clean);
-}
-
-/* The ratio of the means of a and b over n units, with its standard error from the
- * paired units (delta method: the same seed draws the same z piezo noise on both tiers,
- * which makes a pair's difference tighter than either). */
-static void paired_ratio(const double *a, const double *b, int n, double *ratio, double *se)
-{
-    double ma = 0, mb = 0, zm = 0, zv = 0;
-    for (int k = 0; k < n; k++) {
-        ma += a[k] / n;
-        mb += b[k] / n;
-    }
-    *ratio = ma / mb;
-    for (int k = 0; k < n; k++)
-        zm += (a[k] - *ratio * b[k]) / n;
-    for (int k = 0; k < n; k++)
-        zv += (a[k] - *ratio * b[k] - zm) * (a[k] - *ratio * b[k] - zm) / (n - 1);
-    *se = sqrt(zv / n) / mb;
-}
-
-/* The mean over n units of a - b and its standard error. */
-static void paired_difference(const double *a, const double *b, int n, double *diff, double *se)
-{
-    double m = 0, v = 0;
-    for (int k = 0; k < n; k++)
-        m += (a[k] - b[k]) / n;
-    for (int k = 0; k < n; k++)
-        v += (a[k] - b[k] - m) * (a[k] - b[k] - m) / (n - 1);
-    *diff = m;
-    *se = sqrt(v / n);
-}
-
-/* The envelope tier's noise against the every-cycle tier's at the same seeds: per line
- * the variance (so the sd), the mean and the line spectrum in three bands of height,
- * error and phase agree within 3.5 standard errors of their paired ratio or
- * difference, and within slack (a fraction of the sd; of the ratio) of it, the sd's
- * error being under 4 % (so that the test means something); the means within
- * mean_slack of the sd besides; the envelope tier integrates under half the cycles. */
+/* The envelope tier's noise against the every-cycle tier's (tt_noise_compare.h); the
+ * envelope tier integrates under half the cycles. */
 static void compare_tiers(const char *what, const char *sample, const char *noise, int seeds,
                           double slack, double mean_slack)
 {
-    static unit_stats env, every;
-    long integrated = 0, cycles = 0;
-    units_of(sample, noise, "envelope", seeds, &env, &integrated, &cycles);
-    units_of(sample, noise, "every", seeds, &every, NULL, NULL);
-    const int n = env.units;
-    print_message("%s: the envelope tier integrated %.1f %% of the cycles\n", what,
-                  100.0 * (double)integrated / (double)cycles);
-    assert_true(integrated < cycles / 2);
-    const char *name[CH] = {"height (m)", "amplitude error (m)", "phase (deg)"};
-    for (int c = 0; c < CH; c++) {
-        double r, se, d, dse, sd = 0;
-        paired_ratio(env.var[c], every.var[c], n, &r, &se);
-        for (int k = 0; k < n; k++)
-            sd += every.var[c][k] / n;
-        sd = sqrt(sd);
-        /* the sds' ratio is the square root of the variances' */
-        print_message("  %-20s sd every %.3g, envelope / every %.3f +- %.3f; ", name[c], sd, sqrt(r),
-                      se / (2 * sqrt(r)));
-        assert_true(se / (2 * sqrt(r)) < 0.04);
-        assert_close(r, 1, 3.5 * se + 2 * slack);
-        paired_difference(env.mean[c], every.mean[c], n, &d, &dse);
-        print_message("mean, envelope - every %.3g +- %.2g; bands", d, dse);
-        assert_close(d, 0, 3.5 * dse + mean_slack * sd);
-        for (int bd = 0; bd < BANDS; bd++) {
-            paired_ratio(env.band[c][bd], every.band[c][bd], n, &r, &se);
-            print_message(" %.3f +- %.3f", r, se);
-            assert_close(r, 1, 3.5 * se + 2 * slack);
-        }
-        print_message("\n");
-    }
+    assert_true(nc_compare_tiers(nc_polymer_base(), what, sample, noise, "envelope", seeds, slack,
+                                 mean_slack) < 0.5);
 }
 
 /* The full noise set (thermal, detector, z piezo) on the soft polymer over 16 seeds:
@@ -325,11 +180,11 @@ static void thermal_arms(void **st)
 static void threads_agree(void **st)
 {
     (void)st;
-    tt_scan_assert_threads_agree(base,
+    tt_scan_assert_threads_agree(nc_polymer_base(),
                                  "[scan]\nline_rate = 20 Hz\n[noise]\nseed = 3\n"
                                  "temperature = 300 K\ndetector = 100 fm/sqrt(Hz)\n"
                                  "z_piezo = 0.3 pm/sqrt(Hz)\n",
-                                 CH, 1);
+                                 NC_CH, 1);
 }
 
 TT_TEST_MAIN(cmocka_unit_test(model_equipartition),

@@ -96,6 +96,8 @@ int bench_noise_figure(const bench_sample *s, const bench_run *ref, int seeds);
  * every-cycle tier (quick: the last, 40 Hz lines, only; only > 0: that setting alone,
  * counted from 1). */
 const char *bench_lesson_scene(void);
-int bench_lesson_figure(long lines, int quick, int only);
+/* own_tier: the lesson's tier (envelope or averaged; NULL: the default), with the
+ * tier's own error besides, both tiers again with the noise 1e9 times colder. */
+int bench_lesson_figure(long lines, int quick, int only, const char *own_tier);
 
 #endif

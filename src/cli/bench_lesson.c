@@ -70,6 +70,11 @@ static const lesson_setting settings[] = {
     {"40 Hz lines, ki 1.18 kHz", {"feedback.integral_gain=1180 Hz", "scan.line_rate=40 Hz", NULL}},
 };
 
+/* The lesson's noise 1e9 times colder (its powers: thermal and detector), where the
+ * two tiers' draws no longer part their images: a tier's own model error
+ * (tests/test_envelope_ringing.c's way). */
+static const char *const cold[] = {"noise.temperature=3e-7 K", "noise.detector=3.162e-18 m/sqrt(Hz)", NULL};
+
 /* One setting on one tier: lines 0 .. n - 1 stepped; per line its real time per CPU
  * second (rt) and its height and phase, trace and retrace (img: [line][4][pixels]). */
 typedef struct {
@@ -78,8 +83,8 @@ typedef struct {
     long pixels, integrated, cycles;
 } lesson_run;
 
-static int lesson_scan(const tt_scene *base, const lesson_setting *ls, const char *tier, long n,
-                       lesson_run *out)
+static int lesson_scan(const tt_scene *base, const lesson_setting *ls, const char *tier,
+                       const char *const *more, long n, lesson_run *out)
 {
     memset(out, 0, sizeof *out);
     tt_scene *c = tt_scene_copy(base);
@@ -90,6 +95,8 @@ static int lesson_scan(const tt_scene *base, const lesson_setting *ls, const cha
     int rc = tt_scene_set(c, tset);
     for (size_t i = 0; ls->set[i] && !rc; i++)
         rc = tt_scene_set(c, ls->set[i]);
+    for (size_t i = 0; more && more[i] && !rc; i++)
+        rc = tt_scene_set(c, more[i]);
     tt_scan_params p;
     memset(&p, 0, sizeof p);
     if (!rc)
@@ -174,22 +181,50 @@ static void lesson_error(const lesson_run *a, const lesson_run *b, int phase, lo
     *rms = cnt ? sqrt(ss / (double)cnt) : 0;
 }
 
-int bench_lesson_figure(long lines, int quick, int only)
+/* "max/rms" of height (nm) and phase (deg) between two runs over lines first .. n - 1. */
+static void lesson_errors(const lesson_run *a, const lesson_run *b, long first, long n, char h[32],
+                          char ph[32])
+{
+    double hm, hr, pm, pr;
+    lesson_error(a, b, 0, first, n, &hm, &hr);
+    lesson_error(a, b, 1, first, n, &pm, &pr);
+    snprintf(h, 32, "%.3g/%.2g", hm * 1e9, hr * 1e9);
+    snprintf(ph, 32, "%.3g/%.2g", pm, pr);
+}
+
+/* With cold: the tier's own error, both tiers run again with the noise 1e9 times colder. */
+static int lesson_cold(const tt_scene *base, const lesson_setting *ls, const char *tier, long lines,
+                       long first, char h[32], char ph[32])
+{
+    lesson_run fast, every = {0};
+    int rc = lesson_scan(base, ls, tier, cold, lines, &fast);
+    if (!rc)
+        rc = lesson_scan(base, ls, "every", cold, lines, &every);
+    if (!rc)
+        lesson_errors(&fast, &every, first, lines, h, ph);
+    lesson_free(&fast);
+    lesson_free(&every);
+    return rc;
+}
+
+int bench_lesson_figure(long lines, int quick, int only, const char *own_tier)
 {
     tt_scene *base = tt_scene_alloc();
     int rc = base ? tt_scene_load_string(base, bench_lesson_scene(), "lesson scene (bench)")
                   : tt_error_nomem("the bench's lesson scene");
-    const char *tier = bench_default_tier();
+    const char *tier = own_tier ? own_tier : bench_default_tier();
     const long first = lines > 1 ? 1 : 0; /* line 0 engages and settles */
     printf("# lesson: the teaching scene (scans/standard.ini + surfaces/grating.ini + "
            "examples/feedback-tuning/common.ini: 64 pixels, 2 Hz, noise on), lines 0 to %ld "
            "stepped one at a time on one thread as tiptap live's engine steps them; "
            "figures over lines %ld to %ld\n",
            lines - 1, first, lines - 1);
-    printf("%-26s %-10s %10s %10s %9s %13s %13s %10s\n", "setting", "tier", "rt/cpu_s", "integr_%",
+    printf("%-26s %-10s %10s %10s %9s %13s %13s %10s", "setting", "tier", "rt/cpu_s", "integr_%",
            "every_rt", "height_nm", "phase_deg", "every_int");
-    printf("%-26s %-10s %10s %10s %9s %13s %13s %10s\n", "", "", "(median)", "", "(median)",
+    printf(own_tier ? " %13s %13s\n" : "\n", "cold_h_nm", "cold_ph_deg");
+    printf("%-26s %-10s %10s %10s %9s %13s %13s %10s", "", "", "(median)", "", "(median)",
            "max/rms", "max/rms", "%");
+    printf(own_tier ? " %13s %13s\n" : "\n", "max/rms", "max/rms");
     enum { NS = sizeof settings / sizeof settings[0] };
     const size_t ns = NS;
     long why[NS][TT_ENV_STOPS] = {{0}};
@@ -198,30 +233,36 @@ int bench_lesson_figure(long lines, int quick, int only)
             continue;
         lesson_run fast, every = {0};
         tt_scan_envelope_stops_reset();
-        rc = lesson_scan(base, &settings[i], tier, lines, &fast);
+        rc = lesson_scan(base, &settings[i], tier, NULL, lines, &fast);
         tt_scan_envelope_stops(why[i]);
         if (!rc)
-            rc = lesson_scan(base, &settings[i], "every", lines, &every);
+            rc = lesson_scan(base, &settings[i], "every", NULL, lines, &every);
+        char h[32], ph[32], ch[32] = "", cph[32] = "";
+        if (!rc && own_tier)
+            rc = lesson_cold(base, &settings[i], tier, lines, first, ch, cph);
         if (!rc) {
-            double hm, hr, pm, pr;
-            lesson_error(&fast, &every, 0, first, lines, &hm, &hr);
-            lesson_error(&fast, &every, 1, first, lines, &pm, &pr);
-            char h[32], ph[32];
-            snprintf(h, sizeof h, "%.3g/%.2g", hm * 1e9, hr * 1e9);
-            snprintf(ph, sizeof ph, "%.3g/%.2g", pm, pr);
-            printf("%-26s %-10s %10.2f %10.1f %9.3f %13s %13s %10.1f\n", settings[i].label, tier,
+            lesson_errors(&fast, &every, first, lines, h, ph);
+            printf("%-26s %-10s %10.2f %10.1f %9.3f %13s %13s %10.1f", settings[i].label, tier,
                    median_rt(&fast, first, lines),
                    100.0 * (double)fast.integrated / (double)fast.cycles, median_rt(&every, first, lines), h,
                    ph, 100.0 * (double)every.integrated / (double)every.cycles);
+            printf(own_tier ? " %13s %13s\n" : "\n", ch, cph);
             fflush(stdout);
         }
         lesson_free(&fast);
         lesson_free(&every);
     }
     printf("# rt/cpu_s: a line's instrument time (trace and retrace) over its thread's CPU time; "
-           "every_rt: the every-cycle tier's, same lines, same run; errors: the default tier's "
-           "images against the every-cycle tier's (each draws its own noise)\n");
-    /* why the default tier integrated what it did, per line (all lines, settling too) */
+           "every_rt: the every-cycle tier's, same lines, same run; errors: the %s tier's "
+           "images against the every-cycle tier's (each draws its own noise)%s\n",
+           own_tier ? "lesson's" : "default",
+           own_tier ? "; cold: both run again with the noise's powers 1e9 times lower, the tier's own "
+                      "model error" : "");
+    if (own_tier && strcmp(tier, "envelope") != 0) {
+        tt_scene_free(base);
+        return rc;
+    }
+    /* why the envelope tier integrated what it did, per line (all lines, settling too) */
     printf("# lesson, why the envelope tier integrates: its controller's counts per line "
            "(tiptap/instrument/scan_envelope_stops.h)\n%-26s", "setting");
     for (int k = 0; k < TT_ENV_STOPS; k++)

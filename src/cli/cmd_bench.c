@@ -17,7 +17,8 @@ static void help(void)
 {
     printf("Usage: tiptap bench [--cycles N] [--seeds N] [--quick] [--no-steady] [--no-imaging]\n"
            "                    [--no-noise] [--no-scenes] [--no-lesson] [--lesson-only]\n"
-           "                    [--lesson-lines N] [--lesson-setting N] [--print-scene]\n"
+           "                    [--lesson-lines N] [--lesson-setting N] [--lesson-tier TIER]\n"
+           "                    [--print-scene]\n"
            "                    [--print-blend-scene]\n"
            "Benchmark on the standard tapping scene (300 kHz, Q 400, 40 N/m, 20 nm free\n"
            "amplitude, polymer with adhesion, 16 nm rest separation).\n\n"
@@ -70,7 +71,10 @@ static void help(void)
            "                  which runs only the 40 Hz lines' setting)\n"
            "  --lesson-setting N\n"
            "                  the lesson figure's Nth setting alone (1 to 7, in the order\n"
-           "                  above: a figure a loaded machine can finish)\n"
+           "                  above: a figure a loaded machine can finish)\n"           "  --lesson-tier TIER\n"
+           "                  the lesson figure on envelope or averaged instead of the default\n"
+           "                  tier, with that tier's own error besides (cold_h_nm, cold_ph_deg:\n"
+           "                  both tiers again with the noise's powers 1e9 times lower)\n"
            "  --print-scene   print the standard scene and exit\n"
            "  --print-blend-scene\n"
            "                  print the README main job's scene and exit\n");
@@ -234,11 +238,13 @@ int cmd_bench(int argc, char **argv)
                                          {"lesson-only", no_argument, NULL, 'L'},
                                          {"lesson-lines", required_argument, NULL, 'm'},
                                          {"lesson-setting", required_argument, NULL, 'g'},
+                                         {"lesson-tier", required_argument, NULL, 't'},
                                          {NULL, 0, NULL, 0}};
     static const cli_spec spec = {"bench", 0, opts, "", help};
     cli_args args = {0}; /* no --set: nothing to free */
     long n = -1, seeds = -1, lesson_lines = -1, only = 0;
     int steady = 1, imaging = 1, noise = 1, scenes = 1, lesson = 1, quick = 0, print_scene = 0;
+    const char *lesson_tier = NULL;
     int c;
     while ((c = cli_getopt(&spec, &args, argc, argv)) > 0) {
         switch (c) {
@@ -264,6 +270,13 @@ int cmd_bench(int argc, char **argv)
         case 'g':
             if (cli_whole("bench", "--lesson-setting", optarg, 1, 7, NULL, &only))
                 return CLI_USAGE;
+            break;
+        case 't':
+            if (strcmp(optarg, "envelope") != 0 && strcmp(optarg, "averaged") != 0) {
+                fprintf(stderr, "tiptap bench: --lesson-tier: '%s' is not envelope or averaged\n", optarg);
+                return CLI_USAGE;
+            }
+            lesson_tier = optarg;
             break;
         case 'p': print_scene = 1; break;
         case 'b': print_scene = 2; break;
@@ -300,7 +313,8 @@ int cmd_bench(int argc, char **argv)
         rc = bench_images(scene, &lines, imaging, noise, scenes, (int)seeds);
     /* seven lines: the first engages and settles, six are the figures' median */
     if (!rc && lesson)
-        rc = bench_lesson_figure(lesson_lines > 0 ? lesson_lines : quick ? 2 : 7, quick, (int)only);
+        rc = bench_lesson_figure(lesson_lines > 0 ? lesson_lines : quick ? 2 : 7, quick, (int)only,
+                                 lesson_tier);
     tt_setup_free(st);
     tt_scene_free(scene);
     return rc ? cli_fail(rc, NULL) : CLI_OK;

@@ -4,12 +4,16 @@
  * periods reach the lock-in as components, so the lock-in, the feedback, the piezo and
  * the pixels' sums are the other tiers' code. The surface is looked up once a block
  * (at its first cycle), linear between blocks. Where the tip collapses onto the sample
- * or leaves the table, the pixel is marked (tt_scan_averaged_collapsed). */
+ * or leaves the table, the pixel is marked (tt_scan_averaged_collapsed). Noise
+ * (docs/dynamics.md, "Noise on the averaged tier"): the thermal force as an impulse on
+ * each step of the slow flow, the detector's on the block's components, the z piezo's
+ * on the sample's position per cycle, all drawn from (seed, line, cycle). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "scan_private.h"
+#include "tiptap/solver/noise.h"
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 
@@ -65,11 +69,12 @@ static void cycle_sums(const line_ctx *L, long k0, int n, double za0, double dz,
 }
 
 /* The sample's position (rest separation) over each of the block's n cycles, its
- * mean returned: the z piezo's actual height advanced through them, the surface linear
- * from a to b. */
+ * mean returned: the z piezo's actual height advanced through them (with its noise at
+ * the cycle's middle, the every-cycle tier's draws), the surface linear from a to b. */
 static double block_sample(const line_ctx *L, line_state *st, const surf_pt *a, const surf_pt *b,
                            int n, double *s)
 {
+    const tt_noise_ou *zn = &L->S->zn;
     const double P = L->P, dz = (st->z_to - st->z_from) / P, z0 = st->z_from + dz * (double)(st->k % L->P);
     double mean = 0;
     for (int j = 0; j < n; j++) {
@@ -80,29 +85,51 @@ static double block_sample(const line_ctx *L, line_state *st, const surf_pt *a, 
             z = 0.5 * (pa + st->z_act);
         }
         s[j] = L->s_ref - (a->h + (b->h - a->h) * (j + 0.5) / n) + z;
+        if (zn->sd > 0) {
+            double za = st->zn;
+            st->zn = tt_noise_ou_next(zn, L->kz, (uint64_t)(st->cycles + j) + 1, st->zn);
+            s[j] += 0.5 * (za + st->zn);
+        }
         mean += s[j];
     }
     return mean / n;
 }
 
+/* One step of the slow flow over h from the line's cycle `cycle` on, with the thermal
+ * force's impulse there when the noise is on (sig: its density, 0 off). */
+static void flow_step(const line_ctx *L, avg_line *t, const tt_averaged *tab, double s, double h,
+                      double sig, long cycle, tt_averaged_out *o)
+{
+    if (!(sig > 0)) {
+        tt_averaged_step(tab, &t->st, s, h, o);
+        return;
+    }
+    double g[2];
+    tt_noise_pair(L->ke, (uint64_t)cycle, g);
+    const double kick[2] = {sig * sqrt(h) * g[0], sig * sqrt(h) * g[1]};
+    tt_averaged_step_noisy(tab, &t->st, s, h, kick, o);
+}
+
 /* The slow flow through the block: one step, or where it changed the state by more
  * than SUB_TOL of the free amplitude (an edge, a transient), one step a cycle from
- * the block's start again; each cycle's components into the block's periods. */
+ * the block's start again; each cycle's components into the block's periods. cycle:
+ * the line's count at the block's start (the noise's index). */
 #define SUB_TOL 1e-3
 static void block_flow(const line_ctx *L, avg_line *t, const tt_averaged *tab, long k0, int n,
-                       const double *s, double smean, tt_averaged_out *o)
+                       const double *s, double smean, long cycle, tt_averaged_out *o)
 {
     worker *W = L->W;
     const int nc = tt_lockin_components(W->lockin);
     const double T = L->S->cantilever.T;
+    const double sig = tt_averaged_thermal_density(&L->S->cantilever, L->S->noise.temperature);
     tt_averaged_state start = t->st;
-    tt_averaged_step(tab, &t->st, smean, n * T, o);
+    flow_step(L, t, tab, smean, n * T, sig, cycle, o);
     if (o->change > SUB_TOL && n > 1) {
         t->st = start;
         tt_averaged_out c, sum;
         memset(&sum, 0, sizeof sum);
         for (int j = 0; j < n; j++) {
-            tt_averaged_step(tab, &t->st, s[j], T, &c);
+            flow_step(L, t, tab, s[j], T, sig, cycle + j, &c);
             for (int q = 0; q < nc; q++)
                 W->y[(size_t)((k0 + j) % L->P) * (size_t)nc + (size_t)q] = c.comp[q];
             sum.peak += c.peak / n;
@@ -119,6 +146,28 @@ static void block_flow(const line_ctx *L, avg_line *t, const tt_averaged *tab, l
             W->y[(size_t)((k0 + j) % L->P) * (size_t)nc + (size_t)q] = o->comp[q];
 }
 
+/* The detector's white noise on the block's components (the lock-in's mean of its
+ * periods, so drawn once a block): per component the samples' rms times the norm of
+ * the lock-in's row over the block's N P samples, spread over the n periods written;
+ * cycle: the line's count at the block's start (the draws' index). */
+static void detector_noise(const line_ctx *L, long k0, int n, long cycle)
+{
+    const double sd = L->S->sd;
+    if (!(sd > 0))
+        return;
+    worker *W = L->W;
+    const int nc = tt_lockin_components(W->lockin), N = L->N;
+    const double *R = tt_lockin_component_matrix(W->lockin);
+    for (int q = 0; q < nc; q++) {
+        double r2 = 0;
+        for (int i = 0; i < N; i++)
+            r2 += R[(size_t)q * (size_t)N + (size_t)i] * R[(size_t)q * (size_t)N + (size_t)i];
+        const double v = sd * sqrt(r2 / L->P) * tt_noise_gauss(L->kd, (uint64_t)cycle * (uint64_t)nc + (uint64_t)q);
+        for (int j = 0; j < n; j++)
+            W->y[(size_t)((k0 + j) % L->P) * (size_t)nc + (size_t)q] += v * L->P / n;
+    }
+}
+
 /* One block of n cycles from cycle k0, the surface at its start a and end b. */
 static int block(const line_ctx *L, line_state *st, avg_line *t, const surf_pt *a,
                  const surf_pt *b, int n)
@@ -129,7 +178,8 @@ static int block(const line_ctx *L, line_state *st, avg_line *t, const surf_pt *
     const double za0 = st->z_from + (st->z_to - st->z_from) * (double)(k0 % L->P) / L->P;
     const double smean = block_sample(L, st, a, b, n, t->s);
     tt_averaged_out o;
-    block_flow(L, t, S->avg[a->mat], k0, n, t->s, smean, &o);
+    block_flow(L, t, S->avg[a->mat], k0, n, t->s, smean, st->cycles, &o);
+    detector_noise(L, k0, n, st->cycles);
     if (L->phase > 0) {
         if (!(S->channels & (TT_CH_PEAK_FORCE | TT_CH_INDENTATION))) /* as untracked cycles */
             o.peak = o.indent = NAN;

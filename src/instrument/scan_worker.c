@@ -186,7 +186,7 @@ int tt_scan_worker_retune(tt_scan *S, worker *W)
 {
     const int env = tt_scan_envelope_usable(S, &S->solver);
     if (W->averaged)
-        return TT_OK; /* noiseless (docs/dynamics.md, Averaged) */
+        return TT_OK; /* its noise read from S at each block (scan_averaged.c) */
     /* the model's plan follows the noise: made anew for the new noise (a line's model
      * starts afresh anyway, tt_envelope_reset) */
     if (W->env) {

@@ -148,9 +148,6 @@ int tt_run_scan_warn_inputs(const tt_scene *s, const tt_run_scan_cost *cost)
                                                 : "[surface] map_materials names two others");
     if (unused > 8 && ++n)
         tt_warn(TT_WARN_INPUT, "and %zu more materials are not used", unused - 8);
-    const tt_scan_noise *nz = &p.noise;
-    if (tt_scan_averaged_tier(&p) && (nz->temperature > 0 || nz->detector > 0 || nz->z_piezo > 0) && ++n)
-        tt_warn(TT_WARN_INPUT, "[noise] is not modelled on the averaged tier: its images are noiseless");
     tt_config_scan_free(&p);
     return n;
 }

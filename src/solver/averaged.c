@@ -8,6 +8,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "tiptap/solver/noise.h"
 #include "tiptap/util/error.h"
 #include "tiptap/util/clock.h"
 
@@ -449,7 +450,7 @@ static void harmonic(const tt_averaged *a, const slow *o, int h, double *X, doub
 /* One linearly implicit step: (I - gamma h J) dx = h f; gamma 1/2 (second order, A-
  * stable) or 1 (first order, L-stable: the halved steps of an impact). */
 static void one_step(const tt_averaged *a, tt_averaged_state *st, double s, double h, double gamma,
-                     double cap, tt_averaged_out *o)
+                     double cap, const double *kick, tt_averaged_out *o)
 {
     slow e;
     /* the branch: a touching tip whose far point stays past pull-off cannot leave */
@@ -473,6 +474,13 @@ static void one_step(const tt_averaged *a, tt_averaged_state *st, double s, doub
         dY = r > 0 ? dY * r : 0;
         e.bad = 1;
     }
+    o->change = fmax(fabs(dX), fabs(dY)) / a->c.A0; /* the flow's own move, not the noise's */
+    if (!(o->change < INFINITY))
+        o->change = INFINITY;
+    if (kick) { /* through the same solve: the linearised flow's stationary covariance exactly */
+        dX += (m11 * kick[0] - m01 * kick[1]) / det;
+        dY += (m00 * kick[1] - m10 * kick[0]) / det;
+    }
     o->comp[0] = 0.5 * (st->m0 + e.m0);
     o->comp[1] = st->X + 0.5 * dX;
     o->comp[2] = st->Y + 0.5 * dY;
@@ -494,9 +502,6 @@ static void one_step(const tt_averaged *a, tt_averaged_state *st, double s, doub
     o->ets = M_PI * e.B * e.F.gs[0];
     o->outside = e.F.outside;
     o->collapsed = st->stuck || e.B < 0.25 * a->c.A0 || e.bad;
-    o->change = fmax(fabs(dX), fabs(dY)) / a->c.A0;
-    if (!(o->change < INFINITY))
-        o->change = INFINITY;
 }
 
 /* A step whose linearisation moved the state by more than a tenth of the free amplitude
@@ -506,16 +511,18 @@ static void one_step(const tt_averaged *a, tt_averaged_state *st, double s, doub
 #define BIG 0.1
 #define DEPTH 8
 static void advance(const tt_averaged *a, tt_averaged_state *st, double s, double h, int depth,
-                    tt_averaged_out *o)
+                    const double *kick, tt_averaged_out *o)
 {
     tt_averaged_state start = *st;
-    one_step(a, st, s, h, depth ? 1 : 0.5, depth >= DEPTH ? BIG : INFINITY, o);
+    one_step(a, st, s, h, depth ? 1 : 0.5, depth >= DEPTH ? BIG : INFINITY, kick, o);
     if (o->change <= BIG || depth >= DEPTH)
         return;
     *st = start;
     tt_averaged_out p, q;
-    advance(a, st, s, 0.5 * h, depth + 1, &p);
-    advance(a, st, s, 0.5 * h, depth + 1, &q);
+    /* the impulse split evenly: its sum kept (the model is wrong here anyway) */
+    const double half[2] = {kick ? 0.5 * kick[0] : 0, kick ? 0.5 * kick[1] : 0};
+    advance(a, st, s, 0.5 * h, depth + 1, kick ? half : NULL, &p);
+    advance(a, st, s, 0.5 * h, depth + 1, kick ? half : NULL, &q);
     for (int i = 0; i < 1 + 2 * a->H; i++)
         o->comp[i] = 0.5 * (p.comp[i] + q.comp[i]);
     o->peak = fmax(p.peak, q.peak);
@@ -529,5 +536,17 @@ static void advance(const tt_averaged *a, tt_averaged_state *st, double s, doubl
 void tt_averaged_step(const tt_averaged *a, tt_averaged_state *st, double s, double h,
                       tt_averaged_out *o)
 {
-    advance(a, st, s, h, 0, o);
+    advance(a, st, s, h, 0, NULL, o);
+}
+
+void tt_averaged_step_noisy(const tt_averaged *a, tt_averaged_state *st, double s, double h,
+                            const double kick[2], tt_averaged_out *o)
+{
+    advance(a, st, s, h, 0, kick, o);
+}
+
+double tt_averaged_thermal_density(const tt_cantilever *c, double temperature)
+{
+    /* the force's 2 c kB T projected by -sin(w t) / (m w) and cos(w t) / (m w): a half each */
+    return temperature > 0 ? sqrt(c->c * TT_BOLTZMANN * temperature) / (c->m * c->wd) : 0;
 }

@@ -92,6 +92,19 @@ typedef struct {
 void tt_averaged_step(const tt_averaged *a, tt_averaged_state *st, double s, double h,
                       tt_averaged_out *o);
 
+/* The same step with the thermal force's impulse over it, kick = (X, Y) in m: the
+ * white noise on the slow flow, sqrt(h) times tt_averaged_thermal_density times two
+ * independent standard normals, added to the implicit solve's right-hand side, so that
+ * the linearised flow's stationary covariance is kept exactly at any h; change
+ * counts the flow's move alone (docs/dynamics.md, "Noise on the averaged tier"). */
+void tt_averaged_step_noisy(const tt_averaged *a, tt_averaged_state *st, double s, double h,
+                            const double kick[2], tt_averaged_out *o);
+
+/* The square root of the two-sided intensity of the thermal force's white noise on each
+ * of X' and Y' (m / sqrt(s)) at temperature (K): sqrt(kB T c) / (m w), w the drive's
+ * angular frequency; 0 at temperature 0. */
+double tt_averaged_thermal_density(const tt_cantilever *c, double temperature);
+
 /* The seconds the tables of a scan took to build (a clock, for the report). */
 double tt_averaged_build_seconds(const tt_averaged *a);
 
