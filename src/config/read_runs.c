@@ -42,6 +42,9 @@ int tt_config_approach_setup(tt_setup *st, const tt_scene *s, tt_approach_params
      * (relaxation arms) settles instead */
     if (tt_setup_material(st, mat)->contact.arms > 0)
         p->steady = TT_STEADY_SETTLE;
+    /* nor has a cantilever with mode 2 driven a periodic orbit: it settles its lock-ins */
+    if (tt_setup_cantilever(st)->A2 > 0)
+        p->steady = TT_STEADY_SETTLE;
     p->tip_radius = tt_setup_material(st, mat)->contact.R;
     return tt_setup_use_material(st, mat);
 }
@@ -61,10 +64,7 @@ int tt_config_approach_alloc(tt_approach **out, tt_setup *st, const tt_scene *s,
                              tt_approach_params *p)
 {
     *out = NULL;
-    int rc = tt_config_one_drive(s, "approach curves");
-    if (rc)
-        return rc;
-    rc = tt_config_approach_setup(st, s, p);
+    int rc = tt_config_approach_setup(st, s, p);
     return rc ? rc : tt_scene_locate(s, tt_approach_alloc(out, tt_setup_sim(st), p));
 }
 
