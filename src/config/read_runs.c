@@ -49,17 +49,6 @@ int tt_config_approach_setup(tt_setup *st, const tt_scene *s, tt_approach_params
     return tt_setup_use_material(st, mat);
 }
 
-int tt_config_one_drive(const tt_scene *s, const char *what)
-{
-    /* mode 2's drive is incommensurate with the first: no periodic orbit, and its
-     * lock-in is the scan's alone */
-    if (!tt_scene_has(s, "cantilever", NULL, "mode2_free_amplitude"))
-        return TT_OK;
-    return tt_scene_fail(s, "cantilever", NULL, "mode2_free_amplitude",
-                         "%s do not serve mode 2's drive yet (bimodal imaging is tiptap scan's "
-                         "and scan sweeps'): leave it out here", what);
-}
-
 int tt_config_approach_alloc(tt_approach **out, tt_setup *st, const tt_scene *s,
                              tt_approach_params *p)
 {

@@ -284,6 +284,8 @@ static int iterate_steady(tt_approach *a, tt_approach_point *pt)
         pt->settled = sr.settled;
         pt->cycles = sr.cycles;
     }
+    if (a->p.steady != TT_STEADY_SHOOTING || a->lockin)
+        pt->shot.how = TT_SHOOT_SETTLED; /* no Newton tried: not Newton's point */
     pt->cycles += moved;
     pt->period = sr.period;
     pt->window = sr.window;
