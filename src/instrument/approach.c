@@ -197,6 +197,8 @@ void tt_approach_free(tt_approach *a)
 {
     if (!a)
         return;
+    if (a->samples) /* the sim outlives the approach: no pointer left to its samples */
+        tt_sim_set_sampling(a->sim, 0, NULL);
     tt_lockin_free(a->lockin);
     free(a->samples);
     free(a->y);
