@@ -6,6 +6,7 @@ t=build/tiptap
 $t scan scans/standard.ini surfaces/polymer-blend.ini examples/polymer-blend/scan.ini -o examples/polymer-blend/out
 $t scan scans/standard.ini surfaces/grating.ini examples/grating/scan.ini -o examples/grating/out
 $t scan scans/standard.ini surfaces/polymer-blend.ini examples/bimodal/scan.ini -o examples/bimodal/out
+$t approach scans/standard.ini surfaces/polymer-blend.ini examples/bimodal/approach.ini -o examples/bimodal/out/approach.csv --plot examples/bimodal/out/approach.png
 for s in gain-low gain-right gain-ringing gain-unstable line-rate-fast; do
   $t scan scans/standard.ini surfaces/grating.ini examples/feedback-tuning/common.ini \
      examples/feedback-tuning/$s.ini -o examples/feedback-tuning/$s

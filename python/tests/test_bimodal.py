@@ -1,6 +1,7 @@
 """Bimodal AM-AM from Python (docs/physics.md, "Bimodal imaging"): mode 2's amplitude and
 phase are channels of tiptap.scan() like the others, in its HDF5 file too, and they tell
-the blend's stiff disks from its matrix as mode 1's phase does."""
+the blend's stiff disks from its matrix as mode 1's phase does; and columns of
+tiptap.approach()."""
 
 import h5py
 import numpy as np
@@ -32,3 +33,16 @@ def test_mode2_channels_in_python_and_hdf5(tmp_path):
         q = {g[k].attrs["quantity"] for g in (m[c] for c in m if c.startswith("Channel_"))
              for k in g if k not in ("x", "y") and isinstance(g[k], h5py.Dataset)}
     assert {"amplitude_2", "phase_2"} <= {v.decode() if isinstance(v, bytes) else v for v in q}
+
+
+def test_mode2_columns_of_approach():
+    far = {"cantilever.modes": "2", "cantilever.mode2_free_amplitude": "0.5 nm",
+           "approach.from": "100 nm", "approach.to": "100 nm", "approach.points": "1"}
+    t = tiptap.approach(QUICK, set=far, progress=False)
+    assert t.units["amplitude_2"] == "m" and t.units["phase_2"] == "deg"
+    # free: mode 2 at its drive's 0.5 nm, lagging 90 deg at resonance (0.0014 of it and
+    # 0.3 deg: mode 1's share and the integration's error at the quick scene's tolerance)
+    assert abs(t["amplitude_2"][0] / 0.5e-9 - 1) < 1.4e-3
+    assert abs(t["phase_2"][0] - 90) < 0.3
+    one = tiptap.approach(QUICK, set={"approach.points": "1"}, progress=False)
+    assert "amplitude_2" not in one

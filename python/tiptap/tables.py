@@ -85,8 +85,9 @@ def approach(scene, *, set=None, progress=None, **keys):
     contact_fraction, dissipated, branch, settled, cycles, drive_work, energy_residual,
     deflection_min, deflection_max, period; with a viscous material (viscosity,
     film_thickness) also the loss per mechanism, dissipated_hysteresis,
-    dissipated_damping, dissipated_viscous. Points that did not settle are warned of
-    (tiptap.SettleWarning)."""
+    dissipated_damping, dissipated_viscous; with mode 2 driven ([cantilever]
+    mode2_free_amplitude) also its lock-in's amplitude_2 (m) and phase_2 (deg). Points
+    that did not settle are warned of (tiptap.SettleWarning)."""
     s = Scene.of(scene, set, caller="approach", **keys)
     return _run_table(lambda out, c: lib.tt_run_approach(s._p, out, c, ffi.NULL), "approach",
                       "points", progress)

@@ -26,8 +26,11 @@ static void help(void)
            "                     deflection_max_nm, period (default approach.csv); with a\n"
            "                     viscous material (viscosity, film_thickness) also the\n"
            "                     loss per mechanism: dissipated_hysteresis_aJ,\n"
-           "                     dissipated_damping_aJ, dissipated_viscous_aJ\n"
-           "      --plot FILE    PNG of amplitude, phase and dissipation against z\n"
+           "                     dissipated_damping_aJ, dissipated_viscous_aJ; with mode 2\n"
+           "                     driven ([cantilever] mode2_free_amplitude) also mode 2's\n"
+           "                     lock-in: amplitude_2_nm, phase_2_deg (then amplitude_nm and\n"
+           "                     phase_deg are mode 1's lock-in's, and each point settles)\n"
+           "      --plot FILE    PNG of amplitude, phase (mode 2's too), loss against z\n"
            CLI_HELP_SET
            "  -q, --quiet        no summary on stderr\n\n"
            "period: steady mode, 1 for a steady oscillation, n for an orbit repeating every\n"
@@ -48,7 +51,7 @@ static void help(void)
            "stable orbits at the same separation.\n");
 }
 
-static void write_row(FILE *f, const tt_approach_point *p, int viscous)
+static void write_row(FILE *f, const tt_approach_point *p, int viscous, int bimodal)
 {
     const tt_cycle *c = &p->cycle;
     double rel = c->residual_rel;
@@ -60,55 +63,75 @@ static void write_row(FILE *f, const tt_approach_point *p, int viscous)
             p->period);
     if (viscous)
         fprintf(f, ",%.9g,%.9g,%.9g", c->e_hyst * 1e18, c->e_ci * 1e18, c->e_visc * 1e18);
+    if (bimodal)
+        fprintf(f, ",%.9g,%.9g", p->amplitude2 * 1e9, p->phase2 * 180 / M_PI);
     fputc('\n', f);
 }
 
-static int plot(const char *path, const tt_approach_point *pts, size_t n, int ramp)
+/* The plot's series of one branch: z, amplitude, phase, loss, deflection's extremes and
+ * mode 2's amplitude and phase, in nm, deg, aJ; their count. */
+static size_t branch_series(const tt_approach_point *pts, size_t n, int branch, double *const *v)
 {
-    double *x = malloc(n * sizeof *x), *a = malloc(n * sizeof *a), *ph = malloc(n * sizeof *ph),
-           *e = malloc(n * sizeof *e), *lo = malloc(n * sizeof *lo), *hi = malloc(n * sizeof *hi);
-    tt_figure *f = tt_figure_alloc(3, ramp ? "Approach (ramp)" : "Approach (steady state)");
-    int rc = (x && a && ph && e && lo && hi && f) ? TT_OK : tt_error_nomem("the plot %s", path);
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (pts[i].retract != branch)
+            continue;
+        const tt_cycle *c = &pts[i].cycle;
+        const double row[8] = {pts[i].z * 1e9, c->amplitude * 1e9, c->phase * 180 / M_PI, c->e_ts * 1e18,
+                               c->y_min * 1e9, c->y_max * 1e9, pts[i].amplitude2 * 1e9,
+                               pts[i].phase2 * 180 / M_PI};
+        for (int k = 0; k < 8; k++)
+            v[k][m] = row[k];
+        m++;
+    }
+    return m;
+}
+
+/* Amplitude, phase (and mode 2's, when driven) and dissipation against z. */
+static int plot(const char *path, const tt_approach_point *pts, size_t n, int ramp, int bimodal)
+{
+    double *v[8] = {NULL};
+    int ok = 1;
+    for (int k = 0; k < 8; k++)
+        ok &= (v[k] = malloc(n * sizeof *v[k])) != NULL;
+    const int panels = bimodal ? 5 : 3, loss = panels - 1;
+    tt_figure *f = tt_figure_alloc(panels, ramp ? "Approach (ramp)" : "Approach (steady state)");
+    int rc = (ok && f) ? TT_OK : tt_error_nomem("the plot %s", path);
     for (int branch = 0; branch < 2 && rc == TT_OK; branch++) {
-        size_t m = 0;
-        for (size_t i = 0; i < n; i++) {
-            if (pts[i].retract != branch)
-                continue;
-            x[m] = pts[i].z * 1e9;
-            a[m] = pts[i].cycle.amplitude * 1e9;
-            ph[m] = pts[i].cycle.phase * 180 / M_PI;
-            e[m] = pts[i].cycle.e_ts * 1e18;
-            lo[m] = pts[i].cycle.y_min * 1e9;
-            hi[m] = pts[i].cycle.y_max * 1e9;
-            m++;
-        }
+        size_t m = branch_series(pts, n, branch, v);
         if (m == 0)
             continue;
+        double *x = v[0];
         unsigned style = branch ? (TT_PLOT_DASHED | 2) : 1;
         const char *label = branch ? "retract" : "approach";
-        tt_figure_line(f, 0, x, a, m, label, style);
+        tt_figure_line(f, 0, x, v[1], m, label, style);
         if (ramp) {
             unsigned es = branch ? (6 | TT_PLOT_DASHED) : 5;
-            tt_figure_line(f, 0, x, lo, m, branch ? "deflection min/max (retract)" : "deflection min/max", es);
-            tt_figure_line(f, 0, x, hi, m, NULL, es);
+            tt_figure_line(f, 0, x, v[4], m, branch ? "deflection min/max (retract)" : "deflection min/max", es);
+            tt_figure_line(f, 0, x, v[5], m, NULL, es);
         }
-        tt_figure_line(f, 1, x, ph, m, label, style);
-        tt_figure_line(f, 2, x, e, m, label, style);
+        tt_figure_line(f, 1, x, v[2], m, label, style);
+        if (bimodal) {
+            tt_figure_line(f, 2, x, v[6], m, label, style);
+            tt_figure_line(f, 3, x, v[7], m, label, style);
+        }
+        tt_figure_line(f, loss, x, v[3], m, label, style);
     }
     if (rc == TT_OK) {
         tt_figure_axes(f, 0, "rest separation z (nm)", ramp ? "amplitude, deflection (nm)" : "amplitude (nm)");
         tt_figure_axes(f, 1, "rest separation z (nm)", "phase lag (deg)");
         tt_figure_hline(f, 1, 90, NULL);
-        tt_figure_axes(f, 2, "rest separation z (nm)", "tip-sample loss per cycle (aJ)");
-        rc = tt_figure_write_png(f, path, 900, 1000);
+        if (bimodal) {
+            tt_figure_axes(f, 2, "rest separation z (nm)", "mode 2 amplitude (nm)");
+            tt_figure_axes(f, 3, "rest separation z (nm)", "mode 2 phase lag (deg)");
+            tt_figure_hline(f, 3, 90, NULL);
+        }
+        tt_figure_axes(f, loss, "rest separation z (nm)", "tip-sample loss per cycle (aJ)");
+        rc = tt_figure_write_png(f, path, 900, bimodal ? 1500 : 1000);
     }
     tt_figure_free(f);
-    free(x);
-    free(a);
-    free(ph);
-    free(e);
-    free(lo);
-    free(hi);
+    for (int k = 0; k < 8; k++)
+        free(v[k]);
     return rc;
 }
 
@@ -175,11 +198,19 @@ static int interrupted(const char *out, size_t rows)
  * these: at setpoint-10 it read 3.1e-6 where the phase was off by 2.0e-5 rad. */
 typedef struct {
     double amplitude_rel, phase_deg;
+    double amplitude2_rel, phase2_deg; /* mode 2 driven: its amplitude relative to A2 */
     size_t used;
     tt_solver tight;
 } approach_est;
 
-static int approach_companion(const tt_scene *scene, const tt_solver *s, double A0,
+/* The difference of two phases, deg, in [0, 180]. */
+static double phase_diff_deg(double a, double b)
+{
+    double ph = fmod(fabs(a - b) * 180 / M_PI, 360);
+    return fmin(ph, 360 - ph);
+}
+
+static int approach_companion(const tt_scene *scene, const tt_solver *s, double A0, double A2,
                               const tt_approach_point *pts, size_t n, approach_est *e)
 {
     tt_scene *c = cli_companion_scene(scene, s, &e->tight);
@@ -189,7 +220,7 @@ static int approach_companion(const tt_scene *scene, const tt_solver *s, double 
     int rc = c ? TT_OK : tt_error(TT_ENOMEM, "out of memory");
     if (rc || (rc = tt_setup_alloc(&st, c)) || (rc = tt_config_approach_alloc(&ap, st, c, &p)))
         goto done;
-    double da = 0, dp = 0;
+    double da = 0, dp = 0, da2 = 0, dp2 = 0;
     for (size_t i = 0; i < n && !tt_approach_done(ap); i++) {
         tt_approach_point q;
         if (tt_cancel_requested()) {
@@ -200,15 +231,18 @@ static int approach_companion(const tt_scene *scene, const tt_solver *s, double 
             break;
         if (p.mode == TT_APPROACH_STEADY && !(pts[i].settled && q.settled))
             continue;
-        double a = fabs(pts[i].cycle.amplitude - q.cycle.amplitude) / A0;
-        double ph = fmod(fabs(pts[i].cycle.phase - q.cycle.phase) * 180 / M_PI, 360);
-        ph = fmin(ph, 360 - ph);
-        da = fmax(da, a);
-        dp = fmax(dp, ph);
+        da = fmax(da, fabs(pts[i].cycle.amplitude - q.cycle.amplitude) / A0);
+        dp = fmax(dp, phase_diff_deg(pts[i].cycle.phase, q.cycle.phase));
+        if (A2 > 0) {
+            da2 = fmax(da2, fabs(pts[i].amplitude2 - q.amplitude2) / A2);
+            dp2 = fmax(dp2, phase_diff_deg(pts[i].phase2, q.phase2));
+        }
         e->used++;
     }
     e->amplitude_rel = 2 * da;
     e->phase_deg = 2 * dp;
+    e->amplitude2_rel = 2 * da2;
+    e->phase2_deg = 2 * dp2;
 done:
     tt_approach_free(ap);
     tt_setup_free(st);
@@ -253,10 +287,12 @@ int cmd_approach(int argc, char **argv)
     }
     FILE *f = tt_outfile_stream(of);
     int viscous = tt_setup_viscous(st); /* the loss per mechanism: viscous scenes only */
+    int bimodal = tt_setup_cantilever(st)->A2 > 0; /* mode 2's lock-in: mode 2 driven only */
     fprintf(f, "z_nm,amplitude_nm,phase_deg,mean_deflection_nm,peak_force_nN,max_indentation_nm,"
                "contact_fraction,dissipated_aJ,branch,settled,cycles,drive_work_aJ,energy_residual,"
-               "deflection_min_nm,deflection_max_nm,period%s\n",
-            viscous ? ",dissipated_hysteresis_aJ,dissipated_damping_aJ,dissipated_viscous_aJ" : "");
+               "deflection_min_nm,deflection_max_nm,period%s%s\n",
+            viscous ? ",dissipated_hysteresis_aJ,dissipated_damping_aJ,dissipated_viscous_aJ" : "",
+            bimodal ? ",amplitude_2_nm,phase_2_deg" : "");
     cli_progress prog;
     cli_progress_begin(&prog, "approach", "points", quiet);
     while (!tt_approach_done(ap)) {
@@ -267,7 +303,7 @@ int cmd_approach(int argc, char **argv)
         }
         if (rc)
             break;
-        write_row(f, &pts[n], viscous);
+        write_row(f, &pts[n], viscous, bimodal);
         n++;
         cli_progress_show(&prog, (long)n, (long)tt_approach_rows(ap));
     }
@@ -280,7 +316,7 @@ int cmd_approach(int argc, char **argv)
             rc = crc;
     }
     if (plotpath && n > 0) {
-        int prc = plot(plotpath, pts, n, p.mode == TT_APPROACH_RAMP);
+        int prc = plot(plotpath, pts, n, p.mode == TT_APPROACH_RAMP, bimodal);
         if (!rc)
             rc = prc;
     }
@@ -299,9 +335,9 @@ int cmd_approach(int argc, char **argv)
                         "drive work per cycle: a check, not the error)\n", worst);
         if (rc == TT_OK) {
             const tt_solver *sv = tt_setup_solver(st);
-            double A0 = tt_setup_cantilever(st)->A0;
+            double A0 = tt_setup_cantilever(st)->A0, A2 = tt_setup_cantilever(st)->A2;
             approach_est e = {0};
-            int erc = approach_companion(scene, sv, A0, pts, n, &e);
+            int erc = approach_companion(scene, sv, A0, A2, pts, n, &e);
             if (erc == TT_EINTR)
                 rc = erc;
             else if (erc)
@@ -318,7 +354,13 @@ int cmd_approach(int argc, char **argv)
                         e.amplitude_rel, e.phase_deg, e.used, n,
                         rk4 ? "steps_per_cycle" : "tolerance",
                         rk4 ? (double)e.tight.steps_per_cycle : e.tight.tolerance);
-                tt_run_warn_estimate(sv, A0, NAN, "amplitude", e.amplitude_rel, e.phase_deg);
+                if (bimodal)
+                    fprintf(stderr, "error_estimate_amplitude_2_rel = %.2g (largest, of mode 2's free "
+                                    "amplitude)\nerror_estimate_phase_2_deg = %.2g (largest)\n",
+                            e.amplitude2_rel, e.phase2_deg);
+                /* one warning for both modes: the same key tightens them */
+                tt_run_warn_estimate(sv, A0, NAN, bimodal ? "amplitude (mode 1's or 2's, of its own)" : "amplitude",
+                                     fmax(e.amplitude_rel, e.amplitude2_rel), fmax(e.phase_deg, e.phase2_deg));
             }
         }
         if (p.mode == TT_APPROACH_STEADY && p.steady == TT_STEADY_SHOOTING)

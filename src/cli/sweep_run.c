@@ -60,6 +60,7 @@ static const char point_columns[] =
     "cycles,period,found";
 static const char point_columns_viscous[] =
     ",dissipated_hysteresis_aJ,dissipated_damping_aJ,dissipated_viscous_aJ";
+static const char point_columns_bimodal[] = ",amplitude_2_nm,phase_2_deg";
 static const char scan_columns_bimodal[] =
     ",amplitude_2_mean_nm,phase_2_mean_deg,phase_2_std_deg,phase_2_contrast_deg";
 static const char scan_columns[] =
@@ -79,20 +80,31 @@ static const csv_format point_format[] = {
     {1e9, 'g'}, {1e9, 'g'}, {1, 'g'}, {1e9, 'g'}, {1e9, 'g'}, {1e9, 'g'}, {1, 'g'}, {1e18, 'g'},
     {1e18, 'g'}, {1, '3'}, {1, 's'}, {1, 's'}, {1, 'd'}, {1, 'd'}, {1, 's'}, {1, 'd'},
     {1e18, 'g'}, {1e18, 'g'}, {1e18, 'g'}, /* viscous grids: the loss per mechanism */
+    {1e9, 'g'}, {1, 'g'},                  /* bimodal grids: mode 2's lock-in */
 };
+enum { POINT_PLAIN = 16, POINT_VISCOUS = 3 }; /* point_format's columns, its viscous ones */
 static const csv_format scan_format[] = {
     {1, 's'}, {1, 'd'}, {1, '3'}, {1e9, '3'}, {1, '3'}, {1, 's'}, {1, 'd'}, {1e9, 'g'}, {1e9, 'g'},
     {1, 'g'}, {1, 'g'}, {1e9, 'g'}, {1, 'g'},
     {1e9, 'g'}, {1, 'g'}, {1, 'g'}, {1, 'g'}, /* bimodal grids: mode 2's lock-in */
 };
 
-static const csv_format *sweep_format(tt_sweep_kind kind, size_t j)
+/* skip: point_format's viscous columns a grid without them skips (format_skip). */
+static const csv_format *sweep_format(tt_sweep_kind kind, size_t j, size_t skip)
 {
     if (kind == TT_SWEEP_SETPOINT && j == 0)
         return &setpoint_format;
     if (kind == TT_SWEEP_SETPOINT)
         j--;
+    if (kind != TT_SWEEP_SCAN && j >= POINT_PLAIN)
+        j += skip;
     return kind == TT_SWEEP_SCAN ? &scan_format[j] : &point_format[j];
+}
+
+/* A bimodal grid's mode 2 columns follow the viscous ones, or take their place. */
+static size_t format_skip(const sweep_job *job)
+{
+    return job->kind != TT_SWEEP_SCAN && !tt_sweep_viscous(job->grid) ? POINT_VISCOUS : 0;
 }
 
 void sweep_header(const sweep_job *job, char *buf, size_t len)
@@ -103,23 +115,25 @@ void sweep_header(const sweep_job *job, char *buf, size_t len)
         used += (size_t)snprintf(buf + used, len - used, ",%s%s%s%s", tt_sweep_key(job->grid, k),
                                  u[0] ? "[" : "", u, u[0] ? "]" : "");
     }
+    int points = job->kind != TT_SWEEP_SCAN, bimodal = tt_sweep_bimodal(job->grid);
     if (used < len)
-        snprintf(buf + used, len - used, ",%s%s%s\n", job->kind == TT_SWEEP_SETPOINT ? "setpoint_nm," : "",
-                 job->kind == TT_SWEEP_SCAN ? scan_columns : point_columns,
-                 job->kind != TT_SWEEP_SCAN && tt_sweep_viscous(job->grid) ? point_columns_viscous
-                 : job->kind == TT_SWEEP_SCAN && tt_sweep_bimodal(job->grid) ? scan_columns_bimodal
-                                                                               : "");
+        snprintf(buf + used, len - used, ",%s%s%s%s\n", job->kind == TT_SWEEP_SETPOINT ? "setpoint_nm," : "",
+                 points ? point_columns : scan_columns,
+                 points && tt_sweep_viscous(job->grid) ? point_columns_viscous
+                 : !points && bimodal                  ? scan_columns_bimodal
+                                                       : "",
+                 points && bimodal ? point_columns_bimodal : "");
 }
 
 /* The table's rows as CSV: the combination, the varied keys (SI numbers, or the text),
  * then the run's columns in the CSV's units. */
 static void put_rows(FILE *f, const sweep_job *job, const tt_table *t)
 {
-    size_t nk = tt_sweep_keys(job->grid);
+    size_t nk = tt_sweep_keys(job->grid), skip = format_skip(job);
     for (size_t r = 0; r < tt_table_rows(t); r++) {
         fprintf(f, "%zu", (size_t)tt_table_numbers(t, 0)[r]);
         for (size_t c = 1; c < tt_table_columns(t); c++) {
-            const csv_format *fm = c > nk ? sweep_format(job->kind, c - nk - 1) : NULL;
+            const csv_format *fm = c > nk ? sweep_format(job->kind, c - nk - 1, skip) : NULL;
             double v = tt_table_is_text(t, c) ? NAN : tt_table_numbers(t, c)[r];
             fputc(',', f);
             if (tt_table_is_text(t, c))
@@ -159,11 +173,11 @@ static void get_field(const char **p, char *buf, size_t len)
 /* One CSV line back into a row of t: put_rows undone. */
 static int get_row(const sweep_job *job, tt_table *t, const char **p)
 {
-    size_t nk = tt_sweep_keys(job->grid);
+    size_t nk = tt_sweep_keys(job->grid), skip = format_skip(job);
     char field[4096];
     int rc = tt_table_row(t);
     for (size_t c = 0; c < tt_table_columns(t) && !rc; c++) {
-        const csv_format *fm = c > nk ? sweep_format(job->kind, c - nk - 1) : NULL;
+        const csv_format *fm = c > nk ? sweep_format(job->kind, c - nk - 1, skip) : NULL;
         get_field(p, field, sizeof field);
         if (tt_table_is_text(t, c))
             rc = tt_table_set_text(t, c, field);

@@ -42,29 +42,18 @@ int tt_config_approach_setup(tt_setup *st, const tt_scene *s, tt_approach_params
      * (relaxation arms) settles instead */
     if (tt_setup_material(st, mat)->contact.arms > 0)
         p->steady = TT_STEADY_SETTLE;
+    /* nor has a cantilever with mode 2 driven a periodic orbit: it settles its lock-ins */
+    if (tt_setup_cantilever(st)->A2 > 0)
+        p->steady = TT_STEADY_SETTLE;
     p->tip_radius = tt_setup_material(st, mat)->contact.R;
     return tt_setup_use_material(st, mat);
-}
-
-int tt_config_one_drive(const tt_scene *s, const char *what)
-{
-    /* mode 2's drive is incommensurate with the first: no periodic orbit, and its
-     * lock-in is the scan's alone */
-    if (!tt_scene_has(s, "cantilever", NULL, "mode2_free_amplitude"))
-        return TT_OK;
-    return tt_scene_fail(s, "cantilever", NULL, "mode2_free_amplitude",
-                         "%s do not serve mode 2's drive yet (bimodal imaging is tiptap scan's "
-                         "and scan sweeps'): leave it out here", what);
 }
 
 int tt_config_approach_alloc(tt_approach **out, tt_setup *st, const tt_scene *s,
                              tt_approach_params *p)
 {
     *out = NULL;
-    int rc = tt_config_one_drive(s, "approach curves");
-    if (rc)
-        return rc;
-    rc = tt_config_approach_setup(st, s, p);
+    int rc = tt_config_approach_setup(st, s, p);
     return rc ? rc : tt_scene_locate(s, tt_approach_alloc(out, tt_setup_sim(st), p));
 }
 

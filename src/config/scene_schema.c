@@ -124,7 +124,7 @@ static const tt_scene_key approach_keys[] = {
      "or per period of an orbit of up to 64 cycles"},
     {"steady", TT_KEY_ENUM, 0, "shooting", 0, 0, 0, "shooting|settle",
      "steady mode: shooting: Newton on the one-period map finds the periodic orbit (falls back to "
-     "settling; a sample with relaxation arms settles); settle: run cycles until the point settles"},
+     "settling; a sample with relaxation arms, or mode 2 driven, settles); settle: run cycles until the point settles"},
 };
 
 static const tt_scene_key trace_keys[] = {

@@ -352,6 +352,7 @@ long tt_scan_lines_done(const tt_scan *S) { return S->lines_done; }
 long tt_scan_profile_line(const tt_scan *S) { return S->profile_line; }
 long tt_scan_cycles(const tt_scan *S) { return S->cycles; }
 const tt_solver *tt_scan_solver(const tt_scan *S) { return &S->solver; }
+const tt_cantilever *tt_scan_cantilever(const tt_scan *S) { return &S->cantilever; }
 long tt_scan_cycles_integrated(const tt_scan *S) { return S->integrated; }
 double tt_scan_averaged_build_seconds(const tt_scan *S) { return S->avg_seconds; }
 double tt_scan_averaged_table_error(const tt_scan *S) { return S->avg_error; }

@@ -42,6 +42,9 @@ static const run_column point_columns[NPOINT_VISCOUS] = {
     {"dissipated_hysteresis", "J", 0}, {"dissipated_damping", "J", 0},
     {"dissipated_viscous", "J", 0},
 };
+/* bimodal grids (tt_sweep_bimodal): mode 2's lock-in at the point, after the rest */
+enum { NPOINT_MODE2 = 2 };
+static const run_column point_mode2_columns[NPOINT_MODE2] = {{"amplitude_2", "m", 0}, {"phase_2", "deg", 0}};
 
 enum { FOLDER, LINES, BALANCE, EST_H, EST_P, MATERIAL, PIXELS, HMEAN, HSTD, PMEAN, PSTD, HCONTRAST,
        PCONTRAST, NSCAN, A2MEAN = NSCAN, P2MEAN, P2STD, P2CONTRAST, NSCAN_BIMODAL };
@@ -73,6 +76,8 @@ int tt_run_sweep_columns(const tt_sweep *grid, tt_sweep_kind kind, tt_table **ou
                                      : tt_sweep_viscous(grid) ? NPOINT_VISCOUS : NPOINT;
     for (size_t i = 0; i < n && !rc; i++)
         rc = tt_table_add(t, c[i].name, c[i].unit, c[i].text);
+    for (size_t i = 0; kind != TT_SWEEP_SCAN && tt_sweep_bimodal(grid) && i < NPOINT_MODE2 && !rc; i++)
+        rc = tt_table_add(t, point_mode2_columns[i].name, point_mode2_columns[i].unit, 0);
     if (rc) {
         tt_table_free(t);
         t = NULL;
@@ -110,13 +115,19 @@ static const char *regime(const tt_cycle *c, double A0)
 }
 
 /* A point's row from column c on; found: the last column when not how the point was
- * found (NULL). A failed point keeps its z, the rest NaN. */
+ * found (NULL). A failed point keeps its z, the rest NaN. Mode 2's columns, when the
+ * table has them, are its last two. */
 static int put_point(tt_table *t, size_t c, const tt_approach_point *p, double A0, int ok,
                      const char *found)
 {
     const tt_cycle *y = &p->cycle;
     int rc;
     tt_table_set(t, c + Z, p->z);
+    size_t last = tt_table_columns(t);
+    if (ok && last >= 2 && strcmp(tt_table_name(t, last - 1), "phase_2") == 0) {
+        tt_table_set(t, last - 2, p->amplitude2);
+        tt_table_set(t, last - 1, p->phase2 * 180 / M_PI);
+    }
     if (!ok) {
         tt_table_set(t, c + SETTLED, 0);
         tt_table_set(t, c + CYCLES, 0);
@@ -414,8 +425,6 @@ int tt_run_sweep_check(const tt_sweep *grid, tt_sweep_kind kind, size_t i)
     if (rc)
         return rc;
     if ((rc = tt_config_cantilever(scene, &cant)) ||
-        (rc = tt_config_one_drive(scene, kind == TT_SWEEP_SETPOINT ? "setpoint sweeps"
-                                                                   : "steady and approach sweeps")) ||
         (rc = tt_solver_from_scene(&solver, scene)) ||
         (rc = tt_config_materials(scene, &mats, &nm)) ||
         (rc = tt_config_material_index(scene, "approach", mats, nm, &mat)) ||

@@ -199,24 +199,32 @@ int tt_run_scan_warn_oscillation(const tt_scan *scan, const tt_scan_scope *sc, c
     return 1;
 }
 
-int tt_run_warn_estimate(const tt_solver *s, double A0, double height_m, const char *what,
-                         double amplitude_rel, double phase_deg)
+/* The estimate's parts past the limits into parts; 0 when none is. */
+static int estimate_parts(char *parts, size_t len, double A0, double height_m, const char *what,
+                          double amplitude_rel, double phase_deg)
 {
     double h = height_m / A0;
     int bad_h = h > TT_RUN_WARN_AMPLITUDE_REL, bad_a = amplitude_rel > TT_RUN_WARN_AMPLITUDE_REL,
         bad_p = phase_deg > TT_RUN_WARN_PHASE_DEG;
-    if (!bad_h && !bad_a && !bad_p)
-        return 0;
-    char parts[256] = "", k[96];
     size_t n = 0;
+    parts[0] = '\0';
     if (bad_h)
-        n += (size_t)snprintf(parts + n, sizeof parts - n, "%.2g nm in height (%.1e of the free "
+        n += (size_t)snprintf(parts + n, len - n, "%.2g nm in height (%.1e of the free "
                               "amplitude)", height_m * 1e9, h);
-    if (bad_a && n < sizeof parts)
-        n += (size_t)snprintf(parts + n, sizeof parts - n, "%s%.1e of the free amplitude in %s",
+    if (bad_a && n < len)
+        n += (size_t)snprintf(parts + n, len - n, "%s%.1e of the free amplitude in %s",
                               n ? ", " : "", amplitude_rel, what);
-    if (bad_p && n < sizeof parts)
-        snprintf(parts + n, sizeof parts - n, "%s%.2g deg in phase", n ? " and " : "", phase_deg);
+    if (bad_p && n < len)
+        snprintf(parts + n, len - n, "%s%.2g deg in phase", n ? " and " : "", phase_deg);
+    return bad_h || bad_a || bad_p;
+}
+
+int tt_run_warn_estimate(const tt_solver *s, double A0, double height_m, const char *what,
+                         double amplitude_rel, double phase_deg)
+{
+    char parts[256], k[96];
+    if (!estimate_parts(parts, sizeof parts, A0, height_m, what, amplitude_rel, phase_deg))
+        return 0;
     /* the key that tightens the run: the method's accuracy knob */
     if (s->method == TT_METHOD_RK4)
         snprintf(k, sizeof k, "raise [solver] steps_per_cycle (now %d)", s->steps_per_cycle);
@@ -227,11 +235,36 @@ int tt_run_warn_estimate(const tt_solver *s, double A0, double height_m, const c
     return 1;
 }
 
+/* A noisy scan of more than one mode: its runs differ by the estimate at any tolerance,
+ * since mode 2 rings for Q_2 fd / (pi f_2) drive cycles after each tap and the noise
+ * finds a different orbit at each (docs/dynamics.md, "A noisy scan of two modes"). */
+static int warn_estimate_modes(const tt_cantilever *c, double A0, double height_m, const tt_scan_error *e)
+{
+    char parts[256];
+    if (!estimate_parts(parts, sizeof parts, A0, height_m, "amplitude", e->amplitude_max, e->phase_max))
+        return 0;
+    double ring = c->mode_Q[1] * c->fd / (M_PI * c->mode_f[1]);
+    tt_warn(TT_WARN_ESTIMATE, "the run's own error estimate is %s (above 1e-3 of the free amplitude "
+                              "or 0.1 deg): with noise and %d modes this is the runs' real spread, "
+                              "not an integration error (mode 2, Q %.4g at %.4g MHz, rings for %.0f "
+                              "drive cycles after each tap; docs/dynamics.md, \"A noisy scan of two "
+                              "modes\"), so a tighter [solver] tolerance does not help: scan at a "
+                              "lower line rate (more cycles a pixel), with [cantilever] modes = 1, "
+                              "or read the estimate as the noise's spread",
+            parts, c->modes, c->mode_Q[1], c->mode_f[1] / 1e6, ring);
+    return 1;
+}
+
 int tt_run_scan_warn_error(const tt_scan *scan, const tt_run_scan_cost *cost,
                            const tt_scan_error *e)
 {
     if (cost->averaged)
         return 0;
+    tt_scan_noise nz;
+    tt_scan_get_noise(scan, &nz);
+    const tt_cantilever *c = tt_scan_cantilever(scan);
+    if (c->modes > 1 && (nz.temperature > 0 || nz.detector > 0 || nz.z_piezo > 0))
+        return warn_estimate_modes(c, tt_scan_free_amplitude(scan), e->height_max, e);
     return tt_run_warn_estimate(tt_scan_solver(scan), tt_scan_free_amplitude(scan), e->height_max,
                                 "amplitude", e->amplitude_max, e->phase_max);
 }

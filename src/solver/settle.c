@@ -138,10 +138,46 @@ void tt_cycle_mean(const tt_cycle *c, int n, tt_cycle *out)
 /* The ring of the last cycles: a period's and one more, or the window's. */
 enum { RING = (TT_SETTLE_WINDOW > TT_SETTLE_MAX_PERIOD ? TT_SETTLE_WINDOW : TT_SETTLE_MAX_PERIOD) + 1 };
 
+/* The orbit's period, or the window of the last cycles when none was found (or
+ * always, with whole_window), from the ring of the last of n cycles: res's window,
+ * the amplitude's range and change, and out their means (tt_cycle_mean). window: the
+ * jitter pattern's length a period-1 point is the mean of (0: none). */
+static int settle_means(const tt_cycle *ring, long n, int window, int whole_window, tt_cycle *out,
+                        tt_settle_result *res)
+{
+    int all = (int)(n < TT_SETTLE_WINDOW ? n : TT_SETTLE_WINDOW);
+    int w = whole_window ? all : window ? window : res->period ? res->period : all;
+    tt_cycle last[RING];
+    for (int k = 0; k < w; k++) /* oldest first */
+        last[k] = ring[(n - w + k) % RING];
+    res->window = w;
+    if (w == 0)
+        return TT_OK;
+    res->amp_min = INFINITY;
+    res->amp_max = res->max_indentation = -INFINITY;
+    for (int k = 0; k < w; k++) {
+        res->amp_min = fmin(res->amp_min, last[k].amplitude);
+        res->amp_max = fmax(res->amp_max, last[k].amplitude);
+        res->max_indentation = fmax(res->max_indentation, last[k].max_indentation);
+    }
+    /* an orbit's change over one whole period, so that its phases do not pass for a drift */
+    if (w > 1 && !whole_window && (res->period > 1 || window))
+        res->amp_change = (ring[(n - 1) % RING].amplitude - ring[(n - 1 - w) % RING].amplitude) / w;
+    else
+        res->amp_change = w > 1 ? (last[w - 1].amplitude - last[0].amplitude) / (w - 1) : 0;
+    tt_cycle_mean(last, w, out); /* w = 1: out itself, unchanged */
+    return TT_OK;
+}
+
+/* The sequences settling watches: amplitude (relative to the free amplitude) and phase
+ * of each cycle, or an observer's (TT_SETTLE_OBSERVED at most). */
+enum { SEQ = TT_SETTLE_OBSERVED > 2 ? TT_SETTLE_OBSERVED : 2 };
+
 /* Settling, and with orbits set the search for a period-n orbit and the means (see
- * integrator.h). */
-static int settle(tt_sim *S, long max_cycles, double tol, int orbits, tt_cycle *out,
-                  tt_settle_result *res)
+ * integrator.h); with an observer its values are the sequences and the means are over
+ * the window whatever the period. */
+static int settle(tt_sim *S, long max_cycles, double tol, int orbits, const tt_settle_observer *obs,
+                  tt_cycle *out, tt_settle_result *res)
 {
     /* Amplitude and phase approach their steady values geometrically (rate about
      * exp(-pi/Q) per cycle near resonance); the change still to come is estimated
@@ -150,32 +186,39 @@ static int settle(tt_sim *S, long max_cycles, double tol, int orbits, tt_cycle *
      * to cycle instead, and the adaptive step pattern may keep a tiny pattern of a few
      * cycles going for ever; see settle_estimate. */
     enum { H1 = 2 * SETTLE_PERIOD + 1, H = 2 * TT_SETTLE_MAX_PERIOD + 1 };
-    double hA[H] = {0}, hP[H] = {0}; /* only the first nh are read */
+    double h[SEQ][H] = {{0}};        /* only the first nh of each are read */
     tt_cycle ring[RING];             /* the last cycles, the newest at (n % RING) */
+    const int K = obs ? obs->n : 2;
     int nh = 0, ok_in_row = 0, orbit_in_row[TT_SETTLE_MAX_PERIOD + 1] = {0}, window = 0;
     memset(res, 0, sizeof *res);
     long n;
     for (n = 0; n < max_cycles; n++) {
+        double v[SEQ];
         int rc = tt_sim_cycle(S, out);
+        if (rc == TT_OK && obs)
+            rc = obs->fn(obs->user, out, v);
         if (rc) {
             res->cycles = n + 1;
             return rc;
         }
+        if (!obs) {
+            v[0] = out->amplitude / S->c.A0;
+            v[1] = out->phase;
+        }
         if (orbits)
             ring[n % RING] = *out;
-        memmove(hA + 1, hA, (H - 1) * sizeof hA[0]);
-        memmove(hP + 1, hP, (H - 1) * sizeof hP[0]);
-        hA[0] = out->amplitude / S->c.A0;
-        hP[0] = out->phase;
+        for (int k = 0; k < K; k++) {
+            memmove(h[k] + 1, h[k], (H - 1) * sizeof h[k][0]);
+            h[k][0] = v[k];
+        }
         if (nh < H)
             nh++;
-        if (nh < 2)
+        if (nh < 2 || (obs && n + 1 < obs->min_cycles))
             continue;
-        int n1 = nh < H1 ? nh : H1; /* the steady test sees what it always saw */
-        if (settle_estimate(hA, n1, S->c.Q) < tol && settle_estimate(hP, n1, S->c.Q) < tol)
-            ok_in_row++;
-        else
-            ok_in_row = 0;
+        int n1 = nh < H1 ? nh : H1, steady = 1; /* the steady test sees what it always saw */
+        for (int k = 0; k < K && steady; k++)
+            steady = settle_estimate(h[k], n1, S->c.Q) < tol;
+        ok_in_row = steady ? ok_in_row + 1 : 0;
         if (ok_in_row >= 3) {
             res->settled = 1;
             res->period = 1;
@@ -190,9 +233,13 @@ static int settle(tt_sim *S, long max_cycles, double tol, int orbits, tt_cycle *
          * orbit, and a jitter below tol is settle_estimate's. */
         double spread = 0;
         for (int p = 2; orbits && p <= TT_SETTLE_MAX_PERIOD && !res->period; p++) {
-            double sa, sp, ea = orbit_drift(hA, nh, p, S->c.Q, &sa), ep = orbit_drift(hP, nh, p, S->c.Q, &sp);
-            spread = fmax(sa, sp);
-            if (ea < tol && ep < tol && spread > tol && spread > 10 * fmax(ea, ep))
+            double drift = 0, sk;
+            spread = 0;
+            for (int k = 0; k < K; k++) {
+                drift = fmax(drift, orbit_drift(h[k], nh, p, S->c.Q, &sk));
+                spread = fmax(spread, sk);
+            }
+            if (drift < tol && spread > tol && spread > 10 * drift)
                 orbit_in_row[p]++;
             else
                 orbit_in_row[p] = 0;
@@ -204,7 +251,8 @@ static int settle(tt_sim *S, long max_cycles, double tol, int orbits, tt_cycle *
         for (int m = 2; res->period > 2 && m < res->period; m++) {
             int p = res->period, same = p % m == 0;
             for (int j = 0; same && j + m < p; j++)
-                same = fabs(hA[j] - hA[j + m]) < tol && fabs(hP[j] - hP[j + m]) < tol;
+                for (int k = 0; k < K && same; k++)
+                    same = fabs(h[k][j] - h[k][j + m]) < tol;
             if (same) {
                 res->period = m;
                 break;
@@ -227,35 +275,14 @@ static int settle(tt_sim *S, long max_cycles, double tol, int orbits, tt_cycle *
         res->window = 1;
         return TT_OK;
     }
-    /* the orbit's period, or the window of the last cycles when none was found */
-    int w = window ? window : res->period ? res->period : (int)(n < TT_SETTLE_WINDOW ? n : TT_SETTLE_WINDOW);
-    tt_cycle last[RING];
-    for (int k = 0; k < w; k++) /* oldest first */
-        last[k] = ring[(n - w + k) % RING];
-    res->window = w;
-    if (w == 0)
-        return TT_OK;
-    res->amp_min = INFINITY;
-    res->amp_max = res->max_indentation = -INFINITY;
-    for (int k = 0; k < w; k++) {
-        res->amp_min = fmin(res->amp_min, last[k].amplitude);
-        res->amp_max = fmax(res->amp_max, last[k].amplitude);
-        res->max_indentation = fmax(res->max_indentation, last[k].max_indentation);
-    }
-    /* an orbit's change over one whole period, so that its phases do not pass for a drift */
-    if (w > 1 && (res->period > 1 || window))
-        res->amp_change = (ring[(n - 1) % RING].amplitude - ring[(n - 1 - w) % RING].amplitude) / w;
-    else
-        res->amp_change = w > 1 ? (last[w - 1].amplitude - last[0].amplitude) / (w - 1) : 0;
-    tt_cycle_mean(last, w, out); /* w = 1: out itself, unchanged */
-    return TT_OK;
+    return settle_means(ring, n, obs ? 0 : window, obs != NULL, out, res);
 }
 
 int tt_sim_settle(tt_sim *S, long max_cycles, double tol, tt_cycle *out, int *settled,
                   long *cycles)
 {
     tt_settle_result r;
-    int rc = settle(S, max_cycles, tol, 0, out, &r);
+    int rc = settle(S, max_cycles, tol, 0, NULL, out, &r);
     *settled = r.settled;
     if (cycles)
         *cycles = r.cycles;
@@ -265,5 +292,13 @@ int tt_sim_settle(tt_sim *S, long max_cycles, double tol, tt_cycle *out, int *se
 int tt_sim_settle_orbit(tt_sim *S, long max_cycles, double tol, tt_cycle *out,
                         tt_settle_result *res)
 {
-    return settle(S, max_cycles, tol, 1, out, res);
+    return settle(S, max_cycles, tol, 1, NULL, out, res);
+}
+
+int tt_sim_settle_observed(tt_sim *S, long max_cycles, double tol, const tt_settle_observer *obs,
+                           tt_cycle *out, tt_settle_result *res)
+{
+    if (obs->n < 1 || obs->n > TT_SETTLE_OBSERVED)
+        return tt_error(TT_EINVAL, "settling: %d observed values (1 to %d)", obs->n, TT_SETTLE_OBSERVED);
+    return settle(S, max_cycles, tol, 1, obs, out, res);
 }

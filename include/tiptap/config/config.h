@@ -79,11 +79,6 @@ void tt_config_scan_free(tt_scan_params *p);
 /* [approach]. */
 int tt_config_approach(const tt_scene *s, tt_approach_params *p);
 
-/* TT_EINVAL naming [cantilever] mode2_free_amplitude where a run (`what`, e.g. "approach
- * curves") does not serve mode 2's drive: its steady points are periodic orbits of the
- * first drive's period, which the second drive breaks. TT_OK without it. */
-int tt_config_one_drive(const tt_scene *s, const char *what);
-
 /* [approach] on a setup made from the same scene: its parameters read into *p and the
  * material it names put under the tip (tt_config_approach_setup), then the approach
  * made, the module's errors naming the scene file (tt_scene_locate). The approach

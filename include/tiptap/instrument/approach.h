@@ -6,6 +6,8 @@
  * state (so the branch followed depends on the history, as on an instrument), optionally
  * followed by the retract branch. Between points the sample moves continuously, at most
  * 0.1 nm per cycle, with the cantilever running (a jump would kick a captured tip loose).
+ * With mode 2 driven (bimodal AM-AM) steady mode settles, watching a lock-in of each mode
+ * whose low-pass filters out the other's incommensurate drive; ramp mode refuses it.
  * ramp mode: the sample moves continuously at a given speed, as in Burnham et al.'s figure 4;
  * each row is the cycle running at that moment, so there can be no more rows per
  * branch than the ramp has cycles plus one (TT_EINVAL "[approach] points" otherwise).
@@ -61,6 +63,10 @@ typedef struct {
      * cycle, m, over a whole period of an orbit; ramp mode: 0, 1 (one cycle per row) */
     int period, window;
     double amp_min, amp_max, amp_change;
+    /* mode 2 driven ([cantilever] mode2_free_amplitude, steady mode): its lock-in's
+     * amplitude (m) and lag behind its drive (rad) at the point, and cycle's amplitude and
+     * phase are mode 1's lock-in's (tiptap/instrument/approach.c); NAN without */
+    double amplitude2, phase2;
 } tt_approach_point;
 
 typedef struct tt_approach tt_approach;

@@ -273,6 +273,8 @@ int tt_scan_envelope_tier(const tt_scan_params *p);
 int tt_scan_averaged_tier(const tt_scan_params *p);
 double tt_scan_error_estimate(const tt_scan *s);
 /* The solver setting the scan runs at. */
+/* The cantilever it scans with (its modes, drives). */
+const tt_cantilever *tt_scan_cantilever(const tt_scan *s);
 const tt_solver *tt_scan_solver(const tt_scan *s);
 
 /* The setting of the companion run every command's error estimate comes from: a

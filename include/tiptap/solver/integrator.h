@@ -197,6 +197,25 @@ typedef struct {
 int tt_sim_settle_orbit(tt_sim *sim, long max_cycles, double tol, tt_cycle *out,
                         tt_settle_result *res);
 
+/* What settling watches instead of each cycle's amplitude and phase: after each cycle
+ * fn gives n values (1 to TT_SETTLE_OBSERVED, each in the units of tol: relative to the
+ * free amplitude, or rad), or an error that ends the settling. A bimodal approach watches
+ * its lock-ins' outputs, in which mode 2's incommensurate drive is filtered out. */
+#define TT_SETTLE_OBSERVED 4
+typedef int (*tt_settle_observe_fn)(void *user, const tt_cycle *c, double *values);
+typedef struct {
+    tt_settle_observe_fn fn;
+    void *user;
+    int n;
+    long min_cycles; /* none settles sooner: a filter's memory of where it started */
+} tt_settle_observer;
+
+/* As tt_sim_settle_orbit with the observer's values as the sequences that must settle
+ * (or repeat); out is the mean of the last TT_SETTLE_WINDOW cycles (fewer if fewer ran)
+ * whatever the period, and res->window their count. TT_EINVAL for n out of range. */
+int tt_sim_settle_observed(tt_sim *sim, long max_cycles, double tol, const tt_settle_observer *obs,
+                           tt_cycle *out, tt_settle_result *res);
+
 /* The observables of cycles c[0..n) taken together, as over one period of an orbit:
  * amplitude and phase of their mean fundamental (what a lock-in reads over the n
  * cycles), the means of the mean deflection, peak force, indentation, contact fraction,
