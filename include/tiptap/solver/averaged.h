@@ -95,5 +95,9 @@ void tt_averaged_step(const tt_averaged *a, tt_averaged_state *st, double s, dou
 /* The seconds the tables of a scan took to build (a clock, for the report). */
 double tt_averaged_build_seconds(const tt_averaged *a);
 
+/* The table's nodes whose periodic law state (a sample's relaxation arms,
+ * docs/dynamics.md) missed its tolerance in the build: 0 when every node met it. */
+long tt_averaged_build_misses(const tt_averaged *a);
+
 TT_END_DECLS
 #endif
