@@ -185,6 +185,11 @@ int tt_scan_run(tt_scan *s, int threads, void (*progress)(void *user, long done,
  * requested (the line's pixels then keep their earlier values). */
 typedef struct tt_scan_scope tt_scan_scope;
 int tt_scan_step(tt_scan *s, long line, tt_scan_scope *scope);
+
+/* The stepping workspace made now rather than at the first tt_scan_step (the averaged
+ * tier's tables with it: 0.5 s for a material with relaxation arms), so that the first
+ * line stepped costs what the others do (the console's preview). */
+int tt_scan_step_prepare(tt_scan *s);
 /* The next stepped line engages afresh at its first pixel and settles, as a scan's
  * first line does (continuous lines; independent lines always do). */
 void tt_scan_disengage(tt_scan *s);
