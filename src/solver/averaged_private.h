@@ -1,6 +1,7 @@
 /* The averaged tier's table, private to libtiptap: averaged.c (the table, its look-up and
- * the slow flow) and averaged_arms.c (the cycle of a law with internal state, a sample's
- * relaxation arms, in its periodic steady state). */
+ * the slow flow), averaged_quad.c (the cycle's quadrature) and averaged_arms.c (the cycle
+ * of a law with internal state, a sample's relaxation arms, in its periodic steady
+ * state). */
 #ifndef TIPTAP_SOLVER_AVERAGED_PRIVATE_H
 #define TIPTAP_SOLVER_AVERAGED_PRIVATE_H
 
@@ -45,11 +46,11 @@ struct tt_averaged {
     long unconverged;   /* the build's nodes whose periodic state missed its tolerance */
 };
 
-/* Gauss-Legendre nodes and weights on [-1, 1] (averaged.c). */
+/* Gauss-Legendre nodes and weights on [-1, 1] (averaged_quad.c). */
 void tt_averaged_gauss_legendre(int n, double *x, double *w);
 
 /* One piece [t0, t1] of the cycle on one contact branch into the sums, the law's state
- * absent (averaged.c). */
+ * absent (averaged_quad.c). */
 void tt_averaged_piece(const tt_averaged *a, double u, double B, double t0, double t1, int in,
                        double *sum, double *peak);
 

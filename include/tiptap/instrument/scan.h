@@ -269,6 +269,9 @@ long tt_scan_averaged_outside(const tt_scan *s);
 /* Whether a scan of these parameters runs on the envelope tier: [solver] tier asks for
  * it and the scan allows it (Q 30 or more); else every cycle. */
 int tt_scan_envelope_tier(const tt_scan_params *p);
+/* The bytes a scan thread's envelope plans would hold (one per state dimension its
+ * materials take, kept models included: 3.5 MB each with noise); 0 off that tier. */
+double tt_scan_envelope_plans_bytes(const tt_scan_params *p);
 /* Whether it runs on the averaged tier: [solver] tier asks for it and the scan allows
  * it (Q 30 or more, the drive within 5 % of resonance); else on the envelope tier's
  * terms (tt_scan_envelope_tier). */
