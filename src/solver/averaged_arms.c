@@ -23,7 +23,7 @@ enum {
 };
 #define PER_TOL 1e-10 /* the cycle's state returns within this of its largest component */
 
-/* y = M x (n x n, row-major, leading dimension ld); M = X Y. */
+/* y = M x (n x n, row-major, leading dimension ld). */
 static void mv(int n, int ld, const double *M, const double *x, double *y)
 {
     for (int i = 0; i < n; i++) {
@@ -34,6 +34,7 @@ static void mv(int n, int ld, const double *M, const double *x, double *y)
     }
 }
 
+/* M = X Y (n x n, row-major; M may be X or Y). */
 static void mm(int n, const double *X, const double *Y, double *M)
 {
     double P[AVG_NL * AVG_NL];
