@@ -95,10 +95,10 @@ static void elastic_limits(void **state)
  * harmonics by the midpoint rule. */
 static void frozen(double B, double x, double *gc, double *mean)
 {
-    const int N = 200000;
+    const int N = 40000;
     const double Kg = K + K1;
     double lo = 0, hi = x * sqrt(x / R);
-    for (int it = 0; it < 80; it++) {
+    for (int it = 0; it < 60; it++) {
         double q = 0.5 * (lo + hi), f = 0;
         for (int i = 0; i < N; i++) {
             double th = -M_PI + (i + 0.5) * 2 * M_PI / N, d = x - B + B * cos(th);
