@@ -38,9 +38,11 @@ double tt_config_cycle_seconds(const tt_cantilever *c, const tt_solver *s)
 
 /* The averaged tier integrates no cycle: a block of the slow flow, the lock-in and the
  * feedback cost about 70 ns a cycle on one core (a 256-pixel line at 1 Hz on the
- * standard scene, 303,000 cycles: 21 ms), each material's table 20 ms. */
+ * standard scene, 303,000 cycles: 21 ms), each material's table 20 ms, one with
+ * relaxation arms (their periodic cycle solved at each node) 0.5 s. */
 #define AVERAGED_CYCLE_SECONDS 7e-8
 #define AVERAGED_TABLE_SECONDS 0.02
+#define AVERAGED_ARMS_TABLE_SECONDS 0.5
 
 static void finish(tt_estimate *e, const tt_cantilever *c, const tt_solver *s)
 {
@@ -60,8 +62,11 @@ void tt_config_scan_estimate(const tt_scan_params *p, tt_estimate *e)
     finish(e, &p->cantilever, &p->solver);
     if (tt_scan_averaged_tier(p)) {
         e->cycle_seconds = AVERAGED_CYCLE_SECONDS;
-        e->seconds = e->seconds_low =
-            e->cycles * AVERAGED_CYCLE_SECONDS + AVERAGED_TABLE_SECONDS * (double)p->nmaterials;
+        e->seconds = e->seconds_low = e->cycles * AVERAGED_CYCLE_SECONDS;
+        for (size_t i = 0; i < p->nmaterials; i++)
+            e->seconds = e->seconds_low += p->materials[i].contact.arms > 0
+                                               ? AVERAGED_ARMS_TABLE_SECONDS
+                                               : AVERAGED_TABLE_SECONDS;
     } else if ((e->envelope = tt_scan_envelope_tier(p))) {
         e->integrated_low = ENVELOPE_FRACTION_LOW;
         e->integrated_high = ENVELOPE_FRACTION_HIGH;
@@ -69,13 +74,14 @@ void tt_config_scan_estimate(const tt_scan_params *p, tt_estimate *e)
         e->seconds *= ENVELOPE_FRACTION_HIGH;
     }
     /* Every image as doubles, one more for the previews and files being written, and
-     * each thread's pixel sums (about 40 doubles a pixel, both directions). */
+     * each thread's pixel sums (about 40 doubles a pixel, both directions) and envelope
+     * plans (one per state dimension: a material with relaxation arms adds one). */
     int nch = 0;
     for (int ch = 0; ch < TT_CH_COUNT; ch++)
         nch += (p->channels >> ch) & 1u;
     double image = (double)r->pixels * (double)r->lines * sizeof(double);
     e->bytes = image * (nch * dirs + 1);
-    e->thread_bytes = (double)r->pixels * 2 * 40 * sizeof(double);
+    e->thread_bytes = (double)r->pixels * 2 * 40 * sizeof(double) + tt_scan_envelope_plans_bytes(p);
     /* a point a lock-in block of every quantity, trace and retrace (0.0002 Hz on the
      * standard scene: 1.9e8 points a direction, 27 GB) */
     e->scope_bytes = ceil(nc / P) * TT_SCOPE_COUNT * 2 * sizeof(double);

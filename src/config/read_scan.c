@@ -328,27 +328,16 @@ static int check_bimodal(const tt_scene *s, const tt_scan_params *p)
 
 /* The envelope and averaged tiers model one mode: a cantilever of more than one runs
  * every cycle. A sample whose surface is a state of its own (relaxation arms) runs on
- * the envelope tier, whose plans follow the law's states (scan_worker.c), but not on
- * the averaged tier, whose slow flow has no surface lag. */
-static int check_tier_arms(const tt_scene *s, const tt_scan_params *p)
+ * both: the envelope tier's plans follow the law's states (scan_worker.c), the averaged
+ * tier's tables take the state's periodic cycle (src/solver/averaged_arms.c). */
+static int check_tier_modes(const tt_scene *s, const tt_scan_params *p)
 {
-    if (p->solver.tier == TT_TIER_EVERY)
+    if (p->solver.tier == TT_TIER_EVERY || p->cantilever.modes <= 1)
         return TT_OK;
-    if (p->cantilever.modes > 1)
-        return tt_scene_fail(s, "solver", NULL, "tier",
-                             "%s does not serve [cantilever] modes = %d yet (its models are of "
-                             "one mode): set tier = every",
-                             tt_tier_name(p->solver.tier), p->cantilever.modes);
-    /* the envelope tier's plans follow the law's states (scan_worker.c); the averaged
-     * tier's tables are of a force law of the tip's state alone */
-    for (size_t i = 0; i < p->nmaterials && p->solver.tier == TT_TIER_AVERAGED; i++)
-        if (p->materials[i].contact.arms > 0)
-            return tt_scene_fail(s, "solver", NULL, "tier",
-                                 "%s does not serve [material %s]'s relaxation arms (its "
-                                 "tables are of a force of the tip's (d, v) alone, the "
-                                 "surface's state outside them): set tier = envelope or every",
-                                 tt_tier_name(p->solver.tier), p->materials[i].name);
-    return TT_OK;
+    return tt_scene_fail(s, "solver", NULL, "tier",
+                         "%s does not serve [cantilever] modes = %d yet (its models are of "
+                         "one mode): set tier = every",
+                         tt_tier_name(p->solver.tier), p->cantilever.modes);
 }
 
 /* [tip] contact_geometry: local keys each cycle's law by the geometry, which only the
@@ -386,7 +375,7 @@ int tt_config_scan(const tt_scene *s, tt_scan_params *p)
         (rc = tt_config_surface(s, m, n, &p->surface)) || (rc = check_particles(s, p)) ||
         (rc = check_measured(s, p)) || (rc = check_map_image(s, p)) ||
         (rc = tt_config_tip_shape(s, &p->tip)) || (rc = tt_config_instrument(s, &p->instrument)) ||
-        (rc = check_tier_arms(s, p)) || (rc = check_bimodal(s, p)) ||
+        (rc = check_tier_modes(s, p)) || (rc = check_bimodal(s, p)) ||
         (rc = read_contact_geometry(s, p))) {
         tt_config_scan_free(p);
         return rc;

@@ -300,24 +300,31 @@ int tt_scan_run(tt_scan *S, int threads, void (*progress)(void *user, long done,
     return rc;
 }
 
+int tt_scan_step_prepare(tt_scan *S)
+{
+    if (S->step)
+        return TT_OK;
+    S->step = malloc(sizeof *S->step);
+    if (!S->step)
+        return tt_error_nomem("the scan's stepping workspace");
+    int rc = tt_scan_worker_alloc(S, S->step, &S->solver);
+    if (rc) {
+        tt_scan_worker_free(S->step);
+        free(S->step);
+        S->step = NULL;
+    }
+    return rc;
+}
+
 int tt_scan_step(tt_scan *S, long line, tt_scan_scope *scope)
 {
     if (line < 0 || line >= S->raster.lines)
         return tt_error(TT_EINVAL, "line %ld: the scan's lines are 0 to %ld", line, S->raster.lines - 1);
-    if (!S->step) {
-        S->step = malloc(sizeof *S->step);
-        if (!S->step)
-            return tt_error_nomem("the scan's stepping workspace");
-        int rc = tt_scan_worker_alloc(S, S->step, &S->solver);
-        if (rc) {
-            tt_scan_worker_free(S->step);
-            free(S->step);
-            S->step = NULL;
-            return rc;
-        }
-    }
+    int rc = tt_scan_step_prepare(S);
+    if (rc)
+        return rc;
     line_tally t;
-    int rc = tt_scan_worker_line(S, S->step, line, NULL, scope, &t);
+    rc = tt_scan_worker_line(S, S->step, line, NULL, scope, &t);
     line_account(S, line, rc, &t);
     merge_indent(S, S->step);
     return rc;

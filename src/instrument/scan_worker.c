@@ -86,19 +86,57 @@ enum { KEPT_MODELS = 512 };
  * second order, with models kept for recall, as the noise brings the state back near
  * the same places; the noise to first order: the thermal force's PSD (2 c kB T) and the
  * detector's per-sample rms (the sim integrates without the thermal force). */
-static tt_envelope_params envelope_plan(const tt_scan *S, const worker *W)
+static tt_envelope_params plan_of(const tt_lockin_params *lk, const tt_lockin *l,
+                                  const tt_cantilever *c, const tt_scan_noise *nz, double zn_sd,
+                                  double sd)
 {
     tt_envelope_params p = {0};
-    p.samples = S->lockin.samples_per_period;
+    p.samples = lk->samples_per_period;
     p.probes = TT_GRAZE_PROBES;
-    p.reduced = tt_lockin_components(W->lockin);
-    p.reduce = tt_lockin_component_matrix(W->lockin);
-    p.travel = S->zn.sd > 0;
-    p.second_order = tt_scan_second_order(S);
+    p.reduced = tt_lockin_components(l);
+    p.reduce = tt_lockin_component_matrix(l);
+    p.travel = zn_sd > 0;
+    p.second_order = nz->temperature > 0 || zn_sd > 0; /* tt_scan_second_order's */
     p.kept = p.second_order ? KEPT_MODELS : 0;
-    p.psd = 2 * S->cantilever.c * TT_BOLTZMANN * S->noise.temperature;
-    p.sd = S->sd;
+    p.psd = 2 * c->c * TT_BOLTZMANN * nz->temperature;
+    p.sd = sd;
     return p;
+}
+
+static tt_envelope_params envelope_plan(const tt_scan *S, const worker *W)
+{
+    return plan_of(&S->lockin, W->lockin, &S->cantilever, &S->noise, S->zn.sd, S->sd);
+}
+
+double tt_scan_envelope_plans_bytes(const tt_scan_params *p)
+{
+    tt_lockin *l;
+    if (!tt_scan_envelope_tier(p))
+        return 0;
+    if (tt_lockin_alloc(&l, &p->lockin)) { /* refused later, by tt_scan_alloc */
+        tt_error_clear();
+        return 0;
+    }
+    /* as tt_scan_alloc sets the detector's per-sample rms; the z piezo's noise moves the
+     * sample wherever it has a density */
+    double sd = p->noise.detector * sqrt(0.5 * p->lockin.samples_per_period / p->cantilever.T);
+    tt_envelope_params e = plan_of(&p->lockin, l, &p->cantilever, &p->noise,
+                                   p->noise.z_piezo > 0 ? 1.0 : 0.0, sd);
+    const int modes = 2 * (p->cantilever.modes > 1 ? p->cantilever.modes : 1);
+    int seen[TT_SIM_DIM_MAX + 1] = {0};
+    double bytes = 0;
+    /* a plan per state dimension (envelope_plans): the modes', and a law's states after
+     * them (a relaxation arm's one each, contact_sls.c) */
+    for (size_t i = 0; i < p->nmaterials; i++) {
+        int n = modes + p->materials[i].contact.arms;
+        if (n <= TT_SIM_DIM_MAX && !seen[n]) {
+            seen[n] = 1;
+            e.dim = n;
+            bytes += tt_envelope_plan_bytes(&e);
+        }
+    }
+    tt_lockin_free(l);
+    return bytes;
 }
 
 /* The plans, one per state dimension the sim takes (its own now, and each material's

@@ -141,7 +141,8 @@ static void frame_publish(tt_live_engine *e, fresh *f)
 
 /* The averaged tier's twin of a scan on a slower tier, for the preview lines; NULL
  * where the scene is on the averaged tier already (its own line is as quick as a
- * preview) or the averaged tier refuses it. */
+ * preview) or the averaged tier refuses it (Q under 30, a drive off resonance; a
+ * sample's relaxation arms it takes, src/solver/averaged_arms.c). */
 static tt_scan *preview_alloc(const tt_scan_params *p)
 {
     tt_scan_params q = *p;
@@ -452,6 +453,11 @@ static void *preview_main(void *arg)
         if (restart || !e->pscan || apply_live(e->pscan, &p)) {
             tt_scan_free(e->pscan);
             e->pscan = preview_alloc(&p);
+            /* its tables now, not in the first change's line, which must beat the scan's */
+            if (e->pscan && tt_scan_step_prepare(e->pscan)) {
+                tt_scan_free(e->pscan);
+                e->pscan = NULL;
+            }
             free(e->pline);
             e->ppixels = e->pscan ? (p.raster.fast_y ? tt_scan_yres(e->pscan) : tt_scan_xres(e->pscan)) : 0;
             e->pline = e->pscan ? malloc((size_t)e->ppixels * sizeof(double)) : NULL;

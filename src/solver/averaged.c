@@ -1,7 +1,7 @@
 /* The averaged preview tier's model: the force's cycle harmonics tabulated over tip
  * amplitude and closest penetration, and the slow flow of the deflection's first
  * harmonic (see include/tiptap/solver/averaged.h, docs/dynamics.md). */
-#include "tiptap/solver/averaged.h"
+#include "averaged_private.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -12,116 +12,39 @@
 #include "tiptap/util/error.h"
 #include "tiptap/util/clock.h"
 
-enum {
-    NQ = 24,      /* Gauss-Legendre nodes on each piece of a cycle (contact, flight halves) */
-    NB = 65,      /* amplitude nodes, 0 to B_MAX A0 */
-    NXH = 128,    /* penetration nodes on each side of jump-in */
-    NX = 2 * NXH + 1,
-    C_GC = 0, C_GS = 1, C_MEAN = 2, C_PEAK = 3, C_SHIFT = 4, /* columns */
-    C_HARM = 5,   /* then the harmonics h >= 2 the lock-in keeps, in pairs */
-    NK = 4096,    /* the kernel's nodes over a cycle */
-    HK = 64       /* harmonics in the kernel */
-};
 #define B_MAX 1.5 /* of the free amplitude: the driven amplitude exceeds A0 only off resonance */
 
-struct tt_averaged {
-    tt_cantilever c;
-    const tt_contact *contact;
-    tt_contact_forces (*force)(const tt_contact *c, double ci, double delta, double rate,
-                               int in_contact, const double *state); /* the law's kernel */
-    double ci;          /* the law's interaction damping coefficient, kg/s */
-    int H, ncol;
-    double jin, jout;   /* jump-in and pull-off penetrations, m */
-    double db, span;    /* amplitude step; penetration half-span (x - jin = span xi |xi|) */
-    double gx[NQ], gw[NQ]; /* Gauss-Legendre nodes and weights on [-1, 1] */
-    double kern[NK + 1];   /* the closest approach's shift per unit force at theta */
-    double seconds;
-    double *t;          /* [NB][NX][ncol] */
-};
-
-/* Gauss-Legendre nodes by Newton's iteration on P_n (Golub-Welsch not needed at n = 24). */
-static void gauss_legendre(int n, double *x, double *w)
-{
-    for (int i = 0; i < n; i++) {
-        double z = cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1;
-        for (int it = 0; it < 100; it++) {
-            double p0 = 1, p1 = z;
-            for (int k = 2; k <= n; k++) {
-                double p2 = ((2.0 * k - 1) * z * p1 - (k - 1.0) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (z * p1 - p0) / (z * z - 1);
-            double dz = p1 / dp;
-            z -= dz;
-            if (fabs(dz) < 1e-16)
-                break;
-        }
-        x[i] = z;
-        w[i] = 2 / ((1 - z * z) * dp * dp);
-    }
-}
-
-/* One piece [t0, t1] of the cycle on one contact branch into the sums (cos and sin
- * of h theta by recurrence). */
-static void piece(const tt_averaged *a, double u, double B, double t0, double t1, int in,
-                  double *sum, double *peak)
-{
-    if (!(t1 > t0))
-        return;
-    const double half = 0.5 * (t1 - t0), mid = 0.5 * (t1 + t0), w = a->c.wd;
-    for (int q = 0; q < NQ; q++) {
-        double th = mid + half * a->gx[q], wt = half * a->gw[q];
-        double cs = cos(th), sn = sin(th);
-        double delta = u + B * cs, deltad = -B * w * sn;
-        tt_contact_forces f = a->force(a->contact, a->ci, delta, deltad, in, NULL);
-        double load = f.conservative + f.dissipative;
-        if (load > *peak)
-            *peak = load;
-        double F = -load;
-        double kp = (th + M_PI) * (NK / (2 * M_PI));
-        int ki = (int)kp;
-        ki = ki < 0 ? 0 : ki > NK - 1 ? NK - 1 : ki;
-        sum[C_SHIFT] += wt * F * (a->kern[ki] + (kp - ki) * (a->kern[ki + 1] - a->kern[ki]));
-        sum[C_MEAN] += wt * F;
-        sum[C_GC] += wt * F * cs;
-        sum[C_GS] += wt * F * sn;
-        double ch = cs, sh = sn;
-        for (int h = 2; h <= a->H; h++) {
-            double c2 = ch * cs - sh * sn, s2 = sh * cs + ch * sn;
-            ch = c2;
-            sh = s2;
-            sum[C_HARM + 2 * (h - 2)] += wt * F * ch;
-            sum[C_HARM + 2 * (h - 2) + 1] += wt * F * sh;
-        }
-    }
-}
-
 /* The cycle's means at (B, x) by quadrature: the contact piece from jump-in (approach,
- * theta < 0) to pull-off (retract), the flight from pull-off through the far point. */
-static void direct(const tt_averaged *a, double B, double x, int stuck, double *v)
+ * theta < 0) to pull-off (retract), the flight from pull-off through the far point; a
+ * law with state on its periodic cycle (q0: its state's guess and result, or NULL).
+ * Returns 1 when that periodic state missed its tolerance. */
+static int direct(const tt_averaged *a, double B, double x, int stuck, double *v, double *q0)
 {
     double sum[C_HARM + 2 * TT_AVG_HMAX] = {0}, peak = -INFINITY;
     const double u = x - B;
+    int missed = 0;
     if (B <= 0) {
         int in = stuck || x >= a->jin;
-        double P = tt_contact_load(a->contact, x, in, NULL, NULL);
+        double P = a->nlaw ? tt_averaged_arms_static(a, x, in)
+                           : tt_contact_load(a->contact, x, in, NULL, NULL);
         memset(v, 0, (size_t)a->ncol * sizeof *v);
         v[C_MEAN] = -P;
         v[C_PEAK] = P;
-        return;
+        return 0;
     }
-    if (stuck) {
-        piece(a, u, B, -M_PI, M_PI, 1, sum, &peak);
+    if (a->nlaw && (stuck || x >= a->jin)) {
+        missed = tt_averaged_arms_cycle(a, B, x, stuck, sum, &peak, q0);
+    } else if (stuck) {
+        tt_averaged_piece(a, u, B, -M_PI, M_PI, 1, sum, &peak);
     } else if (x < a->jin) {
-        piece(a, u, B, -M_PI, 0, 0, sum, &peak);
-        piece(a, u, B, 0, M_PI, 0, sum, &peak);
+        tt_averaged_piece(a, u, B, -M_PI, 0, 0, sum, &peak);
+        tt_averaged_piece(a, u, B, 0, M_PI, 0, sum, &peak);
     } else {
         double ca = fmax(-1, fmin(1, (a->jin - u) / B)), cr = fmax(-1, fmin(1, (a->jout - u) / B));
         double ta = -acos(ca), tr = acos(cr);
-        piece(a, u, B, ta, tr, 1, sum, &peak);
-        piece(a, u, B, tr, M_PI, 0, sum, &peak);
-        piece(a, u, B, -M_PI, ta, 0, sum, &peak);
+        tt_averaged_piece(a, u, B, ta, tr, 1, sum, &peak);
+        tt_averaged_piece(a, u, B, tr, M_PI, 0, sum, &peak);
+        tt_averaged_piece(a, u, B, -M_PI, ta, 0, sum, &peak);
         /* the deepest point: the load's peak without damping */
         double P0 = tt_contact_load(a->contact, x, 1, NULL, NULL);
         if (P0 > peak)
@@ -131,6 +54,7 @@ static void direct(const tt_averaged *a, double B, double x, int stuck, double *
         v[i] = sum[i] / M_PI;
     v[C_MEAN] = sum[C_MEAN] / (2 * M_PI);
     v[C_PEAK] = peak;
+    return missed;
 }
 
 /* The harmonics h >= 2 of the force move the tip's closest approach (theta = 0) by
@@ -155,6 +79,8 @@ static void kernel(tt_averaged *a)
 
 double tt_averaged_build_seconds(const tt_averaged *a) { return a ? a->seconds : 0; }
 
+long tt_averaged_build_misses(const tt_averaged *a) { return a ? a->unconverged : 0; }
+
 /* The penetration of node j, and the node coordinate of a penetration. */
 static double node_x(const tt_averaged *a, int j)
 {
@@ -175,23 +101,33 @@ int tt_averaged_alloc(tt_averaged **out, const tt_cantilever *c, const tt_contac
     a->c = *c;
     a->contact = contact;
     a->ci = Qi > 0 ? c->m * c->w0 / Qi : 0;
-    a->force = tt_contact_law_of(contact)->force;
+    a->law = tt_contact_law_of(contact);
+    a->force = a->law->force;
+    a->nlaw = (int)a->law->state_size;
     a->H = harmonics;
     a->ncol = C_HARM + 2 * (harmonics - 1);
     a->jin = tt_contact_jumpin(contact);
     a->jout = tt_contact_jumpout(contact);
     a->db = B_MAX * c->A0 / (NB - 1);
     a->span = c->A0;
-    gauss_legendre(NQ, a->gx, a->gw);
+    tt_averaged_gauss_legendre(NQ, a->gx, a->gw);
     kernel(a);
+    int rc = a->nlaw ? tt_averaged_arms_setup(a) : TT_OK;
+    if (rc) {
+        free(a);
+        return rc;
+    }
     a->t = malloc((size_t)NB * NX * (size_t)a->ncol * sizeof *a->t);
     if (!a->t) {
         free(a);
         return tt_error_nomem("the averaged tier's table");
     }
-    for (int i = 0; i < NB; i++)
+    for (int i = 0; i < NB; i++) {
+        double q0[AVG_NL] = {0}; /* each node's periodic state the next one's guess */
         for (int j = 0; j < NX; j++)
-            direct(a, i * a->db, node_x(a, j), 0, a->t + ((size_t)i * NX + (size_t)j) * (size_t)a->ncol);
+            a->unconverged += direct(a, i * a->db, node_x(a, j), 0,
+                                     a->t + ((size_t)i * NX + (size_t)j) * (size_t)a->ncol, q0);
+    }
     a->seconds = tt_clock(TT_CLOCK_THREAD) - t0;
     *out = a;
     return TT_OK;
@@ -291,14 +227,19 @@ static void lookup(const tt_averaged *a, double B, double x, tt_averaged_force *
 static void direct_force(const tt_averaged *a, double B, double x, int stuck, tt_averaged_force *f)
 {
     double v[C_HARM + 2 * TT_AVG_HMAX], p[C_HARM + 2 * TT_AVG_HMAX], m[C_HARM + 2 * TT_AVG_HMAX];
-    direct(a, B, x, stuck, v);
+    double q[AVG_NL] = {0}, g[AVG_NL]; /* the periodic state at (B, x): the others' guess */
+    direct(a, B, x, stuck, v, q);
     const double e = 1e-4 * a->c.A0;
-    direct(a, B + e, x, stuck, p);
-    direct(a, fmax(B - e, 0), x, stuck, m);
+    memcpy(g, q, sizeof g);
+    direct(a, B + e, x, stuck, p, g);
+    memcpy(g, q, sizeof g);
+    direct(a, fmax(B - e, 0), x, stuck, m, g);
     for (int k = 0; k < 3; k++)
         f->d_b[k] = (p[k] - m[k]) / (B + e - fmax(B - e, 0));
-    direct(a, B, x + e, stuck, p);
-    direct(a, B, x - e, stuck, m);
+    memcpy(g, q, sizeof g);
+    direct(a, B, x + e, stuck, p, g);
+    memcpy(g, q, sizeof g);
+    direct(a, B, x - e, stuck, m, g);
     for (int k = 0; k < 3; k++)
         f->d_x[k] = (p[k] - m[k]) / (2 * e);
     from_columns(a, v, f);
@@ -388,7 +329,7 @@ static double mean_deflection(const tt_averaged *a, const tt_averaged_state *st,
     F->mean += F->d_x[2] * dx;
     o->m0 = m0;
     o->x = x0 + dx;
-    if (o->x >= a->jin) /* the peak load moves with the deepest point */
+    if (o->x >= a->jin && !a->nlaw) /* the peak load moves with the deepest point */
         F->peak = fmax(F->peak, tt_contact_load(a->contact, o->x, 1, NULL, NULL));
     return (1 + F->d_b[2] / k) / (1 - gx / k);
 }

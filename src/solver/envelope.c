@@ -35,52 +35,106 @@ static const char *plan_invalid(const tt_sim *sim, const tt_envelope_params *p)
     return NULL;
 }
 
-/* The plan's buffers, each zeroed; 0 when one cannot be had. */
-static int plan_buffers(tt_envelope *e, const tt_envelope_params *p)
+/* The plan's buffers' sizes in doubles (0: not needed), from its dimensions. */
+enum { B_XS, B_OSCALE, B_OA, B_J, B_C, B_R, B_RA, B_CR, B_H, B_HR, B_LJ, B_LF, B_TRK, B_PHI, B_WORK, NBUF };
+static void buffer_sizes(const tt_envelope *e, size_t sz[NBUF])
 {
     const size_t nx = (size_t)e->nx, ni = (size_t)e->ni, no = (size_t)e->no;
-    const size_t nr = (size_t)e->nr, np = (size_t)e->npair, nq = nx + no;
-    e->xs = calloc(4 * nx, sizeof *e->xs);
-    e->oscale = calloc(no, sizeof *e->oscale);
-    e->oa = calloc(no, sizeof *e->oa);
-    e->J = calloc(nx * ni, sizeof *e->J);
-    e->C = calloc(no * ni, sizeof *e->C);
-    int ok = e->xs && e->oscale && e->oa && e->J && e->C;
-    if (ok) {
-        e->xa = e->xs + nx;
-        e->x1 = e->xa + nx;
-        e->xb = e->x1 + nx;
-    }
-    if (e->m > 0) {
-        e->R = malloc((size_t)e->m * (size_t)e->n * sizeof *e->R);
-        e->ra = calloc(nr, sizeof *e->ra);
-        e->Cr = calloc(nr * ni, sizeof *e->Cr);
-        ok = ok && e->R && e->ra && e->Cr;
-    }
-    if (e->second) {
-        e->H = calloc(nq * np, sizeof *e->H);
-        e->Hr = calloc(nr * np, sizeof *e->Hr);
-        ok = ok && e->H && e->Hr;
-    }
-    if (p->psd > 0 || p->sd > 0) {
-        const size_t nn = (size_t)e->nn;
-        e->Lj = calloc(nn * nn, sizeof *e->Lj);
-        e->Lf = calloc(nn * nn, sizeof *e->Lf);
-        ok = ok && e->Lj && e->Lf;
-    }
-    if (p->psd > 0) {
-        /* the state at the samples of the 2 nx cycles perturbed in each component, the
-         * flow's nx x nx Jacobian at each sample and the end */
-        const size_t nx2 = (size_t)e->nx * (size_t)e->nx;
-        e->trk = calloc(2 * nx2 * (size_t)e->n, sizeof *e->trk);
-        e->phi = calloc(nx2 * ((size_t)e->n + 1), sizeof *e->phi);
-        ok = ok && e->trk && e->phi;
-    }
+    const size_t nr = (size_t)e->nr, np = (size_t)e->npair, nq = nx + no, nn = (size_t)e->nn;
+    const size_t nx2 = nx * nx, n = (size_t)e->n;
+    const int reduced = e->m > 0, noisy = e->psd > 0 || e->sd > 0;
+    sz[B_XS] = 4 * nx;
+    sz[B_OSCALE] = sz[B_OA] = no;
+    sz[B_J] = nx * ni;
+    sz[B_C] = no * ni;
+    sz[B_R] = reduced ? (size_t)e->m * n : 0;
+    sz[B_RA] = reduced ? nr : 0;
+    sz[B_CR] = reduced ? nr * ni : 0;
+    sz[B_H] = e->second ? nq * np : 0;
+    sz[B_HR] = e->second ? nr * np : 0;
+    sz[B_LJ] = sz[B_LF] = noisy ? nn * nn : 0;
+    /* the state at the samples of the 2 nx cycles perturbed in each component, the
+     * flow's nx x nx Jacobian at each sample and the end */
+    sz[B_TRK] = e->psd > 0 ? 2 * nx2 * n : 0;
+    sz[B_PHI] = e->psd > 0 ? nx2 * (n + 1) : 0;
     /* a build's outputs (the anchor's and two per input) and the second differences'
      * two more; or the covariance's */
     size_t work = (1 + 2 * ni) * nq + 2 * nq, wn = tt_envelope_noise_work(e);
-    e->work = calloc(work > wn ? work : wn, sizeof *e->work);
+    sz[B_WORK] = work > wn ? work : wn;
+}
+
+/* The plan's buffers, each zeroed; 0 when one cannot be had. */
+static int plan_buffers(tt_envelope *e, const tt_envelope_params *p)
+{
+    size_t sz[NBUF];
+    buffer_sizes(e, sz);
+    e->xs = calloc(sz[B_XS], sizeof *e->xs);
+    e->oscale = calloc(sz[B_OSCALE], sizeof *e->oscale);
+    e->oa = calloc(sz[B_OA], sizeof *e->oa);
+    e->J = calloc(sz[B_J], sizeof *e->J);
+    e->C = calloc(sz[B_C], sizeof *e->C);
+    int ok = e->xs && e->oscale && e->oa && e->J && e->C;
+    if (ok) {
+        e->xa = e->xs + e->nx;
+        e->x1 = e->xa + e->nx;
+        e->xb = e->x1 + e->nx;
+    }
+    if (e->m > 0) {
+        e->R = malloc(sz[B_R] * sizeof *e->R);
+        e->ra = calloc(sz[B_RA], sizeof *e->ra);
+        e->Cr = calloc(sz[B_CR], sizeof *e->Cr);
+        ok = ok && e->R && e->ra && e->Cr;
+    }
+    if (e->second) {
+        e->H = calloc(sz[B_H], sizeof *e->H);
+        e->Hr = calloc(sz[B_HR], sizeof *e->Hr);
+        ok = ok && e->H && e->Hr;
+    }
+    if (p->psd > 0 || p->sd > 0) {
+        e->Lj = calloc(sz[B_LJ], sizeof *e->Lj);
+        e->Lf = calloc(sz[B_LF], sizeof *e->Lf);
+        ok = ok && e->Lj && e->Lf;
+    }
+    if (p->psd > 0) {
+        e->trk = calloc(sz[B_TRK], sizeof *e->trk);
+        e->phi = calloc(sz[B_PHI], sizeof *e->phi);
+        ok = ok && e->trk && e->phi;
+    }
+    e->work = calloc(sz[B_WORK], sizeof *e->work);
     return ok && e->work;
+}
+
+/* The plan's dimensions from its parameters, for the sim's state of nx components. */
+static void plan_dims(tt_envelope *e, const tt_envelope_params *p, int nx)
+{
+    e->nx = nx;
+    e->ni = e->nx + 2;
+    e->npair = e->ni * (e->ni + 1) / 2;
+    e->n = p->samples;
+    e->np = p->probes;
+    e->no = e->n + TT_ENV_EXTRA + e->np;
+    e->m = p->reduced;
+    e->nr = e->m + TT_ENV_EXTRA + e->np;
+    e->nin = e->nx + (p->travel ? 2 : 1);
+    e->second = p->second_order != 0;
+    e->psd = p->psd;
+    e->sd = p->sd;
+    e->nn = e->nx + e->m;
+}
+
+double tt_envelope_plan_bytes(const tt_envelope_params *p)
+{
+    tt_envelope e;
+    memset(&e, 0, sizeof e);
+    plan_dims(&e, p, p->dim > 0 ? p->dim : 2);
+    size_t sz[NBUF], doubles = 0;
+    buffer_sizes(&e, sz);
+    for (int i = 0; i < NBUF; i++)
+        doubles += sz[i];
+    const double kept = e.second ? (double)p->kept : 0;
+    return (double)sizeof e + (double)doubles * sizeof(double) +
+           kept * ((double)tt_envelope_model_doubles(&e) * sizeof(double) +
+                   (double)sizeof(tt_envelope_kept) + (double)sizeof *e.korder);
 }
 
 int tt_envelope_alloc(tt_envelope **out, const tt_sim *sim, const tt_envelope_params *p)
@@ -94,19 +148,7 @@ int tt_envelope_alloc(tt_envelope **out, const tt_sim *sim, const tt_envelope_pa
         return tt_error_nomem("the envelope tier's cycle map");
     const tt_cantilever *c = tt_sim_cantilever(sim);
     const int n = p->samples;
-    e->nx = p->dim > 0 ? p->dim : tt_sim_dim(sim);
-    e->ni = e->nx + 2;
-    e->npair = e->ni * (e->ni + 1) / 2;
-    e->n = n;
-    e->np = p->probes;
-    e->no = n + TT_ENV_EXTRA + e->np;
-    e->m = p->reduced;
-    e->nr = e->m + TT_ENV_EXTRA + e->np;
-    e->nin = e->nx + (p->travel ? 2 : 1);
-    e->second = p->second_order != 0;
-    e->psd = p->psd;
-    e->sd = p->sd;
-    e->nn = e->nx + e->m;
+    plan_dims(e, p, p->dim > 0 ? p->dim : tt_sim_dim(sim));
     e->T = c->T;
     e->L = c->A0;
     e->V = c->wd * c->A0;

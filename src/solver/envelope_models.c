@@ -19,12 +19,21 @@ static void block_sizes(const tt_envelope *e, size_t sz[NBLOCK])
     sz[1] = sz[2] = nx;
     sz[3] = ni;
     sz[4] = (size_t)e->no * ni;
-    sz[5] = e->Cr ? nr * ni : 0;
-    sz[6] = e->H ? (nx + (size_t)e->no) * npair : 0;
-    sz[7] = e->Hr ? nr * npair : 0;
-    sz[8] = e->Lj ? (size_t)e->nn * (size_t)e->nn : 0;
+    sz[5] = e->m > 0 ? nr * ni : 0;
+    sz[6] = e->second ? (nx + (size_t)e->no) * npair : 0;
+    sz[7] = e->second ? nr * npair : 0;
+    sz[8] = e->psd > 0 || e->sd > 0 ? (size_t)e->nn * (size_t)e->nn : 0;
     sz[9] = (size_t)e->no;
-    sz[10] = e->ra ? nr : 0;
+    sz[10] = e->m > 0 ? nr : 0;
+}
+
+size_t tt_envelope_model_doubles(const tt_envelope *e)
+{
+    size_t sz[NBLOCK], total = 0;
+    block_sizes(e, sz);
+    for (int i = 0; i < NBLOCK; i++)
+        total += sz[i];
+    return total;
 }
 
 static void free_kept(tt_envelope *e)

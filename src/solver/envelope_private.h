@@ -115,6 +115,8 @@ int tt_envelope_thermal_covariance(tt_envelope *e);
 
 /* The kept models' storage (envelope_models.c): allocated for the plan, freed. */
 int tt_envelope_models_alloc(tt_envelope *e, int k);
+/* The doubles one kept model holds, from the plan's dimensions. */
+size_t tt_envelope_model_doubles(const tt_envelope *e);
 void tt_envelope_models_free(tt_envelope *e);
 
 /* The largest offset of the inputs (x, s at the cycle's start moving at sdot) from the

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "flight.h"
+#include "shooting_linalg.h"
 
 /* Gauss-Legendre nodes per step, rungs of the step ladder, and the most law states the
  * flight advances (a Maxwell sample's arms). */
@@ -86,49 +87,14 @@ static void flight_vandermonde(tt_flight *fl)
             fl->vinv[k][j] = V[k][FL_N + j];
 }
 
-/* E = exp(A tau) for the law states' n x n rate matrix (row-major, FL_NL wide): Taylor's
- * series to degree 16 on A tau scaled to a norm below 1/2 (remainder below 1e-20), then
- * squared back. */
+/* E = exp(A tau) for the law states' n x n rate matrix (FL_NL wide). */
 static void fl_expm(int n, const double A[FL_NL][FL_NL], double tau, double *E)
 {
-    double nrm = 0;
-    for (int i = 0; i < n; i++) {
-        double r = 0;
+    double P[FL_NL * FL_NL];
+    for (int i = 0; i < n; i++)
         for (int j = 0; j < n; j++)
-            r += fabs(A[i][j] * tau);
-        nrm = fmax(nrm, r);
-    }
-    int sq = 0;
-    while (nrm > 0.5 && sq < 64) {
-        nrm *= 0.5;
-        sq++;
-    }
-    double f = ldexp(tau, -sq), T[FL_NL * FL_NL], P[FL_NL * FL_NL];
-    for (int i = 0; i < n * n; i++)
-        E[i] = T[i] = i % (n + 1) == 0;
-    for (int k = 1; k <= 16; k++) {
-        for (int i = 0; i < n; i++)
-            for (int j = 0; j < n; j++) {
-                double acc = 0;
-                for (int l = 0; l < n; l++)
-                    acc += T[i * n + l] * A[l][j];
-                P[i * n + j] = acc * f / k;
-            }
-        for (int i = 0; i < n * n; i++) {
-            T[i] = P[i];
-            E[i] += P[i];
-        }
-    }
-    for (int s = 0; s < sq; s++) {
-        for (int i = 0; i < n; i++)
-            for (int j = 0; j < n; j++) {
-                double acc = 0;
-                for (int l = 0; l < n; l++)
-                    acc += E[i * n + l] * E[l * n + j];
-                P[i * n + j] = acc;
-            }
-        memcpy(E, P, sizeof(double) * (size_t)(n * n));
-    }
+            P[i * n + j] = A[i][j];
+    tt_shoot_expm(n, P, tau, E);
 }
 
 /* The law states' rate out of contact as a matrix, read off the law's rate at unit

@@ -184,3 +184,45 @@ int tt_shoot_lyapunov(int n, const double *J, double *M, int generic)
     free(A);
     return ok;
 }
+
+void tt_shoot_expm(int n, const double *A, double tau, double *E)
+{
+    double nrm = 0;
+    for (int i = 0; i < n; i++) {
+        double r = 0;
+        for (int j = 0; j < n; j++)
+            r += fabs(A[i * n + j] * tau);
+        nrm = fmax(nrm, r);
+    }
+    int sq = 0;
+    while (nrm > 0.5 && sq < 64) {
+        nrm *= 0.5;
+        sq++;
+    }
+    double f = ldexp(tau, -sq), T[TT_EXPM_MAX * TT_EXPM_MAX], P[TT_EXPM_MAX * TT_EXPM_MAX];
+    for (int i = 0; i < n * n; i++)
+        E[i] = T[i] = i % (n + 1) == 0;
+    for (int k = 1; k <= 16; k++) {
+        for (int i = 0; i < n; i++)
+            for (int j = 0; j < n; j++) {
+                double acc = 0;
+                for (int l = 0; l < n; l++)
+                    acc += T[i * n + l] * A[l * n + j];
+                P[i * n + j] = acc * f / k;
+            }
+        for (int i = 0; i < n * n; i++) {
+            T[i] = P[i];
+            E[i] += P[i];
+        }
+    }
+    for (int s = 0; s < sq; s++) {
+        for (int i = 0; i < n; i++)
+            for (int j = 0; j < n; j++) {
+                double acc = 0;
+                for (int l = 0; l < n; l++)
+                    acc += E[i * n + l] * E[l * n + j];
+                P[i * n + j] = acc;
+            }
+        memcpy(E, P, sizeof(double) * (size_t)(n * n));
+    }
+}

@@ -3,7 +3,8 @@
  * closed forms (Cramer's rule, the trace and determinant), which keep one-mode outputs
  * as they were; for n > 2 Gaussian elimination with partial pivoting and GSL's
  * nonsymmetric eigensolver. Matrices are n x n by rows (J[i * n + j]); `generic` set
- * takes the n > 2 path at n = 2 too, for the test that both agree. */
+ * takes the n > 2 path at n = 2 too, for the test that both agree. The matrix
+ * exponential too. */
 #ifndef TIPTAP_SHOOTING_LINALG_H
 #define TIPTAP_SHOOTING_LINALG_H
 
@@ -19,5 +20,11 @@ int tt_shoot_eigen(int n, const double *J, double *re, double *im, int generic);
  * cycle of the linearised motion near a stable orbit. 0 if singular (or out of memory
  * for n > 2: the orbit is then not taken, and settling decides). */
 int tt_shoot_lyapunov(int n, const double *J, double *M, int generic);
+
+/* E = exp(A tau) for an n x n matrix by rows (n <= TT_EXPM_MAX; the free flight's and the
+ * averaged tier's law-state steps): Taylor's series to degree 16 on A tau scaled to a
+ * norm below 1/2 (remainder below 1e-20), then squared back. */
+#define TT_EXPM_MAX 16
+void tt_shoot_expm(int n, const double *A, double tau, double *E);
 
 #endif

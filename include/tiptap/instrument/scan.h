@@ -188,6 +188,11 @@ int tt_scan_run(tt_scan *s, int threads, void (*progress)(void *user, long done,
  * requested (the line's pixels then keep their earlier values). */
 typedef struct tt_scan_scope tt_scan_scope;
 int tt_scan_step(tt_scan *s, long line, tt_scan_scope *scope);
+
+/* The stepping workspace made now rather than at the first tt_scan_step (the averaged
+ * tier's tables with it: 0.5 s for a material with relaxation arms), so that the first
+ * line stepped costs what the others do (the console's preview). */
+int tt_scan_step_prepare(tt_scan *s);
 /* The next stepped line engages afresh at its first pixel and settles, as a scan's
  * first line does (continuous lines; independent lines always do). */
 void tt_scan_disengage(tt_scan *s);
@@ -267,6 +272,9 @@ long tt_scan_averaged_outside(const tt_scan *s);
 /* Whether a scan of these parameters runs on the envelope tier: [solver] tier asks for
  * it and the scan allows it (Q 30 or more); else every cycle. */
 int tt_scan_envelope_tier(const tt_scan_params *p);
+/* The bytes a scan thread's envelope plans would hold (one per state dimension its
+ * materials take, kept models included: 3.5 MB each with noise); 0 off that tier. */
+double tt_scan_envelope_plans_bytes(const tt_scan_params *p);
 /* Whether it runs on the averaged tier: [solver] tier asks for it and the scan allows
  * it (Q 30 or more, the drive within 5 % of resonance); else on the envelope tier's
  * terms (tt_scan_envelope_tier). */

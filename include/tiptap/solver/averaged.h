@@ -108,5 +108,9 @@ double tt_averaged_thermal_density(const tt_cantilever *c, double temperature);
 /* The seconds the tables of a scan took to build (a clock, for the report). */
 double tt_averaged_build_seconds(const tt_averaged *a);
 
+/* The table's nodes whose periodic law state (a sample's relaxation arms,
+ * docs/dynamics.md) missed its tolerance in the build: 0 when every node met it. */
+long tt_averaged_build_misses(const tt_averaged *a);
+
 TT_END_DECLS
 #endif

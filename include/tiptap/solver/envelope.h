@@ -87,6 +87,10 @@ const char *tt_envelope_outcome_name(tt_envelope_outcome o);
  * TT_EINVAL for a parameter out of range (thermal noise on more than one mode, detector
  * noise without a reduction), TT_ENOMEM when the buffers cannot be had. */
 int tt_envelope_alloc(tt_envelope **out, const tt_sim *sim, const tt_envelope_params *p);
+
+/* The bytes tt_envelope_alloc would hold for p at p->dim components (0: 2), its kept
+ * models included (a scan's memory estimate, one plan per state dimension per thread). */
+double tt_envelope_plan_bytes(const tt_envelope_params *p);
 void tt_envelope_free(tt_envelope *e);
 /* Observables per cycle: samples + TT_ENV_EXTRA + probes. */
 int tt_envelope_size(const tt_envelope *e);
