@@ -182,12 +182,18 @@ def setpoint(b):
     rows = js(b, "[document.querySelector('%s'), document.getElementById('c-feedback-setpoint-hint')]"
                  ".map(e => { const r = e.getBoundingClientRect(); return [r.left, r.right, r.top, r.bottom]; })" % SP)
     assert rows[1][0] >= rows[0][1] and rows[1][2] < rows[0][3] and rows[1][3] > rows[0][2], rows
+    # and whole, inside the controls' column
+    fits = js(b, "(() => { const h = document.getElementById('c-feedback-setpoint-hint'), "
+                 "f = document.getElementById('controls').getBoundingClientRect(); "
+                 "return [h.scrollWidth, h.clientWidth, h.getBoundingClientRect().right, f.right]; })()")
+    assert fits[0] <= fits[1] and fits[2] <= fits[3] + 0.5, "the read-out does not fit: %s" % fits
     b.eval("tiptapSet('feedback.setpoint', '75')")
     wait_for(b, "tiptapLive.controls.find(c => c.name === 'feedback.setpoint').value === '75' && %s === '= 15.0 nm'"
              % readout, "75 % in force, 15 nm")
     assert field(b, SP) == "75", field(b, SP)
     new_scope(b, "a line at 75 %")  # an export holds the scene its image was made at
-    assert exported_setpoint(b) == ["setpoint = 75 %"], exported_setpoint(b)
+    exported = exported_setpoint(b)
+    assert exported == ["setpoint = 75 %"], exported
     # the setpoint stays a share of the free amplitude when that changes, as in the scene
     b.eval("tiptapSet('cantilever.free_amplitude', '24')")
     wait_for(b, "tiptapLive.controls.find(c => c.name === 'cantilever.free_amplitude').value === '24' && "
@@ -214,7 +220,7 @@ def setpoint(b):
              % readout, "16 nm in force, 80 %")
     print("ok the setpoint in %%: 80 %% (= 16.0 nm beside it), 75 typed came into force as 75 %% (15 nm; "
           "exported '%s'), 18 nm at a free amplitude of 24 nm; 120 refused ('%s'), 0 refused ('%s'), "
-          "the field put back to 75; 16 nm typed shows 80" % (exported_setpoint(b)[0], msg, msg0))
+          "the field put back to 75; 16 nm typed shows 80" % (exported[0], msg, msg0))
 
 
 def hidden_tab(b, url):
