@@ -2,7 +2,7 @@
 """The console's display in a real browser (headless Chromium over the DevTools protocol,
 tests/live_cdp.py), at a projector's 1024 x 768: no text under 13 px; a field shows the
 value in force (a refused value put back, a change in force shown in a focused field,
-unsent text kept and marked stale); two pages are two instruments (a gain changed on one
+unsent text kept and marked stale; the setpoint in % as the scene writes it, nm beside it); two pages are two instruments (a gain changed on one
 does not reach the other, nor its exported scene); an image's colour range (1 to 99 %, frame, manual) and line flatten
 (offset, slope) give the pixels they say, read back from the canvas; the scope's hold,
 cursor read-out, zoom, time axis and stored reference, whose legend names the gains its line ran
@@ -79,16 +79,7 @@ def fields(b, url):
     table = b.eval("tiptapLive.tierTable")
     assert [t["name"] for t in table] == ["every", "envelope", "averaged"], table
     assert menu == [[t["name"], t["hint"]] for t in table], (menu, table)
-    # the setpoint in nm, with what it is of the free amplitude; a value in % is taken as such
-    sp = b.eval("document.getElementById('c-feedback-setpoint-hint').textContent")
-    assert sp.startswith("80.0 % of the free amplitude"), sp
-    b.eval("tiptapSet('feedback.setpoint', '75 %')")
-    wait_for(b, "tiptapLive.controls.find(c => c.name === 'feedback.setpoint').value === '15' && "
-                "document.getElementById('c-feedback-setpoint-hint').textContent.startsWith('75.0 %')",
-             "75 % in force, 15 nm")
-    b.eval("tiptapSet('feedback.setpoint', '16')")
-    wait_for(b, "tiptapLive.controls.find(c => c.name === 'feedback.setpoint').value === '16'", "16 nm again")
-    print("ok the setpoint's line: '%s'; 75 %% typed came into force as 15 nm" % sp)
+    setpoint(b)
     line = b.eval("document.getElementById('c-solver-tier-hint').textContent")
     tier = in_force(b, "solver.tier")
     assert line == tier + ": " + next(t["hint"] for t in table if t["name"] == tier), line
@@ -154,24 +145,82 @@ def fields(b, url):
 
     # text typed and not yet sent is kept while the value in force changes under it, marked
     # stale with the value in force, then put back on leaving
-    b.eval("(() => { const e = document.querySelector('%s'); e.focus(); e.value = '17.5'; "
+    b.eval("(() => { const e = document.querySelector('%s'); e.focus(); e.value = '85'; "
            "e.dispatchEvent(new Event('input')); })()" % SP)
     b.eval("tiptapLive.ws.send('set feedback.setpoint = 18 nm')")
-    wait_for(b, "tiptapLive.controls.find(c => c.name === 'feedback.setpoint').value === '18'", "18 nm in force")
-    assert field(b, SP) == "17.5", field(b, SP)
+    wait_for(b, "tiptapLive.controls.find(c => c.name === 'feedback.setpoint').value === '90'", "18 nm (90 %) in force")
+    assert field(b, SP) == "85", field(b, SP)
     stale = b.eval("(() => { const e = document.querySelector('%s'); return e.classList.contains('stale') + ' ' + e.title; })()" % SP)
-    assert stale.startswith("true") and "18" in stale, stale
+    assert stale.startswith("true") and "90" in stale, stale
     b.eval("document.querySelector('%s').blur()" % SP)
-    assert field(b, SP) == "18" and not b.eval("document.querySelector('%s').classList.contains('stale')" % SP), field(b, SP)
-    print("ok unsent text (setpoint 17.5) kept and marked stale ('%s') while 18 nm came into force; "
-          "put back to 18 on leaving the field" % stale[5:])
-    b.eval("tiptapLive.ws.send('set feedback.integral_gain = %s Hz\\nset feedback.setpoint = %s nm')" % (ki0, sp0))
+    assert field(b, SP) == "90" and not b.eval("document.querySelector('%s').classList.contains('stale')" % SP), field(b, SP)
+    print("ok unsent text (setpoint 85) kept and marked stale ('%s') while 18 nm (90 %%) came into force; "
+          "put back to 90 on leaving the field" % stale[5:])
+    b.eval("tiptapLive.ws.send('set feedback.integral_gain = %s Hz\\nset feedback.setpoint = %s %%')" % (ki0, sp0))
     wait_for(b, "tiptapLive.controls.find(c => c.name === 'feedback.setpoint').value === '%s'" % sp0, "the setpoint back")
     b.call("Target.closeTarget", {"targetId": b.targets[other]}, session=False)
     wait_for(b, "tiptapLive.status && tiptapLive.status.preview_ms > 0 && "
                 "document.getElementById('status').textContent.includes('last change')",
              "the latency shown after a change")
     print("ok after a change: %s" % b.eval("document.getElementById('status').textContent"))
+
+
+def exported_setpoint(b):
+    text = b.call("Runtime.evaluate", {"expression": "fetch('/export/' + tiptapLive.instrument + '/scene.ini')"
+                                       ".then(r => r.text())", "awaitPromise": True, "returnByValue": True})["result"]["value"]
+    return [l for l in text.splitlines() if l.startswith("setpoint")]
+
+
+def setpoint(b):
+    """The setpoint in % of the free amplitude, as the scene writes it, with its nm beside
+    it: a bare number is taken in %, a value in nm as such; a refusal in %, the field put
+    back; the exported scene keeps the scene's form (75 %)."""
+    readout = "document.getElementById('c-feedback-setpoint-hint').textContent"
+    unit = b.eval("document.querySelector('%s').parentNode.querySelector('.unit').textContent" % SP)
+    assert (field(b, SP), unit, b.eval(readout)) == ("80", "%", "= 16.0 nm"), (field(b, SP), unit, b.eval(readout))
+    # the read-out on the field's row, to its right (not a line under it)
+    rows = js(b, "[document.querySelector('%s'), document.getElementById('c-feedback-setpoint-hint')]"
+                 ".map(e => { const r = e.getBoundingClientRect(); return [r.left, r.right, r.top, r.bottom]; })" % SP)
+    assert rows[1][0] >= rows[0][1] and rows[1][2] < rows[0][3] and rows[1][3] > rows[0][2], rows
+    # and whole, inside the controls' column
+    fits = js(b, "(() => { const h = document.getElementById('c-feedback-setpoint-hint'), "
+                 "f = document.getElementById('controls').getBoundingClientRect(); "
+                 "return [h.scrollWidth, h.clientWidth, h.getBoundingClientRect().right, f.right]; })()")
+    assert fits[0] <= fits[1] and fits[2] <= fits[3] + 0.5, "the read-out does not fit: %s" % fits
+    b.eval("tiptapSet('feedback.setpoint', '75')")
+    wait_for(b, "tiptapLive.controls.find(c => c.name === 'feedback.setpoint').value === '75' && %s === '= 15.0 nm'"
+             % readout, "75 % in force, 15 nm")
+    assert field(b, SP) == "75", field(b, SP)
+    new_scope(b, "a line at 75 %")  # an export holds the scene its image was made at
+    exported = exported_setpoint(b)
+    assert exported == ["setpoint = 75 %"], exported
+    # the setpoint stays a share of the free amplitude when that changes, as in the scene
+    b.eval("tiptapSet('cantilever.free_amplitude', '24')")
+    wait_for(b, "tiptapLive.controls.find(c => c.name === 'cantilever.free_amplitude').value === '24' && "
+                "%s === '= 18.0 nm'" % readout, "75 % of 24 nm")
+    assert field(b, SP) == "75", field(b, SP)
+    b.eval("tiptapSet('cantilever.free_amplitude', '20')")
+    wait_for(b, "tiptapLive.controls.find(c => c.name === 'cantilever.free_amplitude').value === '20' && "
+                "%s === '= 15.0 nm'" % readout, "20 nm again")
+    # refused in %: the reply gives the range in %, the field shows the value in force again
+    replies = b.eval("tiptapLive.replies")
+    b.eval("tiptapSet('feedback.setpoint', '120')")
+    msg = wait_for(b, "tiptapLive.replies > %d && !tiptapLive.lastReply.ok && "
+                      "document.getElementById('reply').textContent" % replies, "120 % refused")
+    assert "100 %" in msg and "nm" not in msg, msg
+    wait_for(b, "document.querySelector('%s').value === '75'" % SP, "the field back to 75")
+    b.eval("tiptapSet('feedback.setpoint', '0')")
+    msg0 = wait_for(b, "!tiptapLive.lastReply.ok && document.getElementById('reply').textContent !== %s && "
+                       "document.getElementById('reply').textContent" % json.dumps(msg), "0 % refused")
+    assert "expected above 0 %" in msg0, msg0
+    wait_for(b, "document.querySelector('%s').value === '75'" % SP, "the field back to 75")
+    # a value typed in nm is taken as such and shown in %
+    b.eval("tiptapSet('feedback.setpoint', '16 nm')")
+    wait_for(b, "tiptapLive.controls.find(c => c.name === 'feedback.setpoint').value === '80' && %s === '= 16.0 nm'"
+             % readout, "16 nm in force, 80 %")
+    print("ok the setpoint in %%: 80 %% (= 16.0 nm beside it), 75 typed came into force as 75 %% (15 nm; "
+          "exported '%s'), 18 nm at a free amplitude of 24 nm; 120 refused ('%s'), 0 refused ('%s'), "
+          "the field put back to 75; 16 nm typed shows 80" % (exported[0], msg, msg0))
 
 
 def hidden_tab(b, url):

@@ -7,6 +7,7 @@ images beside the others; pause stops the lines (the button then reads "resume")
 runs one line, resume runs on, restart starts a new frame at line 0; at P = 5 the warning suggests a P with the I. With a shots folder, docs/live-lesson.png.
 
 usage: live_lesson_page.py CHROMIUM URL SHOTS_DIR"""
+import json
 import sys
 import time
 
@@ -84,7 +85,9 @@ def main(b):
              "the warning's P suggestion at P = 5")
     w = " ".join(b.eval("document.getElementById('warning').textContent").split())
     assert "P is too high for the model: use P" in w and "line " in w, w
-    print("ok at P = 5: %s" % w)
+    st = b.eval("JSON.stringify([tiptapLive.status.height_range, tiptapLive.status.surface_range])")
+    print("ok at P = 5: %s (the judged line's pixels span %.3g nm over a relief of %.3g nm)"
+          % ((w,) + tuple(x * 1e9 for x in json.loads(st))))
 
 
 try:

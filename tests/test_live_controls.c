@@ -398,6 +398,43 @@ static void the_ramp_is_checked_as_tiptap_force_checks_it(void **st)
     tt_live_controls_free(c);
 }
 
+/* The setpoint in % of the free amplitude, as the scene writes it (80 %): a value in nm
+ * shown as its share, a share kept when the free amplitude changes, bounds in %. */
+static void the_setpoint_is_a_share_of_the_free_amplitude(void **st)
+{
+    (void)st;
+    tt_live_controls *c = make();
+    tt_live_change ch;
+    char buf[64];
+    size_t n;
+    const tt_live_control *t = tt_live_control_table(&n);
+    for (size_t i = 0; i < n; i++)
+        if (strcmp(t[i].name, "feedback.setpoint") == 0)
+            assert_string_equal(t[i].unit, "%"); /* the page sends a bare 75 as 75 % */
+    assert_string_equal(value_of(c, "feedback.setpoint", buf, sizeof buf), "80");
+    assert_int_equal(apply(c, "set feedback.setpoint = 15 nm", &ch), TT_OK);
+    assert_string_equal(value_of(c, "feedback.setpoint", buf, sizeof buf), "75");
+    assert_int_equal(apply(c, "set feedback.setpoint = 60 %\nset cantilever.free_amplitude = 25 nm", &ch), TT_OK);
+    assert_string_equal(value_of(c, "feedback.setpoint", buf, sizeof buf), "60");
+    tt_scene *s;
+    tt_scan_params p;
+    assert_int_equal(tt_live_controls_scene(c, &s, &p), TT_OK);
+    assert_close(p.feedback.setpoint, 15e-9, 1e-20);
+    tt_config_scan_free(&p);
+    tt_scene_free(s);
+    static const char *const refused[][2] = {
+        {"set feedback.setpoint = 0 %", "0 % is out of range; expected above 0 %"},
+        {"set feedback.setpoint = 120 %", "between 0 and 100 %"},
+    };
+    for (size_t i = 0; i < 2; i++) {
+        assert_int_equal(apply(c, refused[i][0], &ch), TT_EINVAL);
+        if (!strstr(ch.why, refused[i][1]))
+            fail_msg("'%s': reply '%s' lacks '%s'", refused[i][0], ch.why, refused[i][1]);
+    }
+    assert_string_equal(value_of(c, "feedback.setpoint", buf, sizeof buf), "60");
+    tt_live_controls_free(c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -411,6 +448,7 @@ int main(void)
         cmocka_unit_test(a_lesson_locks_and_hides),
         cmocka_unit_test(a_copy_is_its_own),
         cmocka_unit_test(the_ramp_is_checked_as_tiptap_force_checks_it),
+        cmocka_unit_test(the_setpoint_is_a_share_of_the_free_amplitude),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -72,14 +72,15 @@ const choices = { "noise": ["on", "off"], "scan.fast_axis": ["x", "y"] };
 // closed menu shows the name only: the column is too narrow for the hint)
 const optionHint = {};
 const hints = {};
-// a line under a field that says what its value in force means (the scene's 80 % setpoint
-// is a number of nm on the page)
+// a read-out beside a field: its value in force in another unit (the setpoint, in % of
+// the free amplitude as the scene writes it, in nm)
 const derivedHint = {
   "feedback.setpoint": () => {
     const sp = parseFloat(inForce("feedback.setpoint")), a0 = parseFloat(inForce("cantilever.free_amplitude"));
-    return sp > 0 && a0 > 0 ? (100 * sp / a0).toPrecision(3) + " % of the free amplitude (a value in % sets it so)" : "";
+    return sp > 0 && a0 > 0 ? "= " + (sp * a0 / 100).toPrecision(3) + " nm" : "";
   },
 };
+const derivedTitle = { "feedback.setpoint": "the setpoint in nm: its % of the free amplitude in force (a value typed in nm is taken as such)" };
 function tierTable(tiers) {
   if (!tiers || !tiers.length) return;
   state.tierTable = tiers;
@@ -145,7 +146,8 @@ function controls(m) {
       lab.append(span, el, u);
       if (optionHint[c.name] || derivedHint[c.name]) {
         const h = document.createElement("span");
-        h.className = "hint"; h.id = id + "-hint";
+        h.className = derivedHint[c.name] ? "beside" : "hint"; h.id = id + "-hint";
+        if (derivedHint[c.name]) { lab.classList.add("withbeside"); h.title = derivedTitle[c.name] || ""; }
         lab.append(h);
       }
       form.appendChild(lab);

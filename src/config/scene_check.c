@@ -97,13 +97,12 @@ int scene_enum_has(const char *choices, const char *v)
 int scene_check_value(const tt_scene_key *k, const char *v, char *why, size_t len)
 {
     double x;
+    tt_dim dim = TT_DIM_NONE;
     switch (k->kind) {
-    case TT_KEY_QUANTITY: {
-        tt_dim dim;
+    case TT_KEY_QUANTITY:
         if (tt_units_parse(v, k->dims, &x, &dim, why, len) != 0)
             return -1;
         break;
-    }
     case TT_KEY_INT: {
         char *end;
         errno = 0;
@@ -155,6 +154,11 @@ int scene_check_value(const tt_scene_key *k, const char *v, char *why, size_t le
         if (k->kind == TT_KEY_QUANTITY && (k->dims & TT_DIM_ANGLE)) {
             sym = "deg";
             f = 180 / M_PI;
+        }
+        /* a value given in % hears its bounds in % (the setpoint's 0 %, not 0 of a fraction) */
+        if (k->kind == TT_KEY_QUANTITY && dim == TT_DIM_FRACTION) {
+            sym = "%";
+            f = 100;
         }
         /* the space goes with the unit, so that a plain number ends the message */
         const char *sp = *sym ? " " : "";

@@ -22,7 +22,8 @@ static const tt_live_control table[] = {
     {"sample", "sample", "", 1, NULL},
     {"noise", "noise", "", 0, NULL},
     {"noise.seed", "noise seed", "", 0, NULL},
-    {"feedback.setpoint", "setpoint", "nm", 0, NULL},
+    /* in % of the free amplitude, as the scene writes it (scene_schema.c: 80 %) */
+    {"feedback.setpoint", "setpoint", "%", 0, NULL},
     {"feedback.proportional_gain", "P gain", "", 0, NULL},
     {"feedback.integral_gain", "I gain", "Hz", 0, NULL},
     {"scan.line_rate", "line rate", "Hz", 0, NULL},
@@ -630,7 +631,7 @@ const char *tt_live_controls_value(const tt_live_controls *c, size_t i, char *bu
     else if (strcmp(table[i].name, "noise.seed") == 0)
         snprintf(buf, len, "%llu", (unsigned long long)p->noise.seed);
     else if (strcmp(table[i].name, "feedback.setpoint") == 0)
-        snprintf(buf, len, "%.6g", p->feedback.setpoint * 1e9);
+        snprintf(buf, len, "%.6g", 100 * p->feedback.setpoint / p->cantilever.A0);
     else if (strcmp(table[i].name, "feedback.proportional_gain") == 0)
         snprintf(buf, len, "%.6g", p->feedback.kp);
     else if (strcmp(table[i].name, "feedback.integral_gain") == 0)
