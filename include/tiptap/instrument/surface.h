@@ -142,7 +142,8 @@ int tt_surface_flat(const tt_surface *s);
  * height, step (m) apart (the surface's own scale: a fraction of its features' radius
  * or its pixel), so a sphere of radius r reads 1/r to O(step^2 / r^2). A flat reads
  * exactly cos a = 1 and R_eff = R. A wall or kink inside the stencil reads as a steep
- * slope: the edge contact is not modelled (docs/surfaces.md). */
+ * slope (tt_surface_turn finds it; the scan takes the tip's normal there,
+ * docs/surfaces.md). */
 tt_contact_geometry tt_surface_contact_geometry(const tt_surface *s, double x, double y,
                                                 double step, double R);
 
