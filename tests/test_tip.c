@@ -37,7 +37,14 @@ static void tip_profile_is_smooth(void **st)
         assert_close(tt_tip_shape_reach(&t, tt_tip_shape_height(&t, d)), d, 1e-18);
     assert_close(tt_tip_shape_slope_at(&t, 1.0), 10e-9 / sqrt(2), 1e-20);
     assert_true(isinf(tt_tip_shape_slope_at(&t, 3.0)));
+    /* the normal's cosine is 1 / sqrt(1 + t'^2) on the sphere and on the flank */
+    for (double d = 0.5e-9; d < 30e-9; d += 1.7e-9) {
+        double tp = (tt_tip_shape_height(&t, d + 1e-13) - tt_tip_shape_height(&t, d - 1e-13)) / 2e-13;
+        assert_close(tt_tip_shape_normal_cos(&t, d), 1 / sqrt(1 + tp * tp), 1e-5);
+    }
+    assert_close(tt_tip_shape_normal_cos(&t, 25e-9), sin(t.half_angle), 1e-15);
     tt_tip_shape s = {TT_TIP_SPHERE, 10e-9, 0};
+    assert_close(tt_tip_shape_normal_cos(&s, 5e-9), sqrt(0.75), 1e-15);
     assert_true(isinf(tt_tip_shape_height(&s, 10.1e-9)));
     assert_close(tt_tip_shape_reach(&s, 50e-9), 10e-9, 0);
 }

@@ -124,6 +124,7 @@ static int make_dilation(tt_scan *S, const tt_tip_shape *tip)
     double fast = (R->fast_y ? R->size_y : R->size_x) / (double)R->pixels;
     double slow = (R->fast_y ? R->size_x : R->size_y) / (double)R->lines;
     double pitch = fmin(fast, slow), dx = fmax(fmin(pitch, tip->radius) / 4, pitch / 16), b[4];
+    S->tip = *tip;
     tt_raster_bounds(R, b); /* a rotated or moved scan visits another box of the sample */
     return tt_dilation_alloc_contacts(&S->dilation, S->surface, tip, b[0] - mx, b[1] - my, b[2] + mx,
                                       b[3] + my, dx, S->local);

@@ -86,6 +86,7 @@ struct tt_scan {
     tt_raster raster;
     tt_surface *surface;
     tt_dilation *dilation; /* the surface as the tip's shape images it; NULL: the apex */
+    tt_tip_shape tip;      /* its shape (the contact normal at a corner) */
     tt_instrument_params inst;
     int plain;             /* a point tip on an ideal instrument: the heights as they are */
     int uniform, flat;

@@ -42,10 +42,22 @@ struct tt_scan_laws {
     long built, tables;
 };
 
-uint32_t tt_scan_geometry_key(const tt_scan *S, double x, double y, size_t mat)
+/* A corner: the surface's slope turns by more than GEO_KINK (14 deg) across the stencil
+ * (a surface of radius r turns R / (20 r cos a): one sharper than R / 5 along its slope),
+ * where its differences read the wall; there the tip's own normal at the contact point
+ * is the contact's (a smooth surface touches the tip tangentially: the two agree), and
+ * R_eff is GEO_CORNER_R of R (docs/surfaces.md). */
+#define GEO_KINK 0.25
+#define GEO_CORNER_R 1.0
+
+uint32_t tt_scan_geometry_key(const tt_scan *S, double x, double y, double rho, size_t mat)
 {
-    const double R = S->contact_R[mat];
-    tt_contact_geometry g = tt_surface_contact_geometry(S->surface, x, y, S->geo_step * R, R);
+    const double R = S->contact_R[mat], h = S->geo_step * R;
+    tt_contact_geometry g;
+    if (S->dilation && S->tip.kind != TT_TIP_POINT && tt_surface_turn(S->surface, x, y, h) > GEO_KINK)
+        g = (tt_contact_geometry){tt_tip_shape_normal_cos(&S->tip, rho), GEO_CORNER_R * R};
+    else
+        g = tt_surface_contact_geometry(S->surface, x, y, h, R);
     if (g.cos_slope == 1.0 && g.R_eff == R)
         return 0;
     double c = -log(fmax(g.cos_slope, GEO_COS_MIN)), r = log(fmax(g.R_eff / R, GEO_R_MIN));

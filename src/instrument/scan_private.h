@@ -109,10 +109,10 @@ int tt_scan_cycle_end(const line_ctx *L, line_state *st, const cycle_in *in, dou
                       double indent, double ets);
 
 /* [tip] contact_geometry = local (scan_geometry.c): the key of the geometry where the
- * tip touches at (x, y), material mat's law's slope and effective radius quantised (0:
+ * tip touches at (x, y), rho from its axis, material mat's law's slope and effective radius quantised (0:
  * within the flat's bin); the geometry a key's law is built for; that key's law of mat
  * on W's sim (0: the material's own), built per thread and kept among the last used. */
-uint32_t tt_scan_geometry_key(const tt_scan *S, double x, double y, size_t mat);
+uint32_t tt_scan_geometry_key(const tt_scan *S, double x, double y, double rho, size_t mat);
 tt_contact_geometry tt_scan_geometry_of_key(uint32_t key, double R);
 int tt_scan_geometry_use(const tt_scan *S, worker *W, size_t mat, uint32_t key);
 

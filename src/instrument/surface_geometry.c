@@ -25,3 +25,13 @@ tt_contact_geometry tt_surface_contact_geometry(const tt_surface *s, double x, d
     double k1 = -huu / ((1 + s2) * sqrt(1 + s2)), k2 = -hvv / sqrt(1 + s2);
     return tt_contact_geometry_of(R, 1.0 / sqrt(1 + s2), k1, k2);
 }
+
+double tt_surface_turn(const tt_surface *s, double x, double y, double step)
+{
+    const double h0 = tt_surface_height(s, x, y);
+    double tx = atan((tt_surface_height(s, x + step, y) - h0) / step) -
+                atan((h0 - tt_surface_height(s, x - step, y)) / step);
+    double ty = atan((tt_surface_height(s, x, y + step) - h0) / step) -
+                atan((h0 - tt_surface_height(s, x, y - step)) / step);
+    return fmax(fabs(tx), fabs(ty));
+}

@@ -47,3 +47,14 @@ double tt_tip_shape_slope_at(const tt_tip_shape *t, double s)
     /* on the sphere, slope rho / sqrt(R^2 - rho^2) = s */
     return isinf(s) ? R : R * s / sqrt(1 + s * s);
 }
+
+double tt_tip_shape_normal_cos(const tt_tip_shape *t, double rho)
+{
+    double R = t->radius;
+    rho = fabs(rho);
+    if (t->kind == TT_TIP_POINT)
+        return 1;
+    if (t->kind == TT_TIP_CONE && rho >= R * cos(t->half_angle))
+        return sin(t->half_angle); /* the flank, tangent to the sphere there */
+    return rho < R ? sqrt((R - rho) * (R + rho)) / R : 0;
+}

@@ -142,9 +142,16 @@ int tt_surface_flat(const tt_surface *s);
  * height, step (m) apart (the surface's own scale: a fraction of its features' radius
  * or its pixel), so a sphere of radius r reads 1/r to O(step^2 / r^2). A flat reads
  * exactly cos a = 1 and R_eff = R. A wall or kink inside the stencil reads as a steep
- * slope: the edge contact is not modelled (docs/surfaces.md). */
+ * slope (tt_surface_turn finds it; the scan takes the tip's normal there,
+ * docs/surfaces.md). */
 tt_contact_geometry tt_surface_contact_geometry(const tt_surface *s, double x, double y,
                                                 double step, double R);
+
+/* The largest turn (rad) of the surface's slope across the same stencil: the angle
+ * between the one-sided differences (h(x + step) - h(x)) / step and (h(x) - h(x - step))
+ * / step, along x and along y. A curved surface of radius r turns about step / (r cos a)
+ * on a slope a; a wall or kink inside the stencil turns by the kink's angle. */
+double tt_surface_turn(const tt_surface *s, double x, double y, double step);
 
 /* Surfaces that vary along x only and are made of straight pieces (steps, grating):
  * calls fn(user, xa, ha, xb, hb) for each piece of the profile, from (xa, ha) to

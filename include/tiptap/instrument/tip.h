@@ -50,6 +50,11 @@ double tt_tip_shape_reach(const tt_tip_shape *t, double dh);
  * its flank). */
 double tt_tip_shape_slope_at(const tt_tip_shape *t, double s);
 
+/* The cosine of the angle between the tip's surface normal at a lateral distance
+ * rho >= 0 from its axis and the axis: sqrt(1 - (rho / R)^2) on the apex sphere, the
+ * cone's sin(half_angle) on its flank, 0 beyond a sphere tip, 1 for a point tip. */
+double tt_tip_shape_normal_cos(const tt_tip_shape *t, double rho);
+
 typedef struct tt_dilation tt_dilation;
 
 /* The surface s as the tip t images it over the rectangle [x0, x1] x [y0, y1] (m),
