@@ -71,7 +71,7 @@ mkdir "$tmp/t2"
 "$tiptap" trace "$tmp/slow.ini" --set "trace.separation=40 nm" --set "trace.separation_end=10 nm" \
   --set trace.samples_per_cycle=2000 -o "$tmp/t2/trace.csv" --plot "$tmp/t2/trace.png" -q 2>"$tmp/err" &
 pid=$!
-for _ in $(seq 600); do # rows reach the file (past stdio's buffer) once a cycle has finished
+for _ in $(seq 2400); do # rows reach the file (past stdio's buffer) once a cycle has finished (up to 2 min: 30 s was too short under the sanitizers on a loaded machine)
   [ -n "$(find "$tmp/t2" -name 'trace.csv.tmp.*' -size +0)" ] && break
   sleep 0.05
 done
