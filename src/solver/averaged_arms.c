@@ -34,20 +34,6 @@ static void mv(int n, int ld, const double *M, const double *x, double *y)
     }
 }
 
-/* M = X Y (n x n, row-major; M may be X or Y). */
-static void mm(int n, const double *X, const double *Y, double *M)
-{
-    double P[AVG_NL * AVG_NL];
-    for (int i = 0; i < n; i++)
-        for (int j = 0; j < n; j++) {
-            double acc = 0;
-            for (int l = 0; l < n; l++)
-                acc += X[i * n + l] * Y[l * n + j];
-            P[i * n + j] = acc;
-        }
-    memcpy(M, P, sizeof(double) * (size_t)(n * n));
-}
-
 /* Solve M z = r over the n components idx of the state (z into r); 0 if singular. */
 static int solve(int n, const int *idx, const double *J, int nj, double *r, int minus_identity)
 {
@@ -223,7 +209,7 @@ static void contact(const motion *m, cycle *y, const double *qa, int stuck, doub
         contact_step(m, &s, y->th[k - 1], t1, y->q[k - 1], b, y->q[k], b1, y->dq[k]);
         memcpy(b, b1, sizeof b);
         y->th[k] = t1;
-        mm(n, s.E, Ja, Ja);
+        tt_shoot_matmul(n, s.E, Ja, Ja);
         y->k = k;
         double g = depth(m, t1) - a->law->surface(a->contact, y->q[k]) - a->jout;
         if (stuck || g > 0) {
@@ -248,7 +234,7 @@ static void contact(const motion *m, cycle *y, const double *qa, int stuck, doub
         substep_of(a, hp, &s);
         memcpy(Ja, Jprev, sizeof Jprev);
         contact_step(m, &s, y->th[k - 1], tr, y->q[k - 1], bprev, y->q[k], b1, y->dq[k]);
-        mm(n, s.E, Ja, Ja);
+        tt_shoot_matmul(n, s.E, Ja, Ja);
         y->th[k] = tr;
         break;
     }
@@ -283,7 +269,7 @@ static void run_cycle(const motion *m, const double *q0, int stuck, cycle *y)
     contact(m, y, qa, stuck, y->J);
     flight_exp(a, M_PI - y->tr, E);
     mv(n, n, E, y->q[y->k], y->q1);
-    mm(n, E, y->J, y->J);
+    tt_shoot_matmul(n, E, y->J, y->J);
 }
 
 /* Newton's method on q -> cycle(q) - q over the moving components; 1 if it missed. */

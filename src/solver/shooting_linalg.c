@@ -215,14 +215,19 @@ void tt_shoot_expm(int n, const double *A, double tau, double *E)
             E[i] += P[i];
         }
     }
-    for (int s = 0; s < sq; s++) {
-        for (int i = 0; i < n; i++)
-            for (int j = 0; j < n; j++) {
-                double acc = 0;
-                for (int l = 0; l < n; l++)
-                    acc += E[i * n + l] * E[l * n + j];
-                P[i * n + j] = acc;
-            }
-        memcpy(E, P, sizeof(double) * (size_t)(n * n));
-    }
+    for (int s = 0; s < sq; s++)
+        tt_shoot_matmul(n, E, E, E);
+}
+
+void tt_shoot_matmul(int n, const double *X, const double *Y, double *M)
+{
+    double P[TT_EXPM_MAX * TT_EXPM_MAX];
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            double acc = 0;
+            for (int l = 0; l < n; l++)
+                acc += X[i * n + l] * Y[l * n + j];
+            P[i * n + j] = acc;
+        }
+    memcpy(M, P, sizeof(double) * (size_t)(n * n));
 }

@@ -27,4 +27,7 @@ int tt_shoot_lyapunov(int n, const double *J, double *M, int generic);
 #define TT_EXPM_MAX 16
 void tt_shoot_expm(int n, const double *A, double tau, double *E);
 
+/* M = X Y for n x n matrices by rows (n <= TT_EXPM_MAX); M may be X or Y. */
+void tt_shoot_matmul(int n, const double *X, const double *Y, double *M);
+
 #endif
