@@ -231,6 +231,24 @@ static long reach_of(const tt_scan *S, double b, double per, int rerun, long set
     return stretch_reach((long)(b / (per + rerun)), settle, nc, S->raster.pixels);
 }
 
+/* Where the stretches' features all lie on one line within what the tight line alone
+ * reaches from that line's start: one stretch from there, compared with the image's own
+ * (independent lines engage where the image's did), on the whole of b. 1: so planned. */
+static int from_start(const tt_scan *S, double b, double per, long settle, long nc, plan *p)
+{
+    long reach = reach_of(S, b, per, 0, settle, nc);
+    for (int k = 0; k < p->ns; k++)
+        if (p->st[k].line != p->st[0].line || p->st[k].at + 1 >= reach)
+            return 0;
+    p->ns = 1;
+    p->rerun = 0;
+    p->reach = reach;
+    p->st[0].first = 0;
+    p->tight = b;
+    p->own = 0;
+    return 1;
+}
+
 /* The plan on budget b (0: none): the whole hardest line where it fits (compared with
  * the image's own where lines are independent, whole_rerun 0); else the stretches, each
  * beside the run's own on an equal share. 1: the shares do not reach two pixels past
@@ -251,6 +269,8 @@ static int make_plan(const tt_scan *S, double b, double per, int whole_rerun, lo
         /* the edges a shorter stretch no longer holds are left out past n */
         int m = hardest_stretches(S, p->reach, nc, p->st, &p->step);
         p->ns = m < n ? m : n;
+        if (!whole_rerun && from_start(S, b, per, settle, nc, p))
+            return 0;
         if (p->reach < 2)
             return 1;
     }
