@@ -130,8 +130,6 @@ typedef struct {
     long cycles;
     double seconds;
     long stretches;
-    double budget, scan_cost;
-    double cost;
 } tt_scan_error;
 int tt_scan_estimate_error(tt_scan *s, tt_scan_error *e);
 

@@ -172,7 +172,6 @@ def scan(scene, *, set=None, threads=0, progress=None, error_estimate=False, hdf
             # where it checked (the image's hardest stretches) and what it cost
             "pixels": e.pixels, "pixels_line": e.pixels_line, "first_pixel": e.first,
             "step_m": e.step, "cycles": e.cycles, "cpu_s": e.seconds, "stretches": e.stretches,
-            "budget": e.budget, "scan_cost": e.scan_cost, "cost": e.cost,
         }
     col.emit(stacklevel=2, result=result)
     finish(status, message, interrupted, "scan", result, prog)

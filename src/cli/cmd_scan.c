@@ -249,24 +249,6 @@ static int scan_finished(void *user, tt_scan *scan, int status)
     return cli_scope_write(scan, x->scope, x->dir, &x->written);
 }
 
-/* The estimate's cost: its cycles, and its cost against the scan's (cycles integrated
- * at the scan's setting, a model's a tenth), or that it ran over the share. */
-static void print_estimate_cost(const tt_scan_params *p, const tt_scan *scan, const tt_scan_error *e)
-{
-    long integ = tt_scan_cycles_integrated(scan);
-    fprintf(stderr, "\nestimate_cycles = %ld", e->cycles);
-    if (integ <= 0) { /* the averaged tier integrates none: its companion has no bound */
-        fprintf(stderr, " (the scan integrated none)");
-        return;
-    }
-    fprintf(stderr, " (cost %.0f: %.1f %% of the scan's %.0f, %ld cycles integrated; at most %.0f %%)",
-            e->cost, 100.0 * e->cost / e->scan_cost, e->scan_cost, integ, 100.0 * TT_ESTIMATE_SHARE);
-    if (e->budget == 0)
-        fprintf(stderr, "\n# over the share: a fifth of this scan does not hold the companion's "
-                        "settling (%ld cycles) and two pixels per stretch: the whole line ran",
-                p->settle_cycles);
-}
-
 static void scan_summary(void *user, const tt_scan *scan, const tt_run_scan_result *r)
 {
     scan_cli *x = user;
@@ -334,6 +316,7 @@ static void scan_summary(void *user, const tt_scan *scan, const tt_run_scan_resu
                         e->step);
             else
                 fprintf(stderr, "the profile line (no height step in the image)");
+            long integ = tt_scan_cycles_integrated(scan);
             if (e->pixels < e->pixels_line && e->stretches > 1)
                 fprintf(stderr, ", %ld pixels of the trace in %ld stretches (the largest step's from "
                                 "pixel %ld, and the first edge of each pair of materials)",
@@ -343,7 +326,12 @@ static void scan_summary(void *user, const tt_scan *scan, const tt_run_scan_resu
                         e->pixels_line, e->first);
             else
                 fprintf(stderr, ", all its %ld pixels", e->pixels_line);
-            print_estimate_cost(p, scan, e);
+            fprintf(stderr, "\nestimate_cycles = %ld", e->cycles);
+            if (integ > 0)
+                fprintf(stderr, " (%.1f %% of the scan's %ld cycles integrated)",
+                        100.0 * (double)e->cycles / (double)integ, integ);
+            else /* the averaged tier integrates none: its companion has no bound */
+                fprintf(stderr, " (the scan integrated none)");
             fprintf(stderr, "\nestimate_cpu_s = %.3f\n", e->seconds);
         }
         if (have_est)

@@ -16,14 +16,6 @@ static surf_pt surface_cached(const line_ctx *L, const line_state *st, long k)
     return tt_scan_surface_at(L, k);
 }
 
-/* The companion line's cost so far: its cycles integrated (the sim counts them) at
- * w_int, the rest at w_model. */
-static double companion_cost(const worker *W, long cycles)
-{
-    long integ = tt_sim_cycles(W->sim);
-    return W->w_int * (double)integ + W->w_model * (double)(cycles > integ ? cycles - integ : 0);
-}
-
 int tt_scan_cycle_begin(const line_ctx *L, line_state *st, cycle_in *in)
 {
     const tt_scan *S = L->S;
@@ -31,7 +23,7 @@ int tt_scan_cycle_begin(const line_ctx *L, line_state *st, cycle_in *in)
     const int j = (int)(k % L->P);
     if ((k & 255) == 0 && tt_cancel_requested())
         return TT_EINTR;
-    if (L->W->budget > 0 && companion_cost(L->W, st->cycles) >= L->W->budget)
+    if (L->W->budget > 0 && st->cycles >= L->W->budget)
         return TT_SCAN_BUDGET;
     in->k = k;
     in->j = j;

@@ -58,11 +58,9 @@ typedef struct {
     double s_ref;
     /* the scope the line under way records into (NULL: none) */
     tt_scan_scope *scope;
-    /* the error estimate's companion line stops when its cost reaches budget (0:
-     * never), so that it costs a bounded share of the scan: each cycle integrated costs
-     * w_int, each the envelope model followed w_model (in the scan's integrated cycles);
-     * budget_hit says it stopped there */
-    double budget, w_int, w_model;
+    /* the error estimate's companion line stops after this many cycles (0: never), so
+     * that it costs a bounded share of the scan; budget_hit says it stopped there */
+    long budget;
     int budget_hit;
     /* and engages and starts its trace at this cycle of the direction (0: the line's
      * start), so that its stretch lies where the image is hardest */

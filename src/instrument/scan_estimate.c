@@ -11,17 +11,11 @@
 #include "tiptap/util/clock.h"
 #include "tiptap/util/error.h"
 
-/* A cycle the envelope model followed costs about a tenth of one integrated: 2.3 us
- * against about 20 us on the steps at 300 K (4 lines, 3.7 % integrated), 1.7 us a
- * companion cycle on the blend without noise, which the model follows nearly whole. */
-#define MODEL_COST 0.1
-
 /* One companion line on a solver setting: height, amplitude and phase of trace and
  * retrace into buf (6 blocks of pixels: [channel][direction]), stopped after budget
  * cycles (0: none); *hit says it stopped there, *ran counts its cycles. */
-static int companion_line(tt_scan *S, const tt_solver *solver, long line, double budget,
-                          double w_int, long k0, double *buf, int *hit, long *ran,
-                          double *cost)
+static int companion_line(tt_scan *S, const tt_solver *solver, long line, long budget, long k0,
+                          double *buf, int *hit, long *ran)
 {
     worker W;
     line_out out = {{{0}}, 1};
@@ -41,15 +35,11 @@ static int companion_line(tt_scan *S, const tt_solver *solver, long line, double
      * fifth of the README job's) */
     W.model_tol = fmax(W.model_tol, S->solver.tolerance);
     W.budget = budget;
-    W.w_int = w_int;
-    W.w_model = MODEL_COST;
     W.k0 = k0;
     if (!rc)
         rc = tt_scan_worker_line(S, &W, line, &out, NULL, &t);
     *hit = W.budget_hit;
     *ran = t.cycles;
-    long integ = W.sim ? tt_sim_cycles(W.sim) : 0; /* as the budget counts them */
-    *cost = w_int * (double)integ + MODEL_COST * (double)(t.cycles > integ ? t.cycles - integ : 0);
     tt_scan_worker_free(&W);
     return rc;
 }
@@ -68,22 +58,21 @@ tt_solver tt_companion_solver(const tt_solver *s)
     return t;
 }
 
-/* What a cycle integrated at the tight setting costs, of one at the run's: dopri5's
- * steps grow as the tolerance to the -1/5 (2.5 times at a hundredth: 45 us against 20
- * on the envelope tier with noise, where the tight line integrates nearly every
- * cycle); rk4 runs four times the steps. */
-static double tight_cost(const tt_scan *S, const tt_solver *tight)
+/* The companion's cycles: a fifth of the scan's cost, counted as the cycles the scan
+ * integrated. On the every-cycle tier each of the companion's costs what its tighter
+ * setting asks (dopri5's steps grow as the tolerance to the -1/5, 2.5 times at a
+ * hundredth; rk4 runs four times the steps); on the envelope tier a cycle the scan
+ * integrated cost 17 to 21 us with its model's work (the README's main job, the
+ * teaching scene), a companion cycle 4 to 17 us, so one counts as one. 0 (no bound)
+ * where the scan integrated none (the averaged tier). */
+static long companion_budget(const tt_scan *S, const tt_solver *tight)
 {
     double per = S->solver.method == TT_METHOD_RK4
                      ? (double)tight->steps_per_cycle / (double)S->solver.steps_per_cycle
                      : pow(S->solver.tolerance / tight->tolerance, 0.2);
-    return per >= 1 ? per : 1;
-}
-
-/* The scan's cost in its integrated cycles: those, and the model's at MODEL_COST. */
-static double scan_cost(const tt_scan *S)
-{
-    return (double)S->integrated + MODEL_COST * (double)(S->cycles - S->integrated);
+    if (!(per >= 1) || tt_scan_envelope_usable(S, &S->solver))
+        per = 1;
+    return S->integrated > 0 ? (long)(TT_ESTIMATE_SHARE * (double)S->integrated / per) : 0;
 }
 
 /* Where the image is hardest: the largest height step between neighbouring pixels of
@@ -213,78 +202,15 @@ static void compare(const tt_scan *S, const double *buf, long first, int dirs, i
         }
 }
 
-/* How the companion runs: each stretch's budget for the tight line and for the run's
- * own beside it (rerun), the trace's pixels a stretch reaches at the worst (every
- * cycle integrated), and the stretches. */
-typedef struct {
-    double tight, own;
-    long reach;
-    int rerun, ns;
-    stretch st[MAX_STRETCHES];
-    double step;
-} plan;
-
-/* The pixels a budget b reaches with the tight line at per a cycle, and the run's own
- * beside it at 1 (rerun). */
-static long reach_of(const tt_scan *S, double b, double per, int rerun, long settle, long nc)
-{
-    return stretch_reach((long)(b / (per + rerun)), settle, nc, S->raster.pixels);
-}
-
-/* Where the stretches' features all lie on one line within what the tight line alone
- * reaches from that line's start: one stretch from there, compared with the image's own
- * (independent lines engage where the image's did), on the whole of b. 1: so planned. */
-static int from_start(const tt_scan *S, double b, double per, long settle, long nc, plan *p)
-{
-    long reach = reach_of(S, b, per, 0, settle, nc);
-    for (int k = 0; k < p->ns; k++)
-        if (p->st[k].line != p->st[0].line || p->st[k].at + 1 >= reach)
-            return 0;
-    p->ns = 1;
-    p->rerun = 0;
-    p->reach = reach;
-    p->st[0].first = 0;
-    p->tight = b;
-    p->own = 0;
-    return 1;
-}
-
-/* The plan on budget b (0: none): the whole hardest line where it fits (compared with
- * the image's own where lines are independent, whole_rerun 0); else the stretches, each
- * beside the run's own on an equal share. 1: the shares do not reach two pixels past
- * their settling (fewer stretches, or pixels from the line's start, read ten times
- * below the measured error on the README's job at two lines: the estimate needs them
- * all). */
-static int make_plan(const tt_scan *S, double b, double per, int whole_rerun, long settle, long nc,
-                     plan *p)
-{
-    p->rerun = whole_rerun;
-    p->reach = b > 0 ? reach_of(S, b, per, p->rerun, settle, nc) : 2 * S->raster.pixels;
-    if (p->reach >= S->raster.pixels) {
-        p->ns = hardest_stretches(S, p->reach, nc, p->st, &p->step);
-    } else {
-        p->rerun = 1;
-        int n = hardest_stretches(S, reach_of(S, b, per, 1, settle, nc), nc, p->st, &p->step);
-        p->reach = reach_of(S, b / n, per, 1, settle, nc);
-        /* the edges a shorter stretch no longer holds are left out past n */
-        int m = hardest_stretches(S, p->reach, nc, p->st, &p->step);
-        p->ns = m < n ? m : n;
-        if (!whole_rerun && from_start(S, b, per, settle, nc, p))
-            return 0;
-        if (p->reach < 2)
-            return 1;
-    }
-    p->tight = b / p->ns * per / (per + p->rerun);
-    p->own = b / p->ns / (per + p->rerun);
-    return 0;
-}
-
 int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
 {
     memset(e, 0, sizeof *e);
     const tt_raster *R = &S->raster;
     const long px = R->pixels;
     const int dirs = R->retrace ? 2 : 1;
+    double *buf = calloc((size_t)(12 * px), sizeof *buf);
+    if (!buf)
+        return tt_error_nomem("the companion line's profile");
     double c0 = tt_clock(TT_CLOCK_PROCESS);
     tt_solver tight = tt_companion_solver(&S->solver);
     /* the averaged tier's error is its model's, which no tolerance moves: its companion
@@ -294,52 +220,66 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
         tight = S->solver;
         tight.tier = TT_TIER_ENVELOPE;
     }
-    int rc = avg ? tt_scan_averaged_tables(S) : TT_OK;
-    if (rc)
-        return rc;
+    int trc = avg ? tt_scan_averaged_tables(S) : TT_OK;
+    if (trc) {
+        free(buf);
+        return trc;
+    }
     /* Lines that do not carry on from one another are each a function of the line alone
      * (the noise keyed by line, the envelope model forgotten): the image's own line is
      * what the run's setting gives, and only the tight line runs. Continuous lines start
      * where the last one ended, so the run's setting runs again beside it, from the
-     * same engage. A stretch inside the line engages there, not where the image's line
-     * reached it from the line's start (its noise counted from another cycle, its
-     * feedback fresh): the run's setting runs the same stretch beside it. */
+     * same engage, on half the budget each. */
     int whole_rerun = S->continuous || avg;
     for (int c = 0; c < 3; c++) /* and where the image lacks a channel it compares */
         for (int r = 0; r < dirs; r++)
             whole_rerun |= !S->img[r][c];
+    int rerun = whole_rerun;
     const long nc = tt_raster_cycles_per_direction(R, S->cantilever.T);
     const long settle = (S->settle_cycles + S->lockin.periods_per_block - 1) /
                         S->lockin.periods_per_block * S->lockin.periods_per_block;
-    /* a fifth of the scan's cost (none where it integrated none: the averaged tier) */
-    const double per = avg ? 1 : tight_cost(S, &tight);
-    double budget = S->integrated > 0 ? TT_ESTIMATE_SHARE * scan_cost(S) : 0;
-    plan p = {0};
-    if (make_plan(S, budget, per, whole_rerun, settle, nc, &p)) {
-        /* a scan too short for each stretch's settling and two pixels in a fifth (a line
-         * or two; noisy ones of up to 8 lines): the whole hardest line runs, over the
-         * share, and says so (e->budget 0, e->cost) */
-        budget = 0;
-        p = (plan){0};
-        p.rerun = whole_rerun;
-        p.ns = hardest_stretches(S, 2 * px, nc, p.st, &p.step);
+    long budget = companion_budget(S, &tight);
+    /* A stretch inside the line engages there, not where the image's line reached it
+     * from the line's start (its noise counted from another cycle, its feedback fresh):
+     * the run's setting runs the same stretch beside it, each on half the budget. The
+     * trace's pixels the budget reaches, less the one it stops in: */
+    if (budget > 0 && stretch_reach(budget, settle, nc, px) < px)
+        rerun = 1;
+    if (rerun)
+        budget /= 2;
+    long reach = budget > 0 ? stretch_reach(budget, settle, nc, px) : 2 * px;
+    stretch st[MAX_STRETCHES];
+    double step = 0;
+    int ns = hardest_stretches(S, reach, nc, st, &step);
+    /* each stretch its share of the budget, settling included */
+    if (budget > 0 && ns > 1) {
+        budget /= ns;
+        reach = stretch_reach(budget, settle, nc, px);
+        ns = hardest_stretches(S, reach, nc, st, &step);
     }
-    double *buf = calloc((size_t)(12 * px), sizeof *buf);
-    if (!buf)
-        return tt_error_nomem("the companion line's profile");
+    if (budget > 0 && reach < 2) {
+        /* a scan of a line or two: the fifth does not reach past each stretch's
+         * settling, and the whole hardest line runs (e->cycles says what it cost) */
+        budget = 0;
+        reach = 2 * px;
+        /* a whole line engages where the image's did: independent lines compare with
+         * the image's own, not a rerun (half the cost: a 4-line noisy envelope scan of
+         * the steps ran 156,000 companion cycles, 3.5 of 4.7 s CPU) */
+        rerun = whole_rerun;
+        ns = hardest_stretches(S, reach, nc, st, &step);
+    }
     double max[3] = {0}, sum[3] = {0};
     long n = 0, ran[2] = {0, 0};
-    for (int s = 0; s < p.ns; s++) {
-        const long line = p.st[s].line, first = p.st[s].first;
+    for (int s = 0; s < ns; s++) {
+        const long line = st[s].line, first = st[s].first;
         /* the stretch's first cycle: the first whole cycle of its first pixel */
         const long k0 = (first * nc + px - 1) / px;
-        int krc[2] = {TT_OK, TT_OK}, hit[2] = {0, 0};
+        int rc[2] = {TT_OK, TT_OK}, hit[2] = {0, 0};
         long cyc[2] = {0, 0};
-        double spent[2] = {0, 0};
         char why[2][512]; /* a worker thread's message is its own: carried back here */
-#pragma omp parallel for num_threads(2) schedule(static, 1) if (p.rerun)
+#pragma omp parallel for num_threads(2) schedule(static, 1) if (rerun)
         for (int k = 0; k < 2; k++) {
-            if (k == 0 && !p.rerun) { /* the image's own line */
+            if (k == 0 && !rerun) { /* the image's own line */
                 for (int c = 0; c < 3; c++)
                     for (int r = 0; r < dirs; r++)
                         for (long i = 0; i < px; i++)
@@ -347,21 +287,19 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
                                 S->img[r][c][tt_raster_index(R, line, i)];
                 continue;
             }
-            krc[k] = companion_line(S, k ? &tight : &S->solver, line, k ? p.tight : p.own,
-                                    k ? per : 1, k0, buf + (size_t)(6 * k * px), &hit[k], &cyc[k],
-                                    &spent[k]);
-            snprintf(why[k], sizeof why[k], "%s", krc[k] ? tt_error_message() : "");
+            rc[k] = companion_line(S, k ? &tight : &S->solver, line, budget, k0,
+                                   buf + (size_t)(6 * k * px), &hit[k], &cyc[k]);
+            snprintf(why[k], sizeof why[k], "%s", rc[k] ? tt_error_message() : "");
         }
         for (int k = 0; k < 2; k++)
-            if (krc[k]) {
+            if (rc[k]) {
                 free(buf);
-                return tt_error(krc[k], "the companion line at tolerance %g: %s",
+                return tt_error(rc[k], "the companion line at tolerance %g: %s",
                                 k ? tight.tolerance : S->solver.tolerance, why[k]);
             }
         ran[0] += cyc[0];
         ran[1] += cyc[1];
-        e->cost += spent[0] + spent[1];
-        compare(S, buf, first, dirs, hit[0] || hit[1], p.rerun, max, sum, &n);
+        compare(S, buf, first, dirs, hit[0] || hit[1], rerun, max, sum, &n);
     }
     free(buf);
     if (n == 0)
@@ -374,16 +312,14 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
     e->amplitude_rms = 2 * sqrt(sum[1] / (double)n);
     e->phase_max = 2 * max[2];
     e->phase_rms = 2 * sqrt(sum[2] / (double)n);
-    e->line = p.st[0].line;
+    e->line = st[0].line;
     e->tolerance = tight.tolerance;
     e->pixels = n;
     e->pixels_line = dirs * px;
-    e->step = p.step;
-    e->first = p.st[0].first;
-    e->stretches = p.ns;
+    e->step = step;
+    e->first = st[0].first;
+    e->stretches = ns;
     e->cycles = ran[0] + ran[1];
-    e->budget = budget;
-    e->scan_cost = scan_cost(S);
     e->seconds = tt_clock(TT_CLOCK_PROCESS) - c0;
     return TT_OK;
 }

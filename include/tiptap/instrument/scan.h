@@ -314,10 +314,6 @@ typedef struct {
     long cycles;                         /* the companion's cycles (all its lines) */
     double seconds;                      /* its CPU time, s (all threads) */
     long stretches;                      /* the stretches it ran (1: one, or the whole line) */
-    double budget, scan_cost;            /* its budget and the scan's cost, in the scan's
-                                          * integrated cycles (a model's cycle a tenth);
-                                          * budget 0: none, the whole line ran */
-    double cost;                         /* what it spent of the budget */
 } tt_scan_error;
 
 /* The images are untouched. Where a fifth of the scan's cost does not reach each
