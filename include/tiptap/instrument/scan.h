@@ -314,6 +314,8 @@ typedef struct {
     long cycles;                         /* the companion's cycles (all its lines) */
     double seconds;                      /* its CPU time, s (all threads) */
     long stretches;                      /* the stretches it ran (1: one, or the whole line) */
+    int over;                            /* the whole line ran over TT_ESTIMATE_SHARE: a scan
+                                          * too short for each stretch's settling */
 } tt_scan_error;
 
 /* The images are untouched. Where a fifth of the scan's cost does not reach each
