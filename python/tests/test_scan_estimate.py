@@ -2,6 +2,7 @@
 against a reference run, where the image's error is largest away from its largest
 height step."""
 
+import os
 import warnings
 
 import numpy as np
@@ -32,3 +33,26 @@ def test_the_estimate_is_not_below_the_measured_error():
         assert r.error[key] >= measured, (name, r.error[key], measured, r.error)
     # it ran where the error is: more than the largest height step's stretch, or the line
     assert r.error["stretches"] > 1 or r.error["pixels"] == r.error["pixels_line"]
+
+
+NOISE = {"noise.temperature": "300 K", "noise.detector": "100 fm/sqrt(Hz)"}
+
+
+def noisy(surface, lines):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return tiptap.scan([QUICK[0], surface], set={**NOISE, "scan.lines": str(lines)}, threads=1,
+                           progress=False, error_estimate=True)
+
+
+def test_a_short_noisy_scan_holds_its_share_or_says_it_is_over():
+    # 4 lines of the blend at 300 K (issue 30): one stretch in a fifth of the cycles
+    # integrated (63 of 128 pixels, 18 % of the run's CPU); its whole line ran 29 %
+    r = noisy(QUICK[1], 4)
+    e, integrated = r.error, r.run["cycles_integrated"]
+    assert not e["over_share"] and e["cycles"] <= 0.2 * integrated + 1, e
+    assert 0 < e["cpu_s"] < e["run_cpu_s"], e
+    # 4 lines of the steps: the fifth does not hold the settling; the whole line ran
+    # (74 % of the run's CPU), and the estimate says so
+    e = noisy(os.path.join(os.path.dirname(QUICK[1]), "steps.ini"), 4).error
+    assert e["over_share"] and e["pixels"] == e["pixels_line"], e

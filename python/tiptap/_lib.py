@@ -130,6 +130,7 @@ typedef struct {
     long cycles;
     double seconds;
     long stretches;
+    int over;
 } tt_scan_error;
 int tt_scan_estimate_error(tt_scan *s, tt_scan_error *e);
 
@@ -336,6 +337,7 @@ typedef struct {
     double seconds;
     int estimate_status;
     tt_scan_error est;
+    double cpu_seconds;
 } tt_run_scan_result;
 int tt_run_scan(const tt_scene *s, const tt_run_scan_job *job, tt_run_scan_result *r);
 int tt_run_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir,

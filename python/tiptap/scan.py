@@ -172,6 +172,8 @@ def scan(scene, *, set=None, threads=0, progress=None, error_estimate=False, hdf
             # where it checked (the image's hardest stretches) and what it cost
             "pixels": e.pixels, "pixels_line": e.pixels_line, "first_pixel": e.first,
             "step_m": e.step, "cycles": e.cycles, "cpu_s": e.seconds, "stretches": e.stretches,
+            # the whole line ran over the share (a scan too short for a stretch's settling)
+            "over_share": bool(e.over), "run_cpu_s": r.cpu_seconds,
         }
     col.emit(stacklevel=2, result=result)
     finish(status, message, interrupted, "scan", result, prog)

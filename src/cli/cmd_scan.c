@@ -332,7 +332,12 @@ static void scan_summary(void *user, const tt_scan *scan, const tt_run_scan_resu
                         100.0 * (double)e->cycles / (double)integ, integ);
             else /* the averaged tier integrates none: its companion has no bound */
                 fprintf(stderr, " (the scan integrated none)");
-            fprintf(stderr, "\nestimate_cpu_s = %.3f\n", e->seconds);
+            if (e->over) /* never silently over the share */
+                fprintf(stderr, "\n# over the share: a fifth of this scan does not hold each "
+                                "stretch's settling (%ld cycles) and two pixels: the whole line ran",
+                        p->settle_cycles);
+            fprintf(stderr, "\nestimate_cpu_s = %.3f (%.1f %% of the run's %.3f s CPU)\n", e->seconds,
+                    r->cpu_seconds > 0 ? 100 * e->seconds / r->cpu_seconds : 0.0, r->cpu_seconds);
         }
         if (have_est)
             tt_run_scan_warn_error(scan, &r->cost, &r->est);

@@ -262,6 +262,7 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
          * settling, and the whole hardest line runs (e->cycles says what it cost) */
         budget = 0;
         reach = 2 * px;
+        e->over = 1; /* and says so */
         /* a whole line engages where the image's did: independent lines compare with
          * the image's own, not a rerun (half the cost: a 4-line noisy envelope scan of
          * the steps ran 156,000 companion cycles, 3.5 of 4.7 s CPU) */

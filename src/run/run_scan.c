@@ -218,7 +218,7 @@ int tt_run_scan(const tt_scene *s, const tt_run_scan_job *job, tt_run_scan_resul
 {
     memset(r, 0, sizeof *r);
     r->estimate_status = -1;
-    const double t0 = tt_clock(TT_CLOCK_WALL);
+    const double t0 = tt_clock(TT_CLOCK_WALL), c0 = tt_clock(TT_CLOCK_PROCESS);
     void *u = job->user;
     tt_scan *scan = NULL;
     int rc = tt_run_scan_alloc(s, job->threads, &scan, &r->cost);
@@ -275,6 +275,7 @@ int tt_run_scan(const tt_scene *s, const tt_run_scan_job *job, tt_run_scan_resul
     }
     /* the whole run's time, the estimate's companion line included */
     r->seconds = tt_clock(TT_CLOCK_WALL) - t0;
+    r->cpu_seconds = tt_clock(TT_CLOCK_PROCESS) - c0;
     if (job->summary)
         job->summary(u, scan, r); /* which raises the estimate's warning among its lines */
     else if (r->estimate_status == TT_OK)

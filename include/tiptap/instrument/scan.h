@@ -314,12 +314,14 @@ typedef struct {
     long cycles;                         /* the companion's cycles (all its lines) */
     double seconds;                      /* its CPU time, s (all threads) */
     long stretches;                      /* the stretches it ran (1: one, or the whole line) */
+    int over;                            /* the whole line ran over TT_ESTIMATE_SHARE: a scan
+                                          * too short for each stretch's settling */
 } tt_scan_error;
 
 /* The images are untouched. Where a fifth of the scan's cost does not reach each
  * stretch's settling and two pixels (a scan of a few lines), the whole hardest line
- * runs, over the fifth, compared with the image's own line where lines are
- * independent. */
+ * runs, over the fifth (e->over says so), compared with the image's own line where
+ * lines are independent. */
 int tt_scan_estimate_error(tt_scan *s, tt_scan_error *e);
 /* Whether the z piezo hit its range limits during the scan. */
 int tt_scan_clamped(const tt_scan *s);

@@ -139,6 +139,7 @@ struct tt_run_scan_result {
     int estimate_status;      /* TT_OK: est holds the estimate; -1: it did not run (not
                                * asked for, or the run failed); else why it failed */
     tt_scan_error est;
+    double cpu_seconds;       /* the whole run's process CPU time, the estimate's included, s */
 };
 int tt_run_scan(const tt_scene *s, const tt_run_scan_job *job, tt_run_scan_result *r);
 
