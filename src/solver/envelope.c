@@ -162,6 +162,7 @@ int tt_envelope_alloc(tt_envelope **out, const tt_sim *sim, const tt_envelope_pa
     }
     /* the modes' (d, d') pairs, then the law's states, lengths (contact_sls.c's q_i) */
     const int nmode = 2 * (c->modes > 1 ? c->modes : 1);
+    e->nmode = nmode;
     for (int i = 0; i < e->nx; i++)
         e->xs[i] = i < nmode && i % 2 ? e->V : e->L;
     for (int i = 0; i < n; i++)
@@ -411,6 +412,13 @@ tt_envelope_outcome tt_envelope_build(tt_envelope *e, tt_sim *sim, const double 
     double h[NIN_MAX];
     for (int i = 0; i < nx; i++)
         h[i] = h1 * e->xs[i];
+    /* a law's states (contact_sls.c's q, chi units) sit at picometres on the free
+     * flight, where the surface's depression (R q^2)^(1/3) is clipped at q = 0: the
+     * second order's 1e-3 of A0 (20 pm) crossed it and took the map's dd/dq at a third
+     * of its value (docs/dynamics.md, "Noise on the envelope tier"), so they step by
+     * 1e-5 of A0 there */
+    for (int i = e->nmode; e->second && i < nx; i++)
+        h[i] = 1e-2 * h1 * e->xs[i];
     h[nx] = h[nx + 1] = h1 * e->L;
     const int nq = nx + e->no;
     /* the anchor's outputs and the perturbed ones, by input: end state, observables */

@@ -34,6 +34,7 @@ typedef struct {
 
 struct tt_envelope {
     int nx;               /* the state's components (tt_sim_dim) */
+    int nmode;            /* of them the modes' (d, d') pairs; the law's states after */
     int ni, npair;        /* input places (nx + 2) and their pairs */
     int n, no;            /* samples per cycle; observables (n + TT_ENV_EXTRA + np) */
     int np;               /* probes of the gap */
