@@ -123,8 +123,9 @@ static const char *arms = "[material polymer]\nadhesion_energy = 0 J/m^2\nyoungs
                           "poisson_ratio = 0.4\narm1_modulus = 500 MPa\narm1_relaxation_time = 1 us\n";
 static const char *arms_noise = "temperature = 300 K\ndetector = 100 fm/sqrt(Hz)\n";
 
-/* The noise's (second-order) model on a standard linear solid (thermal_arms' sample): its map's column for the arm's state, against cycles integrated from the
- * state moved by 10 fm either way. The state (chi units, contact_sls.c) is about 7 pm
+/* The noise's (second-order) model on a standard linear solid (thermal_arms' sample):
+ * its map's column for the arm's state, against cycles integrated from the state moved
+ * by 10 fm either way. The state (chi units, contact_sls.c) is about 7 pm
  * on the free flight, where the surface's depression (R chi^2)^(1/3) is clipped at 0:
  * the build's step of 1e-3 of A0 (20 pm) crossed that and took dd/dq at 0.34 of
  * its value, dd'/dq at 0.67 and the lock-in's cosine and sine at 0.39 and 0.61, which
@@ -241,7 +242,8 @@ static void thermal_silicon(void **st)
  * spectrum agree within their sampling error, its mean within 0.3 of its sd (as on
  * silicon: the linear-noise approximation's mean shift). Measured over 32 seeds: the
  * sd 0.3 +- 1.1 % high in height, 1.0 +- 1.3 % in error and 2.0 +- 1.1 % in phase
- * (5.0 +- 1.2 % before the arm's state got its own step: arm_state_jacobian). */
+ * (5.0 +- 1.2 % before the arm's state got its own step). Six seeds cannot tell that
+ * 5 % apart from sampling error: arm_state_jacobian is the test that catches it. */
 static void thermal_arms(void **st)
 {
     (void)st;
