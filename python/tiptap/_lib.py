@@ -341,7 +341,7 @@ typedef struct {
 } tt_run_scan_result;
 int tt_run_scan(const tt_scene *s, const tt_run_scan_job *job, tt_run_scan_result *r);
 int tt_run_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir,
-                              int hdf5, int *written);
+                              int hdf5, int threads, int *written);
 
 /* config/sweep.h, run/sweep.h */
 typedef struct tt_sweep tt_sweep;

@@ -127,7 +127,7 @@ static void remove_stale(const tt_scan *scan, const char *dir, int hdf5)
 int cli_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int hdf5,
                            int *written)
 {
-    int rc = tt_run_scan_write_outputs(scan, scene, dir, hdf5, written);
+    int rc = tt_run_scan_write_outputs(scan, scene, dir, hdf5, 1, written);
     if (rc == TT_OK)
         remove_stale(scan, dir, hdf5);
     return rc;
@@ -182,6 +182,7 @@ typedef struct {
     const tt_scene *scene;
     const char *dir;
     int quiet, hdf5, lock, reported, written;
+    int threads; /* -j: the scope's two files side by side unless 1 */
     tt_scan_params params; /* the plain values the summary reads */
     int have_params;
     double t0;
@@ -246,7 +247,7 @@ static int scan_finished(void *user, tt_scan *scan, int status)
     if (tt_scan_lines_done(scan) == 0 || status)
         return TT_OK;
     remove_stale(scan, x->dir, x->hdf5);
-    return cli_scope_write(scan, x->scope, x->dir, &x->written);
+    return cli_scope_write(scan, x->scope, x->dir, x->threads, &x->written);
 }
 
 static void scan_summary(void *user, const tt_scan *scan, const tt_run_scan_result *r)
@@ -382,7 +383,7 @@ int cmd_scan(int argc, char **argv)
     tt_scene *scene = cli_args_scene(&spec, &args, argc, argv, &code);
     if (!scene)
         return code;
-    scan_cli x = {.scene = scene, .dir = dir, .quiet = quiet, .hdf5 = hdf5, .lock = -1};
+    scan_cli x = {.scene = scene, .dir = dir, .quiet = quiet, .hdf5 = hdf5, .lock = -1, .threads = threads};
     tt_run_scan_result r;
     int rc = tt_scan_scope_alloc(&x.scope);
     /* Every key, every material and the surface are checked, the force laws built and

@@ -38,8 +38,10 @@ int cmd_live(int argc, char **argv);
 /* A line's full-rate record of scan into dir (cli_scope.c): scope.csv (every quantity,
  * SI) and scope.png (z and the true surface, error, amplitude against the setpoint,
  * phase against time, and a zoom on the ring or the largest error); nothing when the
- * record holds no line. *written counts the files. */
-int cli_scope_write(const tt_scan *scan, const tt_scan_scope *sc, const char *dir, int *written);
+ * record holds no line. The two are written side by side unless threads is 1; *written
+ * counts the files. */
+int cli_scope_write(const tt_scan *scan, const tt_scan_scope *sc, const char *dir, int threads,
+                    int *written);
 /* The warning, when the record shows the loop oscillating (tt_run_scan_warn_oscillation),
  * and a note on stderr naming command cmd with the gain the loop's model suggests. */
 void cli_scope_warn(const char *cmd, const tt_scan *scan, const tt_scan_scope *sc);

@@ -2,6 +2,7 @@
  * scan.gwy, profile.csv and scan.h5 (see include/tiptap/run/run.h). */
 #include "tiptap/run/run.h"
 
+#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -115,82 +116,160 @@ static int write_hdf5(const tt_scan *scan, const tt_scene *scene, const char *pa
     return rc;
 }
 
-int tt_run_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int hdf5,
-                              int *written)
-{
-    char path[4096], title[TT_CH_COUNT][2][128], gwy_title[TT_CH_COUNT][2][128];
-    long xres = tt_scan_xres(scan), yres = tt_scan_yres(scan);
+/* The folder's files as jobs for the scan's threads: each channel's GSF and PNG (the
+ * PNGs' deflate is most of the writing, more than the lines of a small noisy scan), then
+ * scan.gwy, scan.h5 and profile.csv; every file's bytes are the same on any number. */
+typedef struct {
+    const tt_scan *scan;
+    const tt_scene *scene;
+    const char *dir;
     tt_meta meta;
-    int rc = scan_meta(&meta, scan, scene);
-    if (rc)
-        return rc;
+    int nch, hdf5;
+    int chan[2 * TT_CH_COUNT][2]; /* the channels written: (channel, retrace) */
+    char title[2 * TT_CH_COUNT][128], gwy_title[2 * TT_CH_COUNT][128];
     tt_gwy_channel gch[2 * TT_CH_COUNT];
-    size_t ng = 0;
-    for (int ch = 0; ch < TT_CH_COUNT && rc == TT_OK; ch++) {
-        for (int r = 0; r < 2 && rc == TT_OK; r++) {
-            const double *img = tt_scan_image(scan, ch, r);
-            if (!img)
-                continue;
-            const char *dirn = r ? "retrace" : "trace";
-            snprintf(title[ch][r], sizeof title[ch][r], "%s (%s)", tt_scan_channel_name(ch), dirn);
-            tt_gsf_field g = {(size_t)xres, (size_t)yres, tt_scan_size_x(scan), tt_scan_size_y(scan),
-                              0, 0, "m", tt_scan_channel_unit(ch), title[ch][r], img,
-                              (const char *const *)meta.keys, (const char *const *)meta.values, meta.n};
-            tt_gwy_title(gwy_title[ch][r], sizeof gwy_title[ch][r], tt_scan_channel_name(ch), r);
-            gch[ng++] = (tt_gwy_channel){gwy_title[ch][r], (size_t)xres, (size_t)yres, tt_scan_size_x(scan),
-                                         tt_scan_size_y(scan), 0, 0, "m", tt_scan_channel_unit(ch), img};
-            tt_run_scan_channel_file(path, sizeof path, dir, ch, r, 0);
-            if ((rc = tt_gsf_write(path, &g)))
-                break;
-            tt_image im = {(size_t)xres, (size_t)yres, tt_scan_size_x(scan), tt_scan_size_y(scan),
-                           img, title[ch][r], NULL, 1, TT_CMAP_GOLD};
-            im.unit_scale = display_scale(ch, &im.unit, &im.cmap);
-            tt_run_scan_channel_file(path, sizeof path, dir, ch, r, 1);
-            rc = tt_image_write_png(path, &im);
-            *written += rc == TT_OK ? 2 : 1;
-        }
-    }
-    snprintf(path, sizeof path, "%s/scan.gwy", dir);
-    if (rc == TT_OK && ng > 0 &&
-        (rc = tt_gwy_write(path, gch, ng, (const char *const *)meta.keys,
-                           (const char *const *)meta.values, meta.n)) == TT_OK)
-        (*written)++;
-    snprintf(path, sizeof path, "%s/scan.h5", dir);
-    if (rc == TT_OK && hdf5 && (rc = write_hdf5(scan, scene, path, &meta)) == TT_OK)
-        (*written)++;
-    tt_meta_free(&meta);
+} folder;
+
+/* Job j < nch: channel chan[j]'s GSF and PNG; *n counts the files written. */
+static int write_channel(const folder *F, int j, int *n)
+{
+    const tt_scan *scan = F->scan;
+    const int ch = F->chan[j][0], r = F->chan[j][1];
+    const double *img = tt_scan_image(scan, ch, r);
+    const long xres = tt_scan_xres(scan), yres = tt_scan_yres(scan);
+    char path[4096];
+    tt_gsf_field g = {(size_t)xres, (size_t)yres, tt_scan_size_x(scan), tt_scan_size_y(scan),
+                      0, 0, "m", tt_scan_channel_unit(ch), F->title[j], img,
+                      (const char *const *)F->meta.keys, (const char *const *)F->meta.values, F->meta.n};
+    tt_run_scan_channel_file(path, sizeof path, F->dir, ch, r, 0);
+    int rc = tt_gsf_write(path, &g);
     if (rc)
         return rc;
-    /* the line profile along the fast axis */
-    snprintf(path, sizeof path, "%s/profile.csv", dir);
+    tt_image im = {(size_t)xres, (size_t)yres, tt_scan_size_x(scan), tt_scan_size_y(scan),
+                   img, F->title[j], NULL, 1, TT_CMAP_GOLD};
+    im.unit_scale = display_scale(ch, &im.unit, &im.cmap);
+    tt_run_scan_channel_file(path, sizeof path, F->dir, ch, r, 1);
+    rc = tt_image_write_png(path, &im);
+    *n += rc == TT_OK ? 2 : 1;
+    return rc;
+}
+
+/* The line profile along the fast axis: a row, or a column when it is y. */
+static int write_profile(const folder *F, int *n)
+{
+    const tt_scan *scan = F->scan;
+    const long xres = tt_scan_xres(scan), yres = tt_scan_yres(scan);
+    char path[4096];
+    snprintf(path, sizeof path, "%s/profile.csv", F->dir);
     tt_outfile *of;
-    if ((rc = tt_outfile_open(&of, path)))
+    int rc = tt_outfile_open(&of, path);
+    if (rc)
         return rc;
     FILE *f = tt_outfile_stream(of);
     long line = tt_scan_profile_line(scan);
-    /* the profile runs along the fast axis: a row, or a column when it is y */
     int fy = tt_scan_fast_y(scan);
-    long n = fy ? yres : xres;
+    long np = fy ? yres : xres;
     double size = fy ? tt_scan_size_y(scan) : tt_scan_size_x(scan);
     fprintf(f, "position_nm");
-    for (int ch = 0; ch < TT_CH_COUNT; ch++)
-        for (int r = 0; r < 2; r++)
-            if (tt_scan_image(scan, ch, r))
-                fprintf(f, ",%s_%s%s%s", tt_scan_channel_name(ch), r ? "retrace" : "trace",
-                        *tt_scan_channel_unit(ch) ? "_" : "", tt_scan_channel_unit(ch));
+    for (int j = 0; j < F->nch; j++) {
+        const int ch = F->chan[j][0], r = F->chan[j][1];
+        fprintf(f, ",%s_%s%s%s", tt_scan_channel_name(ch), r ? "retrace" : "trace",
+                *tt_scan_channel_unit(ch) ? "_" : "", tt_scan_channel_unit(ch));
+    }
     fputc('\n', f);
-    for (long px = 0; px < n; px++) {
-        fprintf(f, "%.9g", (px + 0.5) * size / (double)n * 1e9);
-        for (int ch = 0; ch < TT_CH_COUNT; ch++)
-            for (int r = 0; r < 2; r++) {
-                const double *img = tt_scan_image(scan, ch, r);
-                if (img)
-                    fprintf(f, ",%.9g", img[fy ? px * xres + line : line * xres + px]);
-            }
+    for (long px = 0; px < np; px++) {
+        fprintf(f, "%.9g", (px + 0.5) * size / (double)np * 1e9);
+        for (int j = 0; j < F->nch; j++) {
+            const double *img = tt_scan_image(scan, F->chan[j][0], F->chan[j][1]);
+            fprintf(f, ",%.9g", img[fy ? px * xres + line : line * xres + px]);
+        }
         fputc('\n', f);
     }
     rc = tt_outfile_close(of, 1);
-    *written += rc == TT_OK;
+    *n += rc == TT_OK;
+    return rc;
+}
+
+/* Job j: the channels' files, then scan.gwy, scan.h5 (the only HDF5 user, so one
+ * thread at a time) and profile.csv. */
+static int write_job(const folder *F, int j, int *n)
+{
+    char path[4096];
+    int rc = TT_OK;
+    if (j < F->nch)
+        return write_channel(F, j, n);
+    if (j == F->nch) {
+        snprintf(path, sizeof path, "%s/scan.gwy", F->dir);
+        if (F->nch > 0 && (rc = tt_gwy_write(path, F->gch, (size_t)F->nch, (const char *const *)F->meta.keys,
+                                             (const char *const *)F->meta.values, F->meta.n)) == TT_OK)
+            (*n)++;
+        return rc;
+    }
+    if (j == F->nch + 1) {
+        snprintf(path, sizeof path, "%s/scan.h5", F->dir);
+        if (F->hdf5 && (rc = write_hdf5(F->scan, F->scene, path, &F->meta)) == TT_OK)
+            (*n)++;
+        return rc;
+    }
+    return write_profile(F, n);
+}
+
+static void folder_channels(folder *F)
+{
+    const tt_scan *scan = F->scan;
+    for (int ch = 0; ch < TT_CH_COUNT; ch++)
+        for (int r = 0; r < 2; r++) {
+            const double *img = tt_scan_image(scan, ch, r);
+            if (!img)
+                continue;
+            const int j = F->nch++;
+            F->chan[j][0] = ch;
+            F->chan[j][1] = r;
+            snprintf(F->title[j], sizeof F->title[j], "%s (%s)", tt_scan_channel_name(ch),
+                     r ? "retrace" : "trace");
+            tt_gwy_title(F->gwy_title[j], sizeof F->gwy_title[j], tt_scan_channel_name(ch), r);
+            F->gch[j] = (tt_gwy_channel){F->gwy_title[j], (size_t)tt_scan_xres(scan),
+                                         (size_t)tt_scan_yres(scan), tt_scan_size_x(scan),
+                                         tt_scan_size_y(scan), 0, 0, "m", tt_scan_channel_unit(ch), img};
+        }
+}
+
+int tt_run_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int hdf5,
+                              int threads, int *written)
+{
+    folder *F = calloc(1, sizeof *F);
+    if (!F)
+        return tt_error_nomem("the scan's files");
+    *F = (folder){.scan = scan, .scene = scene, .dir = dir, .hdf5 = hdf5};
+    int rc = scan_meta(&F->meta, scan, scene);
+    if (rc) {
+        free(F);
+        return rc;
+    }
+    folder_channels(F);
+    const int njobs = F->nch + 3;
+    int *jrc = calloc((size_t)njobs, sizeof *jrc), *jn = calloc((size_t)njobs, sizeof *jn);
+    char(*msg)[1024] = calloc((size_t)njobs, sizeof *msg);
+    if (!jrc || !jn || !msg)
+        rc = tt_error_nomem("the scan's files");
+    if (threads <= 0)
+        threads = omp_get_max_threads();
+    /* every job runs, also after one failed: the files written are kept, and the first
+     * failure in the table's order is the one reported, on any number of threads */
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (rc == TT_OK && threads > 1)
+    for (int j = 0; j < (rc == TT_OK ? njobs : 0); j++)
+        if ((jrc[j] = write_job(F, j, &jn[j])))
+            snprintf(msg[j], sizeof msg[j], "%s", tt_error_message()); /* the thread's own */
+    for (int j = 0; j < njobs && rc == TT_OK; j++)
+        *written += jn[j];
+    for (int j = 0; j < njobs && rc == TT_OK; j++)
+        if (jrc[j])
+            rc = tt_error(jrc[j], "%s", msg[j]);
+    free(jrc);
+    free(jn);
+    free(msg);
+    tt_meta_free(&F->meta);
+    free(F);
     return rc;
 }
 
@@ -246,7 +325,8 @@ int tt_run_scan(const tt_scene *s, const tt_run_scan_job *job, tt_run_scan_resul
          * message is kept */
         char saved[1024];
         snprintf(saved, sizeof saved, "%s", tt_error_message());
-        int wrc = job->folder ? tt_run_scan_write_outputs(scan, s, job->folder, job->hdf5, &r->written)
+        int wrc = job->folder ? tt_run_scan_write_outputs(scan, s, job->folder, job->hdf5,
+                                                               job->threads, &r->written)
                               : TT_OK;
         if (!wrc && job->hdf5_file)
             wrc = tt_run_scan_write_hdf5(scan, s, job->hdf5_file);

@@ -168,9 +168,11 @@ int tt_run_scan_check_outputs(const char *dir, const tt_scan *scan, int hdf5);
 /* Every channel, trace and retrace, with the run's parameters as metadata: GSF and PNG
  * files (CHANNEL_trace.gsf, ...), one .gwy holding them all (scan.gwy), profile.csv
  * (the profile line) and with hdf5 scan.h5 (docs/hdf5.md), each under a temporary name
- * and renamed; *written counts the files. */
+ * and renamed, on up to threads threads (0: all cores; the same bytes on any number);
+ * *written counts the files. After a failure the other files are still written, and the
+ * first failing file in the order above is the one reported. */
 int tt_run_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir,
-                              int hdf5, int *written);
+                              int hdf5, int threads, int *written);
 /* The scan as one HDF5 file at path, with the same metadata and the effective scene. */
 int tt_run_scan_write_hdf5(const tt_scan *scan, const tt_scene *scene, const char *path);
 /* The path of channel ch's image file in dir: retrace r, PNG (png) or GSF. */
