@@ -139,19 +139,21 @@ double tt_envelope_plan_bytes(const tt_envelope_params *p)
 }
 
 /* The build's central differences step each input by its own length: the modes' (d, d')
- * pairs, the sample and the travel by a fraction of their scales (1e-4; second order
- * 1e-3, below at second_derivatives), where the stepper's noise (about the tolerance)
- * costs 1e-4 of the Jacobian at the default and the contact's length scales (a
- * nanometre) are far. A law's states (contact_sls.c's q, chi units) sit at picometres
- * on the free flight, where the surface's depression (R q^2)^(1/3) has its cusp at q =
- * 0: both orders step them by 1e-5 of A0 (0.2 pm), as 20 pm crossed the cusp (dd/dq at
- * 0.34 of its value) and 2 pm took dd/dq 1.2 % off (docs/dynamics.md, "Noise on the
- * envelope tier"). */
+ * pairs, the sample and the travel by 1e-4 of their scales (second order 1e-3, whose
+ * second differences take the same steps), where the stepper's noise (about the
+ * tolerance) costs 1e-4 of the Jacobian at the default and the contact's length scales
+ * (a nanometre) are far. A law's states (contact_sls.c's q, chi units) sit at
+ * picometres on the free flight, by the surface's depression (R q^2)^(1/3) and its cusp
+ * at q = 0: both orders step them by 1e-5 of A0 (0.2 pm), as 20 pm crossed the cusp
+ * (dd/dq at 0.34 of its value) and 2 pm took dd/dq 1.2 % off (docs/dynamics.md, "Noise
+ * on the envelope tier"). */
 static void build_steps(tt_envelope *e)
 {
     const double h1 = e->second ? 1e-3 : 1e-4;
-    for (int i = 0; i < e->ni; i++)
-        e->hs[i] = i < e->nmode || i >= e->nx ? h1 * (i < e->nx ? e->xs[i] : e->L) : 1e-5 * e->L;
+    for (int i = 0; i < e->nx; i++)
+        e->hs[i] = i < e->nmode ? h1 * e->xs[i] : 1e-5 * e->L;
+    for (int i = e->nx; i < e->ni; i++)
+        e->hs[i] = h1 * e->L;
 }
 
 int tt_envelope_alloc(tt_envelope **out, const tt_sim *sim, const tt_envelope_params *p)
