@@ -43,7 +43,7 @@ static void buffer_sizes(const tt_envelope *e, size_t sz[NBUF])
     const size_t nr = (size_t)e->nr, np = (size_t)e->npair, nq = nx + no, nn = (size_t)e->nn;
     const size_t nx2 = nx * nx, n = (size_t)e->n;
     const int reduced = e->m > 0, noisy = e->psd > 0 || e->sd > 0;
-    sz[B_XS] = 4 * nx;
+    sz[B_XS] = 4 * nx + ni;
     sz[B_OSCALE] = sz[B_OA] = no;
     sz[B_J] = nx * ni;
     sz[B_C] = no * ni;
@@ -78,6 +78,7 @@ static int plan_buffers(tt_envelope *e, const tt_envelope_params *p)
         e->xa = e->xs + e->nx;
         e->x1 = e->xa + e->nx;
         e->xb = e->x1 + e->nx;
+        e->hs = e->xb + e->nx;
     }
     if (e->m > 0) {
         e->R = malloc(sz[B_R] * sizeof *e->R);
@@ -137,6 +138,24 @@ double tt_envelope_plan_bytes(const tt_envelope_params *p)
                    (double)sizeof(tt_envelope_kept) + (double)sizeof *e.korder);
 }
 
+/* The build's central differences step each input by its own length: the modes' (d, d')
+ * pairs, the sample and the travel by 1e-4 of their scales (second order 1e-3, whose
+ * second differences take the same steps), where the stepper's noise (about the
+ * tolerance) costs 1e-4 of the Jacobian at the default and the contact's length scales
+ * (a nanometre) are far. A law's states (contact_sls.c's q, chi units) sit at
+ * picometres on the free flight, by the surface's depression (R q^2)^(1/3) and its cusp
+ * at q = 0: both orders step them by 1e-5 of A0 (0.2 pm), as 20 pm crossed the cusp
+ * (dd/dq at 0.34 of its value) and 2 pm took dd/dq 1.2 % off (docs/dynamics.md, "Noise
+ * on the envelope tier"). */
+static void build_steps(tt_envelope *e)
+{
+    const double h1 = e->second ? 1e-3 : 1e-4;
+    for (int i = 0; i < e->nx; i++)
+        e->hs[i] = i < e->nmode ? h1 * e->xs[i] : 1e-5 * e->L;
+    for (int i = e->nx; i < e->ni; i++)
+        e->hs[i] = h1 * e->L;
+}
+
 int tt_envelope_alloc(tt_envelope **out, const tt_sim *sim, const tt_envelope_params *p)
 {
     *out = NULL;
@@ -165,6 +184,7 @@ int tt_envelope_alloc(tt_envelope **out, const tt_sim *sim, const tt_envelope_pa
     e->nmode = nmode;
     for (int i = 0; i < e->nx; i++)
         e->xs[i] = i < nmode && i % 2 ? e->V : e->L;
+    build_steps(e);
     for (int i = 0; i < n; i++)
         e->oscale[i] = c->A0;
     /* the peak force and the greatest indentation are outputs, averaged into pixels and
@@ -402,24 +422,11 @@ tt_envelope_outcome tt_envelope_build(tt_envelope *e, tt_sim *sim, const double 
     tt_envelope_own_views(e);
     tt_envelope_anchor(e, x0, s, sdot, x1, cy, obs);
     e->contact = c0;
-    /* central differences: steps of 1e-4 of the scales, where the stepper's noise
-     * (about the tolerance) costs 1e-4 of the Jacobian at the default, and the
-     * contact's length scales (a nanometre) are far. Second order: over the second
-     * differences' steps (below), whose cycles then give both: the Jacobian's error from
-     * the third derivatives, hq^2 / 6 of them, is a ninth of the model's own third-order
-     * error at its reach (3e-3 of A0 against 1e-3) */
-    const double h1 = e->second ? 1e-3 : 1e-4;
-    double h[NIN_MAX];
-    for (int i = 0; i < nx; i++)
-        h[i] = h1 * e->xs[i];
-    /* a law's states (contact_sls.c's q, chi units) sit at picometres on the free
-     * flight, where the surface's depression (R q^2)^(1/3) is clipped at q = 0: the
-     * second order's 1e-3 of A0 (20 pm) crossed it and took the map's dd/dq at a third
-     * of its value (docs/dynamics.md, "Noise on the envelope tier"), so they step by
-     * 1e-5 of A0 there */
-    for (int i = e->nmode; e->second && i < nx; i++)
-        h[i] = 1e-2 * h1 * e->xs[i];
-    h[nx] = h[nx + 1] = h1 * e->L;
+    /* central differences over each input's step (build_steps); second order: over the
+     * second differences' steps too (below), whose cycles then give both: the Jacobian's
+     * error from the third derivatives, hq^2 / 6 of them, is a ninth of the model's own
+     * third-order error at its reach (3e-3 of A0 against 1e-3) */
+    const double *h = e->hs;
     const int nq = nx + e->no;
     /* the anchor's outputs and the perturbed ones, by input: end state, observables */
     double *P = e->work, *pp = P + nq, *pm = pp + (size_t)ni * (size_t)nq;

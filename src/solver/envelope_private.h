@@ -42,6 +42,8 @@ struct tt_envelope {
     double mass, w0, sig; /* the cantilever's effective mass, resonance and decay rate */
     double *xs;           /* per state component: its scale (L for positions, V for
                            * velocities: even and odd components) */
+    double *hs;           /* per input (the state's components, the sample, the travel):
+                           * the build's step (tt_envelope_build) */
     double *oscale;       /* per observable: its scale */
     /* the anchor: a cycle integrated from xa with the sample at sa (mid-cycle) */
     double *xa, sa, ta, *x1;
