@@ -86,7 +86,7 @@ typedef struct {
 } lesson_run;
 
 /* The loop's ring in one direction of a line's scope: the tracking error z - followed
- * (its mean removed, Hann-windowed) at the peak of its spectrum between 100 Hz and 5 kHz
+ * (its mean removed, Hann-windowed) at the peak of its spectrum between 200 Hz and 5 kHz
  * (1 Hz apart; a 0.25 s trace resolves 4 Hz, the window's peak is found finer), f in Hz,
  * and its amplitude there as a sinusoid's (m). */
 static int ring_of(const tt_scan_scope *sc, int dir, double *f, double *a)
@@ -107,7 +107,7 @@ static int ring_of(const tt_scan_scope *sc, int dir, double *f, double *a)
     }
     const double rate = tt_scan_scope_rate(sc);
     double best = -1, bf = 0;
-    for (double fr = 100; fr <= 5000; fr += 1) {
+    for (double fr = 200; fr <= 5000; fr += 1) {
         /* the sum by rotation: one complex product a point */
         const double c = cos(2 * M_PI * fr / rate), s = sin(2 * M_PI * fr / rate);
         double re = 0, im = 0, pc = 1, ps = 0;
@@ -324,7 +324,7 @@ int bench_lesson_figure(long lines, int quick, int only, const char *own_tier)
            own_tier ? "lesson's" : "default",
            own_tier ? "; cold: both run again with the noise's powers 1e9 times lower, the tier's own "
                       "model error; cold_ring: the loop's ring on both, the peak of the spectrum of "
-                      "z - followed in the scope (100 Hz to 5 kHz, Hann window) and its amplitude "
+                      "z - followed in the scope (200 Hz to 5 kHz, Hann window) and its amplitude "
                       "there as a sinusoid's, mean over the lines and directions" : "");
     if (own_tier && strcmp(tier, "envelope") != 0) {
         tt_scene_free(base);
