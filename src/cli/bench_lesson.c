@@ -11,6 +11,7 @@
 #include "commands.h"
 #include "tiptap/config/config.h"
 #include "tiptap/instrument/scan_envelope_stops.h"
+#include "tiptap/instrument/scan_scope.h"
 #include "tiptap/util/clock.h"
 #include "tiptap/util/error.h"
 
@@ -81,10 +82,56 @@ typedef struct {
     double *rt;
     double *img;
     long pixels, integrated, cycles;
+    double ring_f, ring_a; /* the loop's ring (ring_of), mean over the lines and directions */
 } lesson_run;
 
+/* The loop's ring in one direction of a line's scope: the tracking error z - followed
+ * (its mean removed, Hann-windowed) at the peak of its spectrum between 200 Hz and 5 kHz
+ * (1 Hz apart; a 0.25 s trace resolves 4 Hz, the window's peak is found finer), f in Hz,
+ * and its amplitude there as a sinusoid's (m). */
+static int ring_of(const tt_scan_scope *sc, int dir, double *f, double *a)
+{
+    const long n = tt_scan_scope_points(sc, dir);
+    const double *z = tt_scan_scope_series(sc, dir, TT_SCOPE_Z),
+                 *h = tt_scan_scope_series(sc, dir, TT_SCOPE_FOLLOWED);
+    double *e = n > 16 && z && h ? malloc((size_t)n * sizeof *e) : NULL;
+    if (!e)
+        return n > 16 && z && h ? tt_error_nomem("the bench's ring record") : TT_OK;
+    double mean = 0, wsum = 0;
+    for (long i = 0; i < n; i++)
+        mean += (z[i] - h[i]) / (double)n;
+    for (long i = 0; i < n; i++) {
+        double w = 0.5 - 0.5 * cos(2 * M_PI * (double)i / (double)(n - 1));
+        e[i] = w * (z[i] - h[i] - mean);
+        wsum += w;
+    }
+    const double rate = tt_scan_scope_rate(sc);
+    double best = -1, bf = 0;
+    for (double fr = 200; fr <= 5000; fr += 1) {
+        /* the sum by rotation: one complex product a point */
+        const double c = cos(2 * M_PI * fr / rate), s = sin(2 * M_PI * fr / rate);
+        double re = 0, im = 0, pc = 1, ps = 0;
+        for (long i = 0; i < n; i++) {
+            re += e[i] * pc;
+            im += e[i] * ps;
+            double t = pc * c - ps * s;
+            ps = ps * c + pc * s;
+            pc = t;
+        }
+        double p = re * re + im * im;
+        if (p > best) {
+            best = p;
+            bf = fr;
+        }
+    }
+    free(e);
+    *f = bf;
+    *a = 2 * sqrt(best) / wsum;
+    return TT_OK;
+}
+
 static int lesson_scan(const tt_scene *base, const lesson_setting *ls, const char *tier,
-                       const char *const *more, long n, lesson_run *out)
+                       const char *const *more, long n, int ring, lesson_run *out)
 {
     memset(out, 0, sizeof *out);
     tt_scene *c = tt_scene_copy(base);
@@ -116,14 +163,30 @@ static int lesson_scan(const tt_scene *base, const lesson_setting *ls, const cha
     if (!rc && (!out->rt || !out->img))
         rc = tt_error_nomem("the bench's lesson lines");
     const double inst = 1.0 / p.raster.line_rate; /* a line's trace and retrace */
+    tt_scan_scope *sc = NULL;
+    if (!rc && ring)
+        rc = tt_scan_scope_alloc(&sc);
+    int rings = 0;
     for (long l = 0; l < n && !rc; l++) {
         double c0 = tt_clock(TT_CLOCK_THREAD);
-        rc = tt_scan_step(s, l, NULL);
+        rc = tt_scan_step(s, l, sc);
         double cpu = tt_clock(TT_CLOCK_THREAD) - c0;
         out->rt[l] = inst / fmax(cpu, 1e-9);
+        for (int d = 0; d < 2 && sc && !rc && (l > 0 || n == 1); d++) {
+            double f = 0, a = 0;
+            rc = ring_of(sc, d, &f, &a);
+            out->ring_f += f;
+            out->ring_a += a;
+            rings++;
+        }
         for (int k = 0; k < 4 && !rc; k++) /* height, phase; trace, retrace */
             rc = tt_scan_line_values(s, k / 2 ? 2 : 0, k % 2, l,
                                      out->img + ((size_t)l * 4 + (size_t)k) * (size_t)px);
+    }
+    tt_scan_scope_free(sc);
+    if (rings) {
+        out->ring_f /= rings;
+        out->ring_a /= rings;
     }
     if (!rc) {
         out->cycles = tt_scan_cycles(s);
@@ -194,14 +257,17 @@ static void lesson_errors(const lesson_run *a, const lesson_run *b, long first, 
 
 /* With cold: the tier's own error, both tiers run again with the noise 1e9 times colder. */
 static int lesson_cold(const tt_scene *base, const lesson_setting *ls, const char *tier, long lines,
-                       long first, char h[32], char ph[32])
+                       long first, char h[32], char ph[32], char ring[48])
 {
     lesson_run fast, every = {0};
-    int rc = lesson_scan(base, ls, tier, cold, lines, &fast);
+    int rc = lesson_scan(base, ls, tier, cold, lines, 1, &fast);
     if (!rc)
-        rc = lesson_scan(base, ls, "every", cold, lines, &every);
-    if (!rc)
+        rc = lesson_scan(base, ls, "every", cold, lines, 1, &every);
+    if (!rc) {
         lesson_errors(&fast, &every, first, lines, h, ph);
+        snprintf(ring, 48, "%.0f/%.0f %.3g/%.3g", every.ring_f, fast.ring_f, every.ring_a * 1e9,
+                 fast.ring_a * 1e9);
+    }
     lesson_free(&fast);
     lesson_free(&every);
     return rc;
@@ -221,10 +287,10 @@ int bench_lesson_figure(long lines, int quick, int only, const char *own_tier)
            lines - 1, first, lines - 1);
     printf("%-26s %-10s %10s %10s %9s %13s %13s %10s", "setting", "tier", "rt/cpu_s", "integr_%",
            "every_rt", "height_nm", "phase_deg", "every_int");
-    printf(own_tier ? " %13s %13s\n" : "\n", "cold_h_nm", "cold_ph_deg");
+    printf(own_tier ? " %13s %13s %21s\n" : "\n", "cold_h_nm", "cold_ph_deg", "cold_ring_Hz_nm");
     printf("%-26s %-10s %10s %10s %9s %13s %13s %10s", "", "", "(median)", "", "(median)",
            "max/rms", "max/rms", "%");
-    printf(own_tier ? " %13s %13s\n" : "\n", "max/rms", "max/rms");
+    printf(own_tier ? " %13s %13s %21s\n" : "\n", "max/rms", "max/rms", "every/tier");
     enum { NS = sizeof settings / sizeof settings[0] };
     const size_t ns = NS;
     long why[NS][TT_ENV_STOPS] = {{0}};
@@ -233,20 +299,20 @@ int bench_lesson_figure(long lines, int quick, int only, const char *own_tier)
             continue;
         lesson_run fast, every = {0};
         tt_scan_envelope_stops_reset();
-        rc = lesson_scan(base, &settings[i], tier, NULL, lines, &fast);
+        rc = lesson_scan(base, &settings[i], tier, NULL, lines, 0, &fast);
         tt_scan_envelope_stops(why[i]);
         if (!rc)
-            rc = lesson_scan(base, &settings[i], "every", NULL, lines, &every);
-        char h[32], ph[32], ch[32] = "", cph[32] = "";
+            rc = lesson_scan(base, &settings[i], "every", NULL, lines, 0, &every);
+        char h[32], ph[32], ch[32] = "", cph[32] = "", cr[48] = "";
         if (!rc && own_tier)
-            rc = lesson_cold(base, &settings[i], tier, lines, first, ch, cph);
+            rc = lesson_cold(base, &settings[i], tier, lines, first, ch, cph, cr);
         if (!rc) {
             lesson_errors(&fast, &every, first, lines, h, ph);
             printf("%-26s %-10s %10.2f %10.1f %9.3f %13s %13s %10.1f", settings[i].label, tier,
                    median_rt(&fast, first, lines),
                    100.0 * (double)fast.integrated / (double)fast.cycles, median_rt(&every, first, lines), h,
                    ph, 100.0 * (double)every.integrated / (double)every.cycles);
-            printf(own_tier ? " %13s %13s\n" : "\n", ch, cph);
+            printf(own_tier ? " %13s %13s %21s\n" : "\n", ch, cph, cr);
             fflush(stdout);
         }
         lesson_free(&fast);
@@ -257,7 +323,9 @@ int bench_lesson_figure(long lines, int quick, int only, const char *own_tier)
            "images against the every-cycle tier's (each draws its own noise)%s\n",
            own_tier ? "lesson's" : "default",
            own_tier ? "; cold: both run again with the noise's powers 1e9 times lower, the tier's own "
-                      "model error" : "");
+                      "model error; cold_ring: the loop's ring on both, the peak of the spectrum of "
+                      "z - followed in the scope (200 Hz to 5 kHz, Hann window) and its amplitude "
+                      "there as a sinusoid's, mean over the lines and directions" : "");
     if (own_tier && strcmp(tier, "envelope") != 0) {
         tt_scene_free(base);
         return rc;

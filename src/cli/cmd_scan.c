@@ -75,9 +75,10 @@ static void help(void)
            "estimate exceeds 1e-3 of the free amplitude or 0.1 deg.\n"
            "[solver] tier: envelope (default; most cycles from the cycle map's model under\n"
            "error control), every (every cycle integrated) or averaged (a preview: the\n"
-           "averaged slow flow of amplitude and phase, no cycle integrated, about 50 times\n"
-           "real time on one core; its error estimate's companion runs on the envelope tier,\n"
-           "and pixels where an impact collapsed the oscillation are named; docs/dynamics.md).\n");
+           "averaged slow flow of amplitude and phase, cycles integrated only where it fails\n"
+           "(impacts, a ringing loop), about 50 times real time on one core where none is; its\n"
+           "error estimate's companion runs on the envelope tier, and pixels where the slow\n"
+           "flow ran with the oscillation collapsed are named; docs/dynamics.md).\n");
 }
 
 static void show_progress(void *user, long done, long total);
@@ -280,10 +281,11 @@ static void scan_summary(void *user, const tt_scan *scan, const tt_run_scan_resu
                 p->cantilever.Q, p->cantilever.fd / p->cantilever.f0);
     if (!quiet && tt_scan_averaged_tier(p))
         fprintf(stderr, "averaged_tables_s = %.3f (averaged tier: the force's harmonics of %zu "
-                        "material%s tabulated once, in run_time_s; table error %.2g of k A0; no "
-                        "cycle integrated)\n",
+                        "material%s tabulated once, in run_time_s; table error %.2g of k A0; %ld "
+                        "cycles integrated where the slow flow failed)\n",
                 tt_scan_averaged_build_seconds(scan), tt_scan_materials(scan),
-                tt_scan_materials(scan) > 1 ? "s" : "", tt_scan_averaged_table_error(scan));
+                tt_scan_materials(scan) > 1 ? "s" : "", tt_scan_averaged_table_error(scan),
+                tt_scan_cycles_integrated(scan));
     if (!quiet) {
         fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f (the whole run; the scan %.3f, "
                         "the error estimate %.3f)\ninstrument_time_s = %.3f\n"

@@ -179,8 +179,8 @@ static const tt_scene_key solver_keys[] = {
     {"tier", TT_KEY_ENUM, 0, "envelope", 0, 0, 0, "every|envelope|averaged",
      "scans: every: integrate every drive cycle; envelope: integrate some cycles and follow "
      "the others on the cycle map's local linear model, under error control; averaged: a "
-     "preview from the averaged slow flow of amplitude and phase, integrating none, errors "
-     "stated against every cycle (docs/dynamics.md)"},
+     "preview from the averaged slow flow of amplitude and phase, integrating only where it "
+     "fails (impacts, a ringing loop), errors stated against every cycle (docs/dynamics.md)"},
 };
 
 /* [surface], [lockin], [feedback]: imaging (tiptap scan). */

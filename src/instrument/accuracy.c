@@ -29,7 +29,7 @@ static const tt_accuracy_ladder ladders[] = {
      "envelope"},
     {TT_METHOD_RK4, "steps_per_cycle", rk4_steps, COUNT(rk4_steps), TT_TIER_EVERY, NULL},
     {TT_METHOD_RADAU, "tolerance", dopri5_tolerances, COUNT(dopri5_tolerances), TT_TIER_EVERY, NULL},
-    /* the averaged tier integrates nothing: one row, its model's error on the line */
+    /* the averaged tier has no knob: one row, its model's error on the line */
     {TT_METHOD_DOPRI5, "tolerance", averaged_tolerance, 1, TT_TIER_AVERAGED, "averaged"},
 };
 

@@ -1,13 +1,16 @@
-/* One scan line on the averaged preview tier (docs/dynamics.md, Tiers, Averaged): no
- * cycle is integrated; each lock-in block is one step of the averaged slow flow
- * (tiptap/solver/averaged.h) with the sample at the block's mean position, and its
- * periods reach the lock-in as components, so the lock-in, the feedback, the piezo and
- * the pixels' sums are the other tiers' code. The surface is looked up once a block
- * (at its first cycle), linear between blocks. Where the tip collapses onto the sample
- * or leaves the table, the pixel is marked (tt_scan_averaged_collapsed). Noise
+/* One scan line on the averaged preview tier (docs/dynamics.md, Tiers, Averaged): each
+ * lock-in block is one step of the averaged slow flow (tiptap/solver/averaged.h) with
+ * the sample at the block's mean position, and its periods reach the lock-in as
+ * components, so the lock-in, the feedback, the piezo and the pixels' sums are the
+ * other tiers' code. Where the slow flow fails (an impact, a ringing loop's swing) the
+ * blocks are integrated cycle by cycle and the slow flow re-enters from the integrated
+ * state once it follows it again. The surface is looked up once a block (at its first
+ * cycle), linear between blocks. Where the slow flow runs with the tip collapsed onto
+ * the sample or leaves the table, the pixel is marked (tt_scan_averaged_collapsed). Noise
  * (docs/dynamics.md, "Noise on the averaged tier"): the thermal force as an impulse on
- * each step of the slow flow, the detector's on the block's components, the z piezo's
- * on the sample's position per cycle, all drawn from (seed, line, cycle). */
+ * each step of the slow flow and at each integrated cycle's end, the detector's on the
+ * block's components, the z piezo's on the sample's position per cycle, all drawn from
+ * (seed, line, cycle). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,6 +24,11 @@ typedef struct {
     tt_averaged_state st;
     char *mark; /* [direction][pixel]: 1 collapsed, 2 outside the table */
     double *s;  /* the sample's position in each cycle of a block */
+    double *y;  /* an integrated cycle's deflection samples */
+    int on;     /* the blocks are integrated (the slow flow failed) */
+    int trusted; /* the slow flow took over from an integration it matched, and has
+                  * moved fast since */
+    long integrated;
 } avg_line;
 
 /* The averaged tier books the loss as a whole (its force's first harmonic): the
@@ -115,7 +123,7 @@ static void flow_step(const line_ctx *L, avg_line *t, const tt_averaged *tab, do
  * the block's start again; each cycle's components into the block's periods. cycle:
  * the line's count at the block's start (the noise's index). */
 #define SUB_TOL 1e-3
-static void block_flow(const line_ctx *L, avg_line *t, const tt_averaged *tab, long k0, int n,
+static double block_flow(const line_ctx *L, avg_line *t, const tt_averaged *tab, long k0, int n,
                        const double *s, double smean, long cycle, tt_averaged_out *o)
 {
     worker *W = L->W;
@@ -124,6 +132,7 @@ static void block_flow(const line_ctx *L, avg_line *t, const tt_averaged *tab, l
     const double sig = tt_averaged_thermal_density(&L->S->cantilever, L->S->noise.temperature);
     tt_averaged_state start = t->st;
     flow_step(L, t, tab, smean, n * T, sig, cycle, o);
+    const double change = o->change;
     if (o->change > SUB_TOL && n > 1) {
         t->st = start;
         tt_averaged_out c, sum;
@@ -139,11 +148,12 @@ static void block_flow(const line_ctx *L, avg_line *t, const tt_averaged *tab, l
             sum.outside |= c.outside;
         }
         *o = sum;
-        return;
+        return change;
     }
     for (int j = 0; j < n; j++)
         for (int q = 0; q < nc; q++)
             W->y[(size_t)((k0 + j) % L->P) * (size_t)nc + (size_t)q] = o->comp[q];
+    return change;
 }
 
 /* The detector's white noise on the block's components (the lock-in's mean of its
@@ -168,6 +178,133 @@ static void detector_noise(const line_ctx *L, long k0, int n, long cycle)
     }
 }
 
+/* Where the slow flow fails (docs/dynamics.md, Averaged, "Where the slow flow fails"):
+ * a block whose slow step moves X or Y by more than ENTER_TOL of A0, or that
+ * tt_averaged_step resolved as an impact (its halvings report a change of IMPACT), is
+ * integrated instead, cycle by cycle on the worker's sim from the slow state, and so
+ * are the blocks after it until the slow flow, run from an integrated block's start,
+ * lands within EXIT_TOL of A0 of where the integration did. The slow flow so checked is
+ * trusted while it keeps moving fast (the loop pulling the tip off a wall), until a
+ * block moves less than ENTER_TOL; an impact is integrated whatever the trust. */
+#define ENTER_TOL 0.03
+#define EXIT_TOL 0.005
+#define IMPACT 0.1
+
+/* The integration's tolerance: LOOSE times the scan's (1e-6 of A0 a step at the
+ * default; rk4 keeps its steps): at 1e3 times the lesson's ki 4 kHz erred 1.9 nm
+ * against 0.31 nm at 1e2, the speed alike (docs/live.md). */
+#define LOOSE 1e2
+tt_solver tt_scan_averaged_solver(const tt_solver *s)
+{
+    tt_solver o = *s;
+    o.tolerance = fmin(s->tolerance * LOOSE, 1e-3);
+    return o;
+}
+
+/* Whether the lock-in keeps the fundamental alone: an integrated cycle's components are
+ * then its own Fourier integrals (tt_cycle), and the sim takes no samples. */
+static int fundamental_only(const line_ctx *L)
+{
+    return tt_lockin_components(L->W->lockin) == 3 && !(L->S->lockin.ratio2 > 0);
+}
+
+/* The sim at the slow state, at a cycle's start (the drive's phase 0): the tip at
+ * m0 + X plus the base, its velocity w Y (the base at rest there); the law's own
+ * states as the sim last left them. */
+static void enter(const line_ctx *L, avg_line *t)
+{
+    tt_sim *sim = L->W->sim;
+    const tt_cantilever *c = &L->S->cantilever;
+    double x[TT_SIM_DIM_MAX];
+    int contact;
+    tt_sim_get_x(sim, x, &contact);
+    x[0] = (c->drive == TT_DRIVE_BASE ? c->a_d : 0) + t->st.m0 + t->st.X;
+    x[1] = c->wd * t->st.Y;
+    tt_sim_set_x(sim, x, t->st.stuck);
+    if (fundamental_only(L))
+        tt_sim_set_sampling(sim, 0, NULL);
+    t->on = 1;
+}
+
+/* An integrated cycle's components of its period (j: its place in the block): its
+ * mean and fundamental, or its samples' transform. */
+static void integrated_components(const line_ctx *L, const avg_line *t, int j, const tt_cycle *cy)
+{
+    worker *W = L->W;
+    double *c = W->y + (size_t)j * (size_t)tt_lockin_components(W->lockin);
+    if (fundamental_only(L)) {
+        c[0] = cy->mean;
+        c[1] = cy->amplitude * cos(cy->phase);
+        c[2] = cy->amplitude * sin(cy->phase);
+        return;
+    }
+    const tt_sample *smp = W->samples;
+    for (int q = 0; q < L->N; q++)
+        t->y[q] = smp[q].d - smp[q].z;
+    tt_lockin_transform(W->lockin, t->y, c);
+}
+
+/* The thermal force over the integrated cycle just ended as the slow flow takes it
+ * (flow_step's impulse, its draw of the line's cycle): X and Y moved at the cycle's
+ * end, where y = X + m0 and y' = w Y; the sim's own thermal force is off on this tier
+ * (its knots a cycle bound the steps whatever the tolerance). */
+static void thermal_kick(const line_ctx *L, long cycle)
+{
+    const tt_cantilever *c = &L->S->cantilever;
+    const double sig = tt_averaged_thermal_density(c, L->S->noise.temperature);
+    if (!(sig > 0))
+        return;
+    double g[2], x[TT_SIM_DIM_MAX];
+    int contact;
+    tt_noise_pair(L->ke, (uint64_t)cycle, g);
+    tt_sim_get_x(L->W->sim, x, &contact);
+    x[0] += sig * sqrt(c->T) * g[0];
+    x[1] += c->wd * sig * sqrt(c->T) * g[1];
+    tt_sim_set_x(L->W->sim, x, contact);
+}
+
+/* One block of n cycles integrated (the every-cycle tier's steps; the detector's noise
+ * as on the slow flow's blocks), then the slow state projected from its last cycle's
+ * fundamental and mean, and the test whether the slow flow may take over again. */
+static int integrated_block(const line_ctx *L, line_state *st, avg_line *t, int n)
+{
+    const long k0 = st->k, cycle0 = st->cycles;
+    const tt_averaged_state pre = t->st;
+    double smean = 0;
+    size_t mat = 0;
+    tt_cycle cy;
+    for (int j = 0; j < n; j++) {
+        cycle_in in;
+        int rc = tt_scan_cycle_begin(L, st, &in);
+        if (!rc)
+            rc = tt_scan_integrate(L, st, &in, &cy);
+        if (rc)
+            return rc;
+        thermal_kick(L, st->cycles);
+        smean += 0.5 * (in.sa + in.sb) / n;
+        mat = in.mat;
+        integrated_components(L, t, in.j, &cy);
+        if (j == n - 1)
+            detector_noise(L, k0, n, cycle0);
+        t->integrated++;
+        if ((rc = tt_scan_cycle_end(L, st, &in, cy.peak_force, cy.max_indentation, cy.e_ts)))
+            return rc;
+    }
+    t->st.X = cy.amplitude * cos(cy.phase);
+    t->st.Y = cy.amplitude * sin(cy.phase);
+    t->st.m0 = cy.mean;
+    t->st.stuck = 0;
+    tt_averaged_state pred = pre;
+    tt_averaged_out o;
+    tt_averaged_step(L->S->avg[mat], &pred, smean, n * L->S->cantilever.T, &o);
+    const double dev = fmax(fabs(pred.X - t->st.X), fabs(pred.Y - t->st.Y)) / L->S->cantilever.A0;
+    if (dev <= EXIT_TOL) {
+        t->on = 0;
+        t->trusted = o.change > ENTER_TOL;
+    }
+    return TT_OK;
+}
+
 /* One block of n cycles from cycle k0, the surface at its start a and end b. */
 static int block(const line_ctx *L, line_state *st, avg_line *t, const surf_pt *a,
                  const surf_pt *b, int n)
@@ -175,10 +312,25 @@ static int block(const line_ctx *L, line_state *st, avg_line *t, const surf_pt *
     const tt_scan *S = L->S;
     worker *W = L->W;
     const long k0 = st->k;
+    if (t->on)
+        return integrated_block(L, st, t, n);
     const double za0 = st->z_from + (st->z_to - st->z_from) * (double)(k0 % L->P) / L->P;
+    const line_state save = *st;
+    const tt_averaged_state start = t->st;
     const double smean = block_sample(L, st, a, b, n, t->s);
     tt_averaged_out o;
-    block_flow(L, t, S->avg[a->mat], k0, n, t->s, smean, st->cycles, &o);
+    const double change = block_flow(L, t, S->avg[a->mat], k0, n, t->s, smean, st->cycles, &o);
+    const int impact = change >= IMPACT && o.collapsed;
+    if (change <= ENTER_TOL)
+        t->trusted = 0;
+    /* the settling's engage (a free tip dropped onto the setpoint) is left to the slow
+     * flow, which settles as it did before: only the images' phases are integrated */
+    if (L->phase > 0 && ((change > ENTER_TOL && !t->trusted) || impact)) {
+        *st = save;
+        t->st = start;
+        enter(L, t);
+        return integrated_block(L, st, t, n);
+    }
     detector_noise(L, k0, n, st->cycles);
     if (L->phase > 0) {
         if (!(S->channels & (TT_CH_PEAK_FORCE | TT_CH_INDENTATION))) /* as untracked cycles */
@@ -217,15 +369,17 @@ static int averaged_phase(const line_ctx *L, line_state *st, void *tier)
 }
 
 int tt_scan_line_averaged(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
-                          double *worst, int *clamped)
+                          long *integrated, double *worst, int *clamped)
 {
-    avg_line t;
+    avg_line t = {.on = 0};
     const long px = S->raster.pixels;
     t.mark = calloc((size_t)(2 * px), 1);
     t.s = malloc((size_t)S->lockin.periods_per_block * sizeof *t.s);
-    if (!t.mark || !t.s) {
+    t.y = malloc((size_t)S->lockin.samples_per_period * sizeof *t.y);
+    if (!t.mark || !t.s || !t.y) {
         free(t.mark);
         free(t.s);
+        free(t.y);
         return tt_error_nomem("the averaged tier's marks of a line ([scan] pixels = %ld)", px);
     }
     if (S->continuous && W->engaged)
@@ -245,6 +399,8 @@ int tt_scan_line_averaged(tt_scan *S, worker *W, long line, const line_out *out,
     }
     free(t.mark);
     free(t.s);
+    free(t.y);
+    *integrated += t.integrated;
     if (rc == TT_OK && (col || outside)) {
 #pragma omp critical(tt_scan_averaged)
         {

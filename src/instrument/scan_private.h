@@ -131,10 +131,13 @@ int tt_scan_scope_begin(tt_scan_scope *sc, const tt_scan *S, long line);
 void tt_scan_scope_put(const line_ctx *L, const line_state *st, long b, double A, double ph);
 void tt_scan_scope_end(tt_scan_scope *sc, int ok);
 
-/* One line on the averaged tier (scan_averaged.c), through tt_scan_line_run; it
- * integrates no cycle. */
+/* The solver the averaged tier integrates its failed blocks with (scan_averaged.c). */
+tt_solver tt_scan_averaged_solver(const tt_solver *s);
+
+/* One line on the averaged tier (scan_averaged.c), through tt_scan_line_run;
+ * *integrated counts the cycles integrated where the slow flow failed. */
 int tt_scan_line_averaged(tt_scan *S, worker *W, long line, const line_out *out, long *cycles,
-                          double *worst, int *clamped);
+                          long *integrated, double *worst, int *clamped);
 
 /* One line on the envelope tier (scan_envelope.c), through tt_scan_line_run;
  * *integrated counts the cycles integrated, the rest followed the model. */

@@ -253,8 +253,12 @@ int tt_scan_worker_alloc(tt_scan *S, worker *W, const tt_solver *solver)
     W->tolerance = solver->tolerance;
     W->model_tol = 10 * solver->tolerance;
     int rc;
-    if ((rc = tt_sim_alloc(&W->sim, &S->cantilever, solver)) ||
-        (rc = tt_sim_set_thermal(W->sim, tt_scan_envelope_usable(S, solver) ? 0 : S->noise.temperature,
+    /* the averaged tier integrates only where its slow flow fails, at its own looser
+     * tolerance, and adds the thermal force as its slow flow takes it (scan_averaged.c) */
+    const int avg = tt_scan_averaged_usable(S, solver);
+    const tt_solver own = avg ? tt_scan_averaged_solver(solver) : *solver;
+    if ((rc = tt_sim_alloc(&W->sim, &S->cantilever, &own)) ||
+        (rc = tt_sim_set_thermal(W->sim, avg || tt_scan_envelope_usable(S, solver) ? 0 : S->noise.temperature,
                                  S->noise.points)) ||
         (rc = tt_lockin_alloc(&W->lockin, &S->lockin)))
         return rc;
@@ -291,7 +295,8 @@ int tt_scan_worker_line(tt_scan *S, worker *W, long line, const line_out *out,
         rc = tt_scan_line_envelope(S, W, line, out, &t->cycles, &t->integrated, &t->worst,
                                    &t->clamped);
     else if (W->averaged)
-        rc = tt_scan_line_averaged(S, W, line, out, &t->cycles, &t->worst, &t->clamped);
+        rc = tt_scan_line_averaged(S, W, line, out, &t->cycles, &t->integrated, &t->worst,
+                                   &t->clamped);
     else
         rc = tt_scan_line_every(S, W, line, out, &t->cycles, &t->integrated, &t->worst,
                                 &t->clamped);
