@@ -2,47 +2,21 @@
  * grating, the noise 1e9 times colder than the lesson's): where its slow flow fails
  * (the loop's swing, the tip's landings) the tier integrates the cycles and re-enters
  * the slow flow after them (scan_averaged.c), so the loop rings at every cycle's
- * frequency and amplitude; the slow flow alone rang at 364 Hz and 55 nm against every
- * cycle's 284 Hz and 79 nm. */
+ * frequency and amplitude, as the scope's oscillation judge (scan_oscillation.h, the
+ * console's ring read-out) measures them: 284.7 Hz and 39.5 nm against every cycle's
+ * 295.1 Hz and 39.4 nm; the slow flow alone rang at 439.2 Hz and 18.5 nm. */
 #include <stdlib.h>
 
 #include "tt_test.h"
 #include "tt_scan_test.h"
 #include "tt_ringing_scene.h"
+#include "tiptap/instrument/scan_oscillation.h"
 #include "tiptap/instrument/scan_scope.h"
 
 static const char *base = TT_RINGING_SCENE;
 
-/* The ring in the tracking error z - followed of one direction of the scope: its
- * frequency from the first to the last upward crossing of its mean (Hz), its amplitude
- * a sinusoid's of its rms about the mean (m). */
-static void ring(const tt_scan_scope *sc, int dir, double *f, double *a)
-{
-    const long n = tt_scan_scope_points(sc, dir);
-    const double *z = tt_scan_scope_series(sc, dir, TT_SCOPE_Z),
-                 *h = tt_scan_scope_series(sc, dir, TT_SCOPE_FOLLOWED),
-                 *t = tt_scan_scope_series(sc, dir, TT_SCOPE_TIME);
-    assert_true(n > 100 && z && h && t);
-    double mean = 0, ms = 0;
-    for (long i = 0; i < n; i++)
-        mean += (z[i] - h[i]) / (double)n;
-    for (long i = 0; i < n; i++)
-        ms += (z[i] - h[i] - mean) * (z[i] - h[i] - mean) / (double)n;
-    double first = NAN, last = NAN;
-    long up = 0;
-    for (long i = 1; i < n; i++)
-        if (z[i - 1] - h[i - 1] < mean && z[i] - h[i] >= mean) {
-            if (!up++)
-                first = t[i];
-            last = t[i];
-        }
-    assert_true(up > 4);
-    *f = (double)(up - 1) / (last - first);
-    *a = sqrt(2 * ms);
-}
-
-/* Line 1 (the second, carried on from line 0) on a tier: the ring of trace and retrace
- * (their means) and the share of its cycles integrated. */
+/* Line 1 (the second, carried on from line 0) on a tier: its ring and the share of its
+ * cycles integrated. */
 static void line_ring(const char *tier, double *f, double *a, double *integrated)
 {
     tt_scene *sc;
@@ -53,11 +27,15 @@ static void line_ring(const char *tier, double *f, double *a, double *integrated
     assert_int_equal(tt_scan_scope_alloc(&scope), TT_OK);
     assert_int_equal(tt_scan_step(s, 0, NULL), TT_OK);
     assert_int_equal(tt_scan_step(s, 1, scope), TT_OK);
-    double f0, a0, f1, a1;
-    ring(scope, 0, &f0, &a0);
-    ring(scope, 1, &f1, &a1);
-    *f = 0.5 * (f0 + f1);
-    *a = 0.5 * (a0 + a1);
+    /* the ring as the scope's oscillation judge measures it (its swings' spacing, and
+     * z's peak to peak about the surface followed over the longest ring) */
+    tt_loop loop;
+    tt_oscillation o;
+    tt_scan_loop(s, &loop);
+    assert_int_equal(tt_scan_oscillation(scope, &loop, &o), TT_OK);
+    assert_true(o.rings);
+    *f = o.frequency;
+    *a = 0.5 * o.z_peak_to_peak;
     *integrated = (double)tt_scan_cycles_integrated(s) / (double)tt_scan_cycles(s);
     tt_scan_scope_free(scope);
     tt_scan_free(s);
