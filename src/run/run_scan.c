@@ -256,8 +256,9 @@ int tt_run_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const 
         threads = omp_get_max_threads();
     /* every job runs, also after one failed: the files written are kept, and the first
      * failure in the table's order is the one reported, on any number of threads */
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (rc == TT_OK && threads > 1)
-    for (int j = 0; j < (rc == TT_OK ? njobs : 0); j++)
+    const int jobs = rc == TT_OK ? njobs : 0;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (int j = 0; j < jobs; j++)
         if ((jrc[j] = write_job(F, j, &jn[j])))
             snprintf(msg[j], sizeof msg[j], "%s", tt_error_message()); /* the thread's own */
     for (int j = 0; j < njobs && rc == TT_OK; j++)
