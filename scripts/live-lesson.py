@@ -21,7 +21,7 @@ line's error against every cycle with the noise on (each tier draws its own nois
 with the noise 1e9 times colder (the tier's own model error). The bench takes about a
 minute a setting on one core (the every-cycle tier runs at a tenth of real time).
 
-usage: scripts/live-lesson.py [--errors] [--lines N] [--setting N]... [TIPTAP]
+usage: scripts/live-lesson.py [--errors] [--lines N] [--setting N]... [--set K=V]... [TIPTAP]
   TIPTAP      the binary (default build/tiptap)
   --errors    add the bench's errors against every cycle
   --lines N   lines measured after line 0 (default 6)
