@@ -28,10 +28,12 @@ $t profiles -q --minus-surface --range -1.5:2.5 \
    -o examples/instrument/creep.png /tmp/tt-cmp.$$/creep /tmp/tt-cmp.$$/ideal-piezo
 rm -rf /tmp/tt-ideal.$$ /tmp/tt-cmp.$$
 # the ridge of README.md there: line-rate-fast without noise, independent lines, the scan
-# ending on a wall (2 um; profile from the former example) and mid-line (2.25 um)
+# ending on a wall (2 um; profile from the former example) and mid-line (2.25 um), both on
+# the envelope tier the set ran on then (common.ini now gives the averaged one)
 off="--set noise.temperature=0K --set noise.detector=0m/sqrt(Hz) --set noise.z_piezo=0m/sqrt(Hz)"
 $t scan scans/standard.ini surfaces/grating.ini examples/feedback-tuning/common.ini \
-   examples/feedback-tuning/line-rate-fast.ini $off --set scan.lines_mode=independent -q -o /tmp/tt-mid.$$
+   examples/feedback-tuning/line-rate-fast.ini $off --set scan.lines_mode=independent \
+   --set solver.tier=envelope -q -o /tmp/tt-mid.$$
 cp /tmp/tt-mid.$$/profile.csv examples/feedback-tuning/ridge/turnaround-mid-line/ && rm -rf /tmp/tt-mid.$$
 $t profiles -q --title "line-rate-fast without noise: turnaround on a wall (2 um) and mid-line (2.25 um)" \
    -o examples/feedback-tuning/ridge.png examples/feedback-tuning/ridge/turnaround-on-a-wall \

@@ -12,6 +12,9 @@ src=$2
 source "$(dirname "$0")/tt_cli.sh"
 source "$(dirname "$0")/tt_live.sh"
 # the teaching scene: the 20 nm grating, 64 pixels, 32 lines at 4 Hz (room for a band of
-# ringing lines and steady ones after it in one frame), thermal and detector noise
+# ringing lines and steady ones after it in one frame), thermal and detector noise; on the
+# envelope tier (common.ini gives the averaged one): the checks tell the scan's own lines
+# from the averaged preview's by their tier, and a change's preview needs a tier above it
 live_in_browser live_display.py "$src/scans/standard.ini" "$src/surfaces/grating.ini" \
-  "$src/examples/feedback-tuning/common.ini" --set scan.lines=32 --set scan.line_rate=4Hz
+  "$src/examples/feedback-tuning/common.ini" --set scan.lines=32 --set scan.line_rate=4Hz \
+  --set solver.tier=envelope

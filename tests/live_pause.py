@@ -89,8 +89,10 @@ ok(first["preview_ms"] is None and first["accurate_ms"] is None,
 # a line comes, judged, its row not a preview
 row = ws.recv_type("row", limit=100000)
 ok(len(row["data"]) == 2 * len(names), "a row carries %d lines (5 channels, both ways)" % len(row["data"]))
-ok(row["preview"] is False and row["tier"] == "envelope",
-   "a row of the scan's own tier: tier %s, preview %s" % (row["tier"], row["preview"]))
+# the scan's own tier is the scene's (the teaching scene's averaged, common.ini)
+ok(row["preview"] is False and row["tier"] == first["tier"],
+   "a row of the scan's own tier: tier %s (the status's %s), preview %s"
+   % (row["tier"], first["tier"], row["preview"]))
 st = wait_status(ws, lambda m: m["judged"] >= 1 and not m["running"], "a judged line")
 ok(st["judged_line"] is not None, "after a line: judged %s on line %s" % (st["judged"], st["judged_line"]))
 ok(st["error_rms"] > 0 and st["setpoint"] > 0 and st["height_range"] > 0,

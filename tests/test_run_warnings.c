@@ -1,7 +1,9 @@
 /* The run layer's tables (tiptap/run/run.h, what Python calls) raise the contact
  * validity warning as the program does, through the caller's handler: a trace whose
  * ramp softens the sample from 10 GPa to 1 MPa widens the contact past 0.5 R, and an
- * approach 10 nm into 50 MPa under a 1 nm tip; the stiff ones do not. */
+ * approach 10 nm into 50 MPa under a 1 nm tip; the stiff ones do not. A scan stepped
+ * pass after pass (tt_run_scan_begin, _step, _end: tiptap live) warns of each pass's
+ * collapsed pixels on the averaged tier as tiptap scan of that pass would. */
 #include "tt_test.h"
 #include "tiptap/config/config.h"
 #include "tiptap/run/run.h"
@@ -75,11 +77,46 @@ static void approach_warns(void **st)
     assert_int_equal(h.validity, 0);
 }
 
+/* Two passes of the same two lines, each ended (tt_run_scan_end): the averaged tier's
+ * collapse warning names the same count and first pixel after each, the pass's own (a
+ * setpoint of 10 % presses the oscillation below a quarter of the free amplitude); the
+ * count once grew by a pass's at each end, as the console's passes summed them. */
+static void collapse_per_pass(void **st)
+{
+    (void)st;
+    static const char *text =
+        "[material matrix]\nyoungs_modulus = 2 GPa\npoisson_ratio = 0.35\n"
+        "[scan]\nsize = 1 um\npixels = 16\nlines = 2\nline_rate = 8 Hz\n"
+        "channels = height, error, phase\nlines_mode = continuous\n"
+        "[feedback]\nsetpoint = 10 %\n[solver]\ntier = averaged\n";
+    tt_scene *s = tt_scene_alloc();
+    assert_int_equal(tt_scene_load_string(s, text, "scene"), TT_OK);
+    tt_run_scan_lines r;
+    assert_int_equal(tt_run_scan_begin(s, &r), TT_OK);
+    char said[2][1024];
+    for (int pass = 0; pass < 2; pass++) {
+        heard h = {0};
+        tt_warning_sink old = tt_warning_push(hear, &h);
+        for (long line = 0; line < 2; line++)
+            assert_int_equal(tt_run_scan_step(&r, s, line, NULL), TT_OK);
+        tt_run_scan_end(&r, NULL, NULL);
+        tt_warning_pop(old);
+        tt_scan_disengage(r.scan);
+        print_message("pass %d: %s\n", pass, h.message);
+        assert_non_null(strstr(h.message, "the oscillation collapsed in "));
+        snprintf(said[pass], sizeof said[pass], "%s", h.message);
+    }
+    assert_string_equal(said[1], said[0]);
+    tt_scan_free(r.scan);
+    tt_scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(trace_ramp_warns),
         cmocka_unit_test(approach_warns),
+        cmocka_unit_test(collapse_per_pass),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -374,6 +374,11 @@ long tt_scan_averaged_collapsed(const tt_scan *S, long *line, long *pixel)
         *pixel = S->collapse_px;
     return S->collapsed;
 }
+void tt_scan_averaged_marks_clear(tt_scan *S)
+{
+    S->collapsed = S->outside = 0;
+    S->collapse_line = S->collapse_px = -1;
+}
 double tt_scan_error_estimate(const tt_scan *S) { return S->worst_residual; }
 long tt_scan_contact_laws_built(const tt_scan *S, long *tables)
 {

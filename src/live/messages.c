@@ -206,7 +206,10 @@ static const char *tier_hint(tt_tier t)
     switch (t) {
     case TT_TIER_EVERY: return "integrates every cycle: the reference, far slower than real time";
     case TT_TIER_ENVELOPE: return "integrates cycles only where the loop moves";
-    case TT_TIER_AVERAGED: return "the slow flow of amplitude and phase: fastest, no noise";
+    /* noise too since docs/dynamics.md's "Noise on the averaged tier" (the teaching
+     * scene's tier: examples/feedback-tuning/common.ini) */
+    case TT_TIER_AVERAGED: return "the slow flow of amplitude and phase, noise included, cycles "
+                                  "integrated only where it fails: fastest";
     default: return "";
     }
 }

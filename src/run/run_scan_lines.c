@@ -25,8 +25,11 @@ int tt_run_scan_step(tt_run_scan_lines *r, const tt_scene *s, long line, tt_scan
 int tt_run_scan_end(tt_run_scan_lines *r, const tt_scan_scope *scope, const char *files)
 {
     int n = 0;
-    if (r->lines_run > 0)
+    if (r->lines_run > 0) {
         n += tt_run_scan_warn_result(r->scan);
+        /* the averaged tier's collapsed pixels are counted per end, as the lines are */
+        tt_scan_averaged_marks_clear(r->scan);
+    }
     if (scope)
         n += tt_run_scan_warn_oscillation(r->scan, scope, files);
     r->lines_run = 0;

@@ -269,6 +269,10 @@ double tt_scan_averaged_build_seconds(const tt_scan *s);
 double tt_scan_averaged_table_error(const tt_scan *s);
 long tt_scan_averaged_collapsed(const tt_scan *s, long *line, long *pixel);
 long tt_scan_averaged_outside(const tt_scan *s);
+/* Clears those counts and the first pixel, so that they count the lines stepped from
+ * now on: a caller that steps the scan pass after pass (tiptap live) warns of each pass
+ * as tiptap scan of it would (tt_run_scan_end). */
+void tt_scan_averaged_marks_clear(tt_scan *s);
 /* Whether a scan of these parameters runs on the envelope tier: [solver] tier asks for
  * it and the scan allows it (Q 30 or more); else every cycle. */
 int tt_scan_envelope_tier(const tt_scan_params *p);
