@@ -11,6 +11,7 @@
 #include "tiptap/instrument/scan_oscillation.h"
 #include "tiptap/run/run.h"
 #include "tiptap/util/error.h"
+#include "tiptap/util/str.h"
 
 /* The plot keeps at most this many points a direction (each bucket's extremes, so that
  * a ring stays visible): 4000 pixels wide show no more. */
@@ -42,12 +43,18 @@ static int write_csv(const tt_scan_scope *sc, const char *path)
         fprintf(f, ",%s%s%s", tt_scan_scope_name(q), *u ? "_" : "", u);
     }
     fputc('\n', f);
+    /* a row at a time, each number as "%.9g" (tt_format_g9: the same bytes, without
+     * printf's exact conversion, most of this file's time) */
+    char row[16 + 33 * TT_SCOPE_COUNT];
     for (int r = 0; r < 2; r++)
         for (long i = 0; i < tt_scan_scope_points(sc, r); i++) {
-            fprintf(f, "%s", r ? "retrace" : "trace");
-            for (int q = 0; q < nq; q++)
-                fprintf(f, ",%.9g", tt_scan_scope_series(sc, r, q)[i]);
-            fputc('\n', f);
+            size_t n = (size_t)snprintf(row, sizeof row, "%s", r ? "retrace" : "trace");
+            for (int q = 0; q < nq; q++) {
+                row[n++] = ',';
+                n += (size_t)tt_format_g9(row + n, tt_scan_scope_series(sc, r, q)[i]);
+            }
+            row[n++] = '\n';
+            fwrite(row, 1, n, f);
         }
     return tt_outfile_close(of, 1);
 }
