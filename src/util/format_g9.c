@@ -59,15 +59,26 @@ static long nine_digits(double ax, int *e)
     return d;
 }
 
+/* printf itself, its decimal point the C locale's whatever the process's (a caller
+ * embedding the library may have set one with a comma) */
+static int by_printf(char *buf, double x)
+{
+    int n = snprintf(buf, 32, "%.9g", x);
+    for (char *p = buf; *p; p++)
+        if (*p == ',')
+            *p = '.';
+    return n;
+}
+
 int tt_format_g9(char *buf, double x)
 {
     const double ax = fabs(x);
     if (!(ax >= 1e-280 && ax <= 1e280)) /* zero, subnormal, huge, inf, nan */
-        return snprintf(buf, 32, "%.9g", x);
+        return by_printf(buf, x);
     int e = (int)floor(log10(ax));
     const long d = nine_digits(ax, &e);
     if (!d)
-        return snprintf(buf, 32, "%.9g", x);
+        return by_printf(buf, x);
     char dig[10];
     int nd = 9;
     for (long v = d, i = 8; i >= 0; i--, v /= 10)
