@@ -327,6 +327,7 @@ typedef struct {
     int (*ready)(void *user, tt_scan *scan);
     int (*finished)(void *user, tt_scan *scan, int status);
     void (*summary)(void *user, const tt_scan *scan, const void *r);
+    int (*files)(void *user, const tt_scan *scan, int j, int *written);
 } tt_run_scan_job;
 typedef struct {
     tt_scan *scan;

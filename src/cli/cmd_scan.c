@@ -183,7 +183,8 @@ typedef struct {
     const tt_scene *scene;
     const char *dir;
     int quiet, hdf5, lock, reported, written;
-    int threads; /* -j: the scope's two files side by side unless 1 */
+    int scope_rc; /* the scope's check failed: its files not written */
+    cli_scope_out scope_out;
     tt_scan_params params; /* the plain values the summary reads */
     int have_params;
     double t0;
@@ -248,7 +249,18 @@ static int scan_finished(void *user, tt_scan *scan, int status)
     if (tt_scan_lines_done(scan) == 0 || status)
         return TT_OK;
     remove_stale(scan, x->dir, x->hdf5);
-    return cli_scope_write(scan, x->scope, x->dir, x->threads, &x->written);
+    return x->scope_rc;
+}
+
+/* The scope's files, as jobs beside the folder's (j -1: how many). */
+static int scan_files(void *user, const tt_scan *scan, int j, int *written)
+{
+    scan_cli *x = user;
+    int n;
+    if (j >= 0)
+        return cli_scope_file(&x->scope_out, j, written);
+    x->scope_rc = cli_scope_prepare(&x->scope_out, scan, x->scope, x->dir, &n);
+    return x->scope_rc ? 0 : n;
 }
 
 static void scan_summary(void *user, const tt_scan *scan, const tt_run_scan_result *r)
@@ -287,8 +299,9 @@ static void scan_summary(void *user, const tt_scan *scan, const tt_run_scan_resu
                 tt_scan_materials(scan) > 1 ? "s" : "", tt_scan_averaged_table_error(scan),
                 tt_scan_cycles_integrated(scan));
     if (!quiet) {
-        fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f (the whole run; the scan %.3f, "
-                        "the error estimate %.3f)\ninstrument_time_s = %.3f\n"
+        fprintf(stderr, "lines = %ld/%ld\ncycles = %ld\nrun_time_s = %.3f (the whole run; the scan and "
+                        "its files %.3f, the error estimate's companion lines %.3f past them)\n"
+                        "instrument_time_s = %.3f\n"
                         "real_time_factor = %.3f\nenergy_balance = %.3g (largest energy-balance "
                         "residual of a cycle / free drive work per cycle: a check, not the error)\n",
                 tt_scan_lines_done(scan), tt_scan_lines(scan), tt_scan_cycles(scan), wall, scan_wall,
@@ -385,7 +398,7 @@ int cmd_scan(int argc, char **argv)
     tt_scene *scene = cli_args_scene(&spec, &args, argc, argv, &code);
     if (!scene)
         return code;
-    scan_cli x = {.scene = scene, .dir = dir, .quiet = quiet, .hdf5 = hdf5, .lock = -1, .threads = threads};
+    scan_cli x = {.scene = scene, .dir = dir, .quiet = quiet, .hdf5 = hdf5, .lock = -1};
     tt_run_scan_result r;
     int rc = tt_scan_scope_alloc(&x.scope);
     /* Every key, every material and the surface are checked, the force laws built and
@@ -396,7 +409,8 @@ int cmd_scan(int argc, char **argv)
                                  .user = &x, .scope = x.scope, .scope_files = "scope.csv, scope.png",
                                  .folder = dir, .hdf5 = hdf5, .estimate = !quiet,
                                  .made = scan_made, .ready = scan_ready,
-                                 .finished = scan_finished, .summary = scan_summary};
+                                 .finished = scan_finished, .summary = scan_summary,
+                                 .files = scan_files};
     if (!rc)
         rc = tt_run_scan(scene, &job, &r);
     else

@@ -8,6 +8,7 @@
 #include "tiptap/config/scene.h"
 #include "tiptap/io/files.h"
 #include "tiptap/instrument/scan.h"
+#include "tiptap/instrument/scan_oscillation.h"
 #include "tiptap/physics/cantilever.h"
 
 int cmd_contact(int argc, char **argv);
@@ -37,11 +38,20 @@ int cmd_profiles(int argc, char **argv);
 int cmd_live(int argc, char **argv);
 /* A line's full-rate record of scan into dir (cli_scope.c): scope.csv (every quantity,
  * SI) and scope.png (z and the true surface, error, amplitude against the setpoint,
- * phase against time, and a zoom on the ring or the largest error); nothing when the
- * record holds no line. The two are written side by side unless threads is 1; *written
- * counts the files. */
-int cli_scope_write(const tt_scan *scan, const tt_scan_scope *sc, const char *dir, int threads,
-                    int *written);
+ * phase against time, and a zoom on the ring or the largest error), as jobs for the
+ * scan's threads: prepare checks the loop's oscillation (the zoom's window) and says
+ * how many files (*n: 0 when the record holds no line, else 2, scope.png the longer
+ * first); cli_scope_file writes file j on any thread, each j once, *written counting
+ * it. */
+typedef struct {
+    const tt_scan_scope *sc;
+    char csv[4200], png[4200];
+    tt_oscillation o;
+    double setpoint;
+} cli_scope_out;
+int cli_scope_prepare(cli_scope_out *so, const tt_scan *scan, const tt_scan_scope *sc, const char *dir,
+                      int *n);
+int cli_scope_file(const cli_scope_out *so, int j, int *written);
 /* The warning, when the record shows the loop oscillating (tt_run_scan_warn_oscillation),
  * and a note on stderr naming command cmd with the gain the loop's model suggests. */
 void cli_scope_warn(const char *cmd, const tt_scan *scan, const tt_scan_scope *sc);

@@ -77,8 +77,8 @@ void tt_config_scan_estimate(const tt_scan_params *p, tt_estimate *e)
      * each thread's pixel sums (about 40 doubles a pixel, both directions) and envelope
      * plans (one per state dimension: a material with relaxation arms adds one). */
     int nch = 0;
-    for (int ch = 0; ch < TT_CH_COUNT; ch++)
-        nch += (p->channels >> ch) & 1u;
+    for (int ch = 0; ch < TT_CH_COUNT; ch++) /* the estimate's kept ones too */
+        nch += ((p->channels | tt_scan_kept_channels(p)) >> ch) & 1u;
     double image = (double)r->pixels * (double)r->lines * sizeof(double);
     e->bytes = image * (nch * dirs + 1);
     e->thread_bytes = (double)r->pixels * 2 * 40 * sizeof(double) + tt_scan_envelope_plans_bytes(p);

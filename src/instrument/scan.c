@@ -167,9 +167,10 @@ int tt_scan_alloc(tt_scan **out, const tt_scan_params *p)
         return rc;
     }
     size_t n = (size_t)S->raster.pixels * (size_t)S->raster.lines;
+    const unsigned held = S->channels | tt_scan_kept_channels(p);
     for (int r = 0; r < (S->raster.retrace ? 2 : 1); r++)
         for (int c = 0; c < TT_CH_COUNT; c++) {
-            if (!(S->channels & (1u << c)))
+            if (!(held & (1u << c)))
                 continue;
             S->img[r][c] = malloc(n * sizeof(double));
             if (!S->img[r][c]) {
@@ -405,9 +406,16 @@ int tt_scan_contact_extent(const tt_scan *S, size_t i, tt_contact_extent *e)
 
 const double *tt_scan_image(const tt_scan *S, int channel, int retrace)
 {
-    if (channel < 0 || channel >= TT_CH_COUNT || retrace < 0 || retrace > 1)
-        return NULL;
+    if (channel < 0 || channel >= TT_CH_COUNT || retrace < 0 || retrace > 1 ||
+        !(S->channels & (1u << channel)))
+        return NULL; /* one kept for the estimate alone (tt_scan_kept_channels) too */
     return S->img[retrace][channel];
+}
+
+unsigned tt_scan_kept_channels(const tt_scan_params *p)
+{
+    const double pixels = (double)p->raster.pixels * (double)p->raster.lines;
+    return pixels <= TT_SCAN_KEPT_PIXELS ? (TT_CH_HEIGHT | TT_CH_ERROR | TT_CH_PHASE) & ~p->channels : 0;
 }
 
 double tt_scan_instrument_time(const tt_scan *S)

@@ -89,8 +89,8 @@ static long hardest_line(const tt_scan *S, long reach, double *step, long *at)
     for (long l = 0; l < R->lines; l++) {
         if (!S->line_done[l])
             continue;
-        for (int r = 0; r < dirs && S->img[r][0]; r++) {
-            const double *h = S->img[r][0];
+        for (int r = 0; r < dirs && tt_scan_image(S, 0, r); r++) { /* asked for */
+            const double *h = tt_scan_image(S, 0, r);
             for (long i = 1; i < R->pixels; i++) {
                 double d = fabs(h[tt_raster_index(R, l, i)] - h[tt_raster_index(R, l, i - 1)]);
                 if (d > top) {
@@ -204,43 +204,43 @@ static void compare(const tt_scan *S, const double *buf, long first, int dirs, i
         }
 }
 
-int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
+/* The companion's plan (tt_scan_estimate_plan): its stretches, and per stretch the two
+ * lines' profiles in buf (12 blocks of px each: the run's setting, then the tight
+ * one's), each job's status, cycles and thread CPU. */
+struct tt_scan_estimate {
+    tt_scan *S;
+    tt_solver tight;
+    int dirs, rerun, over, ns;
+    long budget;
+    double step, cpu; /* cpu: the plan's own (the averaged tier's tables) */
+    stretch st[MAX_STRETCHES];
+    double *buf;
+    int rc[MAX_STRETCHES][2], hit[MAX_STRETCHES][2];
+    long cyc[MAX_STRETCHES][2];
+    double job_cpu[MAX_STRETCHES][2];
+    char why[MAX_STRETCHES][2][512]; /* a worker thread's message is its own */
+};
+
+/* The budget, the stretches and whether the run's setting runs beside the tight one. */
+static void plan_stretches(tt_scan_estimate *E)
 {
-    memset(e, 0, sizeof *e);
+    tt_scan *S = E->S;
     const tt_raster *R = &S->raster;
     const long px = R->pixels;
-    const int dirs = R->retrace ? 2 : 1;
-    double *buf = calloc((size_t)(12 * px), sizeof *buf);
-    if (!buf)
-        return tt_error_nomem("the companion line's profile");
-    double c0 = tt_clock(TT_CLOCK_PROCESS);
-    tt_solver tight = tt_companion_solver(&S->solver);
-    /* the averaged tier's error is its model's, which no tolerance moves: its companion
-     * is the envelope tier at the run's tolerance (as accurate as every cycle) */
-    const int avg = tt_scan_averaged_usable(S, &S->solver);
-    if (avg) {
-        tight = S->solver;
-        tight.tier = TT_TIER_ENVELOPE;
-    }
-    int trc = avg ? tt_scan_averaged_tables(S) : TT_OK;
-    if (trc) {
-        free(buf);
-        return trc;
-    }
     /* Lines that do not carry on from one another are each a function of the line alone
      * (the noise keyed by line, the envelope model forgotten): the image's own line is
      * what the run's setting gives, and only the tight line runs. Continuous lines start
      * where the last one ended, so the run's setting runs again beside it, from the
      * same engage, on half the budget each. */
-    int whole_rerun = S->continuous || avg;
-    for (int c = 0; c < 3; c++) /* and where the image lacks a channel it compares */
-        for (int r = 0; r < dirs; r++)
-            whole_rerun |= !S->img[r][c];
+    int whole_rerun = S->continuous || tt_scan_averaged_usable(S, &S->solver);
+    for (int c = 0; c < 3; c++) /* and where the scan holds no channel it compares */
+        for (int r = 0; r < E->dirs; r++)
+            whole_rerun |= !S->img[r][c]; /* (tt_scan_kept_channels) */
     int rerun = whole_rerun;
     const long nc = tt_raster_cycles_per_direction(R, S->cantilever.T);
     const long settle = (S->settle_cycles + S->lockin.periods_per_block - 1) /
                         S->lockin.periods_per_block * S->lockin.periods_per_block;
-    long budget = companion_budget(S, &tight);
+    long budget = companion_budget(S, &E->tight);
     /* A stretch inside the line engages there, not where the image's line reached it
      * from the line's start (its noise counted from another cycle, its feedback fresh):
      * the run's setting runs the same stretch beside it, each on half the budget. The
@@ -250,63 +250,124 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
     if (rerun)
         budget /= 2;
     long reach = budget > 0 ? stretch_reach(budget, settle, nc, px) : 2 * px;
-    stretch st[MAX_STRETCHES];
-    double step = 0;
-    int ns = hardest_stretches(S, reach, nc, st, &step);
+    int ns = hardest_stretches(S, reach, nc, E->st, &E->step);
     /* each stretch its share of the budget, settling included */
     if (budget > 0 && ns > 1) {
         budget /= ns;
         reach = stretch_reach(budget, settle, nc, px);
-        ns = hardest_stretches(S, reach, nc, st, &step);
+        ns = hardest_stretches(S, reach, nc, E->st, &E->step);
     }
     if (budget > 0 && reach < 2) {
         /* a scan of a line or two: the fifth does not reach past each stretch's
          * settling, and the whole hardest line runs (e->cycles says what it cost) */
         budget = 0;
         reach = 2 * px;
-        e->over = 1; /* and says so */
+        E->over = 1; /* and says so */
         /* a whole line engages where the image's did: independent lines compare with
          * the image's own, not a rerun (half the cost: a 4-line noisy envelope scan of
          * the steps ran 156,000 companion cycles, 3.5 of 4.7 s CPU) */
         rerun = whole_rerun;
-        ns = hardest_stretches(S, reach, nc, st, &step);
+        ns = hardest_stretches(S, reach, nc, E->st, &E->step);
     }
-    double max[3] = {0}, sum[3] = {0};
-    long n = 0, ran[2] = {0, 0};
-    for (int s = 0; s < ns; s++) {
-        const long line = st[s].line, first = st[s].first;
-        /* the stretch's first cycle: the first whole cycle of its first pixel */
-        const long k0 = (first * nc + px - 1) / px;
-        int rc[2] = {TT_OK, TT_OK}, hit[2] = {0, 0};
-        long cyc[2] = {0, 0};
-        char why[2][512]; /* a worker thread's message is its own: carried back here */
-#pragma omp parallel for num_threads(2) schedule(static, 1) if (rerun)
-        for (int k = 0; k < 2; k++) {
-            if (k == 0 && !rerun) { /* the image's own line */
-                for (int c = 0; c < 3; c++)
-                    for (int r = 0; r < dirs; r++)
-                        for (long i = 0; i < px; i++)
-                            buf[(size_t)(2 * c + r) * (size_t)px + (size_t)i] =
-                                S->img[r][c][tt_raster_index(R, line, i)];
-                continue;
-            }
-            rc[k] = companion_line(S, k ? &tight : &S->solver, line, budget, k0,
-                                   buf + (size_t)(6 * k * px), &hit[k], &cyc[k]);
-            snprintf(why[k], sizeof why[k], "%s", rc[k] ? tt_error_message() : "");
+    E->ns = ns;
+    E->rerun = rerun;
+    E->budget = budget;
+}
+
+int tt_scan_estimate_plan(tt_scan *S, tt_scan_estimate **out)
+{
+    *out = NULL;
+    const double c0 = tt_clock(TT_CLOCK_PROCESS);
+    tt_scan_estimate *E = calloc(1, sizeof *E);
+    const long px = S->raster.pixels;
+    double *buf = calloc((size_t)(12 * px * MAX_STRETCHES), sizeof *buf);
+    if (!E || !buf) {
+        free(E);
+        free(buf);
+        return tt_error_nomem("the companion line's profile");
+    }
+    *E = (tt_scan_estimate){.S = S, .dirs = S->raster.retrace ? 2 : 1, .buf = buf,
+                            .tight = tt_companion_solver(&S->solver)};
+    /* the averaged tier's error is its model's, which no tolerance moves: its companion
+     * is the envelope tier at the run's tolerance (as accurate as every cycle) */
+    if (tt_scan_averaged_usable(S, &S->solver)) {
+        E->tight = S->solver;
+        E->tight.tier = TT_TIER_ENVELOPE;
+        int rc = tt_scan_averaged_tables(S);
+        if (rc) {
+            tt_scan_estimate_free(E);
+            return rc;
         }
-        for (int k = 0; k < 2; k++)
-            if (rc[k]) {
-                free(buf);
-                return tt_error(rc[k], "the companion line at tolerance %g: %s",
-                                k ? tight.tolerance : S->solver.tolerance, why[k]);
-            }
-        ran[0] += cyc[0];
-        ran[1] += cyc[1];
-        compare(S, buf, first, dirs, hit[0] || hit[1], rerun, max, sum, &n);
     }
-    free(buf);
-    if (n == 0)
+    plan_stretches(E);
+    /* without a rerun the run's setting is the image's own line */
+    for (int s = 0; s < E->ns && !E->rerun; s++)
+        for (int c = 0; c < 3; c++)
+            for (int r = 0; r < E->dirs; r++)
+                for (long i = 0; i < px; i++)
+                    buf[(size_t)(12 * s + 2 * c + r) * (size_t)px + (size_t)i] =
+                        S->img[r][c][tt_raster_index(&S->raster, E->st[s].line, i)];
+    E->cpu = tt_clock(TT_CLOCK_PROCESS) - c0;
+    *out = E;
+    return TT_OK;
+}
+
+int tt_scan_estimate_jobs(const tt_scan_estimate *E)
+{
+    return E->ns * (E->rerun ? 2 : 1);
+}
+
+/* Job j: the tight lines first (each stretch's, the costlier), then the run's setting's
+ * beside them; any thread, each j once. */
+int tt_scan_estimate_job(tt_scan_estimate *E, int j)
+{
+    const int s = j % E->ns, k = j < E->ns;
+    tt_scan *S = E->S;
+    const long px = S->raster.pixels;
+    const double c0 = tt_clock(TT_CLOCK_THREAD);
+    /* the stretch's first cycle: the first whole cycle of its first pixel */
+    const long nc = tt_raster_cycles_per_direction(&S->raster, S->cantilever.T);
+    const long k0 = (E->st[s].first * nc + px - 1) / px;
+    int rc = companion_line(S, k ? &E->tight : &S->solver, E->st[s].line, E->budget, k0,
+                            E->buf + (size_t)((12 * s + 6 * k) * px), &E->hit[s][k], &E->cyc[s][k]);
+    snprintf(E->why[s][k], sizeof E->why[s][k], "%s", rc ? tt_error_message() : "");
+    E->rc[s][k] = rc;
+    E->job_cpu[s][k] = tt_clock(TT_CLOCK_THREAD) - c0;
+    return rc;
+}
+
+void tt_scan_estimate_free(tt_scan_estimate *E)
+{
+    if (E)
+        free(E->buf);
+    free(E);
+}
+
+int tt_scan_estimate_finish(tt_scan_estimate *E, tt_scan_error *e)
+{
+    memset(e, 0, sizeof *e);
+    tt_scan *S = E->S;
+    double max[3] = {0}, sum[3] = {0}, cpu = E->cpu;
+    long n = 0, ran = 0;
+    /* the first failure in the stretches' order, the run's setting's before the tight */
+    for (int s = 0; s < E->ns; s++)
+        for (int k = 0; k < 2; k++)
+            if (E->rc[s][k]) {
+                int rc = tt_error(E->rc[s][k], "the companion line at tolerance %g: %s",
+                                  k ? E->tight.tolerance : S->solver.tolerance, E->why[s][k]);
+                tt_scan_estimate_free(E);
+                return rc;
+            }
+    for (int s = 0; s < E->ns; s++) {
+        compare(S, E->buf + (size_t)(12 * s) * (size_t)S->raster.pixels, E->st[s].first, E->dirs,
+                E->hit[s][0] || E->hit[s][1], E->rerun, max, sum, &n);
+        ran += E->cyc[s][0] + E->cyc[s][1];
+        cpu += E->job_cpu[s][0] + E->job_cpu[s][1];
+    }
+    if (n == 0) {
+        tt_scan_estimate_free(E);
         return tt_error(TT_EINVAL, "the companion line compared no pixel");
+    }
     /* the difference stands for the run's error to within a tenth; twice it covers that
      * and the other lines, which the companion did not run */
     e->height_max = 2 * max[0];
@@ -315,14 +376,29 @@ int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
     e->amplitude_rms = 2 * sqrt(sum[1] / (double)n);
     e->phase_max = 2 * max[2];
     e->phase_rms = 2 * sqrt(sum[2] / (double)n);
-    e->line = st[0].line;
-    e->tolerance = tight.tolerance;
+    e->line = E->st[0].line;
+    e->tolerance = E->tight.tolerance;
     e->pixels = n;
-    e->pixels_line = dirs * px;
-    e->step = step;
-    e->first = st[0].first;
-    e->stretches = ns;
-    e->cycles = ran[0] + ran[1];
-    e->seconds = tt_clock(TT_CLOCK_PROCESS) - c0;
+    e->pixels_line = E->dirs * S->raster.pixels;
+    e->step = E->step;
+    e->first = E->st[0].first;
+    e->stretches = E->ns;
+    e->over = E->over;
+    e->cycles = ran;
+    e->seconds = cpu;
+    tt_scan_estimate_free(E);
     return TT_OK;
+}
+
+int tt_scan_estimate_error(tt_scan *S, tt_scan_error *e)
+{
+    tt_scan_estimate *E;
+    int rc = tt_scan_estimate_plan(S, &E);
+    if (rc)
+        return rc;
+    const int n = tt_scan_estimate_jobs(E);
+#pragma omp parallel for num_threads(2) schedule(dynamic, 1) if (n > 1)
+    for (int j = 0; j < n; j++)
+        tt_scan_estimate_job(E, j);
+    return tt_scan_estimate_finish(E, e);
 }

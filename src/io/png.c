@@ -18,7 +18,9 @@ int tt_png_write_surface(cairo_surface_t *sf, const char *path)
     int rc = tt_outfile_open(&o, path);
     if (rc)
         return rc;
-    cairo_status_t st = cairo_surface_write_to_png_stream(sf, write_fn, tt_outfile_stream(o));
+    int own = tt_png_encode_rgb24(sf, tt_outfile_stream(o));
+    cairo_status_t st = own == 1 ? cairo_surface_write_to_png_stream(sf, write_fn, tt_outfile_stream(o))
+                        : own ? CAIRO_STATUS_WRITE_ERROR : CAIRO_STATUS_SUCCESS;
     if (st != CAIRO_STATUS_SUCCESS) {
         int e = tt_outfile_errno(o);
         tt_outfile_close(o, 0);

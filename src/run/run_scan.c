@@ -2,7 +2,6 @@
  * scan.gwy, profile.csv and scan.h5 (see include/tiptap/run/run.h). */
 #include "tiptap/run/run.h"
 
-#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,6 +18,8 @@
 #include "tiptap/util/clock.h"
 #include "tiptap/util/error.h"
 #include "tiptap/version.h"
+
+#include "run_scan_private.h"
 
 static double display_scale(int ch, const char **unit, tt_colormap *cmap)
 {
@@ -119,7 +120,7 @@ static int write_hdf5(const tt_scan *scan, const tt_scene *scene, const char *pa
 /* The folder's files as jobs for the scan's threads: each channel's GSF and PNG (the
  * PNGs' deflate is most of the writing, more than the lines of a small noisy scan), then
  * scan.gwy, scan.h5 and profile.csv; every file's bytes are the same on any number. */
-typedef struct {
+struct run_folder {
     const tt_scan *scan;
     const tt_scene *scene;
     const char *dir;
@@ -128,7 +129,8 @@ typedef struct {
     int chan[2 * TT_CH_COUNT][2]; /* the channels written: (channel, retrace) */
     char title[2 * TT_CH_COUNT][128], gwy_title[2 * TT_CH_COUNT][128];
     tt_gwy_channel gch[2 * TT_CH_COUNT];
-} folder;
+};
+typedef run_folder folder;
 
 /* Job j < nch: channel chan[j]'s GSF and PNG; *n counts the files written. */
 static int write_channel(const folder *F, int j, int *n)
@@ -192,7 +194,7 @@ static int write_profile(const folder *F, int *n)
 
 /* Job j: the channels' files, then scan.gwy, scan.h5 (the only HDF5 user, so one
  * thread at a time) and profile.csv. */
-static int write_job(const folder *F, int j, int *n)
+int run_folder_job(const run_folder *F, int j, int *n)
 {
     char path[4096];
     int rc = TT_OK;
@@ -234,9 +236,10 @@ static void folder_channels(folder *F)
         }
 }
 
-int tt_run_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int hdf5,
-                              int threads, int *written)
+int run_folder_open(run_folder **out, const tt_scan *scan, const tt_scene *scene, const char *dir,
+                    int hdf5)
 {
+    *out = NULL;
     folder *F = calloc(1, sizeof *F);
     if (!F)
         return tt_error_nomem("the scan's files");
@@ -247,30 +250,31 @@ int tt_run_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const 
         return rc;
     }
     folder_channels(F);
-    const int njobs = F->nch + 3;
-    int *jrc = calloc((size_t)njobs, sizeof *jrc), *jn = calloc((size_t)njobs, sizeof *jn);
-    char(*msg)[1024] = calloc((size_t)njobs, sizeof *msg);
-    if (!jrc || !jn || !msg)
-        rc = tt_error_nomem("the scan's files");
-    if (threads <= 0)
-        threads = omp_get_max_threads();
-    /* every job runs, also after one failed: the files written are kept, and the first
-     * failure in the table's order is the one reported, on any number of threads */
-    const int jobs = rc == TT_OK ? njobs : 0;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-    for (int j = 0; j < jobs; j++)
-        if ((jrc[j] = write_job(F, j, &jn[j])))
-            snprintf(msg[j], sizeof msg[j], "%s", tt_error_message()); /* the thread's own */
-    for (int j = 0; j < njobs && rc == TT_OK; j++)
-        *written += jn[j];
-    for (int j = 0; j < njobs && rc == TT_OK; j++)
-        if (jrc[j])
-            rc = tt_error(jrc[j], "%s", msg[j]);
-    free(jrc);
-    free(jn);
-    free(msg);
+    *out = F;
+    return TT_OK;
+}
+
+int run_folder_jobs(const run_folder *F)
+{
+    return F->nch + 3;
+}
+
+void run_folder_free(run_folder *F)
+{
+    if (!F)
+        return;
     tt_meta_free(&F->meta);
     free(F);
+}
+
+int tt_run_scan_write_outputs(const tt_scan *scan, const tt_scene *scene, const char *dir, int hdf5,
+                              int threads, int *written)
+{
+    run_after A = {.threads = threads};
+    int rc = run_folder_open(&A.folder, scan, scene, dir, hdf5);
+    if (rc == TT_OK)
+        rc = run_after_files(&A, written);
+    run_folder_free(A.folder);
     return rc;
 }
 
@@ -321,20 +325,33 @@ int tt_run_scan(const tt_scene *s, const tt_run_scan_job *job, tt_run_scan_resul
         return rc;
     rc = tt_scan_run(scan, job->threads, job->progress, u);
     tt_run_scan_warn_result(scan);
+    /* the estimate's companion lines run beside the files (after a scan that finished) */
+    tt_scan_estimate *est = NULL;
+    int erc = rc == TT_OK && job->estimate ? tt_scan_estimate_plan(scan, &est) : -1;
+    char erc_msg[1024]; /* a failed plan's message, kept past the files */
+    snprintf(erc_msg, sizeof erc_msg, "%s", erc > 0 ? tt_error_message() : "");
+    double files_end = tt_clock(TT_CLOCK_WALL);
     if (tt_scan_lines_done(scan) > 0) {
         /* the lines finished are written, also after a failure or a cancel, whose
          * message is kept */
         char saved[1024];
         snprintf(saved, sizeof saved, "%s", tt_error_message());
-        int wrc = job->folder ? tt_run_scan_write_outputs(scan, s, job->folder, job->hdf5,
-                                                               job->threads, &r->written)
-                              : TT_OK;
+        run_after A = {.threads = job->threads, .est = est, .scan = scan, .user = u,
+                       .file = job->files};
+        A.nfiles = job->files ? job->files(u, scan, -1, NULL) : 0;
+        int wrc = job->folder ? run_folder_open(&A.folder, scan, s, job->folder, job->hdf5) : TT_OK;
+        if (!wrc)
+            wrc = run_after_files(&A, &r->written);
+        run_folder_free(A.folder);
+        const double after = tt_clock(TT_CLOCK_WALL);
         if (!wrc && job->hdf5_file)
             wrc = tt_run_scan_write_hdf5(scan, s, job->hdf5_file);
         if (job->finished) {
             int frc = job->finished(u, scan, wrc);
             wrc = wrc ? wrc : frc;
         }
+        /* the files' end, and what the hooks took after the loop */
+        files_end = A.files_end + (tt_clock(TT_CLOCK_WALL) - after);
         if (job->scope)
             r->oscillating = tt_run_scan_warn_oscillation(scan, job->scope, job->scope_files);
         if (wrc && !rc)
@@ -345,15 +362,23 @@ int tt_run_scan(const tt_scene *s, const tt_run_scan_job *job, tt_run_scan_resul
         int frc = job->finished(u, scan, TT_OK);
         rc = rc ? rc : frc;
     }
-    r->scan_seconds = tt_clock(TT_CLOCK_WALL) - t0;
+    r->scan_seconds = files_end - t0;
     if (rc == TT_OK && job->estimate) {
-        r->estimate_status = tt_scan_estimate_error(scan, &r->est);
+        /* the companion lines ran with the files; a scan without lines runs them now */
+        if (erc == TT_OK && tt_scan_lines_done(scan) == 0) {
+            for (int j = 0; j < tt_scan_estimate_jobs(est); j++)
+                tt_scan_estimate_job(est, j);
+        }
+        r->estimate_status = erc == TT_OK ? tt_scan_estimate_finish(est, &r->est)
+                                          : tt_error(erc, "%s", erc_msg);
+        est = NULL;
         /* stopped in the companion: the images are written, the status says so */
         if (r->estimate_status == TT_EINTR)
             rc = tt_error(TT_EINTR, "interrupted in the error estimate's companion line; the "
                                     "images (%ld of %ld lines) are written",
                           tt_scan_lines_done(scan), tt_scan_lines(scan));
     }
+    tt_scan_estimate_free(est); /* not reported: the run failed */
     /* the whole run's time, the estimate's companion line included */
     r->seconds = tt_clock(TT_CLOCK_WALL) - t0;
     r->cpu_seconds = tt_clock(TT_CLOCK_PROCESS) - c0;

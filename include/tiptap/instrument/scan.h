@@ -289,6 +289,15 @@ double tt_scan_error_estimate(const tt_scan *s);
 const tt_cantilever *tt_scan_cantilever(const tt_scan *s);
 const tt_solver *tt_scan_solver(const tt_scan *s);
 
+/* The channels a scan of p holds beyond those it asks for: the estimate's height,
+ * error and phase, so that a companion covering a whole line of independent lines
+ * compares the image's own line instead of running it again (the noisy blend's 16
+ * lines: 78,000 companion cycles of 156,000), where they are small (at most
+ * TT_SCAN_KEPT_PIXELS pixels: up to 4 MB a channel and direction); tt_scan_image
+ * returns none of them. */
+#define TT_SCAN_KEPT_PIXELS 262144
+unsigned tt_scan_kept_channels(const tt_scan_params *p);
+
 /* The setting of the companion run every command's error estimate comes from: a
  * hundred times tighter tolerance (not below 1e-14), rk4 four times the steps. */
 tt_solver tt_companion_solver(const tt_solver *s);
@@ -316,7 +325,7 @@ typedef struct {
     long first;                          /* the trace's first pixel it ran from */
     double step;                         /* the line's largest height step in reach, m */
     long cycles;                         /* the companion's cycles (all its lines) */
-    double seconds;                      /* its CPU time, s (all threads) */
+    double seconds;                      /* its CPU time, s (its lines' threads) */
     long stretches;                      /* the stretches it ran (1: one, or the whole line) */
     int over;                            /* the whole line ran over TT_ESTIMATE_SHARE: a scan
                                           * too short for each stretch's settling */
@@ -327,6 +336,18 @@ typedef struct {
  * runs, over the fifth (e->over says so), compared with the image's own line where
  * lines are independent. */
 int tt_scan_estimate_error(tt_scan *s, tt_scan_error *e);
+/* tt_scan_estimate_error in three parts, for a caller that runs the companion's lines
+ * beside other work on its own threads: plan (the stretches, on the calling thread),
+ * then each of tt_scan_estimate_jobs lines by tt_scan_estimate_job (on any thread, each
+ * j once, concurrently with one another and with anything that only reads the scan),
+ * then finish (the comparison; it frees the plan, as free does unfinished). The same
+ * figures as tt_scan_estimate_error on any order and number of threads. */
+typedef struct tt_scan_estimate tt_scan_estimate;
+int tt_scan_estimate_plan(tt_scan *s, tt_scan_estimate **out);
+int tt_scan_estimate_jobs(const tt_scan_estimate *e);
+int tt_scan_estimate_job(tt_scan_estimate *e, int j);
+int tt_scan_estimate_finish(tt_scan_estimate *e, tt_scan_error *out);
+void tt_scan_estimate_free(tt_scan_estimate *e);
 /* Whether the z piezo hit its range limits during the scan. */
 int tt_scan_clamped(const tt_scan *s);
 /* [tip] contact_geometry = local: the force laws built for the geometries the tip met,

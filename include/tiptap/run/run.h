@@ -99,8 +99,9 @@ int tt_run_scan_alloc(const tt_scene *s, int threads, tt_scan **out, tt_run_scan
  * lines run (tt_scan_run: progress, cancellation), the result warnings
  * (tt_run_scan_warn_result), the finished lines written (also after a failure or a
  * cancel), the oscillation warning on the scope's line, the error estimate when asked
- * for after a scan that finished (a cancel in it: TT_EINTR, the images written) and its
- * warning (tt_run_scan_warn_error). The hooks let a caller add its own steps where the
+ * for after a scan that finished, its companion lines run on the same threads as the
+ * files (a cancel in it: TT_EINTR, the images written), and its warning
+ * (tt_run_scan_warn_error). The hooks let a caller add its own steps where the
  * program has them; each is optional (NULL). */
 typedef struct tt_run_scan_result tt_run_scan_result;
 typedef struct {
@@ -128,13 +129,22 @@ typedef struct {
      * the estimate's warning (tt_run_scan_warn_error) where it wants it among its lines;
      * without it tt_run_scan raises the warning */
     void (*summary)(void *user, const tt_scan *scan, const tt_run_scan_result *r);
+    /* the caller's own files (the program's scope.csv and scope.png), written with the
+     * folder's on the scan's threads once the lines ran, beside the estimate's companion
+     * lines: files(user, scan, -1, NULL) says how many (0: none), then files(user, scan,
+     * j, &written) writes file j of them (the longest first), on any thread, each j once,
+     * counting what it wrote; also after another file failed, whose failure is the one
+     * reported (the folder's before the caller's), before finished */
+    int (*files)(void *user, const tt_scan *scan, int j, int *written);
 } tt_run_scan_job;
 struct tt_run_scan_result {
     tt_scan *scan;            /* the caller frees it (tt_scan_free); NULL when refused */
     tt_run_scan_cost cost;
     int written;              /* files written into the folder */
     int oscillating;          /* the oscillation warning was raised */
-    double scan_seconds;      /* wall time to the outputs written, s */
+    double scan_seconds;      /* wall time to the outputs written, s (the estimate's
+                               * companion lines run beside them: seconds - scan_seconds
+                               * is what they took past the files) */
     double seconds;           /* the whole run's, the estimate included, s */
     int estimate_status;      /* TT_OK: est holds the estimate; -1: it did not run (not
                                * asked for, or the run failed); else why it failed */
