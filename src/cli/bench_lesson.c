@@ -88,7 +88,11 @@ typedef struct {
 /* The loop's ring in one direction of a line's scope: the tracking error z - followed
  * (its mean removed, Hann-windowed) at the peak of its spectrum between 200 Hz and 5 kHz
  * (1 Hz apart; a 0.25 s trace resolves 4 Hz, the window's peak is found finer), f in Hz,
- * and its amplitude there as a sinusoid's (m). */
+ * and its amplitude there as a sinusoid's (m). In part tt_scan_oscillation's question
+ * (the console's ring read-out, tiptap/instrument/scan_oscillation.h, which judges the
+ * same record by its swings' spacing and z's peak to peak over the longest ring): kept,
+ * as the spectrum's peak is another measure (over the whole line), the one the docs'
+ * tables of earlier runs quote. */
 static int ring_of(const tt_scan_scope *sc, int dir, double *f, double *a)
 {
     const long n = tt_scan_scope_points(sc, dir);

@@ -184,18 +184,16 @@ static void from_columns(const tt_averaged *a, const double *v, tt_averaged_forc
     f->shift = v[C_SHIFT];
 }
 
-static void lookup(const tt_averaged *a, double B, double x, tt_averaged_force *f)
+/* The 4 x 4 nodes' weighted sums of a cell: the columns (v) and the first three's
+ * derivatives along B (vb) and x (vx). Inline with nc a constant where the table has
+ * the fundamental alone (nc 5, the common case: the compiler then unrolls the columns),
+ * the same sums in the same order either way. */
+static inline __attribute__((always_inline)) void lookup_sums(const tt_averaged *a, int nc, int ib,
+                                                              int ix, const double *wb,
+                                                              const double *db, const double *wx,
+                                                              const double *dx, double *v,
+                                                              double *vb, double *vx)
 {
-    const int nc = a->ncol;
-    double ub = B / a->db, r = (x - a->jin) / a->span;
-    double xi = copysign(sqrt(fabs(r)), r);
-    f->outside = ub > NB - 1 || xi > 1;
-    double tb, tx;
-    int ib = cell(ub, NB, &tb), ix = cell(xi * NXH + NXH, NX, &tx);
-    double wb[4], db[4], wx[4], dx[4];
-    cr_weights(tb, wb, db);
-    cr_weights(tx, wx, dx);
-    double v[C_HARM + 2 * TT_AVG_HMAX] = {0}, vb[3] = {0}, vx[3] = {0};
     for (int p = 0; p < 4; p++) {
         int i = ib - 1 + p;
         i = i < 0 ? 0 : i > NB - 1 ? NB - 1 : i;
@@ -212,6 +210,23 @@ static void lookup(const tt_averaged *a, double B, double x, tt_averaged_force *
             }
         }
     }
+}
+
+static void lookup(const tt_averaged *a, double B, double x, tt_averaged_force *f)
+{
+    double ub = B / a->db, r = (x - a->jin) / a->span;
+    double xi = copysign(sqrt(fabs(r)), r);
+    f->outside = ub > NB - 1 || xi > 1;
+    double tb, tx;
+    int ib = cell(ub, NB, &tb), ix = cell(xi * NXH + NXH, NX, &tx);
+    double wb[4], db[4], wx[4], dx[4];
+    cr_weights(tb, wb, db);
+    cr_weights(tx, wx, dx);
+    double v[C_HARM + 2 * TT_AVG_HMAX] = {0}, vb[3] = {0}, vx[3] = {0};
+    if (a->ncol == C_HARM)
+        lookup_sums(a, C_HARM, ib, ix, wb, db, wx, dx, v, vb, vx);
+    else
+        lookup_sums(a, a->ncol, ib, ix, wb, db, wx, dx, v, vb, vx);
     /* d xi / dx, finite at jump-in: the contact's onset there is a square root in x,
      * which the node spacing (quadratic in xi) resolves */
     double dxi = NXH / (2 * a->span * fmax(fabs(xi), 0.5 / NXH));
