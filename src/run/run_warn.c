@@ -164,13 +164,16 @@ int tt_run_scan_warn_result(const tt_scan *scan)
                                           e.tip_radius, "a larger [tip] radius, a higher [feedback] "
                                           "setpoint or a smaller [cantilever] free_amplitude");
     }
-    /* the averaged tier's model is wrong where an impact collapsed the oscillation */
+    /* the averaged tier's model can be wrong where its slow flow ran on with the
+     * oscillation collapsed (the impacts it sees are integrated, these blocks are not) */
     long line, px, collapsed = tt_scan_averaged_collapsed(scan, &line, &px);
     if (collapsed > 0 && ++n)
         tt_warn(TT_WARN_VALIDITY, "the oscillation collapsed in %ld pixel%s (first: line %ld, pixel "
-                                  "%ld): an impact that stops the tapping, which the averaged tier "
-                                  "cannot show; its images are wrong there: scan them with [solver] "
-                                  "tier = envelope (docs/dynamics.md, Tiers)",
+                                  "%ld): the averaged tier followed them on its slow flow, not "
+                                  "integrated, with the amplitude under a quarter of the free "
+                                  "amplitude or the tip stuck, where its images can be wrong by "
+                                  "nanometres and tens of degrees: compare with [solver] tier = envelope "
+                                  "(docs/dynamics.md, Averaged, \"Where it is wrong\")",
                 collapsed, collapsed > 1 ? "s" : "", line, px);
     if (tt_scan_clamped(scan) && ++n)
         tt_warn(TT_WARN_SETPOINT, "the z piezo reached the end of its range ([feedback] z_range)");
