@@ -2,6 +2,7 @@
 # Installs what tiptap needs to build and test on Debian 12 (run as root).
 set -euo pipefail
 packages=(build-essential cmake pkg-config libgsl-dev libfftw3-dev libpng-dev
+          zlib1g-dev                 # the previews' PNGs deflated directly (src/io/png_encode.c)
           libcairo2-dev libcmocka-dev fonts-dejavu-core
           openmpi-bin libopenmpi-dev # MPI: CI runs 'mpirun -np 2 tiptap sweep' (tests/cli_sweep.sh)
           libhdf5-dev                # scan --hdf5, sweep --hdf5 (docs/hdf5.md)
