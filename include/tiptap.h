@@ -13,6 +13,7 @@
 
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/clock.h"
+#include "tiptap/util/phase.h"
 #include "tiptap/util/error.h"
 #include "tiptap/util/str.h"
 #include "tiptap/util/table.h"

@@ -14,6 +14,7 @@
 #include "tiptap/instrument/scan_scope.h"
 #include "tiptap/util/clock.h"
 #include "tiptap/util/error.h"
+#include "tiptap/util/phase.h"
 
 /* scans/standard.ini, surfaces/grating.ini and examples/feedback-tuning/common.ini, in
  * that order (what `tiptap scan` and `tiptap live` are given for the lesson). */
@@ -237,9 +238,8 @@ static void lesson_error(const lesson_run *a, const lesson_run *b, int phase, lo
         for (int k = 2 * phase; k < 2 * phase + 2; k++)
             for (long i = 0; i < a->pixels; i++) {
                 size_t at = ((size_t)l * 4 + (size_t)k) * (size_t)a->pixels + (size_t)i;
-                double d = fabs(a->img[at] - b->img[at]);
-                if (phase) /* a phase near +-180 deg wraps */
-                    d = fmin(fmod(d, 360), 360 - fmod(d, 360));
+                double d = phase ? tt_phase_diff_deg(a->img[at], b->img[at]) /* wraps */
+                                 : fabs(a->img[at] - b->img[at]);
                 m = fmax(m, d);
                 ss += d * d;
                 cnt++;

@@ -13,6 +13,7 @@
 #include "tiptap/io/plot.h"
 #include "tiptap/config/config.h"
 #include "tiptap/config/setup.h"
+#include "tiptap/util/phase.h"
 
 static void help(void)
 {
@@ -206,8 +207,7 @@ typedef struct {
 /* The difference of two phases, deg, in [0, 180]. */
 static double phase_diff_deg(double a, double b)
 {
-    double ph = fmod(fabs(a - b) * 180 / M_PI, 360);
-    return fmin(ph, 360 - ph);
+    return tt_phase_diff_deg((a - b) * 180 / M_PI, 0);
 }
 
 static int approach_companion(const tt_scene *scene, const tt_solver *s, double A0, double A2,

@@ -15,6 +15,7 @@
 #include "tiptap/config/read_trace.h"
 #include "tiptap/config/setup.h"
 #include "tiptap/instrument/trace.h"
+#include "tiptap/util/phase.h"
 
 static void help(void)
 {
@@ -167,8 +168,8 @@ static int companion_step(trace_est *e, const tt_trace_row *r)
         double a = r->samples[k].deflection, b = q.samples[k].deflection;
         e->deflection_rel = fmax(e->deflection_rel, 2 * fabs(a - b) / e->A0);
     }
-    double ph = fmod(fabs(r->summary.phase - q.summary.phase) * 180 / M_PI, 360);
-    e->phase_deg = fmax(e->phase_deg, 2 * fmin(ph, 360 - ph));
+    const double dphi = (r->summary.phase - q.summary.phase) * 180 / M_PI;
+    e->phase_deg = fmax(e->phase_deg, 2 * tt_phase_diff_deg(dphi, 0));
     e->amplitude_rel = fmax(e->amplitude_rel, 2 * fabs(r->summary.amplitude - q.summary.amplitude) / e->A0);
     return TT_OK;
 }

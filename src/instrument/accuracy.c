@@ -10,6 +10,7 @@
 #include "tiptap/util/cancel.h"
 #include "tiptap/util/error.h"
 #include "tiptap/util/clock.h"
+#include "tiptap/util/phase.h"
 
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -438,7 +439,7 @@ static void compare(tt_accuracy *A, tt_accuracy_row *row, const run_result *res)
             double mx = 0, ss = 0;
             for (size_t i = 0; i < A->nprofile; i++) {
                 /* phases wrap: a lag of 359.9 deg is 0.1 deg from one of 0 */
-                double d = c ? fabs(remainder(a[i] - b[i], 360.0)) : fabs(a[i] - b[i]);
+                double d = c ? tt_phase_diff_deg(a[i], b[i]) : fabs(a[i] - b[i]);
                 if (!(d <= mx))
                     mx = d; /* NaN wins: a failed pixel is no accuracy */
                 ss += d * d;

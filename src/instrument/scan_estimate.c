@@ -10,6 +10,7 @@
 
 #include "tiptap/util/clock.h"
 #include "tiptap/util/error.h"
+#include "tiptap/util/phase.h"
 
 /* One companion line on a solver setting: height, amplitude and phase of trace and
  * retrace into buf (6 blocks of pixels: [channel][direction]), stopped after budget
@@ -195,7 +196,7 @@ static void compare(const tt_scan *S, const double *buf, long first, int dirs, i
                 double a = buf[(size_t)((2 * c + r) * px + i)], b = buf[(size_t)((6 + 2 * c + r) * px + i)];
                 /* phases a turn apart are the same phase (where the oscillation nearly
                  * stops its phase may land anywhere), as the bench and accuracy compare */
-                double d = (c == 2 ? fabs(remainder(a - b, 360.0)) : fabs(a - b)) * scale[c];
+                double d = (c == 2 ? tt_phase_diff_deg(a, b) : fabs(a - b)) * scale[c];
                 if (!(d <= max[c]))
                     max[c] = d; /* a NaN (a pixel without data) stays visible */
                 sum[c] += d * d;
