@@ -10,13 +10,7 @@
 #include "tt_test.h"
 #include "tt_scan_test.h"
 
-static const char *base =
-    "[cantilever]\nspring_constant = 40 N/m\nresonance_frequency = 300 kHz\nquality_factor = 400\n"
-    "free_amplitude = 20 nm\n"
-    "[material matrix]\nyoungs_modulus = 1 GPa\npoisson_ratio = 0.4\n"
-    "[material domain]\nyoungs_modulus = 1 GPa\npoisson_ratio = 0.4\nviscosity = 300 Pa s\n"
-    "[surface]\ntype = flat\nmap = disks\nmap_materials = matrix, domain\nmap_period = 500 nm\n"
-    "map_radius = 150 nm\n"
+static const char *base = TT_TEST_BLEND
     "[scan]\nsize = 1 um\npixels = 16\nlines = 3\nline_rate = 8 Hz\nprofile_line = 1\n"
     "[feedback]\nsetpoint = 80 %\n[solver]\ntolerance = 3e-8\n"
     "[noise]\nseed = 3\ntemperature = 300 K\ndetector = 100 fm/sqrt(Hz)\n";

@@ -119,4 +119,15 @@ static inline void tt_expect_scan_refused(const char *base, const char *text, co
     tt_scene_free(sc);
 }
 
+/* The viscoelastic blend of examples/viscoelastic-blend (domains of 300 Pa s in an
+ * elastic matrix, both 1 GPa) under the standard cantilever: a scene's text up to its
+ * [scan] section. */
+#define TT_TEST_BLEND                                                                      \
+    "[cantilever]\nspring_constant = 40 N/m\nresonance_frequency = 300 kHz\n"                \
+    "quality_factor = 400\nfree_amplitude = 20 nm\n"                                        \
+    "[material matrix]\nyoungs_modulus = 1 GPa\npoisson_ratio = 0.4\n"                     \
+    "[material domain]\nyoungs_modulus = 1 GPa\npoisson_ratio = 0.4\nviscosity = 300 Pa s\n" \
+    "[surface]\ntype = flat\nmap = disks\nmap_materials = matrix, domain\n"                 \
+    "map_period = 500 nm\nmap_radius = 150 nm\n"
+
 #endif

@@ -128,6 +128,9 @@ typedef struct {
     long first;
     double step;
     long cycles;
+    long work;
+    long scan_work, budget;
+    long lines;
     double seconds;
     long stretches;
     int over;

@@ -172,7 +172,10 @@ def scan(scene, *, set=None, threads=0, progress=None, error_estimate=False, hdf
             # where it checked (the image's hardest stretches) and what it cost
             "pixels": e.pixels, "pixels_line": e.pixels_line, "first_pixel": e.first,
             "step_m": e.step, "cycles": e.cycles, "cpu_s": e.seconds, "stretches": e.stretches,
-            # the whole line ran over the share (a scan too short for a stretch's settling)
+            # its work (integrator steps and one a cycle) against the scan's: at most a
+            # fifth, or the whole hardest line ran over the share (a scan too short for a
+            # stretch's settling at the tight setting; with noise, for one whole line)
+            "work": e.work, "scan_work": e.scan_work, "lines_whole": e.lines,
             "over_share": bool(e.over), "run_cpu_s": r.cpu_seconds,
         }
     col.emit(stacklevel=2, result=result)

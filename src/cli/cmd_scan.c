@@ -69,8 +69,11 @@ static void help(void)
            "phase and amplitude: twice their difference from a companion run at a 100 times\n"
            "tighter tolerance (rk4: 4 times the steps) of the image's hardest line (the largest\n"
            "height step between pixels; the profile line on a flat image), or of stretches of\n"
-           "the trace at that step and at the first edge of each pair of materials: the\n"
-           "companion runs at most a fifth of the cycles the scan integrated\n"
+           "the trace at that step, at its line's start and at the first edge of each pair of\n"
+           "materials; with thermal or z piezo noise, of as many of the hardest lines whole\n"
+           "as fit. The companion spends at most a fifth of the scan's work (integrator\n"
+           "steps and one a cycle: estimate_work; averaged tier: a fifth of the cycles it\n"
+           "integrated), or runs the hardest line whole and says it is over\n"
            "(estimate_cycles, estimate_cpu_s); run_time_s includes it. A warning when the\n"
            "estimate exceeds 1e-3 of the free amplitude or 0.1 deg.\n"
            "[solver] tier: envelope (default; most cycles from the cycle map's model under\n"
@@ -342,13 +345,29 @@ static void scan_summary(void *user, const tt_scan *scan, const tt_run_scan_resu
                         e->pixels_line, e->first);
             else
                 fprintf(stderr, ", all its %ld pixels", e->pixels_line);
+            if (e->lines > 1)
+                fprintf(stderr, ", and the next %ld hardest line%s whole (noise that moves the "
+                                "state)", e->lines - 1, e->lines > 2 ? "s" : "");
+            if (e->lines > 0) /* what it cannot bound */
+                fprintf(stderr, "\n# with noise that moves the state the largest error differs "
+                                "from line to line with the noise: on the blend and the steps at "
+                                "300 K other lines erred up to 4 times this max (its rms held to "
+                                "1.3 times)");
             fprintf(stderr, "\nestimate_cycles = %ld", e->cycles);
-            if (integ > 0)
+            if (e->budget > 0 || e->scan_work > 0)
+                fprintf(stderr, "\nestimate_work = %ld (%.1f %% of the scan's %ld: integrator "
+                                "steps, accepted and rejected, and one a cycle)",
+                        e->work, 100.0 * (double)e->work / (double)e->scan_work, e->scan_work);
+            if (e->budget == 0 && integ > 0)
                 fprintf(stderr, " (%.1f %% of the scan's %ld cycles integrated)",
                         100.0 * (double)e->cycles / (double)integ, integ);
-            else /* the averaged tier integrates none: its companion has no bound */
+            else if (e->budget == 0) /* the averaged tier integrates none: no bound */
                 fprintf(stderr, " (the scan integrated none)");
-            if (e->over) /* never silently over the share */
+            if (e->over && e->lines) /* never silently over the share */
+                fprintf(stderr, "\n# over the share: with noise that moves the state the "
+                                "companion runs whole lines, and a fifth of this scan's work "
+                                "does not hold one: the hardest line ran");
+            else if (e->over)
                 fprintf(stderr, "\n# over the share: a fifth of this scan does not hold each "
                                 "stretch's settling (%ld cycles) and two pixels: the whole line ran",
                         p->settle_cycles);

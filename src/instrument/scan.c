@@ -224,6 +224,8 @@ static int line_account(tt_scan *S, long line, int rc, const line_tally *t)
 {
     S->cycles += t->cycles;
     S->integrated += t->integrated;
+    S->work += t->work;
+    S->settle_work += t->settle_work;
     if (t->worst > S->worst_residual)
         S->worst_residual = t->worst;
     S->clamped |= t->clamped;

@@ -23,7 +23,9 @@ int tt_scan_cycle_begin(const line_ctx *L, line_state *st, cycle_in *in)
     const int j = (int)(k % L->P);
     if ((k & 255) == 0 && tt_cancel_requested())
         return TT_EINTR;
-    if (L->W->budget > 0 && st->cycles >= L->W->budget)
+    const worker *W = L->W;
+    if (W->budget > 0 &&
+        (W->budget_cycles ? st->cycles : tt_scan_line_work(W, st->cycles)) >= W->budget)
         return TT_SCAN_BUDGET;
     in->k = k;
     in->j = j;

@@ -58,17 +58,35 @@ typedef struct {
     double s_ref;
     /* the scope the line under way records into (NULL: none) */
     tt_scan_scope *scope;
-    /* the error estimate's companion line stops after this many cycles (0: never), so
-     * that it costs a bounded share of the scan; budget_hit says it stopped there */
-    long budget;
-    int budget_hit;
+    /* the error estimate's companion line stops once its work (tt_scan_line_work; its
+     * cycles where budget_cycles is set) reaches budget (0: never), so that it costs a
+     * bounded share of the scan; budget_hit says it stopped there; work0: its sim's work
+     * where the line began */
+    long budget, work0;
+    int budget_cycles, budget_hit;
+    /* the work of the last line's settling (tt_scan_line_work after it) */
+    long settle_work;
     /* and engages and starts its trace at this cycle of the direction (0: the line's
      * start), so that its stretch lies where the image is hardest */
     long k0;
 } worker;
 
-/* A line stopped at its worker's cycle budget: its pixels so far are kept. */
+/* A line stopped at its worker's budget: its pixels so far are kept. */
 enum { TT_SCAN_BUDGET = 100 };
+
+/* What a cycle costs beside its integration, in integrator steps: the lock-in, the
+ * feedback and the pixel of every cycle, and the model's prediction of one it follows
+ * (0.4 to 2 steps' time on the companion lines of the viscoelastic blend and the
+ * steps, with noise and without). */
+#define TT_CYCLE_WORK 1
+
+/* A line's work after cycles of it on W: its sim's steps, accepted and rejected, since
+ * the line began, and TT_CYCLE_WORK a cycle. A measure of its cost that is the same on
+ * any machine and thread (the estimate's budget). */
+static inline long tt_scan_line_work(const worker *W, long cycles)
+{
+    return tt_sim_work(W->sim) - W->work0 + TT_CYCLE_WORK * cycles;
+}
 
 struct tt_scan {
     tt_cantilever cantilever;
@@ -107,6 +125,8 @@ struct tt_scan {
     long lines_done;
     long cycles;
     long integrated; /* cycles integrated (the envelope tier skips some) */
+    long work;       /* the lines' work (tt_scan_line_work), settle_work of it settling */
+    long settle_work;
     double worst_residual;
     int clamped;
     long laws_built, tables_built; /* [tip] contact_geometry = local: laws and tables
@@ -136,6 +156,7 @@ typedef struct {
 /* What one line added to the scan's totals. */
 typedef struct {
     long cycles, integrated;
+    long work, settle_work; /* tt_scan_line_work: the line's, and its settling's */
     double worst;
     int clamped;
 } line_tally;

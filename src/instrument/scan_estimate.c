@@ -13,10 +13,11 @@
 #include "tiptap/util/phase.h"
 
 /* One companion line on a solver setting: height, amplitude and phase of trace and
- * retrace into buf (6 blocks of pixels: [channel][direction]), stopped after budget
- * cycles (0: none); *hit says it stopped there, *ran counts its cycles. */
-static int companion_line(tt_scan *S, const tt_solver *solver, long line, long budget, long k0,
-                          double *buf, int *hit, long *ran)
+ * retrace into buf (6 blocks of pixels: [channel][direction]), stopped at budget (0:
+ * none) of its work (of its cycles where in_cycles is set); *hit says it stopped there,
+ * *ran and *work count its cycles and work. */
+static int companion_line(tt_scan *S, const tt_solver *solver, long line, long budget,
+                          int in_cycles, long k0, double *buf, int *hit, long *ran, long *work)
 {
     worker W;
     line_out out = {{{0}}, 1};
@@ -36,11 +37,13 @@ static int companion_line(tt_scan *S, const tt_solver *solver, long line, long b
      * fifth of the README job's) */
     W.model_tol = fmax(W.model_tol, S->solver.tolerance);
     W.budget = budget;
+    W.budget_cycles = in_cycles;
     W.k0 = k0;
     if (!rc)
         rc = tt_scan_worker_line(S, &W, line, &out, NULL, &t);
     *hit = W.budget_hit;
     *ran = t.cycles;
+    *work = t.work;
     tt_scan_worker_free(&W);
     return rc;
 }
@@ -59,28 +62,53 @@ tt_solver tt_companion_solver(const tt_solver *s)
     return t;
 }
 
-/* The companion's cycles: a fifth of the scan's cost, counted as the cycles the scan
- * integrated. On the every-cycle tier each of the companion's costs what its tighter
- * setting asks (dopri5's steps grow as the tolerance to the -1/5, 2.5 times at a
- * hundredth; rk4 runs four times the steps); on the envelope tier a cycle the scan
- * integrated cost 17 to 21 us with its model's work (the README's main job, the
- * teaching scene), a companion cycle 4 to 17 us, so one counts as one. 0 (no bound)
- * where the scan integrated none (the averaged tier). */
-static long companion_budget(const tt_scan *S, const tt_solver *tight)
+/* What the tight setting's cycles cost against the scan's own, on average: 1.4 to 2.6
+ * times after settling on the viscoelastic blend and the steps, with noise and without
+ * (its model, held ten times tighter, integrates more of the cycles, each in 2.5 times
+ * the steps), and 1.9 to 3 times, more on the bench's edge sample, in settling, where
+ * most cycles are integrated. They place the stretches; the budget itself stops each
+ * line at its work. */
+#define TIGHT_COST 2.5
+#define TIGHT_SETTLE 4
+
+/* The predicted work of a companion line, [0] at the run's setting and [1] at the
+ * tight one: settle of its settling (7 to 13 % of a line's work on the blends and the
+ * steps), cycle a cycle after it. */
+typedef struct {
+    double settle[2], cycle[2];
+} line_cost;
+
+/* The companion's budget: a fifth of the scan's work (tt_scan_line_work), and in *c
+ * what its lines will cost. The averaged tier's slow flow takes no steps: there the
+ * budget is a fifth of the cycles the scan integrated, over the tight setting's cost
+ * per cycle, each of the companion's cycles counting one (*in_cycles); 0 (no bound)
+ * where it integrated none. */
+static long companion_budget(const tt_scan *S, const tt_solver *tight, long settle, line_cost *c,
+                             int *in_cycles)
 {
-    double per = S->solver.method == TT_METHOD_RK4
-                     ? (double)tight->steps_per_cycle / (double)S->solver.steps_per_cycle
-                     : pow(S->solver.tolerance / tight->tolerance, 0.2);
-    if (!(per >= 1) || tt_scan_envelope_usable(S, &S->solver))
-        per = 1;
-    return S->integrated > 0 ? (long)(TT_ESTIMATE_SHARE * (double)S->integrated / per) : 0;
+    *in_cycles = tt_scan_averaged_usable(S, &S->solver);
+    if (*in_cycles) {
+        double per = S->solver.method == TT_METHOD_RK4
+                         ? (double)tight->steps_per_cycle / (double)S->solver.steps_per_cycle
+                         : pow(S->solver.tolerance / tight->tolerance, 0.2);
+        if (!(per >= 1) || tt_scan_envelope_usable(S, &S->solver))
+            per = 1;
+        *c = (line_cost){{(double)settle, (double)settle}, {1, 1}};
+        return S->integrated > 0 ? (long)(TT_ESTIMATE_SHARE * (double)S->integrated / per) : 0;
+    }
+    const double lines = S->lines_done > 0 ? (double)S->lines_done : 1;
+    const double after = (double)S->cycles - lines * (double)settle;
+    const double sw = (double)S->settle_work / lines;
+    const double cw = after > 0 ? (double)(S->work - S->settle_work) / after : 1;
+    *c = (line_cost){{sw, TIGHT_SETTLE * sw}, {cw, TIGHT_COST * cw}};
+    return (long)(TT_ESTIMATE_SHARE * (double)S->work);
 }
 
 /* Where the image is hardest: the largest height step between neighbouring pixels of
  * the trace (of trace and retrace when the companion covers whole lines, reach >= the
  * pixels), its line and pixel. The profile line from its start where no line has a
  * step (a flat image, or no height channel). */
-static long hardest_line(const tt_scan *S, long reach, double *step, long *at)
+static long hardest_line(const tt_scan *S, long reach, const char *taken, double *step, long *at)
 {
     const tt_raster *R = &S->raster;
     const int dirs = reach >= R->pixels && R->retrace ? 2 : 1;
@@ -88,7 +116,7 @@ static long hardest_line(const tt_scan *S, long reach, double *step, long *at)
     double top = 0;
     *at = 0;
     for (long l = 0; l < R->lines; l++) {
-        if (!S->line_done[l])
+        if (!S->line_done[l] || (taken && taken[l]))
             continue;
         for (int r = 0; r < dirs && tt_scan_image(S, 0, r); r++) { /* asked for */
             const double *h = tt_scan_image(S, 0, r);
@@ -134,18 +162,25 @@ static long first_pixel(long at, long reach, long pixels)
 }
 
 /* The stretches where the image's error is largest: the largest height step (st[0]),
- * and the first edge of each ordered pair of materials met along the trace (from the
- * soft sticky matrix onto a stiff disk the every-cycle tier at 1e-7 erred 0.19 pm where
- * the largest height step, on the disk, erred 0.04 pm: the bench's edge sample), each
- * as far as no stretch already holds it; at most MAX_STRETCHES. */
+ * the start of its line, and the first edge of each ordered pair of materials met along
+ * the trace (from the soft sticky matrix onto a stiff disk the every-cycle tier at 1e-7
+ * erred 0.19 pm where the largest height step, on the disk, erred 0.04 pm: the bench's
+ * edge sample), each as far as no stretch already holds it; at most MAX_STRETCHES. */
 static int hardest_stretches(const tt_scan *S, long reach, long nc, stretch *st, double *step)
 {
     const tt_raster *R = &S->raster;
     *step = 0;
     st[0] = (stretch){S->profile_line, 0, 0};
     if (S->lines_done > 0)
-        st[0].line = hardest_line(S, reach, step, &st[0].at);
+        st[0].line = hardest_line(S, reach, NULL, step, &st[0].at);
     int n = 1, seen[MAX_STRETCHES][2];
+    /* and the line's start, where it engaged: the settling's error is the image's
+     * largest on a line or two (the README's main job, 2 lines: 0.277 pm, against 0.03
+     * pm at its disks' edges); independent lines compare it with the image's own */
+    if (reach < R->pixels && !S->continuous && first_pixel(st[0].at, reach, R->pixels) > 0) {
+        seen[n][0] = seen[n][1] = -1;
+        st[n++] = (stretch){st[0].line, 0, 0};
+    }
     for (long l = 0; l < R->lines && !S->uniform && reach < R->pixels; l++) {
         if (!S->line_done[l])
             continue;
@@ -179,6 +214,19 @@ static long stretch_reach(long budget, long settle, long nc, long px)
     return (long)((double)(budget - settle) / (double)nc * (double)px) - 1;
 }
 
+/* The cycles past settling a stretch holds on b of work, the run's setting running
+ * beside the tight line (rr) or not. */
+static double stretch_cycles(const line_cost *c, double b, int rr)
+{
+    return (b - c->settle[1] - (rr ? c->settle[0] : 0)) / (c->cycle[1] + (rr ? c->cycle[0] : 0));
+}
+
+/* The trace's pixels it reaches, less the one it stops in. */
+static long reach_on(const line_cost *c, long b, int rr, long settle, long nc, long px)
+{
+    return stretch_reach(settle + (long)stretch_cycles(c, (double)b, rr), settle, nc, px);
+}
+
 /* The differences of a stretch's two lines (buf: the run's setting, then the tight
  * one's; [channel][direction] blocks of px) into max and sum, *n counting the pixels. */
 static void compare(const tt_scan *S, const double *buf, long first, int dirs, int partial,
@@ -205,22 +253,122 @@ static void compare(const tt_scan *S, const double *buf, long first, int dirs, i
         }
 }
 
+/* The cycles a line settles: whole lock-in blocks. */
+static long settle_cycles(const tt_scan *S)
+{
+    const long P = S->lockin.periods_per_block;
+    return (S->settle_cycles + P - 1) / P * P;
+}
+
 /* The companion's plan (tt_scan_estimate_plan): its stretches, and per stretch the two
  * lines' profiles in buf (12 blocks of px each: the run's setting, then the tight
- * one's), each job's status, cycles and thread CPU. */
+ * one's), whether the run's setting runs beside the tight one, each job's budget,
+ * status, cycles, work and thread CPU ([stretch][0: the run's setting, 1: tight]). */
 struct tt_scan_estimate {
     tt_scan *S;
     tt_solver tight;
-    int dirs, rerun, over, ns;
-    long budget;
+    int dirs, over, ns, in_cycles;
     double step, cpu; /* cpu: the plan's own (the averaged tier's tables) */
     stretch st[MAX_STRETCHES];
+    int rerun[MAX_STRETCHES];
+    long budget[MAX_STRETCHES][2];
     double *buf;
     int rc[MAX_STRETCHES][2], hit[MAX_STRETCHES][2];
-    long cyc[MAX_STRETCHES][2];
+    long cyc[MAX_STRETCHES][2], work[MAX_STRETCHES][2];
     double job_cpu[MAX_STRETCHES][2];
     char why[MAX_STRETCHES][2][512]; /* a worker thread's message is its own */
 };
+
+/* The n hardest lines, whole (n within 1 and MAX_STRETCHES). */
+static int hardest_lines(tt_scan_estimate *E, long n)
+{
+    tt_scan *S = E->S;
+    n = n < 1 ? 1 : n > MAX_STRETCHES ? MAX_STRETCHES : n;
+    if (n > S->lines_done)
+        n = S->lines_done > 0 ? S->lines_done : 1;
+    char *taken = calloc((size_t)S->raster.lines, 1);
+    E->step = 0;
+    for (int k = 0; k < n; k++) {
+        double step = 0;
+        long at;
+        E->st[k] = (stretch){S->profile_line, 0, 0};
+        if (S->lines_done > 0 && taken)
+            E->st[k].line = hardest_line(S, 2 * S->raster.pixels, taken, &step, &at);
+        if (k == 0)
+            E->step = step;
+        if (taken)
+            taken[E->st[k].line] = 1;
+    }
+    free(taken);
+    return (int)n;
+}
+
+/* Each stretch's jobs and budgets: the run's setting beside the tight line where the
+ * stretch does not start where the image's line did (rerun, or a stretch inside the
+ * line), their share of the stretch's budget b as their predicted costs (c). */
+static void stretch_budgets(tt_scan_estimate *E, int rerun, int whole_rerun, long b,
+                            const line_cost *c)
+{
+    for (int s = 0; s < E->ns; s++) {
+        E->rerun[s] = rerun && (whole_rerun || E->st[s].first > 0);
+        const double tight = b > 0 ? c->settle[1] + stretch_cycles(c, (double)b, 1) * c->cycle[1] : 0;
+        E->budget[s][1] = E->rerun[s] ? (long)tight : b;
+        E->budget[s][0] = E->rerun[s] ? (long)((double)b - tight) : 0;
+    }
+}
+
+/* Lines that do not carry on from one another are each a function of the line alone
+ * (the noise keyed by line, the envelope model forgotten): the image's own line is what
+ * the run's setting gives, and only the tight line runs. Continuous lines start where
+ * the last one ended, so the run's setting runs again beside it, from the same engage;
+ * 1: the run's setting runs whole lines again. */
+static int rerun_whole(const tt_scan_estimate *E)
+{
+    const tt_scan *S = E->S;
+    int rerun = S->continuous || tt_scan_averaged_usable(S, &S->solver);
+    for (int c = 0; c < 3; c++) /* and where the scan holds no channel it compares */
+        for (int r = 0; r < E->dirs; r++)
+            rerun |= !S->img[r][c]; /* (tt_scan_kept_channels) */
+    return rerun;
+}
+
+/* The whole hardest line, over the share (and saying so): a whole line engages where the
+ * image's did, so independent lines compare with the image's own, not a rerun (half the
+ * cost: a 4-line noisy envelope scan of the steps ran 156,000 companion cycles, 3.5 of
+ * 4.7 s CPU). */
+static void plan_whole(tt_scan_estimate *E, int whole_rerun)
+{
+    const tt_scan *S = E->S;
+    const long nc = tt_raster_cycles_per_direction(&S->raster, S->cantilever.T);
+    E->over = 1;
+    E->ns = hardest_stretches(S, 2 * S->raster.pixels, nc, E->st, &E->step);
+    stretch_budgets(E, whole_rerun, whole_rerun, 0, NULL);
+}
+
+/* With noise that moves the state, on the envelope tier, lines from their start: a
+ * stretch engaged inside the line reads low there (the blend at 300 K, 8 lines of 32
+ * pixels: 5.4e-13 m against 3.05e-12 m measured; its model's store is fresh), and the
+ * largest errors of lines alike differ up to fourfold with their noise (the 16 noisy
+ * lines of the blend: 0.47 to 2.1 pm), so the fifth runs as many of the hardest lines
+ * whole as it holds (at most MAX_STRETCHES), or the hardest over the fifth. Part of a
+ * line from its start reads low too (the blend's 8 noisy lines: the trace's first 64
+ * pixels 1.3 pm against 9.75 pm measured; the whole line 5.4 pm): the errors gather
+ * along the line. */
+static void plan_noisy(tt_scan_estimate *E, long budget, const line_cost *c, int whole_rerun)
+{
+    const tt_scan *S = E->S;
+    const long nc = tt_raster_cycles_per_direction(&S->raster, S->cantilever.T);
+    const double whole = c->settle[1] + (double)(2 * nc) * c->cycle[1] +
+                         (whole_rerun ? c->settle[0] + (double)(2 * nc) * c->cycle[0] : 0);
+    const long n = budget > 0 ? (long)((double)budget / whole) : 1;
+    if (n < 1) {
+        plan_whole(E, whole_rerun);
+        return;
+    }
+    /* unbounded: a line its budget cut reads its trace alone */
+    E->ns = hardest_lines(E, n);
+    stretch_budgets(E, whole_rerun, whole_rerun, 0, NULL);
+}
 
 /* The budget, the stretches and whether the run's setting runs beside the tight one. */
 static void plan_stretches(tt_scan_estimate *E)
@@ -228,51 +376,51 @@ static void plan_stretches(tt_scan_estimate *E)
     tt_scan *S = E->S;
     const tt_raster *R = &S->raster;
     const long px = R->pixels;
-    /* Lines that do not carry on from one another are each a function of the line alone
-     * (the noise keyed by line, the envelope model forgotten): the image's own line is
-     * what the run's setting gives, and only the tight line runs. Continuous lines start
-     * where the last one ended, so the run's setting runs again beside it, from the
-     * same engage, on half the budget each. */
-    int whole_rerun = S->continuous || tt_scan_averaged_usable(S, &S->solver);
-    for (int c = 0; c < 3; c++) /* and where the scan holds no channel it compares */
-        for (int r = 0; r < E->dirs; r++)
-            whole_rerun |= !S->img[r][c]; /* (tt_scan_kept_channels) */
+    const int whole_rerun = rerun_whole(E);
     int rerun = whole_rerun;
     const long nc = tt_raster_cycles_per_direction(R, S->cantilever.T);
-    const long settle = (S->settle_cycles + S->lockin.periods_per_block - 1) /
-                        S->lockin.periods_per_block * S->lockin.periods_per_block;
-    long budget = companion_budget(S, &E->tight);
+    const long settle = settle_cycles(S);
+    line_cost c;
+    long budget = companion_budget(S, &E->tight, settle, &c, &E->in_cycles);
+    if (!E->in_cycles && tt_scan_second_order(S) && tt_scan_envelope_usable(S, &S->solver)) {
+        plan_noisy(E, budget, &c, whole_rerun);
+        return;
+    }
     /* A stretch inside the line engages there, not where the image's line reached it
      * from the line's start (its noise counted from another cycle, its feedback fresh):
-     * the run's setting runs the same stretch beside it, each on half the budget. The
-     * trace's pixels the budget reaches, less the one it stops in: */
-    if (budget > 0 && stretch_reach(budget, settle, nc, px) < px)
+     * the run's setting runs the same stretch beside it. The trace's pixels the budget
+     * reaches, less the one it stops in: */
+    if (budget > 0 && reach_on(&c, budget, whole_rerun, settle, nc, px) < px)
         rerun = 1;
-    if (rerun)
-        budget /= 2;
-    long reach = budget > 0 ? stretch_reach(budget, settle, nc, px) : 2 * px;
+    long reach = budget > 0 ? reach_on(&c, budget, rerun, settle, nc, px) : 2 * px;
     int ns = hardest_stretches(S, reach, nc, E->st, &E->step);
     /* each stretch its share of the budget, settling included */
     if (budget > 0 && ns > 1) {
         budget /= ns;
-        reach = stretch_reach(budget, settle, nc, px);
+        reach = reach_on(&c, budget, rerun, settle, nc, px);
         ns = hardest_stretches(S, reach, nc, E->st, &E->step);
     }
     if (budget > 0 && reach < 2) {
         /* a scan of a line or two: the fifth does not reach past each stretch's
-         * settling, and the whole hardest line runs (e->cycles says what it cost) */
-        budget = 0;
-        reach = 2 * px;
-        E->over = 1; /* and says so */
-        /* a whole line engages where the image's did: independent lines compare with
-         * the image's own, not a rerun (half the cost: a 4-line noisy envelope scan of
-         * the steps ran 156,000 companion cycles, 3.5 of 4.7 s CPU) */
-        rerun = whole_rerun;
-        ns = hardest_stretches(S, reach, nc, E->st, &E->step);
+         * settling, and the whole hardest line runs (e->work says what it cost) */
+        plan_whole(E, whole_rerun);
+        return;
     }
     E->ns = ns;
-    E->rerun = rerun;
-    E->budget = budget;
+    stretch_budgets(E, rerun, whole_rerun, budget, &c);
+}
+
+/* Without a rerun the run's setting is the image's own line. */
+static void image_lines(tt_scan_estimate *E)
+{
+    const tt_scan *S = E->S;
+    const long px = S->raster.pixels;
+    for (int s = 0; s < E->ns; s++)
+        for (int c = 0; c < 3 && !E->rerun[s]; c++)
+            for (int r = 0; r < E->dirs; r++)
+                for (long i = 0; i < px; i++)
+                    E->buf[(size_t)(12 * s + 2 * c + r) * (size_t)px + (size_t)i] =
+                        S->img[r][c][tt_raster_index(&S->raster, E->st[s].line, i)];
 }
 
 int tt_scan_estimate_plan(tt_scan *S, tt_scan_estimate **out)
@@ -301,13 +449,7 @@ int tt_scan_estimate_plan(tt_scan *S, tt_scan_estimate **out)
         }
     }
     plan_stretches(E);
-    /* without a rerun the run's setting is the image's own line */
-    for (int s = 0; s < E->ns && !E->rerun; s++)
-        for (int c = 0; c < 3; c++)
-            for (int r = 0; r < E->dirs; r++)
-                for (long i = 0; i < px; i++)
-                    buf[(size_t)(12 * s + 2 * c + r) * (size_t)px + (size_t)i] =
-                        S->img[r][c][tt_raster_index(&S->raster, E->st[s].line, i)];
+    image_lines(E);
     E->cpu = tt_clock(TT_CLOCK_PROCESS) - c0;
     *out = E;
     return TT_OK;
@@ -315,22 +457,35 @@ int tt_scan_estimate_plan(tt_scan *S, tt_scan_estimate **out)
 
 int tt_scan_estimate_jobs(const tt_scan_estimate *E)
 {
-    return E->ns * (E->rerun ? 2 : 1);
+    int n = E->ns;
+    for (int s = 0; s < E->ns; s++)
+        n += E->rerun[s];
+    return n;
+}
+
+/* The i-th stretch the run's setting runs beside the tight line. */
+static int rerun_stretch(const tt_scan_estimate *E, int i)
+{
+    for (int s = 0; s < E->ns; s++)
+        if (E->rerun[s] && i-- == 0)
+            return s;
+    return 0;
 }
 
 /* Job j: the tight lines first (each stretch's, the costlier), then the run's setting's
- * beside them; any thread, each j once. */
+ * beside those that need it; any thread, each j once. */
 int tt_scan_estimate_job(tt_scan_estimate *E, int j)
 {
-    const int s = j % E->ns, k = j < E->ns;
+    const int k = j < E->ns, s = k ? j : rerun_stretch(E, j - E->ns);
     tt_scan *S = E->S;
     const long px = S->raster.pixels;
     const double c0 = tt_clock(TT_CLOCK_THREAD);
     /* the stretch's first cycle: the first whole cycle of its first pixel */
     const long nc = tt_raster_cycles_per_direction(&S->raster, S->cantilever.T);
     const long k0 = (E->st[s].first * nc + px - 1) / px;
-    int rc = companion_line(S, k ? &E->tight : &S->solver, E->st[s].line, E->budget, k0,
-                            E->buf + (size_t)((12 * s + 6 * k) * px), &E->hit[s][k], &E->cyc[s][k]);
+    int rc = companion_line(S, k ? &E->tight : &S->solver, E->st[s].line, E->budget[s][k],
+                            E->in_cycles, k0, E->buf + (size_t)((12 * s + 6 * k) * px),
+                            &E->hit[s][k], &E->cyc[s][k], &E->work[s][k]);
     snprintf(E->why[s][k], sizeof E->why[s][k], "%s", rc ? tt_error_message() : "");
     E->rc[s][k] = rc;
     E->job_cpu[s][k] = tt_clock(TT_CLOCK_THREAD) - c0;
@@ -344,30 +499,55 @@ void tt_scan_estimate_free(tt_scan_estimate *E)
     free(E);
 }
 
+/* The first failure of the jobs in the stretches' order, the run's setting's before the
+ * tight (TT_OK: none). */
+static int job_failure(const tt_scan_estimate *E)
+{
+    for (int s = 0; s < E->ns; s++)
+        for (int k = 0; k < 2; k++)
+            if (E->rc[s][k])
+                return tt_error(E->rc[s][k], "the companion line at tolerance %g: %s",
+                                k ? E->tight.tolerance : E->S->solver.tolerance, E->why[s][k]);
+    return TT_OK;
+}
+
+/* The stretches' differences into max and sum, what they ran into ran, work and cpu;
+ * the pixels compared. */
+static long compare_all(const tt_scan_estimate *E, double *max, double *sum, long *ran, long *work,
+                        double *cpu)
+{
+    long n = 0;
+    for (int s = 0; s < E->ns; s++) {
+        compare(E->S, E->buf + (size_t)(12 * s) * (size_t)E->S->raster.pixels, E->st[s].first,
+                E->dirs, E->hit[s][0] || E->hit[s][1], E->rerun[s], max, sum, &n);
+        *ran += E->cyc[s][0] + E->cyc[s][1];
+        *work += E->work[s][0] + E->work[s][1];
+        *cpu += E->job_cpu[s][0] + E->job_cpu[s][1];
+    }
+    return n;
+}
+
 int tt_scan_estimate_finish(tt_scan_estimate *E, tt_scan_error *e)
 {
     memset(e, 0, sizeof *e);
     tt_scan *S = E->S;
     double max[3] = {0}, sum[3] = {0}, cpu = E->cpu;
-    long n = 0, ran = 0;
-    /* the first failure in the stretches' order, the run's setting's before the tight */
-    for (int s = 0; s < E->ns; s++)
-        for (int k = 0; k < 2; k++)
-            if (E->rc[s][k]) {
-                int rc = tt_error(E->rc[s][k], "the companion line at tolerance %g: %s",
-                                  k ? E->tight.tolerance : S->solver.tolerance, E->why[s][k]);
-                tt_scan_estimate_free(E);
-                return rc;
-            }
-    for (int s = 0; s < E->ns; s++) {
-        compare(S, E->buf + (size_t)(12 * s) * (size_t)S->raster.pixels, E->st[s].first, E->dirs,
-                E->hit[s][0] || E->hit[s][1], E->rerun, max, sum, &n);
-        ran += E->cyc[s][0] + E->cyc[s][1];
-        cpu += E->job_cpu[s][0] + E->job_cpu[s][1];
+    long ran = 0, work = 0;
+    int rc = job_failure(E);
+    long n = rc ? 0 : compare_all(E, max, sum, &ran, &work, &cpu);
+    if (!rc && n == 0 && !E->over) {
+        /* every stretch stopped before its first pixel, its settling at the tight setting
+         * dearer than predicted: the whole hardest line runs here, over the share */
+        plan_whole(E, rerun_whole(E));
+        image_lines(E);
+        for (int j = 0; j < tt_scan_estimate_jobs(E) && !rc; j++)
+            rc = tt_scan_estimate_job(E, j);
+        rc = rc ? job_failure(E) : TT_OK;
+        n = rc ? 0 : compare_all(E, max, sum, &ran, &work, &cpu);
     }
-    if (n == 0) {
+    if (rc || n == 0) {
         tt_scan_estimate_free(E);
-        return tt_error(TT_EINVAL, "the companion line compared no pixel");
+        return rc ? rc : tt_error(TT_EINVAL, "the companion line compared no pixel");
     }
     /* the difference stands for the run's error to within a tenth; twice it covers that
      * and the other lines, which the companion did not run */
@@ -386,6 +566,11 @@ int tt_scan_estimate_finish(tt_scan_estimate *E, tt_scan_error *e)
     e->stretches = E->ns;
     e->over = E->over;
     e->cycles = ran;
+    e->work = work;
+    e->budget = E->in_cycles ? 0 : (long)(TT_ESTIMATE_SHARE * (double)S->work);
+    e->scan_work = S->work;
+    e->lines = tt_scan_second_order(S) && tt_scan_envelope_usable(S, &S->solver) && !E->in_cycles
+                   ? E->ns : 0;
     e->seconds = cpu;
     tt_scan_estimate_free(E);
     return TT_OK;

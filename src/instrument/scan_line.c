@@ -164,6 +164,8 @@ int tt_scan_line_run(tt_scan *S, worker *W, long line, const line_out *out, scan
         st.k = phase == 1 ? L.k0 : 0;
         st.ahead[0].k = st.ahead[1].k = -1;
         rc = run(&L, &st, tier);
+        if (phase == 0) /* what settling cost: the estimate's stretches each settle */
+            W->settle_work = tt_scan_line_work(W, st.cycles);
     }
     if (rc == TT_SCAN_BUDGET) { /* the companion's share spent: its pixels so far count */
         W->budget_hit = 1;

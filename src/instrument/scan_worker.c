@@ -291,6 +291,8 @@ int tt_scan_worker_line(tt_scan *S, worker *W, long line, const line_out *out,
     if (rc)
         return rc;
     W->scope = scope;
+    W->work0 = tt_sim_work(W->sim);
+    W->settle_work = 0;
     if (W->env)
         rc = tt_scan_line_envelope(S, W, line, out, &t->cycles, &t->integrated, &t->worst,
                                    &t->clamped);
@@ -300,6 +302,8 @@ int tt_scan_worker_line(tt_scan *S, worker *W, long line, const line_out *out,
     else
         rc = tt_scan_line_every(S, W, line, out, &t->cycles, &t->integrated, &t->worst,
                                 &t->clamped);
+    t->work = tt_scan_line_work(W, t->cycles);
+    t->settle_work = W->settle_work;
     W->scope = NULL;
     if (scope)
         tt_scan_scope_end(scope, rc == TT_OK);

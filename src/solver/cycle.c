@@ -133,6 +133,7 @@ int tt_sim_cycle(tt_sim *S, tt_cycle *out)
             S->tau = T;
     }
     cycle_result(S, E_start, out);
+    S->work += S->steps + S->rejected;
     /* the next cycle starts at tau = 0 with the sample carried on */
     S->cycle++;
     S->sys.s0 += S->sys.sdot * T;

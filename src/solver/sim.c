@@ -155,6 +155,7 @@ const tt_cantilever *tt_sim_cantilever(const tt_sim *S) { return &S->c; }
 
 double tt_sim_time(const tt_sim *S) { return sim_time(S, 0.0); }
 long tt_sim_cycles(const tt_sim *S) { return S->cycle; }
+long tt_sim_work(const tt_sim *S) { return S->work; }
 
 void tt_sim_get_state(const tt_sim *S, double *d, double *v, int *contact)
 {

@@ -116,6 +116,7 @@ struct tt_sim {
     int switches_there; /* ... and how many were made at that instant */
     int switches_near;  /* ... and within 1e-12 T of one another (events.c) */
     long steps, rejected, events;
+    long work; /* steps and rejected steps over the sim's life (tt_sim_work) */
 };
 
 /* The length of the state in use: the system's n components and the quadratures. */

@@ -306,14 +306,18 @@ tt_solver tt_companion_solver(const tt_solver *s);
  * the line with the largest height step between neighbouring pixels (the profile line
  * on a flat image), scanned again at tt_companion_solver's setting and compared with
  * the image; each figure is twice the largest or rms difference over the pixels
- * compared. The companion runs at most TT_ESTIMATE_SHARE of the scan's cost (its cycles
- * bounded by the scan's integrated cycles, over the tighter setting's cost per cycle):
- * where that does not cover the line, it runs stretches of the trace, one with the
- * largest height step a quarter into it and one with the first edge of each ordered
- * pair of materials the trace meets (a soft matrix onto a stiff disk errs most; at most
- * 8 stretches), each engaged at its start on an equal share of the budget, and the
- * run's setting runs the same stretches beside them (as for continuous lines and the
- * averaged tier), on two threads. */
+ * compared. The companion spends at most TT_ESTIMATE_SHARE of the scan's work (its
+ * integrator steps, accepted and rejected, and one a cycle: the same on any machine and
+ * thread; on the averaged tier, whose slow flow takes no steps, of the cycles it
+ * integrated): where that does not cover the line, it runs stretches of the trace, one
+ * with the largest height step a quarter into it, one from that line's start (where it
+ * engaged), and one with the first edge of each ordered pair of materials the trace
+ * meets (a soft matrix onto a stiff disk errs most; at most 8 stretches), each engaged
+ * at its start on an equal share of the budget, and the run's setting runs the same
+ * stretches beside them where they start inside the line (and for continuous lines and
+ * the averaged tier), on two threads. With thermal or z piezo noise on the envelope tier
+ * it runs whole lines, as many of the hardest as the share holds (at most 8): part of a
+ * line reads low there. */
 #define TT_ESTIMATE_SHARE 0.2
 typedef struct {
     double height_max, height_rms;       /* m */
@@ -325,16 +329,25 @@ typedef struct {
     long first;                          /* the trace's first pixel it ran from */
     double step;                         /* the line's largest height step in reach, m */
     long cycles;                         /* the companion's cycles (all its lines) */
+    long work;                           /* its work: integrator steps, accepted and
+                                          * rejected, and one a cycle (all its lines) */
+    long scan_work, budget;              /* the scan's lines' work, and the fifth of it the
+                                          * companion may spend (0: counted in the cycles
+                                          * the scan integrated, the averaged tier) */
+    long lines;                          /* whole lines it ran, the hardest (noise that
+                                          * moves the state, on the envelope tier; 0:
+                                          * otherwise) */
     double seconds;                      /* its CPU time, s (its lines' threads) */
     long stretches;                      /* the stretches it ran (1: one, or the whole line) */
     int over;                            /* the whole line ran over TT_ESTIMATE_SHARE: a scan
-                                          * too short for each stretch's settling */
+                                          * too short for each stretch's settling, or
+                                          * with noise for one whole line */
 } tt_scan_error;
 
-/* The images are untouched. Where a fifth of the scan's cost does not reach each
- * stretch's settling and two pixels (a scan of a few lines), the whole hardest line
- * runs, over the fifth (e->over says so), compared with the image's own line where
- * lines are independent. */
+/* The images are untouched. Where a fifth of the scan's work does not reach each
+ * stretch's settling and two pixels (a scan of a few lines), or with noise one whole
+ * line, the whole hardest line runs, over the fifth (e->over says so), compared with
+ * the image's own line where lines are independent. */
 int tt_scan_estimate_error(tt_scan *s, tt_scan_error *e);
 /* tt_scan_estimate_error in three parts, for a caller that runs the companion's lines
  * beside other work on its own threads: plan (the stretches, on the calling thread),

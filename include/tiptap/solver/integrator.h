@@ -228,6 +228,10 @@ void tt_cycle_mean(const tt_cycle *c, int n, tt_cycle *out);
 /* Absolute time at the current cycle start, s; cycles completed. */
 double tt_sim_time(const tt_sim *sim);
 long tt_sim_cycles(const tt_sim *sim);
+/* The steps, accepted and rejected, of every cycle the sim integrated since it was
+ * made: a measure of what its runs cost that does not depend on the machine (the
+ * error estimate's budget, tt_scan_estimate_error). */
+long tt_sim_work(const tt_sim *sim);
 void tt_sim_get_state(const tt_sim *sim, double *d, double *v, int *contact);
 void tt_sim_set_state(tt_sim *sim, double d, double v, int contact);
 /* The state of the cycle map in any dimension: the system's n components (position and
