@@ -354,15 +354,16 @@ static void scan_summary(void *user, const tt_scan *scan, const tt_run_scan_resu
                                 "300 K other lines erred up to 4 times this max (its rms held to "
                                 "1.3 times)");
             fprintf(stderr, "\nestimate_cycles = %ld", e->cycles);
-            if (e->budget > 0 || e->scan_work > 0)
-                fprintf(stderr, "\nestimate_work = %ld (%.1f %% of the scan's %ld: integrator "
-                                "steps, accepted and rejected, and one a cycle)",
-                        e->work, 100.0 * (double)e->work / (double)e->scan_work, e->scan_work);
+            /* the averaged tier's budget is counted in the cycles it integrated */
             if (e->budget == 0 && integ > 0)
                 fprintf(stderr, " (%.1f %% of the scan's %ld cycles integrated)",
                         100.0 * (double)e->cycles / (double)integ, integ);
-            else if (e->budget == 0) /* the averaged tier integrates none: no bound */
+            else if (e->budget == 0) /* it integrated none: no bound */
                 fprintf(stderr, " (the scan integrated none)");
+            if (e->scan_work > 0)
+                fprintf(stderr, "\nestimate_work = %ld (%.1f %% of the scan's %ld: integrator "
+                                "steps, accepted and rejected, and one a cycle)",
+                        e->work, 100.0 * (double)e->work / (double)e->scan_work, e->scan_work);
             if (e->over && e->lines) /* never silently over the share */
                 fprintf(stderr, "\n# over the share: with noise that moves the state the "
                                 "companion runs whole lines, and a fifth of this scan's work "
