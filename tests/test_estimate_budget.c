@@ -1,9 +1,11 @@
 /* The error estimate's budget, counted in work (integrator steps, accepted and rejected,
  * and one a cycle: tt_sim_work, tt_scan_error.work): the sim counts every step of every
  * cycle it integrated; a companion in stretches spends at most a fifth of the scan's
- * work, the same on one thread as on two; with thermal noise it runs the hardest lines
- * whole (part of a line reads low there), as many as a fifth holds, and on a scan too
- * short for one it runs the hardest line over the share and says so. */
+ * work, the same on one thread as on two; with thermal noise it runs whole lines (part
+ * of a line reads low there), first the one where the error signal strays furthest, as
+ * many as a fifth holds, and on a scan too short for one that line over the share,
+ * saying so. */
+#include <math.h>
 #include <stdlib.h>
 
 #include "tt_test.h"
@@ -104,6 +106,19 @@ static void noise_runs_whole_lines(void **st)
                       e.scan_work, e.over);
         assert_true(e.lines >= 1);
         assert_int_equal(e.pixels, e.lines * e.pixels_line); /* every pixel of each */
+        /* the first is the line where the error signal strays furthest */
+        double top = 0;
+        long at = -1;
+        for (int r = 0; r < 2; r++) {
+            const double *err = tt_scan_image(s, 1, r);
+            assert_non_null(err);
+            for (long i = 0; i < tt_scan_yres(s) * tt_scan_xres(s); i++)
+                if (fabs(err[i]) > top) {
+                    top = fabs(err[i]);
+                    at = i / tt_scan_xres(s); /* the fast axis along x: a row a line */
+                }
+        }
+        assert_true(e.signal == top && e.line == at);
         if (k == 0) { /* two lines hold no whole line in a fifth: one, over, and says so */
             assert_true(e.over && e.lines == 1 && e.work > e.budget);
         } else { /* forty hold more than one, within the fifth as predicted */

@@ -127,6 +127,7 @@ typedef struct {
     long pixels, pixels_line;
     long first;
     double step;
+    double signal;
     long cycles;
     long work;
     long scan_work, budget;

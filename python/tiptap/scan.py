@@ -176,6 +176,7 @@ def scan(scene, *, set=None, threads=0, progress=None, error_estimate=False, hdf
             # fifth, or the whole hardest line ran over the share (a scan too short for a
             # stretch's settling at the tight setting; with noise, for one whole line)
             "work": e.work, "scan_work": e.scan_work, "lines_whole": e.lines,
+            "error_signal_m": e.signal,
             "over_share": bool(e.over), "run_cpu_s": r.cpu_seconds,
         }
     col.emit(stacklevel=2, result=result)

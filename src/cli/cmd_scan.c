@@ -330,7 +330,10 @@ static void scan_summary(void *user, const tt_scan *scan, const tt_run_scan_resu
                     avg ? "on the envelope tier (the averaged model's error) at" : "at",
                     rk4 ? "steps_per_cycle" : "tolerance",
                     rk4 ? (double)tt_companion_solver(&p->solver).steps_per_cycle : e->tolerance);
-            if (e->step > 0)
+            if (e->signal > 0)
+                fprintf(stderr, "the line where the error signal strays furthest (up to %.2g m "
+                                "from the setpoint)", e->signal);
+            else if (e->step > 0)
                 fprintf(stderr, "the image's hardest line (height steps up to %.2g m between pixels)",
                         e->step);
             else
@@ -346,13 +349,13 @@ static void scan_summary(void *user, const tt_scan *scan, const tt_run_scan_resu
             else
                 fprintf(stderr, ", all its %ld pixels", e->pixels_line);
             if (e->lines > 1)
-                fprintf(stderr, ", and the next %ld hardest line%s whole (noise that moves the "
+                fprintf(stderr, ", and the next %ld such line%s whole (noise that moves the "
                                 "state)", e->lines - 1, e->lines > 2 ? "s" : "");
             if (e->lines > 0) /* what it cannot bound */
                 fprintf(stderr, "\n# with noise that moves the state the largest error differs "
                                 "from line to line with the noise: on the blend and the steps at "
-                                "300 K other lines erred up to 4 times this max (its rms held to "
-                                "1.3 times)");
+                                "300 K other lines erred up to 2.6 times this max (its rms held to "
+                                "1.2 times)");
             fprintf(stderr, "\nestimate_cycles = %ld", e->cycles);
             /* the averaged tier's budget is counted in the cycles it integrated */
             if (e->budget == 0 && integ > 0)

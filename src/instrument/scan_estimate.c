@@ -269,6 +269,7 @@ struct tt_scan_estimate {
     tt_solver tight;
     int dirs, over, ns, in_cycles;
     double step, cpu; /* cpu: the plan's own (the averaged tier's tables) */
+    double signal;    /* with noise: the first line's largest error signal, m */
     stretch st[MAX_STRETCHES];
     int rerun[MAX_STRETCHES];
     long budget[MAX_STRETCHES][2];
@@ -279,7 +280,26 @@ struct tt_scan_estimate {
     char why[MAX_STRETCHES][2][512]; /* a worker thread's message is its own */
 };
 
-/* The n hardest lines, whole (n within 1 and MAX_STRETCHES). */
+/* A line's largest excursion of the error signal (the lock-in amplitude from the
+ * setpoint), trace and retrace; -1 where the scan holds no error channel. */
+static double line_signal(const tt_scan *S, long l)
+{
+    const tt_raster *R = &S->raster;
+    double top = -1;
+    for (int r = 0; r < (R->retrace ? 2 : 1) && S->img[r][1]; r++)
+        for (long i = 0; i < R->pixels; i++) {
+            double a = fabs(S->img[r][1][tt_raster_index(R, l, i)]);
+            top = a > top ? a : top;
+        }
+    return top;
+}
+
+/* The n hardest lines with noise, whole (n within 1 and MAX_STRETCHES): those where
+ * the error signal strays furthest, else (no error channel) the largest height steps'.
+ * With noise the height steps do not tell where the loop erred: on eight noisy scans of
+ * the blend and the steps the line of the largest step erred 0.18 to 1 times the worst
+ * line's largest height error (0.62 on average), the line of the largest error signal
+ * 0.48 to 1 times (0.88); the phase 0.10 and 0.19 at the least. */
 static int hardest_lines(tt_scan_estimate *E, long n)
 {
     tt_scan *S = E->S;
@@ -289,13 +309,20 @@ static int hardest_lines(tt_scan_estimate *E, long n)
     char *taken = calloc((size_t)S->raster.lines, 1);
     E->step = 0;
     for (int k = 0; k < n; k++) {
-        double step = 0;
+        double step = 0, best = -1;
         long at;
         E->st[k] = (stretch){S->profile_line, 0, 0};
-        if (S->lines_done > 0 && taken)
+        for (long l = 0; l < S->raster.lines && taken; l++)
+            if (S->line_done[l] && !taken[l] && line_signal(S, l) > best) {
+                best = line_signal(S, l);
+                E->st[k].line = l;
+            }
+        if (best < 0 && S->lines_done > 0 && taken)
             E->st[k].line = hardest_line(S, 2 * S->raster.pixels, taken, &step, &at);
-        if (k == 0)
+        if (k == 0) {
             E->step = step;
+            E->signal = best > 0 ? best : 0;
+        }
         if (taken)
             taken[E->st[k].line] = 1;
     }
@@ -361,10 +388,7 @@ static void plan_noisy(tt_scan_estimate *E, long budget, const line_cost *c, int
     const double whole = c->settle[1] + (double)(2 * nc) * c->cycle[1] +
                          (whole_rerun ? c->settle[0] + (double)(2 * nc) * c->cycle[0] : 0);
     const long n = budget > 0 ? (long)((double)budget / whole) : 1;
-    if (n < 1) {
-        plan_whole(E, whole_rerun);
-        return;
-    }
+    E->over = n < 1; /* the hardest line whole, over the fifth, and saying so */
     /* unbounded: a line its budget cut reads its trace alone */
     E->ns = hardest_lines(E, n);
     stretch_budgets(E, whole_rerun, whole_rerun, 0, NULL);
@@ -562,6 +586,7 @@ int tt_scan_estimate_finish(tt_scan_estimate *E, tt_scan_error *e)
     e->pixels = n;
     e->pixels_line = E->dirs * S->raster.pixels;
     e->step = E->step;
+    e->signal = E->signal;
     e->first = E->st[0].first;
     e->stretches = E->ns;
     e->over = E->over;

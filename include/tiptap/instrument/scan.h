@@ -316,8 +316,8 @@ tt_solver tt_companion_solver(const tt_solver *s);
  * at its start on an equal share of the budget, and the run's setting runs the same
  * stretches beside them where they start inside the line (and for continuous lines and
  * the averaged tier), on two threads. With thermal or z piezo noise on the envelope tier
- * it runs whole lines, as many of the hardest as the share holds (at most 8): part of a
- * line reads low there. */
+ * it runs whole lines, those where the error signal strays furthest, as many as the
+ * share holds (at most 8): part of a line reads low there. */
 #define TT_ESTIMATE_SHARE 0.2
 typedef struct {
     double height_max, height_rms;       /* m */
@@ -328,6 +328,9 @@ typedef struct {
     long pixels, pixels_line;            /* pixels compared, of the line's (trace and retrace) */
     long first;                          /* the trace's first pixel it ran from */
     double step;                         /* the line's largest height step in reach, m */
+    double signal;                       /* with noise (lines > 0): the line's largest error
+                                          * signal, |amplitude - setpoint|, m, by which the
+                                          * lines were chosen (0: by their height steps) */
     long cycles;                         /* the companion's cycles (all its lines) */
     long work;                           /* its work: integrator steps, accepted and
                                           * rejected, and one a cycle (all its lines) */
