@@ -92,6 +92,18 @@ else
   bad "estimates: $(cat "$tmp/est")"
 fi
 
+# The estimate with noise: a row per seed with finite figures, its check saying BELOW
+# exactly where a max estimate lies under the measured error (with noise it may).
+awk '/^noisy run +h_rms_est/ { t = 1; next } /^#/ || /^$/ { t = 0; next }
+  t { for (i = 4; i <= 11; i++) if ($i !~ /^[-+0-9.eE]+$/ || $i + 0 < 0) print "not a figure: " $0
+      below = $6 + 0 < $7 + 0 || $10 + 0 < $11 + 0
+      if (below != ($12 ~ /^BELOW/)) print "check column wrong: " $0
+      if (!($5 + 0 > 0 && $7 + 0 > 0)) print "no error measured: " $0
+      rows++ }
+  END { print rows " rows" }' "$out" >"$tmp/noisy"
+[ "$(cat "$tmp/noisy")" = "2 rows" ] && ok "noisy estimate: 2 rows, its check says where it is below" ||
+  bad "noisy estimate: $(cat "$tmp/noisy")"
+
 # The noise figure: six rows, positive finite sds, the full set above the detector alone.
 awk '/^setting +rtf_j2/ { t = 1; next } /^#/ || /^$/ { t = 0; next }
   t { lab = $1; for (i = 2; i <= NF - 7; i++) lab = lab " " $i

@@ -87,9 +87,18 @@ const char *bench_default_tier(void);
 /* The README main job's scene: scans/quick.ini followed by surfaces/polymer-blend.ini. */
 const char *bench_blend_scene(void);
 
+/* The largest and rms difference of channel c (0 height, 1 phase) between a and ref,
+ * trace and retrace. */
+void bench_image_error(const bench_run *a, const bench_run *ref, int c, double *max, double *rms);
+
 /* The noise figure on a sample: each noise set on the every-cycle tier and on the
  * scene's default tier, seeds 1 to seeds, against the noise-free reference ref. */
 int bench_noise_figure(const bench_sample *s, const bench_run *ref, int seeds);
+/* The error estimate with noise on a sample: thermal and detector noise on the default
+ * tier at tolerance 1e-8, seeds 1 to seeds (at most 3), its estimate against the same
+ * lines at tolerance 1e-11 (the same tier and seed: the every-cycle tier draws its own
+ * noise). */
+int bench_noise_estimate(const bench_sample *s, int seeds);
 
 /* The lesson figure: the teaching scene (bench_lesson_scene) at each of the lesson's
  * settings, lines 0 to lines - 1 stepped one at a time on the default tier and on the

@@ -222,7 +222,7 @@ void bench_run_free(bench_run *r)
 }
 
 /* Largest and rms difference of channel c between a run and the reference. */
-static void image_error(const bench_run *a, const bench_run *ref, int c, double *max, double *rms)
+void bench_image_error(const bench_run *a, const bench_run *ref, int c, double *max, double *rms)
 {
     size_t n = (size_t)(a->pixels * a->lines);
     double m = 0, s = 0;
@@ -277,8 +277,8 @@ static int figure_row(const bench_row *row, const tt_scan_params *p, int j1, int
         rc = bench_run_scan(p, 2, 1, repeat, &r2);
     if (!rc) {
         double hm, hr, pm, pr;
-        image_error(&r2, ref, 0, &hm, &hr);
-        image_error(&r2, ref, 1, &pm, &pr);
+        bench_image_error(&r2, ref, 0, &hm, &hr);
+        bench_image_error(&r2, ref, 1, &pm, &pr);
         double e[4] = {r2.est.height_rms, r2.est.height_max, r2.est.phase_rms, r2.est.phase_max};
         double m[4] = {hr, hm, pr, pm};
         memcpy(est, e, sizeof e);

@@ -38,7 +38,10 @@ static void help(void)
            "100 fm/sqrt(Hz), z piezo 0.3 pm/sqrt(Hz)) and with detector noise alone, on the\n"
            "every-cycle tier and the default tier over several seeds: per line, the sd and\n"
            "the mean of each image's difference from the noise-free reference, with their\n"
-           "standard errors, and the default tier's sd over every cycle's.\n\n"
+           "standard errors, and the default tier's sd over every cycle's. Then the error\n"
+           "estimate with noise: 300 K and detector noise on the default tier at 1e-8, seeds\n"
+           "1 to 3 at most, against the same lines, tier and seed at 1e-11 (BELOW where its\n"
+           "max lies under the measured: with noise it may, docs/dynamics.md).\n\n"
            "The scene figures: two lines of the README's main job (scans/quick.ini with\n"
            "surfaces/polymer-blend.ini, 64 pixels at 4 Hz) and of the standard scene at\n"
            "Q 1e4 (examples/extreme/vacuum-q1e4.ini; 0.5 nm steps, 256 pixels at 1 Hz),\n"
@@ -198,6 +201,8 @@ static int bench_images(const tt_scene *scene, const bench_lines *lines, int ima
         rc = bench_imaging_figure(&edge, edge_rows, n, lines->repeat, &ref); /* --quick: no -j 1 */
         if (!rc && noise)
             rc = bench_noise_figure(&edge, &ref, seeds);
+        if (!rc && noise)
+            rc = bench_noise_estimate(&edge, seeds);
         bench_run_free(&ref);
     }
     if (rc || !scenes)
