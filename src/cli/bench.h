@@ -90,6 +90,12 @@ const char *bench_blend_scene(void);
 /* The largest and rms difference of channel c (0 height, 1 phase) between a and ref,
  * trace and retrace. */
 void bench_image_error(const bench_run *a, const bench_run *ref, int c, double *max, double *rms);
+/* The estimate tables (the run's own estimate against the measured error): the header,
+ * its first column named first, and a row of est and meas, each [h rms, h max, ph rms,
+ * ph max] (m, deg), printed in pm and deg; 1 where a max estimate lies below the
+ * measured (its check says BELOW). */
+void bench_estimate_header(const char *first);
+int bench_estimate_row(const char *label, const double est[4], const double meas[4]);
 
 /* The noise figure on a sample: each noise set on the every-cycle tier and on the
  * scene's default tier, seeds 1 to seeds, against the noise-free reference ref. */

@@ -239,6 +239,25 @@ void bench_image_error(const bench_run *a, const bench_run *ref, int c, double *
 
 enum { MAX_ROWS = 8 };
 
+void bench_estimate_header(const char *first)
+{
+    printf("%-32s %11s %11s %11s %11s %11s %11s %11s %11s %s\n", first, "h_rms_est", "h_rms_meas",
+           "h_max_est", "h_max_meas", "ph_rms_est", "ph_rms_meas", "ph_max_est", "ph_max_meas", "check");
+}
+
+int bench_estimate_row(const char *label, const double est[4], const double meas[4])
+{
+    /* the largest errors are what the estimate bounds: a max read below is flagged */
+    char check[64] = "ok";
+    const int below = est[1] < meas[1] || est[3] < meas[3];
+    if (below)
+        snprintf(check, sizeof check, "BELOW:%s%s", est[1] < meas[1] ? " height" : "",
+                 est[3] < meas[3] ? " phase" : "");
+    printf("%-32s %11.3g %11.3g %11.3g %11.3g %11.3g %11.3g %11.3g %11.3g %s\n", label, est[0] * 1e12,
+           meas[0] * 1e12, est[1] * 1e12, meas[1] * 1e12, est[2], meas[2], est[3], meas[3], check);
+    return below;
+}
+
 /* The run's own error estimate (tt_scan_estimate_error, a companion line) against the
  * error measured against the reference, per row: [h rms, h max, ph rms, ph max]. */
 static void print_estimates(const bench_row *rows, size_t n, const int *ran, double (*est)[4],
@@ -246,23 +265,11 @@ static void print_estimates(const bench_row *rows, size_t n, const int *ran, dou
 {
     printf("\n# error estimate (a companion run of one line at a 100x tighter setting) against the "
            "measured error\n");
-    printf("%-32s %11s %11s %11s %11s %11s %11s %11s %11s %s\n", "setting", "h_rms_est", "h_rms_meas",
-           "h_max_est", "h_max_meas", "ph_rms_est", "ph_rms_meas", "ph_max_est", "ph_max_meas", "check");
+    bench_estimate_header("setting");
     int below = 0;
-    for (size_t i = 1; i < n; i++) {
-        if (!ran[i])
-            continue;
-        /* the largest errors are what the estimate bounds: a max read below is flagged */
-        char check[64] = "ok";
-        if (est[i][1] < meas[i][1] || est[i][3] < meas[i][3]) {
-            snprintf(check, sizeof check, "BELOW:%s%s", est[i][1] < meas[i][1] ? " height" : "",
-                     est[i][3] < meas[i][3] ? " phase" : "");
-            below++;
-        }
-        printf("%-32s %11.3g %11.3g %11.3g %11.3g %11.3g %11.3g %11.3g %11.3g %s\n", rows[i].label,
-               est[i][0] * 1e12, meas[i][0] * 1e12, est[i][1] * 1e12, meas[i][1] * 1e12, est[i][2],
-               meas[i][2], est[i][3], meas[i][3], check);
-    }
+    for (size_t i = 1; i < n; i++)
+        if (ran[i])
+            below += bench_estimate_row(rows[i].label, est[i], meas[i]);
     printf("# heights in pm, phases in deg; the estimate is never to be below the measured error:\n"
            "# check says BELOW where its max is (%d row%s)\n", below, below == 1 ? "" : "s");
 }

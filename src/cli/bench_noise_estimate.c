@@ -51,24 +51,15 @@ int bench_noise_estimate(const bench_sample *s, int seeds)
     seeds = seeds < MAX_SEEDS ? seeds : MAX_SEEDS;
     printf("\n# error estimate with noise (300 K, detector 100 fm/sqrt(Hz)), the default tier at tolerance "
            "1e-8,\n# against the same lines, tier and seed at 1e-11\n");
-    printf("%-32s %11s %11s %11s %11s %11s %11s %11s %11s %s\n", "noisy run", "h_rms_est", "h_rms_meas",
-           "h_max_est", "h_max_meas", "ph_rms_est", "ph_rms_meas", "ph_max_est", "ph_max_meas", "check");
+    bench_estimate_header("noisy run");
     int rc = TT_OK, below = 0;
     for (int seed = 1; seed <= seeds && !rc; seed++) {
         double est[4], meas[4];
         rc = seed_row(s, seed, est, meas);
-        if (rc)
-            break;
-        char label[64], check[64] = "ok";
+        char label[64];
         snprintf(label, sizeof label, "%s, seed %d", bench_default_tier(), seed);
-        if (est[1] < meas[1] || est[3] < meas[3]) {
-            snprintf(check, sizeof check, "BELOW:%s%s", est[1] < meas[1] ? " height" : "",
-                     est[3] < meas[3] ? " phase" : "");
-            below++;
-        }
-        printf("%-32s %11.3g %11.3g %11.3g %11.3g %11.3g %11.3g %11.3g %11.3g %s\n", label,
-               est[0] * 1e12, meas[0] * 1e12, est[1] * 1e12, meas[1] * 1e12, est[2], meas[2], est[3],
-               meas[3], check);
+        if (!rc)
+            below += bench_estimate_row(label, est, meas);
         fflush(stdout);
     }
     if (!rc)

@@ -267,7 +267,8 @@ static long settle_cycles(const tt_scan *S)
 struct tt_scan_estimate {
     tt_scan *S;
     tt_solver tight;
-    int dirs, over, ns, in_cycles;
+    int dirs, over, ns, in_cycles, noisy; /* noisy: whole lines (plan_noisy) */
+    long budget_all; /* the fifth of the scan's work (0: counted in cycles, or none) */
     double step, cpu; /* cpu: the plan's own (the averaged tier's tables) */
     double signal;    /* with noise: the first line's largest error signal, m */
     stretch st[MAX_STRETCHES];
@@ -303,18 +304,22 @@ static double line_signal(const tt_scan *S, long l)
 static int hardest_lines(tt_scan_estimate *E, long n)
 {
     tt_scan *S = E->S;
+    const long lines = S->raster.lines;
     n = n < 1 ? 1 : n > MAX_STRETCHES ? MAX_STRETCHES : n;
     if (n > S->lines_done)
         n = S->lines_done > 0 ? S->lines_done : 1;
-    char *taken = calloc((size_t)S->raster.lines, 1);
-    E->step = 0;
+    char *taken = calloc((size_t)lines, 1);
+    double *sig = malloc((size_t)lines * sizeof *sig);
+    for (long l = 0; l < lines && sig; l++)
+        sig[l] = S->line_done[l] ? line_signal(S, l) : -1;
+    E->step = E->signal = 0;
     for (int k = 0; k < n; k++) {
         double step = 0, best = -1;
         long at;
         E->st[k] = (stretch){S->profile_line, 0, 0};
-        for (long l = 0; l < S->raster.lines && taken; l++)
-            if (S->line_done[l] && !taken[l] && line_signal(S, l) > best) {
-                best = line_signal(S, l);
+        for (long l = 0; l < lines && taken && sig; l++)
+            if (!taken[l] && sig[l] > best) {
+                best = sig[l];
                 E->st[k].line = l;
             }
         if (best < 0 && S->lines_done > 0 && taken)
@@ -327,6 +332,7 @@ static int hardest_lines(tt_scan_estimate *E, long n)
             taken[E->st[k].line] = 1;
     }
     free(taken);
+    free(sig);
     return (int)n;
 }
 
@@ -406,7 +412,9 @@ static void plan_stretches(tt_scan_estimate *E)
     const long settle = settle_cycles(S);
     line_cost c;
     long budget = companion_budget(S, &E->tight, settle, &c, &E->in_cycles);
-    if (!E->in_cycles && tt_scan_second_order(S) && tt_scan_envelope_usable(S, &S->solver)) {
+    E->budget_all = E->in_cycles ? 0 : budget;
+    E->noisy = !E->in_cycles && tt_scan_second_order(S) && tt_scan_envelope_usable(S, &S->solver);
+    if (E->noisy) {
         plan_noisy(E, budget, &c, whole_rerun);
         return;
     }
@@ -592,10 +600,9 @@ int tt_scan_estimate_finish(tt_scan_estimate *E, tt_scan_error *e)
     e->over = E->over;
     e->cycles = ran;
     e->work = work;
-    e->budget = E->in_cycles ? 0 : (long)(TT_ESTIMATE_SHARE * (double)S->work);
+    e->budget = E->budget_all;
     e->scan_work = S->work;
-    e->lines = tt_scan_second_order(S) && tt_scan_envelope_usable(S, &S->solver) && !E->in_cycles
-                   ? E->ns : 0;
+    e->lines = E->noisy ? E->ns : 0;
     e->seconds = cpu;
     tt_scan_estimate_free(E);
     return TT_OK;
